@@ -1,0 +1,48 @@
+// Correction: the joint positions that make the real machine do what the ideal machine does.
+//
+// Given nominal joints q_n, find q_c with (model.md, Correction)
+//     pos P(q_c) = pos P'(q_n)    and, where rotary axes set the tool direction,
+//     b1 . (k* x k(q_c)) = 0, b2 . (k* x k(q_c)) = 0     (two rotary axes; b1, b2 _|_ k*)
+//     a . (k* x k(q_c)) = 0                               (one rotary axis, a its line)
+// Near a kinematic pole (tool axis near a rotary axis line, angle phi) the rotary joints take
+// f(phi) of their full correction and the linear joints then make the position exact.
+// Newton with the exact Jacobian (table slopes included), seeded with q_n or a given seed.
+// Real-time: no allocation, no locks, at most 2 * max_iterations Newton steps.
+#pragma once
+
+#include "vc/machine/forward.hpp"
+#include "vc/machine/status.hpp"
+
+namespace vc::machine {
+
+struct Correction {
+  Joints joints;              // q_c (not clamped to the travel: limits are LinuxCNC's business)
+  Status status = Status::Ok;
+  int iterations = 0;         // Newton steps taken
+  double residual_mm = 0.0;   // |pos P(q_c) - pos P'(q_n)|
+  double residual_rad = 0.0;  // |k'(q_n) x k(q_c)|: tool direction error left (by design > 0 where f < 1)
+  double pole_angle_rad = 0.0;  // phi: ideal tool direction to the nearest rotary axis line
+  double fade = 1.0;            // f in [0, 1]
+};
+
+Correction correct(const Model& model, const Joints& nominal, double tool_length_mm) noexcept;
+// Same, with the Newton iteration seeded at `seed` (e.g. the previous servo cycle's solution).
+Correction correct(const Model& model, const Joints& nominal, double tool_length_mm,
+                   const Joints& seed) noexcept;
+
+// Pole angle phi and fade factor f at nominal joints (ideal machine, part frame).
+double pole_angle(const Model& model, const Joints& nominal, double tool_length_mm) noexcept;
+double fade_factor(const PoleFade& fade, double pole_angle_rad) noexcept;
+
+// The inverse of the correction map: the nominal joints q_n whose correction is `corrected`.
+// Fixed-point iteration q_n <- q_n - (correct(q_n) - q_c); the map is the identity plus a
+// small smooth function, so it contracts by about the largest table slope per step.
+// Real-time: at most max_iterations corrections.
+struct Uncorrection {
+  Joints nominal;
+  Status status = Status::Ok;
+  int iterations = 0;  // corrections evaluated
+};
+Uncorrection uncorrect(const Model& model, const Joints& corrected, double tool_length_mm) noexcept;
+
+}  // namespace vc::machine

@@ -1,0 +1,109 @@
+// The machine model: what a machine is, built once from its machine file and never changed.
+//
+// Convention: ../shared/docs/model.md (seed 000, ch. II-III, Appendix 3 psd43.m). Two chains
+// leave the bed: the tool chain (axes carrying the spindle, bed outward) and the workpiece
+// chain (axes carrying the part). One axis, parent <- child, at nominal position q:
+//     linear:  A(q) = T(o + d0) * R(e0) * T(q*u) * T(delta(q)) * R(eps(q))
+//     rotary:  A(q) = T(o + d0) * R(e0) * T(delta(q)) * R(eps(q)) * Rot(u, q)
+// with R(a, b, c) = Rx(a) * Ry(b) * Rz(c), exact trigonometry, error = actual - nominal.
+// Lengths in mm, angles in rad, rotary axis positions in deg.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <array>
+#include <string>
+#include <vector>
+
+#include "vc/tables/error_table.hpp"
+
+namespace vc::machine {
+
+// Most joints a machine may have: 3 linear axes and up to 3 rotary ones (the correction uses
+// at most 2 rotary axes; LinuxCNC itself allows 9 axes, EMCMOT_MAX_JOINTS 16).
+inline constexpr int kMaxAxes = 6;
+
+// Joint positions in joint order (mm for linear axes, deg for rotary ones). Dynamic size
+// with a static maximum: lives on the stack, never allocates.
+using Joints = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxAxes, 1>;
+
+enum class AxisType { Linear, Rotary };
+enum class Chain { Tool, Workpiece };
+
+struct Axis {
+  char letter;                  // 'X', 'Y', 'Z', 'A', 'B', 'C', ...
+  AxisType type;
+  Chain chain;
+  Eigen::Vector3d direction;    // u: unit direction of travel or rotation (child in parent)
+  Eigen::Vector3d pole_mm;      // o: the pole at q = 0, in the parent frame
+  double travel_min, travel_max;  // mm or deg
+  Eigen::Vector3d location_mm;    // d0: position error of the axis line (EX0?, EY0?, EZ0?)
+  Eigen::Vector3d location_rad;   // e0: orientation error of the axis line (EA0?, EB0?, EC0?)
+  Eigen::Isometry3d real_base;    // T(o + d0) * R(e0)
+  Eigen::Isometry3d ideal_base;   // T(o)
+  std::vector<int> tables;        // indices into Model::tables
+};
+
+// An error table bound to this machine's joints.
+struct BoundTable {
+  tables::ErrorTable table;
+  std::array<int, tables::ErrorTable::kMaxVariables> joint{};  // joint of each grid variable
+};
+
+// The spindle line: the gauge point in the last tool-chain frame and its own location errors
+// (EX0S .. EB0S). T_spindle = T(s_o + s_d0) * R(s_e0) (model.md).
+struct Spindle {
+  Eigen::Vector3d gauge_point_mm;
+  Eigen::Vector3d location_mm;
+  Eigen::Vector3d location_rad;
+  Eigen::Isometry3d real;   // T(s_o + s_d0) * R(s_e0)
+  Eigen::Isometry3d ideal;  // T(s_o)
+};
+
+struct MachineInfo {
+  std::string name, serial, description;
+  std::string measured_on, measured_by, instrument;  // metadata of the measurement
+  double temperature_C = 20.0;                       // temperature during measurement
+};
+
+// Pole fade (model.md, Correction): orientation correction fades out as the tool axis
+// approaches a rotary axis line, s = clamp((phi - phi0) / (phi1 - phi0)), f = s^2 (3 - 2 s).
+struct PoleFade {
+  double start_rad;  // phi0: below it, f = 0 (position-only correction)
+  double full_rad;   // phi1: above it, f = 1 (full position and orientation correction)
+};
+
+// Newton stopping rules (shared by the correction and its inverse).
+struct SolverOptions {
+  int max_iterations = 12;               // Newton steps per solve (real-time bound)
+  double position_tolerance_mm = 1e-10;  // residual below which a solve has converged
+  double direction_tolerance_rad = 1e-12;
+};
+
+struct Model {
+  std::string path;  // machine file
+  MachineInfo info;
+  std::vector<Axis> axes;              // joint order: letters in "XYZABCUVW" order
+  std::vector<int> tool_chain;         // joint indices, bed outward
+  std::vector<int> workpiece_chain;    // joint indices, bed outward
+  Spindle spindle;
+  Eigen::Isometry3d fixture;           // T(t) * R(r) in the last workpiece-chain frame
+  double tool_length_mm = 0.0;         // default L: gauge length + tool length
+  PoleFade fade;
+  SolverOptions solver;
+  std::vector<BoundTable> tables;
+  Warnings warnings;                   // found at load time, for `check` and loadrt
+
+  int joint_count() const { return static_cast<int>(axes.size()); }
+  int rotary_count() const;
+  int joint_of(char letter) const;     // -1 if the machine has no such axis
+  std::string coordinates() const;     // lower-case letters in joint order, e.g. "xyzbc"
+};
+
+// R(a, b, c) = Rx(a) * Ry(b) * Rz(c) (model.md).
+Eigen::Matrix3d rotation_xyz(const Eigen::Vector3d& abc_rad);
+
+// T(origin + location_mm) * R(location_rad): the real placement of an axis or spindle line.
+Eigen::Isometry3d line_placement(const Eigen::Vector3d& origin_mm, const Eigen::Vector3d& location_mm,
+                                 const Eigen::Vector3d& location_rad);
+
+}  // namespace vc::machine

@@ -1,0 +1,166 @@
+#include "vc/machine/correct.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+
+namespace vc::machine {
+namespace {
+
+using Eigen::Vector3d;
+using Square = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxAxes, kMaxAxes>;
+using FreeJoints = std::array<bool, kMaxAxes>;
+
+// What the real machine must reach: the ideal tool tip, and the components of the direction
+// error k* x k that must vanish (along each basis vector).
+struct Target {
+  Vector3d tip_mm;
+  Vector3d direction;
+  std::array<Vector3d, 2> basis;
+  int direction_equations = 0;
+};
+
+// Newton on the real machine for the free joints; the others stay fixed.
+Status newton(const Model& model, const Target& target, double tool_length_mm,
+              const FreeJoints& free, Joints& q, int& iterations) noexcept {
+  const SolverOptions& opt = model.solver;
+  const int n = model.joint_count();
+  int unknowns = 0;
+  std::array<int, kMaxAxes> index{};
+  for (int j = 0; j < n; ++j)
+    if (free[j]) index[unknowns++] = j;
+  PoseDerivatives d;
+  Joints residual(unknowns);
+  Square jacobian(unknowns, unknowns);
+  for (int step = 0;; ++step) {
+    const ToolPose pose = tool_pose(model, Machine::Real, q, tool_length_mm, d);
+    const Vector3d dir_error = target.direction.cross(pose.direction);
+    residual.head<3>() = pose.tip_mm - target.tip_mm;
+    for (int m = 0; m < target.direction_equations; ++m)
+      residual[3 + m] = target.basis[m].dot(dir_error);
+    if (!residual.allFinite()) return Status::NonFinite;
+    if (residual.head<3>().norm() <= opt.position_tolerance_mm &&
+        residual.tail(unknowns - 3).norm() <= opt.direction_tolerance_rad)
+      return Status::Ok;
+    if (step == opt.max_iterations) return Status::NotConverged;
+    for (int c = 0; c < unknowns; ++c) {
+      const int j = index[c];
+      jacobian.block(0, c, 3, 1) = d.tip.col(j);
+      const Vector3d ddir = target.direction.cross(d.direction.col(j));
+      for (int m = 0; m < target.direction_equations; ++m)
+        jacobian(3 + m, c) = target.basis[m].dot(ddir);
+    }
+    const Eigen::PartialPivLU<Square> lu(jacobian);
+    if (!(std::abs(lu.determinant()) > 0.0)) return Status::Singular;
+    const Joints step_vector = lu.solve(-residual);
+    if (!step_vector.allFinite()) return Status::Singular;
+    for (int c = 0; c < unknowns; ++c) q[index[c]] += step_vector[c];
+    ++iterations;
+  }
+}
+
+// Two unit vectors perpendicular to k (and to each other).
+std::array<Vector3d, 2> perpendicular_basis(const Vector3d& k) {
+  Eigen::Index smallest;
+  k.cwiseAbs().minCoeff(&smallest);
+  const Vector3d b1 = k.cross(Vector3d::Unit(smallest)).normalized();
+  return {b1, k.cross(b1)};
+}
+
+double line_angle(const Vector3d& line, const Vector3d& k) {
+  return std::atan2(line.cross(k).norm(), std::abs(line.dot(k)));
+}
+
+double pole_angle_at(const Model& model, const ToolPose& ideal, const PoseDerivatives& d) {
+  double phi = 0.5 * 3.14159265358979323846;
+  for (int j = 0; j < model.joint_count(); ++j)
+    if (model.axes[j].type == AxisType::Rotary)
+      phi = std::min(phi, line_angle(d.axis_line.col(j).normalized(), ideal.direction));
+  return phi;
+}
+
+}  // namespace
+
+double fade_factor(const PoleFade& fade, double phi) noexcept {
+  const double s = std::clamp((phi - fade.start_rad) / (fade.full_rad - fade.start_rad), 0.0, 1.0);
+  return s * s * (3.0 - 2.0 * s);
+}
+
+double pole_angle(const Model& model, const Joints& nominal, double tool_length_mm) noexcept {
+  PoseDerivatives d;
+  const ToolPose ideal = tool_pose(model, Machine::Ideal, nominal, tool_length_mm, d);
+  return pole_angle_at(model, ideal, d);
+}
+
+Correction correct(const Model& model, const Joints& nominal, double tool_length_mm) noexcept {
+  return correct(model, nominal, tool_length_mm, nominal);
+}
+
+Correction correct(const Model& model, const Joints& nominal, double tool_length_mm,
+                   const Joints& seed) noexcept {
+  Correction out;
+  out.joints = seed;
+  if (!nominal.allFinite() || !seed.allFinite() || !std::isfinite(tool_length_mm)) {
+    out.status = Status::NonFinite;
+    return out;
+  }
+  const int n = model.joint_count();
+  PoseDerivatives d;
+  const ToolPose ideal = tool_pose(model, Machine::Ideal, nominal, tool_length_mm, d);
+  Target target{ideal.tip_mm, ideal.direction, {}, 0};
+
+  FreeJoints linear{}, all{};
+  for (int j = 0; j < n; ++j) {
+    linear[j] = model.axes[j].type == AxisType::Linear;
+    all[j] = true;
+  }
+  const int rotary = model.rotary_count();
+  if (rotary > 0) {
+    out.pole_angle_rad = pole_angle_at(model, ideal, d);
+    out.fade = fade_factor(model.fade, out.pole_angle_rad);
+  }
+  if (rotary > 0 && out.fade > 0.0) {
+    // Full correction: position and tool direction.
+    target.direction_equations = rotary;
+    if (rotary == 2) {
+      target.basis = perpendicular_basis(ideal.direction);
+    } else {
+      for (int j = 0; j < n; ++j)
+        if (!linear[j]) target.basis[0] = d.axis_line.col(j).normalized();
+    }
+    out.status = newton(model, target, tool_length_mm, all, out.joints, out.iterations);
+    if (out.status != Status::Ok) return out;
+    target.direction_equations = 0;
+  }
+  if (rotary > 0 && out.fade < 1.0) {
+    // Rotary joints take f of their full correction; linear joints make the position exact.
+    for (int j = 0; j < n; ++j)
+      if (!linear[j]) out.joints[j] = nominal[j] + out.fade * (out.joints[j] - nominal[j]);
+  }
+  if (rotary == 0 || out.fade < 1.0)
+    out.status = newton(model, target, tool_length_mm, linear, out.joints, out.iterations);
+  const ToolPose real = tool_pose(model, Machine::Real, out.joints, tool_length_mm);
+  out.residual_mm = (real.tip_mm - ideal.tip_mm).norm();
+  out.residual_rad = ideal.direction.cross(real.direction).norm();
+  return out;
+}
+
+Uncorrection uncorrect(const Model& model, const Joints& corrected, double tool_length_mm) noexcept {
+  Uncorrection out;
+  out.nominal = corrected;
+  for (out.iterations = 1; out.iterations <= model.solver.max_iterations; ++out.iterations) {
+    const Correction c = correct(model, out.nominal, tool_length_mm, corrected);
+    if (c.status != Status::Ok) {
+      out.status = c.status;
+      return out;
+    }
+    const Joints difference = c.joints - corrected;
+    out.nominal -= difference;
+    if (difference.cwiseAbs().maxCoeff() <= model.solver.position_tolerance_mm) return out;
+  }
+  out.status = Status::NotConverged;
+  out.iterations = model.solver.max_iterations;
+  return out;
+}
+
+}  // namespace vc::machine

@@ -1,0 +1,69 @@
+#include "vc/machine/kinematics.hpp"
+
+#include <Eigen/LU>
+
+namespace vc::machine {
+
+Status nominal_inverse(const Model& model, WorldConvention convention, const Joints& world,
+                       double tool_length_mm, Joints& nominal) noexcept {
+  nominal = world;
+  if (!world.allFinite()) return Status::NonFinite;
+  if (convention == WorldConvention::Axes) return Status::Ok;
+  // Tcp: rotary joints are given; the ideal tip is affine in the linear joints, so Newton
+  // lands in one step and the second confirms it.
+  const int n = model.joint_count();
+  PoseDerivatives d;
+  for (int step = 0; step <= model.solver.max_iterations; ++step) {
+    const ToolPose pose = tool_pose(model, Machine::Ideal, nominal, tool_length_mm, d);
+    Eigen::Vector3d tip_target;
+    Eigen::Matrix3d jacobian;
+    int c = 0;
+    for (int j = 0; j < n; ++j)
+      if (model.axes[j].type == AxisType::Linear) {
+        tip_target[c] = world[j];
+        jacobian.col(c++) = d.tip.col(j);
+      }
+    const Eigen::Vector3d residual = pose.tip_mm - tip_target;
+    if (!residual.allFinite()) return Status::NonFinite;
+    if (residual.norm() <= model.solver.position_tolerance_mm) return Status::Ok;
+    const Eigen::FullPivLU<Eigen::Matrix3d> lu(jacobian);
+    if (!lu.isInvertible()) return Status::Singular;
+    const Eigen::Vector3d dq = lu.solve(-residual);
+    c = 0;
+    for (int j = 0; j < n; ++j)
+      if (model.axes[j].type == AxisType::Linear) nominal[j] += dq[c++];
+  }
+  return Status::NotConverged;
+}
+
+Joints nominal_forward(const Model& model, WorldConvention convention, const Joints& nominal,
+                       double tool_length_mm) noexcept {
+  Joints world = nominal;
+  if (convention == WorldConvention::Axes) return world;
+  const ToolPose pose = tool_pose(model, Machine::Ideal, nominal, tool_length_mm);
+  int c = 0;
+  for (int j = 0; j < model.joint_count(); ++j)
+    if (model.axes[j].type == AxisType::Linear) world[j] = pose.tip_mm[c++];
+  return world;
+}
+
+Status joints_from_world(const Model& model, WorldConvention convention, const Joints& world,
+                         double tool_length_mm, Joints& joints, Correction* report) noexcept {
+  Joints nominal;
+  const Status s = nominal_inverse(model, convention, world, tool_length_mm, nominal);
+  if (s != Status::Ok) return s;
+  const Correction c = correct(model, nominal, tool_length_mm);
+  if (report) *report = c;
+  if (c.status == Status::Ok) joints = c.joints;
+  return c.status;
+}
+
+Status world_from_joints(const Model& model, WorldConvention convention, const Joints& joints,
+                         double tool_length_mm, Joints& world) noexcept {
+  const Uncorrection u = uncorrect(model, joints, tool_length_mm);
+  if (u.status != Status::Ok) return u.status;
+  world = nominal_forward(model, convention, u.nominal, tool_length_mm);
+  return Status::Ok;
+}
+
+}  // namespace vc::machine

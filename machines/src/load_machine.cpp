@@ -1,0 +1,455 @@
+#include "vc/machine/load_machine.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "vc/machine/forward.hpp"
+#include "vc/tables/load_table.hpp"
+#include "vc/tables/units.hpp"
+
+namespace vc::machine {
+namespace {
+
+using Eigen::Vector3d;
+namespace fs = std::filesystem;
+
+std::string join(const std::vector<std::string_view>& words) {
+  std::string s;
+  for (auto w : words) s += (s.empty() ? "" : ", ") + std::string(w);
+  return s;
+}
+
+std::string number(double v) {
+  std::ostringstream s;
+  s.imbue(std::locale::classic());
+  s << v;
+  return s.str();
+}
+
+class MachineReader {
+ public:
+  explicit MachineReader(std::string path) : path_(std::move(path)) {}
+
+  Model read() {
+    toml::table root;
+    try {
+      root = toml::parse_file(path_);
+    } catch (const toml::parse_error& e) {
+      throw LoadError(where(e.source()), std::string(e.description()));
+    } catch (const std::exception& e) {
+      throw LoadError({path_}, e.what());
+    }
+    model_.path = path_;
+    check_keys(root, "the machine file",
+               {"machine", "measurement", "spindle", "fixture", "correction", "tool_chain",
+                "workpiece_chain"});
+    read_info(root);
+    read_spindle(root);
+    read_fixture(root);
+    read_correction(root);
+    read_chain(root, "tool_chain", Chain::Tool);
+    read_chain(root, "workpiece_chain", Chain::Workpiece);
+    order_joints(root);
+    check_axes_span(root);
+    for (PendingTables& p : pending_) load_tables(p);
+    return std::move(model_);
+  }
+
+ private:
+  // ---- locations and typed access -------------------------------------------------------
+  SourceLocation where(const toml::source_region& r) const {
+    return {path_, static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
+  }
+  SourceLocation where(const toml::node& n) const { return where(n.source()); }
+
+  void check_keys(const toml::table& t, const std::string& context,
+                  const std::vector<std::string_view>& allowed) const {
+    for (auto&& [key, value] : t)
+      if (std::find(allowed.begin(), allowed.end(), key.str()) == allowed.end())
+        throw LoadError(where(key.source()), "unknown key '" + std::string(key.str()) + "' in " +
+                                                 context + " (expected one of: " + join(allowed) + ")");
+  }
+
+  const toml::table* table(const toml::table& t, std::string_view key, bool required,
+                           const std::string& context) const {
+    const toml::node* n = t.get(key);
+    if (!n) {
+      if (required) throw LoadError(where(t), context + " needs a [" + std::string(key) + "] table");
+      return nullptr;
+    }
+    if (!n->is_table()) throw LoadError(where(*n), "'" + std::string(key) + "' must be a table");
+    return n->as_table();
+  }
+
+  std::string text(const toml::table& t, std::string_view key, bool required,
+                   const std::string& context) const {
+    const toml::node* n = t.get(key);
+    if (!n) {
+      if (required) throw LoadError(where(t), context + " needs '" + std::string(key) + "'");
+      return {};
+    }
+    if (!n->is_string()) throw LoadError(where(*n), "'" + std::string(key) + "' must be a string");
+    return n->as_string()->get();
+  }
+
+  double scalar(const toml::node& n, std::string_view key) const {
+    const auto v = n.value<double>();
+    if (!v || !std::isfinite(*v))
+      throw LoadError(where(n), "'" + std::string(key) + "' must be a finite number");
+    return *v;
+  }
+
+  double scalar(const toml::table& t, std::string_view key, std::optional<double> fallback,
+                const std::string& context) const {
+    const toml::node* n = t.get(key);
+    if (!n) {
+      if (!fallback) throw LoadError(where(t), context + " needs '" + std::string(key) + "'");
+      return *fallback;
+    }
+    return scalar(*n, key);
+  }
+
+  std::vector<double> numbers(const toml::table& t, std::string_view key, std::size_t size,
+                              bool required, const std::string& context) const {
+    const toml::node* n = t.get(key);
+    if (!n) {
+      if (required) throw LoadError(where(t), context + " needs '" + std::string(key) + "'");
+      return std::vector<double>(size, 0.0);
+    }
+    const toml::array* a = n->as_array();
+    if (!a || a->size() != size)
+      throw LoadError(where(*n), "'" + std::string(key) + "' must be an array of " +
+                                     std::to_string(size) + " numbers");
+    std::vector<double> out;
+    for (const toml::node& e : *a) out.push_back(scalar(e, key));
+    return out;
+  }
+
+  Vector3d vec3(const toml::table& t, std::string_view key, bool required,
+                const std::string& context) const {
+    const auto v = numbers(t, key, 3, required, context);
+    return {v[0], v[1], v[2]};
+  }
+
+  // Location errors "EC0Y_arcsec = -5" of the line `letter` ('S' for the spindle).
+  void read_location(const toml::table* t, char letter, Vector3d& position_mm,
+                     Vector3d& orientation_rad) const {
+    position_mm.setZero();
+    orientation_rad.setZero();
+    if (!t) return;
+    for (auto&& [key, value] : *t) {
+      const std::string k(key.str());
+      const std::size_t underscore = k.rfind('_');
+      const auto symbol = tables::parse_error_symbol(k.substr(0, underscore));
+      const auto unit = underscore == std::string::npos
+                            ? std::nullopt
+                            : tables::find_unit(k.substr(underscore + 1));
+      const std::string expected = std::string("E{X,Y,Z,A,B,C}0") + letter + "_<unit>";
+      if (!symbol || !symbol->location || symbol->axis != letter)
+        throw LoadError(where(key.source()), "'" + k + "' is not a location error of " +
+                                                 std::string(1, letter) + " (expected " + expected +
+                                                 ", e.g. EC0" + letter + "_arcsec)");
+      if (!unit || unit->quantity != symbol->quantity())
+        throw LoadError(where(key.source()),
+                        "'" + k + "' needs a unit suffix: " +
+                            std::string(tables::unit_names(symbol->quantity())));
+      const double v = scalar(value, k) * unit->to_core;
+      (symbol->component < 3 ? position_mm[symbol->component]
+                             : orientation_rad[symbol->component - 3]) = v;
+    }
+  }
+
+  // ---- sections --------------------------------------------------------------------------
+  void read_info(const toml::table& root) {
+    const toml::table& m = *table(root, "machine", true, "the machine file");
+    check_keys(m, "[machine]", {"name", "serial", "description"});
+    model_.info.name = text(m, "name", true, "[machine]");
+    model_.info.serial = text(m, "serial", false, "[machine]");
+    model_.info.description = text(m, "description", false, "[machine]");
+    if (const toml::table* s = table(root, "measurement", false, "")) {
+      check_keys(*s, "[measurement]", {"date", "by", "instrument", "temperature_C", "notes"});
+      model_.info.measured_on = text(*s, "date", false, "");
+      model_.info.measured_by = text(*s, "by", false, "");
+      model_.info.instrument = text(*s, "instrument", false, "");
+      model_.info.temperature_C = scalar(*s, "temperature_C", 20.0, "");
+    }
+  }
+
+  void read_spindle(const toml::table& root) {
+    const toml::table& s = *table(root, "spindle", true, "the machine file");
+    check_keys(s, "[spindle]", {"gauge_point_mm", "tool_length_mm", "location"});
+    Spindle& spindle = model_.spindle;
+    spindle.gauge_point_mm = vec3(s, "gauge_point_mm", false, "[spindle]");
+    model_.tool_length_mm = scalar(s, "tool_length_mm", 0.0, "[spindle]");
+    read_location(table(s, "location", false, ""), 'S', spindle.location_mm, spindle.location_rad);
+    spindle.real = line_placement(spindle.gauge_point_mm, spindle.location_mm, spindle.location_rad);
+    spindle.ideal = line_placement(spindle.gauge_point_mm, Vector3d::Zero(), Vector3d::Zero());
+  }
+
+  void read_fixture(const toml::table& root) {
+    const toml::table* f = table(root, "fixture", false, "");
+    model_.fixture = Eigen::Isometry3d::Identity();
+    if (!f) return;
+    check_keys(*f, "[fixture]", {"origin_mm", "rotation_deg"});
+    model_.fixture = line_placement(vec3(*f, "origin_mm", false, "[fixture]"), Vector3d::Zero(),
+                                    vec3(*f, "rotation_deg", false, "[fixture]") * tables::kDegToRad);
+  }
+
+  void read_correction(const toml::table& root) {
+    model_.fade = {2.0 * tables::kDegToRad, 10.0 * tables::kDegToRad};
+    const toml::table* c = table(root, "correction", false, "");
+    if (!c) return;
+    check_keys(*c, "[correction]", {"pole_fade_deg", "max_iterations"});
+    if (c->get("pole_fade_deg")) {
+      const auto fade = numbers(*c, "pole_fade_deg", 2, true, "[correction]");
+      if (!(fade[0] >= 0.0 && fade[1] > fade[0] && fade[1] <= 90.0))
+        throw LoadError(where(*c->get("pole_fade_deg")),
+                        "pole_fade_deg = [start, full] needs 0 <= start < full <= 90");
+      model_.fade = {fade[0] * tables::kDegToRad, fade[1] * tables::kDegToRad};
+    }
+    if (const toml::node* n = c->get("max_iterations")) {
+      const auto v = n->value<int64_t>();
+      if (!v || *v < 1 || *v > 100)
+        throw LoadError(where(*n), "max_iterations must be an integer from 1 to 100");
+      model_.solver.max_iterations = static_cast<int>(*v);
+    }
+  }
+
+  struct PendingTables {
+    int axis_order;  // position in axes_read_ (before joint ordering)
+    const toml::array* tables;
+  };
+
+  void read_chain(const toml::table& root, std::string_view key, Chain chain) {
+    const toml::node* n = root.get(key);
+    if (!n) return;
+    const toml::array* list = n->as_array();
+    if (!list || !list->is_array_of_tables())
+      throw LoadError(where(*n), std::string("'") + std::string(key) +
+                                     "' must be a list of axes: [[" + std::string(key) + "]]");
+    std::vector<int>& chain_list = chain == Chain::Tool ? tool_order_ : part_order_;
+    for (const toml::node& item : *list) {
+      const toml::table& t = *item.as_table();
+      const std::string context = "[[" + std::string(key) + "]]";
+      check_keys(t, context, {"axis", "type", "direction", "pole_mm", "travel_mm", "travel_deg",
+                              "location", "tables"});
+      Axis axis{};
+      const std::string letter = text(t, "axis", true, context);
+      if (letter.size() != 1 || tables::kAxisLetters.find(letter[0]) == std::string_view::npos)
+        throw LoadError(where(*t.get("axis")), "axis '" + letter +
+                                                   "' must be one upper-case letter of XYZABCUVW");
+      axis.letter = letter[0];
+      for (const Axis& other : model_.axes)
+        if (other.letter == axis.letter)
+          throw LoadError(where(*t.get("axis")), "axis " + letter + " appears twice");
+      const std::string type = text(t, "type", true, context);
+      if (type != "linear" && type != "rotary")
+        throw LoadError(where(*t.get("type")), "type must be \"linear\" or \"rotary\"");
+      axis.type = type == "linear" ? AxisType::Linear : AxisType::Rotary;
+      axis.chain = chain;
+      const Vector3d dir = vec3(t, "direction", true, context);
+      if (!(dir.norm() > 1e-9)) throw LoadError(where(*t.get("direction")), "direction must not be zero");
+      axis.direction = dir.normalized();
+      axis.pole_mm = vec3(t, "pole_mm", true, context);
+      const char* travel_key = axis.type == AxisType::Linear ? "travel_mm" : "travel_deg";
+      const char* wrong_key = axis.type == AxisType::Linear ? "travel_deg" : "travel_mm";
+      if (t.get(wrong_key))
+        throw LoadError(where(*t.get(wrong_key)), std::string("a ") + type + " axis gives its travel as " +
+                                                      travel_key);
+      const auto travel = numbers(t, travel_key, 2, true, context);
+      if (!(travel[0] < travel[1]))
+        throw LoadError(where(*t.get(travel_key)), std::string(travel_key) + " = [min, max] needs min < max");
+      axis.travel_min = travel[0];
+      axis.travel_max = travel[1];
+      read_location(table(t, "location", false, ""), axis.letter, axis.location_mm, axis.location_rad);
+      axis.real_base = line_placement(axis.pole_mm, axis.location_mm, axis.location_rad);
+      axis.ideal_base = line_placement(axis.pole_mm, Vector3d::Zero(), Vector3d::Zero());
+      const toml::node* tl = t.get("tables");
+      if (tl && !(tl->is_array() && tl->as_array()->is_array_of_tables()))
+        throw LoadError(where(*tl), "'tables' must be a list: [[" + std::string(key) + ".tables]]");
+      chain_list.push_back(static_cast<int>(model_.axes.size()));
+      pending_.push_back({static_cast<int>(model_.axes.size()), tl ? tl->as_array() : nullptr});
+      axis_source_.push_back(where(t));
+      model_.axes.push_back(axis);
+    }
+  }
+
+  // Puts axes in LinuxCNC's coordinate order (XYZABCUVW) and checks the machine's shape.
+  void order_joints(const toml::table& root) {
+    const int n = static_cast<int>(model_.axes.size());
+    std::vector<int> order(n);
+    for (int i = 0; i < n; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      return tables::kAxisLetters.find(model_.axes[a].letter) <
+             tables::kAxisLetters.find(model_.axes[b].letter);
+    });
+    std::vector<int> joint_of_read(n);
+    std::vector<Axis> axes;
+    for (int j = 0; j < n; ++j) {
+      joint_of_read[order[j]] = j;
+      axes.push_back(model_.axes[order[j]]);
+    }
+    model_.axes = axes;
+    for (int i : tool_order_) model_.tool_chain.push_back(joint_of_read[i]);
+    for (int i : part_order_) model_.workpiece_chain.push_back(joint_of_read[i]);
+    for (PendingTables& p : pending_) p.axis_order = joint_of_read[p.axis_order];
+    std::vector<SourceLocation> sources(n);
+    for (int i = 0; i < n; ++i) sources[joint_of_read[i]] = axis_source_[i];
+    axis_source_ = sources;
+
+    int linear = 0;
+    for (const Axis& a : model_.axes) linear += a.type == AxisType::Linear;
+    if (linear != 3)
+      throw LoadError(where(root), "the machine has " + std::to_string(linear) +
+                                       " linear axes; the model needs exactly 3");
+    if (model_.rotary_count() > 2)
+      throw LoadError(where(root), "the machine has " + std::to_string(model_.rotary_count()) +
+                                       " rotary axes; the correction handles at most 2");
+  }
+
+  // The three linear axes must span space, or no correction can be solved.
+  void check_axes_span(const toml::table& root) const {
+    Joints mid(model_.joint_count());
+    for (int j = 0; j < model_.joint_count(); ++j)
+      mid[j] = 0.5 * (model_.axes[j].travel_min + model_.axes[j].travel_max);
+    PoseDerivatives d;
+    tool_pose(model_, Machine::Ideal, mid, model_.tool_length_mm, d);
+    Eigen::Matrix3d j3;
+    int c = 0;
+    for (int j = 0; j < model_.joint_count(); ++j)
+      if (model_.axes[j].type == AxisType::Linear) j3.col(c++) = d.tip.col(j);
+    if (std::abs(j3.determinant()) < 1e-6)
+      throw LoadError(where(root), "the directions of the linear axes do not span space");
+  }
+
+  // ---- error tables ----------------------------------------------------------------------
+  void load_tables(const PendingTables& pending) {
+    if (!pending.tables) return;
+    const int joint = pending.axis_order;
+    Axis& axis = model_.axes[joint];
+    const fs::path base = fs::path(path_).parent_path();
+    for (const toml::node& item : *pending.tables) {
+      const toml::table& t = *item.as_table();
+      const std::string context = std::string("a table of axis ") + axis.letter;
+      check_keys(t, context, {"file", "interpolation", "scale", "measured_at_mm"});
+      const std::string file = text(t, "file", true, context);
+      tables::TableOptions options;
+      const std::string interp = text(t, "interpolation", false, context);
+      if (!interp.empty() && interp != "linear" && interp != "cubic")
+        throw LoadError(where(*t.get("interpolation")), "interpolation must be \"linear\" or \"cubic\"");
+      options.interpolation = interp == "cubic" ? tables::Interpolation::Cubic : tables::Interpolation::Linear;
+      const toml::table* scale = table(t, "scale", false, "");
+      if (scale)
+        for (auto&& [key, value] : *scale) options.scale[std::string(key.str())] = scalar(value, key.str());
+      const std::string table_path = (base / file).lexically_normal().string();
+      BoundTable bound{tables::load_table(table_path, options), {}};
+      bind(bound, axis, joint);
+      if (scale)
+        for (auto&& [key, value] : *scale) {
+          bool found = false;
+          for (const auto& c : bound.table.columns())
+            found |= column_name(c) == key.str();
+          if (!found)
+            throw LoadError(where(key.source()), "scale names " + std::string(key.str()) +
+                                                     ", which is not a column of " + table_path);
+        }
+      if (const toml::node* m = t.get("measured_at_mm"))
+        rereference(bound, axis, vec3(t, "measured_at_mm", true, context), where(*m));
+      warn_if_short(bound);
+      axis.tables.push_back(static_cast<int>(model_.tables.size()));
+      model_.tables.push_back(std::move(bound));
+    }
+  }
+
+  static std::string column_name(const tables::Column& c) {
+    return std::string("E") + tables::kComponentLetters[c.symbol.component] + c.symbol.axis;
+  }
+
+  void bind(BoundTable& bound, const Axis& axis, int joint) const {
+    const auto& grid = bound.table.grid();
+    for (std::size_t v = 0; v < grid.size(); ++v) {
+      const int j = model_.joint_of(grid[v].axis);
+      if (j < 0)
+        throw LoadError(grid[v].where, std::string("grid variable ") + static_cast<char>(std::tolower(grid[v].axis)) +
+                                           " is not an axis of this machine (" + model_.coordinates() + ")");
+      if (grid[v].rotary != (model_.axes[j].type == AxisType::Rotary))
+        throw LoadError(grid[v].where, std::string("axis ") + grid[v].axis + " is " +
+                                           (grid[v].rotary ? "linear: its positions are in mm"
+                                                           : "rotary: its positions are in deg"));
+      bound.joint[v] = j;
+    }
+    for (const auto& c : bound.table.columns())
+      if (c.symbol.axis != axis.letter)
+        throw LoadError(c.where, column_name(c) + " is an error of axis " + c.symbol.axis +
+                                     ", but this table is listed under axis " + axis.letter);
+    (void)joint;
+  }
+
+  // A table measured at p_meas instead of the pole, node by node (model.md, exact):
+  //     delta_pole = delta_meas - (R(eps) - I) * (p_meas - p_pole)
+  // eps is the table's own angular columns at the same node.
+  void rereference(BoundTable& bound, const Axis& axis, const Vector3d& offset,
+                   const SourceLocation& at) const {
+    tables::ErrorTable& table = bound.table;
+    if (table.grid().size() != 1 || table.grid()[0].axis != axis.letter)
+      throw LoadError(at, std::string("measured_at_mm applies to a table over the axis's own position (") +
+                              static_cast<char>(std::tolower(axis.letter)) + ") only");
+    const auto& columns = table.columns();
+    bool has_angles = false;
+    for (const auto& c : columns) has_angles |= c.symbol.component >= 3;
+    if (!has_angles)
+      throw LoadError(at, std::string("measured_at_mm needs the angular errors (EA") + axis.letter +
+                              ", EB" + axis.letter + ", EC" + axis.letter +
+                              ") in the same table, to move its translations to the pole");
+    for (int node = 0; node < table.node_count(); ++node) {
+      Vector3d eps = Vector3d::Zero();
+      for (std::size_t c = 0; c < columns.size(); ++c)
+        if (columns[c].symbol.component >= 3) eps[columns[c].symbol.component - 3] = table.value(node, c);
+      const Vector3d shift = (rotation_xyz(eps) - Eigen::Matrix3d::Identity()) * offset;
+      for (std::size_t c = 0; c < columns.size(); ++c)
+        if (columns[c].symbol.component < 3) table.value(node, c) -= shift[columns[c].symbol.component];
+    }
+    // Translation columns missing from the file get no correction: say so rather than guess.
+    for (int k = 0; k < 3; ++k) {
+      bool present = false;
+      for (const auto& c : columns) present |= c.symbol.component == k;
+      if (!present && std::abs(offset[(k + 1) % 3]) + std::abs(offset[(k + 2) % 3]) > 0.0)
+        throw LoadError(at, std::string("measured_at_mm moves E") + tables::kComponentLetters[k] +
+                                axis.letter + ", which the table does not have: add the column (zeros if not measured)");
+    }
+    table.refresh();
+  }
+
+  void warn_if_short(const BoundTable& bound) {
+    const auto& grid = bound.table.grid();
+    for (std::size_t v = 0; v < grid.size(); ++v) {
+      if (grid[v].periodic) continue;
+      const Axis& a = model_.axes[bound.joint[v]];
+      const double lo = grid[v].nodes.front(), hi = grid[v].nodes.back();
+      if (a.travel_min < lo - 1e-9 || a.travel_max > hi + 1e-9) {
+        const char* unit = grid[v].rotary ? " deg" : " mm";
+        model_.warnings.push_back(
+            {grid[v].where, std::string("the table covers ") + static_cast<char>(std::tolower(a.letter)) +
+                                " = " + number(lo) + " .. " + number(hi) + unit + " but the travel is " +
+                                number(a.travel_min) + " .. " + number(a.travel_max) + unit +
+                                ": end values are held outside the table"});
+      }
+    }
+  }
+
+  std::string path_;
+  Model model_;
+  std::vector<int> tool_order_, part_order_;
+  std::vector<PendingTables> pending_;
+  std::vector<SourceLocation> axis_source_;
+};
+
+}  // namespace
+
+Model load_machine(const std::string& path) { return MachineReader(path).read(); }
+
+}  // namespace vc::machine

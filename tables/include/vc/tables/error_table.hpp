@@ -1,0 +1,83 @@
+// One error table: component errors of one axis sampled on a grid of 1 to 3 axis positions.
+//
+// Errors are stored as error = actual - nominal (ISO 230-1), in core units (mm, rad), after
+// the unit conversion and scale factors of the loader. Grid positions are in the variable's
+// axis unit (mm for a linear axis, deg for a rotary one), strictly increasing.
+//
+// Lookup (evaluate) returns the value and the slope along each grid variable, because the
+// Newton correction needs both. Outside the grid a table holds its end values (slope 0),
+// except a rotary grid spanning exactly 360 deg, which is periodic (model.md, One axis).
+// Interpolation is linear (multilinear on 2-D and 3-D grids), or a C2 cubic spline on 1-D
+// tables (natural ends; periodic ends on a periodic grid).
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "vc/tables/source_error.hpp"
+#include "vc/tables/symbols.hpp"
+
+namespace vc::tables {
+
+enum class Interpolation { Linear, Cubic };
+
+struct GridVariable {
+  char axis;                  // upper-case axis letter whose position this is
+  bool rotary;                // positions in deg (else mm)
+  bool periodic;              // rotary grid spanning exactly 360 deg
+  std::vector<double> nodes;  // strictly increasing, size >= 2
+  SourceLocation where;       // header cell
+};
+
+struct Column {
+  ErrorSymbol symbol;
+  SourceLocation where;  // header cell
+};
+
+class ErrorTable {
+ public:
+  static constexpr int kMaxVariables = 3;
+  static constexpr int kMaxColumns = 6;
+
+  // Result of one lookup, per column: value (mm or rad) and slope per grid variable
+  // (per mm or per deg).
+  struct Sample {
+    std::array<double, kMaxColumns> value;
+    std::array<std::array<double, kMaxVariables>, kMaxColumns> slope;
+  };
+
+  // Builds a table from node-major samples (values[node * columns + column], nodes in
+  // row-major order, first variable slowest); precomputes the cubic spline if asked.
+  ErrorTable(std::string path, std::vector<GridVariable> grid, std::vector<Column> columns,
+             std::vector<double> values, Interpolation interpolation);
+
+  // Value and slope of every column at the positions of the grid variables
+  // (positions[i] belongs to grid()[i]).
+  // Real-time: no allocation, no locks, O(log nodes) per variable.
+  void evaluate(const double* positions, Sample& out) const noexcept;
+
+  const std::string& path() const { return path_; }
+  const std::vector<GridVariable>& grid() const { return grid_; }
+  const std::vector<Column>& columns() const { return columns_; }
+  Interpolation interpolation() const { return interpolation_; }
+  int node_count() const { return static_cast<int>(values_.size() / columns_.size()); }
+  // Sample at a node, core units (for validation, re-referencing and reports).
+  double value(int node, int column) const { return values_[node * columns_.size() + column]; }
+  double& value(int node, int column) { return values_[node * columns_.size() + column]; }
+  // Recomputes derived data after values were changed through value().
+  void refresh();
+
+ private:
+  void evaluate_linear(const double* positions, Sample& out) const noexcept;
+  void evaluate_cubic(double position, Sample& out) const noexcept;
+
+  std::string path_;
+  std::vector<GridVariable> grid_;
+  std::vector<Column> columns_;
+  std::vector<double> values_;
+  std::vector<double> curvature_;  // cubic: second derivative at each node, same layout
+  Interpolation interpolation_;
+};
+
+}  // namespace vc::tables

@@ -1,0 +1,122 @@
+#include "vc/tables/error_table.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "spline.hpp"
+
+namespace vc::tables {
+namespace {
+
+// Where a position falls on one grid variable: cell index, fraction in the cell and its rate.
+struct Cell {
+  int index;     // left node of the cell
+  double t;      // 0..1 within the cell
+  double dt_dx;  // d t / d position; 0 where the table holds its end value
+  double h;      // cell width
+};
+
+Cell locate(const GridVariable& g, double x) noexcept {
+  const std::vector<double>& n = g.nodes;
+  const int last = static_cast<int>(n.size()) - 1;
+  if (g.periodic) {
+    x = n.front() + std::fmod(x - n.front(), 360.0);
+    if (x < n.front()) x += 360.0;
+  } else if (x < n.front()) {
+    return {0, 0.0, 0.0, n[1] - n[0]};
+  } else if (x > n.back()) {
+    return {last - 1, 1.0, 0.0, n[last] - n[last - 1]};
+  }
+  int i = static_cast<int>(std::upper_bound(n.begin(), n.end(), x) - n.begin()) - 1;
+  i = std::clamp(i, 0, last - 1);
+  const double h = n[i + 1] - n[i];
+  return {i, (x - n[i]) / h, 1.0 / h, h};
+}
+
+}  // namespace
+
+ErrorTable::ErrorTable(std::string path, std::vector<GridVariable> grid,
+                       std::vector<Column> columns, std::vector<double> values,
+                       Interpolation interpolation)
+    : path_(std::move(path)),
+      grid_(std::move(grid)),
+      columns_(std::move(columns)),
+      values_(std::move(values)),
+      interpolation_(interpolation) {
+  refresh();
+}
+
+void ErrorTable::refresh() {
+  if (interpolation_ != Interpolation::Cubic) return;
+  const GridVariable& g = grid_.front();
+  const int n = static_cast<int>(g.nodes.size());
+  const int ncol = static_cast<int>(columns_.size());
+  curvature_.assign(values_.size(), 0.0);
+  std::vector<double> y(n), m;
+  for (int c = 0; c < ncol; ++c) {
+    for (int i = 0; i < n; ++i) y[i] = values_[i * ncol + c];
+    m = g.periodic ? periodic_spline_curvature(g.nodes, y) : natural_spline_curvature(g.nodes, y);
+    for (int i = 0; i < n; ++i) curvature_[i * ncol + c] = m[i];
+  }
+}
+
+void ErrorTable::evaluate(const double* positions, Sample& out) const noexcept {
+  if (interpolation_ == Interpolation::Cubic)
+    evaluate_cubic(positions[0], out);
+  else
+    evaluate_linear(positions, out);
+}
+
+void ErrorTable::evaluate_linear(const double* positions, Sample& out) const noexcept {
+  const int dims = static_cast<int>(grid_.size());
+  const int ncol = static_cast<int>(columns_.size());
+  std::array<Cell, kMaxVariables> cell{};
+  std::array<int, kMaxVariables> stride{};
+  int s = 1;
+  for (int d = dims - 1; d >= 0; --d) {
+    cell[d] = locate(grid_[d], positions[d]);
+    stride[d] = s;
+    s *= static_cast<int>(grid_[d].nodes.size());
+  }
+  for (int c = 0; c < ncol; ++c) {
+    out.value[c] = 0.0;
+    out.slope[c] = {0.0, 0.0, 0.0};
+  }
+  // Multilinear: sum over the 2^dims corners of the cell.
+  for (int corner = 0; corner < (1 << dims); ++corner) {
+    int node = 0;
+    double weight = 1.0;
+    std::array<double, kMaxVariables> dweight{1.0, 1.0, 1.0};
+    for (int d = 0; d < dims; ++d) {
+      const bool upper = (corner >> d) & 1;
+      node += (cell[d].index + upper) * stride[d];
+      const double w = upper ? cell[d].t : 1.0 - cell[d].t;
+      const double dw = upper ? cell[d].dt_dx : -cell[d].dt_dx;
+      for (int e = 0; e < dims; ++e) dweight[e] *= (e == d) ? dw : w;
+      weight *= w;
+    }
+    const double* v = &values_[node * ncol];
+    for (int c = 0; c < ncol; ++c) {
+      out.value[c] += weight * v[c];
+      for (int d = 0; d < dims; ++d) out.slope[c][d] += dweight[d] * v[c];
+    }
+  }
+}
+
+void ErrorTable::evaluate_cubic(double position, Sample& out) const noexcept {
+  const Cell cell = locate(grid_.front(), position);
+  const int ncol = static_cast<int>(columns_.size());
+  const int i = cell.index;
+  const double h = cell.h, a = 1.0 - cell.t, b = cell.t;
+  for (int c = 0; c < ncol; ++c) {
+    const double y0 = values_[i * ncol + c], y1 = values_[(i + 1) * ncol + c];
+    const double m0 = curvature_[i * ncol + c], m1 = curvature_[(i + 1) * ncol + c];
+    // Standard cubic spline segment in terms of the end values and curvatures.
+    out.value[c] = a * y0 + b * y1 + ((a * a * a - a) * m0 + (b * b * b - b) * m1) * h * h / 6.0;
+    const double dvalue_dt =
+        y1 - y0 + ((1.0 - 3.0 * a * a) * m0 + (3.0 * b * b - 1.0) * m1) * h * h / 6.0;
+    out.slope[c] = {dvalue_dt * cell.dt_dx, 0.0, 0.0};
+  }
+}
+
+}  // namespace vc::tables

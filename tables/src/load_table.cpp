@@ -1,0 +1,354 @@
+#include "vc/tables/load_table.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace vc::tables {
+namespace {
+
+struct Cell {
+  std::string text;
+  int column;  // 1-based character column of the cell's first character
+};
+
+struct Row {
+  std::vector<Cell> cells;
+  int line;
+};
+
+std::string trim(const std::string& s, int& offset) {
+  std::size_t b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return {};
+  std::size_t e = s.find_last_not_of(" \t\r");
+  offset += static_cast<int>(b);
+  return s.substr(b, e - b + 1);
+}
+
+std::vector<Cell> split(const std::string& line) {
+  std::vector<Cell> cells;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = line.find(',', start);
+    const std::string raw = line.substr(start, comma == std::string::npos ? comma : comma - start);
+    int column = static_cast<int>(start) + 1;
+    std::string text = trim(raw, column);
+    cells.push_back({text, column});
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return cells;
+}
+
+// Reads the non-comment, non-blank lines of a CSV file.
+std::vector<Row> read_rows(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw LoadError({path}, "cannot open the table file");
+  std::vector<Row> rows;
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    int offset = 0;
+    const std::string content = trim(line, offset);
+    if (content.empty() || content[0] == '#') continue;
+    rows.push_back({split(line), number});
+  }
+  return rows;
+}
+
+struct HeaderCell {
+  std::string name;
+  std::string unit;
+};
+
+HeaderCell parse_header_cell(const std::string& path, int line, const Cell& cell) {
+  const std::size_t open = cell.text.find('[');
+  const std::size_t close = cell.text.find(']');
+  if (open == std::string::npos || close != cell.text.size() - 1 || close < open)
+    throw LoadError({path, line, cell.column},
+                    "column '" + cell.text + "' needs a unit in brackets, as in x[mm] or EXX[um]");
+  return {cell.text.substr(0, open), cell.text.substr(open + 1, close - open - 1)};
+}
+
+double parse_number(const std::string& path, int line, const Cell& cell) {
+  double v = 0.0;
+  const char* begin = cell.text.data();
+  const char* end = begin + cell.text.size();
+  if (!cell.text.empty() && *begin == '+') ++begin;
+  const auto [ptr, ec] = std::from_chars(begin, end, v);
+  if (cell.text.empty())
+    throw LoadError({path, line, cell.column}, "empty cell: every cell needs a number");
+  if (ec != std::errc() || ptr != end)
+    throw LoadError({path, line, cell.column}, "'" + cell.text + "' is not a number");
+  if (!std::isfinite(v))
+    throw LoadError({path, line, cell.column}, "'" + cell.text + "' is not a finite number");
+  return v;
+}
+
+std::string format(double v) {
+  std::ostringstream s;
+  s.imbue(std::locale::classic());
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+class TableReader {
+ public:
+  TableReader(std::string path, const TableOptions& options)
+      : path_(std::move(path)), options_(options) {}
+
+  ErrorTable read() {
+    rows_ = read_rows(path_);
+    if (rows_.empty()) throw LoadError({path_}, "the table is empty: it needs a header line");
+    read_header();
+    read_values();
+    read_grid_structure();
+    check_periodic_ends();
+    check_slopes();
+    if (options_.interpolation == Interpolation::Cubic) check_cubic();
+    return build();
+  }
+
+ private:
+  void read_header() {
+    const Row& header = rows_.front();
+    for (const Cell& cell : header.cells) {
+      const HeaderCell h = parse_header_cell(path_, header.line, cell);
+      const SourceLocation where{path_, header.line, cell.column};
+      const bool is_variable = h.name.size() == 1 && std::islower(static_cast<unsigned char>(h.name[0]));
+      if (is_variable) {
+        const char axis = static_cast<char>(std::toupper(static_cast<unsigned char>(h.name[0])));
+        if (kAxisLetters.find(axis) == std::string_view::npos)
+          throw LoadError(where, "'" + h.name + "' is not an axis letter (x y z a b c u v w)");
+        if (!columns_.empty())
+          throw LoadError(where, "grid column '" + h.name +
+                                     "' after an error column: grid positions come first");
+        if (h.unit != "mm" && h.unit != "deg")
+          throw LoadError(where, "unit '" + h.unit + "' of grid column '" + h.name +
+                                     "': positions are in mm (linear axis) or deg (rotary axis)");
+        for (const GridVariable& g : grid_)
+          if (g.axis == axis) throw LoadError(where, "grid column '" + h.name + "' appears twice");
+        if (grid_.size() == ErrorTable::kMaxVariables)
+          throw LoadError(where, "more than 3 grid columns: a table depends on at most 3 axes");
+        grid_.push_back({axis, h.unit == "deg", false, {}, where});
+        continue;
+      }
+      const auto symbol = parse_error_symbol(h.name);
+      if (!symbol || symbol->location)
+        throw LoadError(where, "unknown error symbol '" + h.name +
+                                   "': expected a grid axis (x, y, ...) or an ISO 230-1 component "
+                                   "error such as EXX, EYX, EAX (E, component X Y Z A B C, axis)");
+      const auto unit = find_unit(h.unit);
+      if (!unit)
+        throw LoadError(where, "unknown unit '" + h.unit + "' for " + h.name + " (use " +
+                                   std::string(unit_names(symbol->quantity())) + ")");
+      if (unit->quantity != symbol->quantity())
+        throw LoadError(where, "unit '" + h.unit + "' does not fit " + h.name + ", which is " +
+                                   (symbol->quantity() == Quantity::Length ? "a length (use "
+                                                                           : "an angle (use ") +
+                                   std::string(unit_names(symbol->quantity())) + ")");
+      for (const Column& c : columns_)
+        if (c.symbol.component == symbol->component && c.symbol.axis == symbol->axis)
+          throw LoadError(where, "error column " + h.name + " appears twice");
+      if (columns_.size() == ErrorTable::kMaxColumns)
+        throw LoadError(where, "more than 6 error columns");
+      double factor = unit->to_core;
+      if (auto it = options_.scale.find(h.name); it != options_.scale.end()) factor *= it->second;
+      columns_.push_back({*symbol, where});
+      factors_.push_back(factor);
+    }
+    if (grid_.empty())
+      throw LoadError({path_, header.line, 1},
+                      "the first column must be a grid position, as in x[mm] or b[deg]");
+    if (columns_.empty())
+      throw LoadError({path_, header.line, 1}, "the table has no error column (EXX[um], ...)");
+  }
+
+  void read_values() {
+    const std::size_t width = grid_.size() + columns_.size();
+    for (std::size_t r = 1; r < rows_.size(); ++r) {
+      const Row& row = rows_[r];
+      if (row.cells.size() < width) {
+        const Cell& last = row.cells.back();
+        throw LoadError({path_, row.line, last.column + static_cast<int>(last.text.size())},
+                        "expected " + std::to_string(width) + " cells, found " +
+                            std::to_string(row.cells.size()) + ": no value for " +
+                            header_name(row.cells.size()));
+      }
+      if (row.cells.size() > width)
+        throw LoadError({path_, row.line, row.cells[width].column},
+                        "expected " + std::to_string(width) + " cells, found " +
+                            std::to_string(row.cells.size()));
+      std::vector<double> numbers;
+      for (const Cell& cell : row.cells) numbers.push_back(parse_number(path_, row.line, cell));
+      positions_.emplace_back(numbers.begin(), numbers.begin() + static_cast<long>(grid_.size()));
+      for (std::size_t c = 0; c < columns_.size(); ++c)
+        values_.push_back(numbers[grid_.size() + c] * factors_[c]);
+      lines_.push_back(row.line);
+    }
+    if (positions_.size() < 2)
+      throw LoadError({path_, rows_.front().line, 1},
+                      "the table needs at least two rows of values");
+  }
+
+  std::string header_name(std::size_t column) const { return rows_.front().cells[column].text; }
+
+  SourceLocation cell_at(std::size_t row, std::size_t column) const {
+    return {path_, lines_[row], rows_[row + 1].cells[column].column};
+  }
+
+  // Works out the nodes of each variable from the rows (first variable slowest) and checks
+  // that the rows form the full grid in that order.
+  void read_grid_structure() {
+    const std::size_t dims = grid_.size();
+    std::vector<std::size_t> size(dims), stride(dims);
+    std::size_t s = 1;
+    for (std::size_t d = dims; d-- > 0;) {
+      stride[d] = s;
+      // Count the nodes of variable d: rows at multiples of its stride while the slower
+      // variables keep their first value.
+      std::size_t n = 0;
+      for (std::size_t r = 0; r < positions_.size(); r += s) {
+        bool same_slower = true;
+        for (std::size_t e = 0; e < d; ++e) same_slower &= positions_[r][e] == positions_[0][e];
+        if (!same_slower) break;
+        ++n;
+      }
+      size[d] = n;
+      for (std::size_t i = 0; i < n; ++i) grid_[d].nodes.push_back(positions_[i * s][d]);
+      s *= n;
+    }
+    for (std::size_t d = 0; d < dims; ++d) check_monotonic(d, stride[d]);
+    if (positions_.size() != s) {
+      const std::size_t r = std::min(positions_.size(), s) - (positions_.size() > s ? 0 : 1);
+      std::string shape;
+      for (std::size_t d = 0; d < dims; ++d) shape += (d ? " x " : "") + std::to_string(size[d]);
+      throw LoadError({path_, lines_[std::min(r, lines_.size() - 1)], 1},
+                      "the rows do not form a full grid: a " + shape + " grid has " +
+                          std::to_string(s) + " rows, the table has " +
+                          std::to_string(positions_.size()));
+    }
+    for (std::size_t r = 0; r < positions_.size(); ++r)
+      for (std::size_t d = 0; d < dims; ++d) {
+        const double expected = grid_[d].nodes[(r / stride[d]) % size[d]];
+        if (positions_[r][d] != expected)
+          throw LoadError(cell_at(r, d), "expected " + std::string(1, static_cast<char>(std::tolower(grid_[d].axis))) +
+                                             " = " + format(expected) +
+                                             " here: the rows must list the full grid, first "
+                                             "column slowest");
+      }
+    stride_ = stride;
+  }
+
+  void check_monotonic(std::size_t d, std::size_t stride) const {
+    const std::vector<double>& n = grid_[d].nodes;
+    if (n.size() < 2)
+      throw LoadError(grid_[d].where, "grid column needs at least two different positions");
+    const bool increasing = n[1] > n[0];
+    for (std::size_t i = 1; i < n.size(); ++i) {
+      const bool ok = increasing ? n[i] > n[i - 1] : n[i] < n[i - 1];
+      if (!ok)
+        throw LoadError(cell_at(i * stride, d),
+                        "position " + format(n[i]) + " does not continue the " +
+                            (increasing ? "increasing" : "decreasing") + " order after " +
+                            format(n[i - 1]) + ": grid positions must be strictly monotonic");
+    }
+  }
+
+  // A rotary grid spanning exactly 360 deg is periodic: its first and last values must agree.
+  void check_periodic_ends() {
+    for (std::size_t d = 0; d < grid_.size(); ++d) {
+      GridVariable& g = grid_[d];
+      if (!g.rotary || std::abs(std::abs(g.nodes.back() - g.nodes.front()) - 360.0) > 1e-9)
+        continue;
+      g.periodic = true;
+      const std::size_t last = (g.nodes.size() - 1) * stride_[d];
+      for (std::size_t r = 0; r < positions_.size(); ++r) {
+        if ((r / stride_[d]) % g.nodes.size() != 0) continue;
+        for (std::size_t c = 0; c < columns_.size(); ++c) {
+          const double a = values_[r * columns_.size() + c];
+          const double b = values_[(r + last) * columns_.size() + c];
+          if (std::abs(a - b) > 1e-12 * std::max(1.0, std::abs(a)))
+            throw LoadError(cell_at(r + last, grid_.size() + c),
+                            "the grid spans 360 deg, so the table is periodic and this value must "
+                            "equal the one on line " + std::to_string(lines_[r]));
+        }
+      }
+    }
+  }
+
+  void check_slopes() const {
+    const std::size_t ncol = columns_.size();
+    for (std::size_t d = 0; d < grid_.size(); ++d) {
+      const std::size_t n = grid_[d].nodes.size();
+      const char* per = grid_[d].rotary ? "deg" : "mm";
+      for (std::size_t r = 0; r < positions_.size(); ++r) {
+        if ((r / stride_[d]) % n == n - 1) continue;  // last node along d
+        const std::size_t next = r + stride_[d];
+        const double dx = std::abs(positions_[next][d] - positions_[r][d]);
+        for (std::size_t c = 0; c < ncol; ++c) {
+          const double slope = std::abs(values_[next * ncol + c] - values_[r * ncol + c]) / dx;
+          const bool length = columns_[c].symbol.quantity() == Quantity::Length;
+          const double limit = length ? options_.limits.translation : options_.limits.rotation;
+          if (slope > limit)
+            throw LoadError(cell_at(next, grid_.size() + c),
+                            "slope between lines " + std::to_string(lines_[r]) + " and " +
+                                std::to_string(lines_[next]) + " is " + format(slope) +
+                                (length ? " mm/" : " rad/") + per + ", above the limit " +
+                                format(limit) + " that keeps the correction invertible");
+        }
+      }
+    }
+  }
+
+  void check_cubic() const {
+    if (grid_.size() != 1)
+      throw LoadError(grid_[1].where,
+                      "cubic interpolation is for 1-D tables; use linear on a cross-axis grid");
+    if (grid_[0].periodic && grid_[0].nodes.size() < 5)
+      throw LoadError(grid_[0].where, "a periodic cubic table needs at least 5 rows");
+  }
+
+  // Reorders every decreasing variable so that nodes increase.
+  ErrorTable build() {
+    const std::size_t ncol = columns_.size();
+    std::vector<double> values(values_.size());
+    for (std::size_t r = 0; r < positions_.size(); ++r) {
+      std::size_t target = 0;
+      for (std::size_t d = 0; d < grid_.size(); ++d) {
+        const std::size_t n = grid_[d].nodes.size();
+        std::size_t i = (r / stride_[d]) % n;
+        if (grid_[d].nodes.front() > grid_[d].nodes.back()) i = n - 1 - i;
+        target += i * stride_[d];
+      }
+      for (std::size_t c = 0; c < ncol; ++c) values[target * ncol + c] = values_[r * ncol + c];
+    }
+    for (GridVariable& g : grid_)
+      if (g.nodes.front() > g.nodes.back()) std::reverse(g.nodes.begin(), g.nodes.end());
+    return ErrorTable(path_, grid_, columns_, std::move(values), options_.interpolation);
+  }
+
+  std::string path_;
+  const TableOptions& options_;
+  std::vector<Row> rows_;
+  std::vector<GridVariable> grid_;
+  std::vector<Column> columns_;
+  std::vector<double> factors_;
+  std::vector<std::vector<double>> positions_;  // per data row: grid positions
+  std::vector<double> values_;                  // per data row: error values, core units
+  std::vector<int> lines_;                      // per data row: its line in the file
+  std::vector<std::size_t> stride_;
+};
+
+}  // namespace
+
+ErrorTable load_table(const std::string& path, const TableOptions& options) {
+  return TableReader(path, options).read();
+}
+
+}  // namespace vc::tables

@@ -1,0 +1,70 @@
+// Helpers shared by the tests: where the source tree is, and a CSV reader for reference data.
+#pragma once
+
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "vc/machine/model.hpp"
+
+namespace vc::test {
+
+inline std::string source_path(const std::string& relative) {
+  return std::string(VC_SOURCE_DIR) + "/" + relative;
+}
+
+inline std::string machine_path(const std::string& name) {
+  return source_path("machines/data/" + name + ".toml");
+}
+
+// The machines shipped in machines/data.
+inline const std::vector<std::string>& shipped_machines() {
+  static const std::vector<std::string> names{"mc300", "mill3", "ac_trunnion"};
+  return names;
+}
+
+// A numeric CSV file with a header line: rows of named columns.
+class CsvTable {
+ public:
+  explicit CsvTable(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error("cannot open " + path);
+    std::string line;
+    std::getline(in, line);
+    std::stringstream header(line);
+    for (std::string cell; std::getline(header, cell, ',');) names_.push_back(cell);
+    while (std::getline(in, line)) {
+      if (line.empty()) continue;
+      std::stringstream s(line);
+      std::vector<double> row;
+      for (std::string cell; std::getline(s, cell, ',');) row.push_back(std::stod(cell));
+      rows_.push_back(row);
+    }
+  }
+  std::size_t size() const { return rows_.size(); }
+  double at(std::size_t row, const std::string& name) const {
+    for (std::size_t c = 0; c < names_.size(); ++c)
+      if (names_[c] == name) return rows_[row][c];
+    throw std::out_of_range("no column " + name);
+  }
+  machine::Joints joints(std::size_t row, const std::string& letters) const {
+    machine::Joints q(static_cast<int>(letters.size()));
+    for (std::size_t j = 0; j < letters.size(); ++j) q[static_cast<int>(j)] = at(row, std::string(1, letters[j]));
+    return q;
+  }
+
+ private:
+  std::vector<std::string> names_;
+  std::vector<std::vector<double>> rows_;
+};
+
+// The text a command prints on stdout, and its exit code.
+struct CommandResult {
+  std::string out;
+  int exit_code;
+};
+
+}  // namespace vc::test
