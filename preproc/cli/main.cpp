@@ -1,9 +1,47 @@
+// volcomp: the command line of the volumetric compensation tools.
+#include <CLI/CLI.hpp>
 #include <iostream>
-#include "vc/machine/load_machine.hpp"
-#include "vc/machine/correct.hpp"
+
+#include "commands.hpp"
+#include "vc/tables/source_error.hpp"
+
 int main(int argc, char** argv) {
+  CLI::App app{"volcomp: volumetric error compensation for CNC machines (machine file + error tables)"};
+  app.require_subcommand(1);
+
+  vc::cli::CheckArgs check;
+  CLI::App* check_cmd = app.add_subcommand(
+      "check", "Validate a machine file and its tables; summarise axes, tables, error and invertibility");
+  check_cmd->add_option("MACHINE", check.machine, "machine description file (.toml)")->required();
+  check_cmd->add_option("--samples", check.samples, "random poses sampled over the travel")
+      ->capture_default_str();
+
+  vc::cli::PoseArgs error;
+  CLI::App* error_cmd = app.add_subcommand(
+      "error", "Volumetric error at each pose: ex,ey,ez (mm, part frame), ekx,eky,ekz (rad)");
+  vc::cli::PoseArgs correct;
+  CLI::App* correct_cmd = app.add_subcommand(
+      "correct", "Corrected joints at each pose: c<axis>..., residual_mm, residual_rad, iterations");
+  for (auto [cmd, args] : {std::pair{error_cmd, &error}, std::pair{correct_cmd, &correct}}) {
+    cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
+    cmd->add_option("--poses", args->poses, "CSV of nominal poses, header of axis letters (x,y,z,b,c)")
+        ->required();
+    cmd->add_option("--tool-length", args->tool_length_mm,
+                    "L in mm: gauge length + tool length (default: the machine file's tool_length_mm)");
+  }
+  error_cmd->add_option("--only", error.only,
+                        "keep only these deviations, e.g. --only EAX,EC0Y (the others are zero)")
+      ->delimiter(',');
+
+  CLI11_PARSE(app, argc, argv);
   try {
-    auto m = vc::machine::load_machine(argv[1]);
-    std::cout << m.coordinates() << "\n";
-  } catch (const std::exception& e) { std::cerr << e.what() << "\n"; return 1; }
+    if (*check_cmd) return vc::cli::run_check(check, std::cout);
+    if (*error_cmd) return vc::cli::run_error(error, std::cout);
+    if (*correct_cmd) return vc::cli::run_correct(correct, std::cout);
+  } catch (const std::exception& e) {
+    std::cout.flush();
+    std::cerr << e.what() << '\n';
+    return 2;
+  }
+  return 0;
 }

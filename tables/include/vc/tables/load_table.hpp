@@ -15,14 +15,9 @@
 #include <string>
 
 #include "vc/tables/error_table.hpp"
+#include "vc/tables/slope.hpp"
 
 namespace vc::tables {
-
-// Largest slopes of a table that keep the correction map invertible (model.md, Correction).
-struct SlopeLimits {
-  double translation = 0.01;  // mm per mm, or mm per deg
-  double rotation = 1e-4;     // rad per mm, or rad per deg
-};
 
 struct TableOptions {
   Interpolation interpolation = Interpolation::Linear;

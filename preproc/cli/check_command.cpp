@@ -1,0 +1,177 @@
+// `volcomp check MACHINE`: loads and validates a machine, then summarises it: axes, location
+// errors, tables (coverage, slope margin), the largest volumetric error over the travel and
+// whether the correction converges everywhere. Exit 0 only if the machine is usable.
+#include <cmath>
+#include <random>
+
+#include "commands.hpp"
+#include "format.hpp"
+#include "vc/machine/correct.hpp"
+#include "vc/machine/load_machine.hpp"
+#include "vc/tables/slope.hpp"
+
+namespace vc::cli {
+namespace {
+
+using machine::Axis;
+using machine::AxisType;
+using machine::Joints;
+using machine::Model;
+
+constexpr double kRadToUrad = 1e6;
+constexpr double kRadToArcsec = 180.0 / M_PI * 3600.0;
+
+std::string unit_of(const Axis& a) { return a.type == AxisType::Linear ? "mm" : "deg"; }
+
+std::string pose_text(const Model& model, const Joints& q) {
+  std::string s;
+  for (int j = 0; j < model.joint_count(); ++j)
+    s += (j ? " " : "") + std::string(1, static_cast<char>(std::tolower(model.axes[j].letter))) + "=" +
+         format_fixed(q[j], 3);
+  return s;
+}
+
+void print_axes(const Model& model, std::ostream& out) {
+  out << "axes (joint order " << model.coordinates() << "):\n";
+  for (const Axis& a : model.axes) {
+    out << "  " << a.letter << "  " << (a.type == AxisType::Linear ? "linear" : "rotary") << ", "
+        << (a.chain == machine::Chain::Tool ? "tool chain" : "workpiece chain") << ", travel "
+        << format_number(a.travel_min) << " .. " << format_number(a.travel_max) << ' ' << unit_of(a);
+    for (int k = 0; k < 3; ++k)
+      if (a.location_mm[k] != 0.0)
+        out << ", E" << "XYZ"[k] << '0' << a.letter << " = " << format_fixed(a.location_mm[k] * 1e3, 2) << " um";
+    for (int k = 0; k < 3; ++k)
+      if (a.location_rad[k] != 0.0)
+        out << ", E" << "ABC"[k] << '0' << a.letter << " = "
+            << format_fixed(a.location_rad[k] * kRadToArcsec, 2) << " arcsec";
+    out << '\n';
+  }
+  auto chain = [&](const std::vector<int>& c) {
+    std::string s;
+    for (int j : c) s += std::string(s.empty() ? "" : " ") + model.axes[j].letter;
+    return s.empty() ? std::string("(none)") : s;
+  };
+  out << "chains: tool " << chain(model.tool_chain) << "; workpiece " << chain(model.workpiece_chain)
+      << " (bed outward)\n";
+}
+
+// Returns the steepest table slope as a fraction of its limit.
+double print_tables(const Model& model, std::ostream& out) {
+  out << "tables:\n";
+  double worst = 0.0;
+  for (const machine::BoundTable& bound : model.tables) {
+    const tables::ErrorTable& t = bound.table;
+    out << "  " << t.path() << "\n     grid";
+    for (const auto& g : t.grid())
+      out << ' ' << static_cast<char>(std::tolower(g.axis)) << ": " << g.nodes.size() << " nodes "
+          << format_number(g.nodes.front()) << " .. " << format_number(g.nodes.back())
+          << (g.rotary ? " deg" : " mm") << (g.periodic ? " (periodic)" : "");
+    out << "; " << (t.interpolation() == tables::Interpolation::Cubic ? "cubic" : "linear") << "; columns";
+    for (const auto& c : t.columns())
+      out << " E" << tables::kComponentLetters[c.symbol.component] << c.symbol.axis;
+    const tables::SteepestSlope s = tables::steepest_slope(t);
+    worst = std::max(worst, s.fraction);
+    out << "\n     steepest slope " << format_fixed(100.0 * s.fraction, 1) << " % of the invertibility limit";
+    if (s.column >= 0) {
+      const auto& sym = t.columns()[s.column].symbol;
+      out << " (E" << tables::kComponentLetters[sym.component] << sym.axis << ")";
+    }
+    out << '\n';
+  }
+  if (model.tables.empty()) out << "  (none)\n";
+  return worst;
+}
+
+struct Survey {
+  int poses = 0;
+  double max_position_mm = 0.0, max_direction_rad = 0.0;
+  Joints worst_position, worst_direction;
+  int failures = 0;
+  Joints first_failure;
+  int max_iterations = 0;
+  double max_residual_mm = 0.0;
+};
+
+void survey_pose(const Model& model, const Joints& q, Survey& s) {
+  const double L = model.tool_length_mm;
+  const machine::VolumetricError e = machine::volumetric_error(model, q, L);
+  ++s.poses;
+  if (e.position_mm.norm() > s.max_position_mm) {
+    s.max_position_mm = e.position_mm.norm();
+    s.worst_position = q;
+  }
+  if (e.direction_rad.norm() > s.max_direction_rad) {
+    s.max_direction_rad = e.direction_rad.norm();
+    s.worst_direction = q;
+  }
+  const machine::Correction c = machine::correct(model, q, L);
+  if (c.status != machine::Status::Ok) {
+    if (s.failures++ == 0) s.first_failure = q;
+    return;
+  }
+  s.max_iterations = std::max(s.max_iterations, c.iterations);
+  s.max_residual_mm = std::max(s.max_residual_mm, c.residual_mm);
+}
+
+// The corners and middles of the travel (3 levels per axis), then random poses.
+Survey survey(const Model& model, int samples) {
+  Survey s;
+  const int n = model.joint_count();
+  int grid = 1;
+  for (int j = 0; j < n; ++j) grid *= 3;
+  Joints q(n);
+  for (int k = 0; k < grid; ++k) {
+    for (int j = 0, rest = k; j < n; ++j, rest /= 3) {
+      const Axis& a = model.axes[j];
+      q[j] = a.travel_min + 0.5 * (rest % 3) * (a.travel_max - a.travel_min);
+    }
+    survey_pose(model, q, s);
+  }
+  std::mt19937_64 rng(20261123);
+  for (int k = 0; k < samples; ++k) {
+    for (int j = 0; j < n; ++j)
+      q[j] = std::uniform_real_distribution<double>(model.axes[j].travel_min, model.axes[j].travel_max)(rng);
+    survey_pose(model, q, s);
+  }
+  return s;
+}
+
+}  // namespace
+
+int run_check(const CheckArgs& args, std::ostream& out) {
+  const Model model = machine::load_machine(args.machine);
+  out << "machine " << model.info.name;
+  if (!model.info.serial.empty()) out << " (" << model.info.serial << ")";
+  out << "\n  file " << model.path << "\n  measured: " << (model.info.measured_on.empty() ? "date not given" : model.info.measured_on)
+      << ", " << format_fixed(model.info.temperature_C, 1) << " C";
+  if (!model.info.instrument.empty()) out << ", " << model.info.instrument;
+  out << "\n  tool length L = " << format_number(model.tool_length_mm) << " mm; pole fade "
+      << format_number(model.fade.start_rad * 180.0 / M_PI) << " .. "
+      << format_number(model.fade.full_rad * 180.0 / M_PI) << " deg\n";
+  print_axes(model, out);
+  const double steepest = print_tables(model, out);
+  for (const Warning& w : model.warnings) out << w.to_string() << '\n';
+
+  const Survey s = survey(model, args.samples);
+  out << "volumetric error over the travel (" << s.poses << " poses, L = " << format_number(model.tool_length_mm)
+      << " mm):\n  largest position error " << format_fixed(s.max_position_mm * 1e3, 2) << " um at "
+      << pose_text(model, s.worst_position) << '\n';
+  if (model.rotary_count() > 0 || s.max_direction_rad > 0.0)
+    out << "  largest tool-direction error " << format_fixed(s.max_direction_rad * kRadToUrad, 2)
+        << " urad at " << pose_text(model, s.worst_direction) << '\n';
+  out << "invertibility margin: steepest table slope " << format_fixed(100.0 * steepest, 1)
+      << " % of the limit\n";
+  out << "correction: ";
+  if (s.failures == 0) {
+    out << "converged at all " << s.poses << " poses, at most " << s.max_iterations
+        << " Newton steps, largest residual " << format_number(s.max_residual_mm) << " mm\n";
+  } else {
+    out << "FAILED at " << s.failures << " of " << s.poses << " poses, first at "
+        << pose_text(model, s.first_failure) << '\n';
+  }
+  const bool usable = s.failures == 0;
+  out << (usable ? "usable\n" : "NOT usable\n");
+  return usable ? 0 : 1;
+}
+
+}  // namespace vc::cli

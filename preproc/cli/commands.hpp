@@ -1,0 +1,28 @@
+// The subcommands of `volcomp`. Each returns the process exit code and may throw
+// vc::LoadError (bad input file) or std::exception; main() prints those.
+#pragma once
+
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace vc::cli {
+
+struct CheckArgs {
+  std::string machine;
+  int samples = 10000;  // random poses over the travel, besides the grid of corners and mids
+};
+
+struct PoseArgs {
+  std::string machine;
+  std::string poses;
+  std::optional<double> tool_length_mm;  // default: the machine file's tool_length_mm
+  std::vector<std::string> only;         // deviations to keep (error): all if empty
+};
+
+int run_check(const CheckArgs& args, std::ostream& out);
+int run_error(const PoseArgs& args, std::ostream& out);
+int run_correct(const PoseArgs& args, std::ostream& out);
+
+}  // namespace vc::cli
