@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace vc::machine {
 namespace {
@@ -20,37 +21,58 @@ struct Target {
   int direction_equations = 0;
 };
 
-// Newton on the real machine for the free joints; the others stay fixed.
-Status newton(const Model& model, const Target& target, double tool_length_mm,
-              const FreeJoints& free, Joints& q, int& iterations) noexcept {
+// Residual of the equations: tip position (mm), then direction components (rad).
+Joints residual_of(const Target& target, const ToolPose& pose, int equations) {
+  Joints r(equations);
+  r.head<3>() = pose.tip_mm - target.tip_mm;
+  const Vector3d dir_error = target.direction.cross(pose.direction);
+  for (int m = 0; m < target.direction_equations; ++m) r[3 + m] = target.basis[m].dot(dir_error);
+  return r;
+}
+
+// d residual / d q of the free joints, from pose derivatives.
+Square jacobian_of(const Target& target, const PoseDerivatives& d, const std::array<int, kMaxAxes>& index,
+                   int unknowns) {
+  Square jacobian(unknowns, unknowns);
+  for (int c = 0; c < unknowns; ++c) {
+    const int j = index[c];
+    jacobian.block(0, c, 3, 1) = d.tip.col(j);
+    const Vector3d ddir = target.direction.cross(d.direction.col(j));
+    for (int m = 0; m < target.direction_equations; ++m) jacobian(3 + m, c) = target.basis[m].dot(ddir);
+  }
+  return jacobian;
+}
+
+// Newton on the real machine for the free joints; the others stay fixed. It starts with the
+// ideal machine's Jacobian (`ideal`, already computed for the target): the real one differs
+// by the error slopes, ~1e-4, so each step still gains about four digits. Where a step gains
+// less than two, the exact Jacobian of the real machine (table slopes included) replaces it.
+// `pose` returns the real pose at the final joints.
+Status newton(const Model& model, const Target& target, double tool_length_mm, const FreeJoints& free,
+              const PoseDerivatives& ideal, Joints& q, int& iterations, ToolPose& pose) noexcept {
   const SolverOptions& opt = model.solver;
-  const int n = model.joint_count();
   int unknowns = 0;
   std::array<int, kMaxAxes> index{};
-  for (int j = 0; j < n; ++j)
+  for (int j = 0; j < model.joint_count(); ++j)
     if (free[j]) index[unknowns++] = j;
-  PoseDerivatives d;
-  Joints residual(unknowns);
-  Square jacobian(unknowns, unknowns);
+  Eigen::PartialPivLU<Square> lu(jacobian_of(target, ideal, index, unknowns));
+  constexpr double kLeverMm = 1000.0;  // weighs direction residuals against position ones
+  double previous_norm = std::numeric_limits<double>::infinity();
   for (int step = 0;; ++step) {
-    const ToolPose pose = tool_pose(model, Machine::Real, q, tool_length_mm, d);
-    const Vector3d dir_error = target.direction.cross(pose.direction);
-    residual.head<3>() = pose.tip_mm - target.tip_mm;
-    for (int m = 0; m < target.direction_equations; ++m)
-      residual[3 + m] = target.basis[m].dot(dir_error);
+    pose = tool_pose(model, Machine::Real, q, tool_length_mm);
+    const Joints residual = residual_of(target, pose, unknowns);
     if (!residual.allFinite()) return Status::NonFinite;
-    if (residual.head<3>().norm() <= opt.position_tolerance_mm &&
-        residual.tail(unknowns - 3).norm() <= opt.direction_tolerance_rad)
-      return Status::Ok;
+    const double position = residual.head<3>().norm();
+    const double direction = residual.tail(unknowns - 3).norm();
+    if (position <= opt.position_tolerance_mm && direction <= opt.direction_tolerance_rad) return Status::Ok;
     if (step == opt.max_iterations) return Status::NotConverged;
-    for (int c = 0; c < unknowns; ++c) {
-      const int j = index[c];
-      jacobian.block(0, c, 3, 1) = d.tip.col(j);
-      const Vector3d ddir = target.direction.cross(d.direction.col(j));
-      for (int m = 0; m < target.direction_equations; ++m)
-        jacobian(3 + m, c) = target.basis[m].dot(ddir);
+    const double norm = position + kLeverMm * direction;
+    if (norm > 1e-2 * previous_norm) {
+      PoseDerivatives exact;
+      tool_pose(model, Machine::Real, q, tool_length_mm, exact);
+      lu.compute(jacobian_of(target, exact, index, unknowns));
     }
-    const Eigen::PartialPivLU<Square> lu(jacobian);
+    previous_norm = norm;
     if (!(std::abs(lu.determinant()) > 0.0)) return Status::Singular;
     const Joints step_vector = lu.solve(-residual);
     if (!step_vector.allFinite()) return Status::Singular;
@@ -108,6 +130,7 @@ Correction correct(const Model& model, const Joints& nominal, double tool_length
   PoseDerivatives d;
   const ToolPose ideal = tool_pose(model, Machine::Ideal, nominal, tool_length_mm, d);
   Target target{ideal.tip_mm, ideal.direction, {}, 0};
+  ToolPose real = ideal;  // the real pose at the final joints, set by newton()
 
   FreeJoints linear{}, all{};
   for (int j = 0; j < n; ++j) {
@@ -128,7 +151,7 @@ Correction correct(const Model& model, const Joints& nominal, double tool_length
       for (int j = 0; j < n; ++j)
         if (!linear[j]) target.basis[0] = d.axis_line.col(j).normalized();
     }
-    out.status = newton(model, target, tool_length_mm, all, out.joints, out.iterations);
+    out.status = newton(model, target, tool_length_mm, all, d, out.joints, out.iterations, real);
     if (out.status != Status::Ok) return out;
     target.direction_equations = 0;
   }
@@ -138,8 +161,7 @@ Correction correct(const Model& model, const Joints& nominal, double tool_length
       if (!linear[j]) out.joints[j] = nominal[j] + out.fade * (out.joints[j] - nominal[j]);
   }
   if (rotary == 0 || out.fade < 1.0)
-    out.status = newton(model, target, tool_length_mm, linear, out.joints, out.iterations);
-  const ToolPose real = tool_pose(model, Machine::Real, out.joints, tool_length_mm);
+    out.status = newton(model, target, tool_length_mm, linear, d, out.joints, out.iterations, real);
   out.residual_mm = (real.tip_mm - ideal.tip_mm).norm();
   out.residual_rad = ideal.direction.cross(real.direction).norm();
   return out;

@@ -20,16 +20,13 @@ struct ChainMotion {
   Twists axis_line = Twists::Zero();  // rotary joints of this chain: line direction in bed
 };
 
-// Angular velocity of R(a, b, c) = Rx(a) Ry(b) Rz(c) per unit change of (a, b, c), as the
-// columns of a matrix: omega = a' e_x + b' Rx(a) e_y + c' Rx(a) Ry(b) e_z.
-Matrix3d rotation_rate_xyz(const Vector3d& abc) {
-  const double sa = std::sin(abc[0]), ca = std::cos(abc[0]);
-  const double sb = std::sin(abc[1]), cb = std::cos(abc[1]);
-  Matrix3d m;
-  m << 1.0, 0.0, sb,
-       0.0, ca, -sa * cb,
-       0.0, sa, ca * cb;
-  return m;
+// Rot(u, angle), Rodrigues' formula (u unit).
+Matrix3d rotation_about(const Vector3d& u, double angle) {
+  double s, c;
+  sin_cos(angle, s, c);
+  Matrix3d k;
+  k << 0.0, -u.z(), u.y(), u.z(), 0.0, -u.x(), -u.y(), u.x(), 0.0;
+  return Matrix3d::Identity() + s * k + (1.0 - c) * (k * k);
 }
 
 // Walks one chain bed outward; returns bed_T_last and, if asked, the chain's motion.
@@ -48,23 +45,23 @@ Isometry3d walk_chain(const Model& model, Machine machine, const std::vector<int
       delta = err.delta_mm;
       eps = err.eps_rad;
     }
-    const Matrix3d r_eps = real ? rotation_xyz(eps) : Matrix3d::Identity();
+    Matrix3d r_eps = Matrix3d::Identity(), eps_rate = Matrix3d::Zero();
+    if (real) rotation_xyz(eps, r_eps, eps_rate);
     Isometry3d motion_part = Isometry3d::Identity();  // T(q u) T(delta) R(eps) [Rot(u, q)]
     if (axis.type == AxisType::Linear) {
       motion_part.translation() = qi * axis.direction + delta;
       motion_part.linear() = r_eps;
     } else {
       motion_part.translation() = delta;
-      motion_part.linear() =
-          r_eps * Eigen::AngleAxisd(qi * tables::kDegToRad, axis.direction).toRotationMatrix();
+      motion_part.linear() = r_eps * rotation_about(axis.direction, qi * tables::kDegToRad);
     }
     if (motion) {
       // Child origin and the rotation into bed coordinates of the frame after `base`.
       const Isometry3d bed_T_base = bed_T_parent * base;
       const Vector3d child_origin = bed_T_base * motion_part.translation();
       const Matrix3d to_bed = bed_T_base.linear();
-      const Matrix3d eps_rate = real ? rotation_rate_xyz(eps) : Matrix3d::Zero();
       for (int j = 0; j < model.joint_count(); ++j) {
+        if (!((axis.moved_by >> j) & 1u)) continue;
         Vector3d v = Vector3d::Zero(), w = Vector3d::Zero();
         if (real && !axis.tables.empty()) {
           v = err.slope.block<3, 1>(0, j);

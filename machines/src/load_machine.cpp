@@ -54,6 +54,7 @@ class MachineReader {
     read_chain(root, "tool_chain", Chain::Tool);
     read_chain(root, "workpiece_chain", Chain::Workpiece);
     order_joints(root);
+    for (int j = 0; j < model_.joint_count(); ++j) model_.axes[j].moved_by = 1u << j;
     check_axes_span(root);
     for (PendingTables& p : pending_) load_tables(p);
     return std::move(model_);
@@ -360,6 +361,7 @@ class MachineReader {
       if (const toml::node* m = t.get("measured_at_mm"))
         rereference(bound, axis, vec3(t, "measured_at_mm", true, context), where(*m));
       warn_if_short(bound);
+      for (std::size_t v = 0; v < bound.table.grid().size(); ++v) axis.moved_by |= 1u << bound.joint[v];
       axis.tables.push_back(static_cast<int>(model_.tables.size()));
       model_.tables.push_back(std::move(bound));
     }

@@ -27,7 +27,9 @@ Cell locate(const GridVariable& g, double x) noexcept {
   } else if (x > n.back()) {
     return {last - 1, 1.0, 0.0, n[last] - n[last - 1]};
   }
-  int i = static_cast<int>(std::upper_bound(n.begin(), n.end(), x) - n.begin()) - 1;
+  int i = g.uniform_step > 0.0
+              ? static_cast<int>((x - n.front()) / g.uniform_step)
+              : static_cast<int>(std::upper_bound(n.begin(), n.end(), x) - n.begin()) - 1;
   i = std::clamp(i, 0, last - 1);
   const double h = n[i + 1] - n[i];
   return {i, (x - n[i]) / h, 1.0 / h, h};
@@ -43,6 +45,13 @@ ErrorTable::ErrorTable(std::string path, std::vector<GridVariable> grid,
       columns_(std::move(columns)),
       values_(std::move(values)),
       interpolation_(interpolation) {
+  for (GridVariable& g : grid_) {
+    const double step = (g.nodes.back() - g.nodes.front()) / static_cast<double>(g.nodes.size() - 1);
+    bool uniform = true;
+    for (std::size_t i = 0; i < g.nodes.size(); ++i)
+      uniform &= std::abs(g.nodes[i] - (g.nodes.front() + step * static_cast<double>(i))) <= 1e-12 * step;
+    g.uniform_step = uniform ? step : 0.0;
+  }
   refresh();
 }
 

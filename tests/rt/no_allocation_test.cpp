@@ -1,1 +1,76 @@
+// The real-time functions allocate nothing: malloc is counted (Eigen allocates through
+// malloc, std containers through operator new, which ends in malloc on glibc) around calls of
+// every function the servo thread will use, on every shipped machine.
 #include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <random>
+
+#include "test_support.hpp"
+#include "vc/machine/kinematics.hpp"
+#include "vc/machine/load_machine.hpp"
+
+extern "C" void* __libc_malloc(std::size_t size);
+
+namespace {
+std::atomic<bool> counting{false};
+std::atomic<long> allocations{0};
+}  // namespace
+
+// Interposes glibc's malloc for this test program only.
+extern "C" void* malloc(std::size_t size) {
+  if (counting.load(std::memory_order_relaxed)) allocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_malloc(size);
+}
+
+namespace vc::machine {
+namespace {
+
+class NoAllocation : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(NoAllocation, RealTimeFunctionsNeverCallMalloc) {
+  const Model model = load_machine(test::machine_path(GetParam()));
+  std::mt19937_64 rng(7);
+  std::vector<Joints> poses;
+  for (int k = 0; k < 500; ++k) {
+    Joints q(model.joint_count());
+    for (int j = 0; j < model.joint_count(); ++j)
+      q[j] = std::uniform_real_distribution<double>(model.axes[j].travel_min, model.axes[j].travel_max)(rng);
+    poses.push_back(q);
+  }
+  const double L = model.tool_length_mm;
+  double sink = 0.0;
+  allocations = 0;
+  counting = true;
+  for (const Joints& q : poses) {
+    sink += volumetric_error(model, q, L).position_mm.norm();
+    const Correction c = correct(model, q, L);
+    sink += c.residual_mm;
+    sink += uncorrect(model, c.joints, L).nominal.sum();
+    for (WorldConvention w : {WorldConvention::Axes, WorldConvention::Tcp}) {
+      Joints joints, world;
+      sink += static_cast<double>(joints_from_world(model, w, q, L, joints));
+      sink += static_cast<double>(world_from_joints(model, w, joints, L, world));
+    }
+  }
+  counting = false;
+  EXPECT_EQ(allocations.load(), 0) << "allocations in the real-time path";
+  EXPECT_TRUE(std::isfinite(sink));
+}
+
+// The counter works: an allocation while counting is seen.
+TEST(NoAllocationGuard, SeesAnAllocation) {
+  allocations = 0;
+  counting = true;
+  auto* p = new std::vector<double>(100);
+  counting = false;
+  delete p;
+  EXPECT_GE(allocations.load(), 1);
+}
+
+INSTANTIATE_TEST_SUITE_P(Shipped, NoAllocation, ::testing::ValuesIn(test::shipped_machines()),
+                         [](const auto& info) { return info.param; });
+
+}  // namespace
+}  // namespace vc::machine

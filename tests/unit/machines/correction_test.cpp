@@ -1,1 +1,194 @@
+// Correction and kinematics on every shipped machine, over random poses in the travel:
+// residuals below 1e-9 mm / 1e-9 rad, FK(IK(w)) = w in both world conventions, the analytic
+// Jacobian against central differences, the chain against a naive 4x4 product, and the pole
+// fade. Seeded; VC_RANDOM_POSES overrides the pose count.
 #include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <random>
+
+#include "test_support.hpp"
+#include "vc/machine/kinematics.hpp"
+#include "vc/machine/load_machine.hpp"
+
+namespace vc::machine {
+namespace {
+
+int pose_count() {
+  const char* env = std::getenv("VC_RANDOM_POSES");
+  return env ? std::atoi(env) : 10000;
+}
+
+Joints random_pose(const Model& model, std::mt19937_64& rng) {
+  Joints q(model.joint_count());
+  for (int j = 0; j < model.joint_count(); ++j)
+    q[j] = std::uniform_real_distribution<double>(model.axes[j].travel_min, model.axes[j].travel_max)(rng);
+  return q;
+}
+
+std::string text(const Joints& q) {
+  std::ostringstream s;
+  s.precision(17);
+  s << q.transpose();
+  return s.str();
+}
+
+class EveryMachine : public ::testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override { model_ = load_machine(test::machine_path(GetParam())); }
+  Model model_;
+};
+
+TEST_P(EveryMachine, CorrectionResidualBelowOneNanometreAndNanoradian) {
+  std::mt19937_64 rng(1);
+  const double L = model_.tool_length_mm;
+  int full_orientation = 0;
+  for (int k = 0; k < pose_count(); ++k) {
+    const Joints q = random_pose(model_, rng);
+    const Correction c = correct(model_, q, L);
+    ASSERT_EQ(c.status, Status::Ok) << describe(c.status) << " at " << text(q);
+    // Independent check of the residual with the full 4x4 pose (another code path).
+    const Eigen::Isometry3d real = part_T_tool(model_, Machine::Real, c.joints, L);
+    const Eigen::Isometry3d ideal = part_T_tool(model_, Machine::Ideal, q, L);
+    ASSERT_LT((real.translation() - ideal.translation()).norm(), 1e-9) << text(q);
+    if (c.fade == 1.0 && model_.rotary_count() == 2) {
+      ++full_orientation;
+      ASSERT_LT(ideal.linear().col(2).cross(real.linear().col(2)).norm(), 1e-9) << text(q);
+    }
+    ASSERT_LE(c.iterations, 2 * model_.solver.max_iterations);
+  }
+  if (model_.rotary_count() == 2) EXPECT_GT(full_orientation, pose_count() / 2);
+}
+
+TEST_P(EveryMachine, ForwardIsTheExactInverseOfInverseInBothConventions) {
+  std::mt19937_64 rng(2);
+  const double L = model_.tool_length_mm;
+  for (WorldConvention convention : {WorldConvention::Axes, WorldConvention::Tcp}) {
+    for (int k = 0; k < pose_count(); ++k) {
+      const Joints world = nominal_forward(model_, convention, random_pose(model_, rng), L);
+      Joints joints, back;
+      ASSERT_EQ(joints_from_world(model_, convention, world, L, joints), Status::Ok) << text(world);
+      ASSERT_EQ(world_from_joints(model_, convention, joints, L, back), Status::Ok) << text(joints);
+      ASSERT_LT((back - world).cwiseAbs().maxCoeff(), 1e-9) << text(world);
+      // The correction really moved the joints (the machine has errors).
+      if (k == 0) EXPECT_GT((joints - world).cwiseAbs().maxCoeff(), 1e-6);
+    }
+  }
+}
+
+TEST_P(EveryMachine, TcpNominalKinematicsRoundTrip) {
+  std::mt19937_64 rng(3);
+  for (int k = 0; k < 1000; ++k) {
+    const Joints q = random_pose(model_, rng);
+    const Joints world = nominal_forward(model_, WorldConvention::Tcp, q, model_.tool_length_mm);
+    Joints back;
+    ASSERT_EQ(nominal_inverse(model_, WorldConvention::Tcp, world, model_.tool_length_mm, back), Status::Ok);
+    ASSERT_LT((back - q).cwiseAbs().maxCoeff(), 1e-9);
+  }
+}
+
+TEST_P(EveryMachine, AnalyticJacobianMatchesCentralDifferences) {
+  std::mt19937_64 rng(4);
+  const double L = model_.tool_length_mm;
+  for (int k = 0; k < 200; ++k) {
+    const Joints q = random_pose(model_, rng);
+    for (Machine m : {Machine::Real, Machine::Ideal}) {
+      PoseDerivatives d;
+      tool_pose(model_, m, q, L, d);
+      for (int j = 0; j < model_.joint_count(); ++j) {
+        const double h = 1e-5;
+        Joints plus = q, minus = q;
+        plus[j] += h;
+        minus[j] -= h;
+        const ToolPose p = tool_pose(model_, m, plus, L), n = tool_pose(model_, m, minus, L);
+        const Eigen::Vector3d tip_rate = (p.tip_mm - n.tip_mm) / (2 * h);
+        const Eigen::Vector3d dir_rate = (p.direction - n.direction) / (2 * h);
+        EXPECT_LT((tip_rate - d.tip.col(j)).norm(), 1e-6) << "joint " << j << " at " << text(q);
+        EXPECT_LT((dir_rate - d.direction.col(j)).norm(), 1e-9) << "joint " << j << " at " << text(q);
+      }
+    }
+  }
+}
+
+// model.md's chain written naively with 4x4 matrices, against the library's evaluation.
+Eigen::Matrix4d naive_chain(const Model& model, const std::vector<int>& chain, const Joints& q) {
+  Eigen::Matrix4d f = Eigen::Matrix4d::Identity();
+  for (int i : chain) {
+    const Axis& a = model.axes[i];
+    AxisErrors e;
+    axis_errors(model, i, q, e);
+    auto T = [](const Eigen::Vector3d& v) {
+      Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+      m.block<3, 1>(0, 3) = v;
+      return m;
+    };
+    auto R = [](const Eigen::Matrix3d& r) {
+      Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+      m.block<3, 3>(0, 0) = r;
+      return m;
+    };
+    auto Rxyz = [&](const Eigen::Vector3d& v) {
+      return R((Eigen::AngleAxisd(v[0], Eigen::Vector3d::UnitX()) * Eigen::AngleAxisd(v[1], Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(v[2], Eigen::Vector3d::UnitZ()))
+                   .toRotationMatrix());
+    };
+    const Eigen::Matrix4d base = T(a.pole_mm + a.location_mm) * Rxyz(a.location_rad);
+    if (a.type == AxisType::Linear)
+      f = f * base * T(q[i] * a.direction) * T(e.delta_mm) * Rxyz(e.eps_rad);
+    else
+      f = f * base * T(e.delta_mm) * Rxyz(e.eps_rad) *
+          R(Eigen::AngleAxisd(q[i] * M_PI / 180.0, a.direction).toRotationMatrix());
+  }
+  return f;
+}
+
+TEST_P(EveryMachine, ChainEqualsNaiveMatrixProduct) {
+  std::mt19937_64 rng(5);
+  const double L = model_.tool_length_mm;
+  for (int k = 0; k < 1000; ++k) {
+    const Joints q = random_pose(model_, rng);
+    Eigen::Matrix4d tool_offset = Eigen::Matrix4d::Identity();
+    tool_offset(2, 3) = -L;
+    const Eigen::Matrix4d tool = naive_chain(model_, model_.tool_chain, q) * model_.spindle.real.matrix() * tool_offset;
+    const Eigen::Matrix4d part = naive_chain(model_, model_.workpiece_chain, q) * model_.fixture.matrix();
+    const Eigen::Matrix4d expected = part.inverse() * tool;
+    const Eigen::Matrix4d got = part_T_tool(model_, Machine::Real, q, L).matrix();
+    ASSERT_LT((expected - got).cwiseAbs().maxCoeff(), 1e-10) << text(q);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Shipped, EveryMachine, ::testing::ValuesIn(test::shipped_machines()),
+                         [](const auto& info) { return info.param; });
+
+// Pole fade on the MC-300 (pole at B = 0): rotary joints stay nominal at the pole, the
+// correction moves continuously through the fade band, and position stays exact.
+TEST(PoleFade, Mc300RotaryCorrectionFadesContinuouslyNearThePole) {
+  const Model model = load_machine(test::machine_path("mc300"));
+  Joints q(5);
+  q << -320.0, -170.0, -140.0, 0.0, 37.0;
+  Correction previous = correct(model, q, model.tool_length_mm);
+  EXPECT_EQ(previous.fade, 0.0);
+  EXPECT_EQ(previous.joints[3], q[3]);
+  EXPECT_EQ(previous.joints[4], q[4]);
+  EXPECT_GT(previous.residual_rad, 1e-6);  // direction error left by design at the pole
+  double previous_fade = 0.0;
+  for (double b = -0.01; b >= -15.0; b -= 0.01) {
+    q[3] = b;
+    const Correction c = correct(model, q, model.tool_length_mm, previous.joints);
+    ASSERT_EQ(c.status, Status::Ok) << "b = " << b;
+    EXPECT_LT(c.residual_mm, 1e-9);
+    EXPECT_GE(c.fade, previous_fade);
+    // Joints move smoothly: the step in every corrected joint is the nominal step (0.01 deg
+    // on B) plus at most a fraction of a micrometre or micro-degree.
+    const Joints step = c.joints - previous.joints;
+    EXPECT_NEAR(step[3], -0.01, 2e-4) << "b = " << b;
+    EXPECT_LT(std::abs(step[4]), 2e-4) << "b = " << b;
+    previous = c;
+    previous_fade = c.fade;
+  }
+  EXPECT_EQ(previous.fade, 1.0);
+  EXPECT_LT(previous.residual_rad, 1e-9);
+}
+
+}  // namespace
+}  // namespace vc::machine

@@ -41,6 +41,7 @@ struct Axis {
   Eigen::Isometry3d real_base;    // T(o + d0) * R(e0)
   Eigen::Isometry3d ideal_base;   // T(o)
   std::vector<int> tables;        // indices into Model::tables
+  unsigned moved_by = 0;          // bit j set: joint j moves this axis's frame (itself, table variables)
 };
 
 // An error table bound to this machine's joints.
@@ -99,8 +100,16 @@ struct Model {
   std::string coordinates() const;     // lower-case letters in joint order, e.g. "xyzbc"
 };
 
-// R(a, b, c) = Rx(a) * Ry(b) * Rz(c) (model.md).
-Eigen::Matrix3d rotation_xyz(const Eigen::Vector3d& abc_rad);
+// sin and cos of x; exact to the last bit, fast for the small angles of error tables.
+void sin_cos(double x, double& s, double& c) noexcept;
+
+// R(a, b, c) = Rx(a) * Ry(b) * Rz(c) (model.md), exact trigonometry.
+Eigen::Matrix3d rotation_xyz(const Eigen::Vector3d& abc_rad) noexcept;
+
+// R(a, b, c) and its angular velocity per unit change of (a, b, c), as matrix columns:
+// omega = a' e_x + b' Rx(a) e_y + c' Rx(a) Ry(b) e_z.
+void rotation_xyz(const Eigen::Vector3d& abc_rad, Eigen::Matrix3d& rotation,
+                  Eigen::Matrix3d& rate) noexcept;
 
 // T(origin + location_mm) * R(location_rad): the real placement of an axis or spindle line.
 Eigen::Isometry3d line_placement(const Eigen::Vector3d& origin_mm, const Eigen::Vector3d& location_mm,

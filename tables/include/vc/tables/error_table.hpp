@@ -28,6 +28,7 @@ struct GridVariable {
   bool periodic;              // rotary grid spanning exactly 360 deg
   std::vector<double> nodes;  // strictly increasing, size >= 2
   SourceLocation where;       // header cell
+  double uniform_step = 0.0;  // > 0 if the nodes are equally spaced (lookup without search)
 };
 
 struct Column {
