@@ -347,6 +347,8 @@ class MachineReader {
       if (scale)
         for (auto&& [key, value] : *scale) options.scale[std::string(key.str())] = scalar(value, key.str());
       const std::string table_path = (base / file).lexically_normal().string();
+      if (!fs::is_regular_file(table_path))
+        throw LoadError(where(*t.get("file")), "table file '" + file + "' not found (looked for " + table_path + ")");
       BoundTable bound{tables::load_table(table_path, options), {}};
       bind(bound, axis, joint);
       if (scale)
