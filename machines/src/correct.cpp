@@ -24,7 +24,7 @@ struct Target {
 // Residual of the equations: tip position (mm), then direction components (rad).
 Joints residual_of(const Target& target, const ToolPose& pose, int equations) {
   Joints r(equations);
-  r.head<3>() = pose.tip_mm - target.tip_mm;
+  r.head(3) = pose.tip_mm - target.tip_mm;
   const Vector3d dir_error = target.direction.cross(pose.direction);
   for (int m = 0; m < target.direction_equations; ++m) r[3 + m] = target.basis[m].dot(dir_error);
   return r;
@@ -62,7 +62,7 @@ Status newton(const Model& model, const Target& target, double tool_length_mm, c
     pose = tool_pose(model, Machine::Real, q, tool_length_mm);
     const Joints residual = residual_of(target, pose, unknowns);
     if (!residual.allFinite()) return Status::NonFinite;
-    const double position = residual.head<3>().norm();
+    const double position = residual.head(3).norm();
     const double direction = residual.tail(unknowns - 3).norm();
     if (position <= opt.position_tolerance_mm && direction <= opt.direction_tolerance_rad) return Status::Ok;
     if (step == opt.max_iterations) return Status::NotConverged;

@@ -29,59 +29,67 @@ Matrix3d rotation_about(const Vector3d& u, double angle) {
   return Matrix3d::Identity() + s * k + (1.0 - c) * (k * k);
 }
 
+// A placement in the bed frame: bed_T_frame as rotation and origin (cheaper than 4x4 products).
+struct Frame {
+  Matrix3d rotation = Matrix3d::Identity();
+  Vector3d origin = Vector3d::Zero();
+
+  Frame then(const Isometry3d& t) const {
+    return {rotation * t.linear(), origin + rotation * t.translation()};
+  }
+  Isometry3d isometry() const {
+    Isometry3d t = Isometry3d::Identity();
+    t.linear() = rotation;
+    t.translation() = origin;
+    return t;
+  }
+};
+
 // Walks one chain bed outward; returns bed_T_last and, if asked, the chain's motion.
-Isometry3d walk_chain(const Model& model, Machine machine, const std::vector<int>& chain,
-                      const Joints& q, ChainMotion* motion) noexcept {
-  Isometry3d bed_T_parent = Isometry3d::Identity();
+Frame walk_chain(const Model& model, Machine machine, const std::vector<int>& chain, const Joints& q,
+                 ChainMotion* motion) noexcept {
+  const bool real = machine == Machine::Real;
+  Frame parent;
   AxisErrors err;
   for (int i : chain) {
     const Axis& axis = model.axes[i];
-    const bool real = machine == Machine::Real;
-    const Isometry3d& base = real ? axis.real_base : axis.ideal_base;
-    const double qi = q[i];
-    Vector3d delta = Vector3d::Zero(), eps = Vector3d::Zero();
-    if (real && !axis.tables.empty()) {
-      axis_errors(model, i, q, err);
-      delta = err.delta_mm;
-      eps = err.eps_rad;
-    }
+    const bool has_errors = real && !axis.tables.empty();
+    if (has_errors) axis_errors(model, i, q, err, motion != nullptr);
+    const Vector3d delta = has_errors ? err.delta_mm : Vector3d::Zero();
     Matrix3d r_eps = Matrix3d::Identity(), eps_rate = Matrix3d::Zero();
-    if (real) rotation_xyz(eps, r_eps, eps_rate);
-    Isometry3d motion_part = Isometry3d::Identity();  // T(q u) T(delta) R(eps) [Rot(u, q)]
-    if (axis.type == AxisType::Linear) {
-      motion_part.translation() = qi * axis.direction + delta;
-      motion_part.linear() = r_eps;
-    } else {
-      motion_part.translation() = delta;
-      motion_part.linear() = r_eps * rotation_about(axis.direction, qi * tables::kDegToRad);
-    }
+    if (has_errors) rotation_xyz(err.eps_rad, r_eps, eps_rate);
+    // The motion part of A(q): T(q u) T(delta) R(eps) for a linear axis,
+    // T(delta) R(eps) Rot(u, q) for a rotary one (model.md, One axis).
+    const bool linear = axis.type == AxisType::Linear;
+    const Vector3d motion_origin = linear ? Vector3d(q[i] * axis.direction + delta) : delta;
+    const Matrix3d motion_rotation =
+        linear ? r_eps : Matrix3d(r_eps * rotation_about(axis.direction, q[i] * tables::kDegToRad));
+    // Frame after `base` (the fixed placement of the axis line), then the child frame.
+    const Frame base = parent.then(real ? axis.real_base : axis.ideal_base);
+    const Vector3d child_origin = base.origin + base.rotation * motion_origin;
     if (motion) {
-      // Child origin and the rotation into bed coordinates of the frame after `base`.
-      const Isometry3d bed_T_base = bed_T_parent * base;
-      const Vector3d child_origin = bed_T_base * motion_part.translation();
-      const Matrix3d to_bed = bed_T_base.linear();
       for (int j = 0; j < model.joint_count(); ++j) {
         if (!((axis.moved_by >> j) & 1u)) continue;
         Vector3d v = Vector3d::Zero(), w = Vector3d::Zero();
-        if (real && !axis.tables.empty()) {
+        if (has_errors) {
           v = err.slope.block<3, 1>(0, j);
           w = eps_rate * err.slope.block<3, 1>(3, j);
         }
         if (j == i) {
-          if (axis.type == AxisType::Linear)
+          if (linear)
             v += axis.direction;
           else
             w += r_eps * axis.direction * tables::kDegToRad;
         }
-        const Vector3d w_bed = to_bed * w;
-        motion->linear.col(j) += to_bed * v - w_bed.cross(child_origin);
+        const Vector3d w_bed = base.rotation * w;
+        motion->linear.col(j) += base.rotation * v - w_bed.cross(child_origin);
         motion->angular.col(j) += w_bed;
       }
-      if (axis.type == AxisType::Rotary) motion->axis_line.col(i) = to_bed * r_eps * axis.direction;
+      if (!linear) motion->axis_line.col(i) = base.rotation * r_eps * axis.direction;
     }
-    bed_T_parent = bed_T_parent * base * motion_part;
+    parent = {base.rotation * motion_rotation, child_origin};
   }
-  return bed_T_parent;
+  return parent;
 }
 
 Isometry3d tool_offset(double tool_length_mm) {
@@ -90,52 +98,63 @@ Isometry3d tool_offset(double tool_length_mm) {
   return t;
 }
 
+// bed_T_tool (tip) and bed_T_part.
+Frame tool_frame(const Model& model, Machine machine, const Joints& q, double tool_length_mm,
+                 ChainMotion* motion) noexcept {
+  const Isometry3d& spindle = machine == Machine::Real ? model.spindle.real : model.spindle.ideal;
+  return walk_chain(model, machine, model.tool_chain, q, motion).then(spindle).then(tool_offset(tool_length_mm));
+}
+
+Frame part_frame(const Model& model, Machine machine, const Joints& q, ChainMotion* motion) noexcept {
+  return walk_chain(model, machine, model.workpiece_chain, q, motion).then(model.fixture);
+}
+
 ToolPose evaluate(const Model& model, Machine machine, const Joints& q, double tool_length_mm,
                   PoseDerivatives* d) noexcept {
-  const bool real = machine == Machine::Real;
-  ChainMotion tool_motion, part_motion;
-  const Isometry3d bed_T_tool =
-      walk_chain(model, machine, model.tool_chain, q, d ? &tool_motion : nullptr) *
-      (real ? model.spindle.real : model.spindle.ideal) * tool_offset(tool_length_mm);
-  const Isometry3d bed_T_part =
-      walk_chain(model, machine, model.workpiece_chain, q, d ? &part_motion : nullptr) *
-      model.fixture;
-  const Vector3d tip_bed = bed_T_tool.translation();
-  const Vector3d k_bed = bed_T_tool.linear().col(2);
-  const Matrix3d part_R_bed = bed_T_part.linear().transpose();
-  ToolPose pose{part_R_bed * (tip_bed - bed_T_part.translation()), part_R_bed * k_bed};
-  if (d) {
-    // Relative motion of the tool against the part, seen in the part frame.
-    for (int j = 0; j < model.joint_count(); ++j) {
-      const Vector3d v_rel = (tool_motion.linear.col(j) + tool_motion.angular.col(j).cross(tip_bed)) -
-                             (part_motion.linear.col(j) + part_motion.angular.col(j).cross(tip_bed));
-      const Vector3d w_rel = tool_motion.angular.col(j) - part_motion.angular.col(j);
-      d->tip.col(j) = part_R_bed * v_rel;
-      d->direction.col(j) = part_R_bed * w_rel.cross(k_bed);
-      d->axis_line.col(j) = part_R_bed * (tool_motion.axis_line.col(j) + part_motion.axis_line.col(j));
-    }
+  if (!d) {
+    const Frame tool = tool_frame(model, machine, q, tool_length_mm, nullptr);
+    const Frame part = part_frame(model, machine, q, nullptr);
+    const Matrix3d part_R_bed = part.rotation.transpose();
+    return {part_R_bed * (tool.origin - part.origin), part_R_bed * tool.rotation.col(2)};
   }
-  return pose;
+  ChainMotion tool_motion, part_motion;
+  const Frame tool = tool_frame(model, machine, q, tool_length_mm, &tool_motion);
+  const Frame part = part_frame(model, machine, q, &part_motion);
+  const Vector3d& tip_bed = tool.origin;
+  const Vector3d k_bed = tool.rotation.col(2);
+  const Matrix3d part_R_bed = part.rotation.transpose();
+  // Relative motion of the tool against the part, seen in the part frame.
+  for (int j = 0; j < model.joint_count(); ++j) {
+    const Vector3d v_rel = (tool_motion.linear.col(j) + tool_motion.angular.col(j).cross(tip_bed)) -
+                           (part_motion.linear.col(j) + part_motion.angular.col(j).cross(tip_bed));
+    const Vector3d w_rel = tool_motion.angular.col(j) - part_motion.angular.col(j);
+    d->tip.col(j) = part_R_bed * v_rel;
+    d->direction.col(j) = part_R_bed * w_rel.cross(k_bed);
+    d->axis_line.col(j) = part_R_bed * (tool_motion.axis_line.col(j) + part_motion.axis_line.col(j));
+  }
+  return {part_R_bed * (tip_bed - part.origin), part_R_bed * k_bed};
 }
 
 }  // namespace
 
-void axis_errors(const Model& model, int joint, const Joints& q, AxisErrors& out) noexcept {
+void axis_errors(const Model& model, int joint, const Joints& q, AxisErrors& out,
+                 bool with_slopes) noexcept {
   out.delta_mm.setZero();
   out.eps_rad.setZero();
-  out.slope.setZero();
+  if (with_slopes) out.slope.setZero();
   tables::ErrorTable::Sample sample;
   for (int t : model.axes[joint].tables) {
     const BoundTable& bound = model.tables[t];
     const auto& grid = bound.table.grid();
     std::array<double, tables::ErrorTable::kMaxVariables> at{};
     for (std::size_t v = 0; v < grid.size(); ++v) at[v] = q[bound.joint[v]];
-    bound.table.evaluate(at.data(), sample);
+    bound.table.evaluate(at.data(), sample, with_slopes);
     const auto& columns = bound.table.columns();
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const int k = columns[c].symbol.component;
       (k < 3 ? out.delta_mm[k] : out.eps_rad[k - 3]) += sample.value[c];
-      for (std::size_t v = 0; v < grid.size(); ++v) out.slope(k, bound.joint[v]) += sample.slope[c][v];
+      if (with_slopes)
+        for (std::size_t v = 0; v < grid.size(); ++v) out.slope(k, bound.joint[v]) += sample.slope[c][v];
     }
   }
 }
@@ -152,13 +171,8 @@ ToolPose tool_pose(const Model& model, Machine machine, const Joints& q, double 
 
 Isometry3d part_T_tool(const Model& model, Machine machine, const Joints& q,
                        double tool_length_mm) noexcept {
-  const bool real = machine == Machine::Real;
-  const Isometry3d bed_T_tool = walk_chain(model, machine, model.tool_chain, q, nullptr) *
-                                (real ? model.spindle.real : model.spindle.ideal) *
-                                tool_offset(tool_length_mm);
-  const Isometry3d bed_T_part =
-      walk_chain(model, machine, model.workpiece_chain, q, nullptr) * model.fixture;
-  return bed_T_part.inverse() * bed_T_tool;
+  const Frame tool = tool_frame(model, machine, q, tool_length_mm, nullptr);
+  return part_frame(model, machine, q, nullptr).isometry().inverse() * tool.isometry();
 }
 
 VolumetricError volumetric_error(const Model& model, const Joints& q,

@@ -69,14 +69,14 @@ void ErrorTable::refresh() {
   }
 }
 
-void ErrorTable::evaluate(const double* positions, Sample& out) const noexcept {
+void ErrorTable::evaluate(const double* positions, Sample& out, bool with_slopes) const noexcept {
   if (interpolation_ == Interpolation::Cubic)
-    evaluate_cubic(positions[0], out);
+    evaluate_cubic(positions[0], out, with_slopes);
   else
-    evaluate_linear(positions, out);
+    evaluate_linear(positions, out, with_slopes);
 }
 
-void ErrorTable::evaluate_linear(const double* positions, Sample& out) const noexcept {
+void ErrorTable::evaluate_linear(const double* positions, Sample& out, bool with_slopes) const noexcept {
   const int dims = static_cast<int>(grid_.size());
   const int ncol = static_cast<int>(columns_.size());
   std::array<Cell, kMaxVariables> cell{};
@@ -89,7 +89,7 @@ void ErrorTable::evaluate_linear(const double* positions, Sample& out) const noe
   }
   for (int c = 0; c < ncol; ++c) {
     out.value[c] = 0.0;
-    out.slope[c] = {0.0, 0.0, 0.0};
+    if (with_slopes) out.slope[c] = {0.0, 0.0, 0.0};
   }
   // Multilinear: sum over the 2^dims corners of the cell.
   for (int corner = 0; corner < (1 << dims); ++corner) {
@@ -105,14 +105,14 @@ void ErrorTable::evaluate_linear(const double* positions, Sample& out) const noe
       weight *= w;
     }
     const double* v = &values_[node * ncol];
-    for (int c = 0; c < ncol; ++c) {
-      out.value[c] += weight * v[c];
-      for (int d = 0; d < dims; ++d) out.slope[c][d] += dweight[d] * v[c];
-    }
+    for (int c = 0; c < ncol; ++c) out.value[c] += weight * v[c];
+    if (with_slopes)
+      for (int c = 0; c < ncol; ++c)
+        for (int d = 0; d < dims; ++d) out.slope[c][d] += dweight[d] * v[c];
   }
 }
 
-void ErrorTable::evaluate_cubic(double position, Sample& out) const noexcept {
+void ErrorTable::evaluate_cubic(double position, Sample& out, bool with_slopes) const noexcept {
   const Cell cell = locate(grid_.front(), position);
   const int ncol = static_cast<int>(columns_.size());
   const int i = cell.index;
@@ -122,6 +122,7 @@ void ErrorTable::evaluate_cubic(double position, Sample& out) const noexcept {
     const double m0 = curvature_[i * ncol + c], m1 = curvature_[(i + 1) * ncol + c];
     // Standard cubic spline segment in terms of the end values and curvatures.
     out.value[c] = a * y0 + b * y1 + ((a * a * a - a) * m0 + (b * b * b - b) * m1) * h * h / 6.0;
+    if (!with_slopes) continue;
     const double dvalue_dt =
         y1 - y0 + ((1.0 - 3.0 * a * a) * m0 + (3.0 * b * b - 1.0) * m1) * h * h / 6.0;
     out.slope[c] = {dvalue_dt * cell.dt_dx, 0.0, 0.0};

@@ -70,7 +70,7 @@ TEST(NoAllocationGuard, SeesAnAllocation) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Shipped, NoAllocation, ::testing::ValuesIn(test::shipped_machines()),
-                         [](const auto& info) { return info.param; });
+                         [](const auto& param_info) { return param_info.param; });
 
 }  // namespace
 }  // namespace vc::machine

@@ -57,7 +57,9 @@ TEST_P(EveryMachine, CorrectionResidualBelowOneNanometreAndNanoradian) {
     }
     ASSERT_LE(c.iterations, 2 * model_.solver.max_iterations);
   }
-  if (model_.rotary_count() == 2) EXPECT_GT(full_orientation, pose_count() / 2);
+  if (model_.rotary_count() == 2) {
+    EXPECT_GT(full_orientation, pose_count() / 2);
+  }
 }
 
 TEST_P(EveryMachine, ForwardIsTheExactInverseOfInverseInBothConventions) {
@@ -71,7 +73,9 @@ TEST_P(EveryMachine, ForwardIsTheExactInverseOfInverseInBothConventions) {
       ASSERT_EQ(world_from_joints(model_, convention, joints, L, back), Status::Ok) << text(joints);
       ASSERT_LT((back - world).cwiseAbs().maxCoeff(), 1e-9) << text(world);
       // The correction really moved the joints (the machine has errors).
-      if (k == 0) EXPECT_GT((joints - world).cwiseAbs().maxCoeff(), 1e-6);
+      if (k == 0) {
+        EXPECT_GT((joints - world).cwiseAbs().maxCoeff(), 1e-6);
+      }
     }
   }
 }
@@ -158,7 +162,7 @@ TEST_P(EveryMachine, ChainEqualsNaiveMatrixProduct) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Shipped, EveryMachine, ::testing::ValuesIn(test::shipped_machines()),
-                         [](const auto& info) { return info.param; });
+                         [](const auto& param_info) { return param_info.param; });
 
 // Pole fade on the MC-300 (pole at B = 0): rotary joints stay nominal at the pole, the
 // correction moves continuously through the fade band, and position stays exact.

@@ -49,12 +49,14 @@ Eigen::Isometry3d part_T_tool(const Model& model, Machine machine, const Joints&
 VolumetricError volumetric_error(const Model& model, const Joints& q,
                                  double tool_length_mm) noexcept;
 
-// Component errors of one axis at q: delta (mm), eps (rad) and their slopes by each joint.
+// Component errors of one axis at q (the sum of its tables): delta (mm), eps (rad) and, if
+// asked, their slopes by each joint (per mm or per deg).
 struct AxisErrors {
   Eigen::Vector3d delta_mm;
   Eigen::Vector3d eps_rad;
   Eigen::Matrix<double, 6, kMaxAxes> slope;  // rows: delta x y z, eps a b c
 };
-void axis_errors(const Model& model, int joint, const Joints& q, AxisErrors& out) noexcept;
+void axis_errors(const Model& model, int joint, const Joints& q, AxisErrors& out,
+                 bool with_slopes = true) noexcept;
 
 }  // namespace vc::machine

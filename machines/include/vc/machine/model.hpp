@@ -10,6 +10,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <array>
 #include <string>
 #include <vector>
@@ -100,19 +101,40 @@ struct Model {
   std::string coordinates() const;     // lower-case letters in joint order, e.g. "xyzbc"
 };
 
-// sin and cos of x; exact to the last bit, fast for the small angles of error tables.
-void sin_cos(double x, double& s, double& c) noexcept;
-
 // R(a, b, c) = Rx(a) * Ry(b) * Rz(c) (model.md), exact trigonometry.
 Eigen::Matrix3d rotation_xyz(const Eigen::Vector3d& abc_rad) noexcept;
-
-// R(a, b, c) and its angular velocity per unit change of (a, b, c), as matrix columns:
-// omega = a' e_x + b' Rx(a) e_y + c' Rx(a) Ry(b) e_z.
-void rotation_xyz(const Eigen::Vector3d& abc_rad, Eigen::Matrix3d& rotation,
-                  Eigen::Matrix3d& rate) noexcept;
 
 // T(origin + location_mm) * R(location_rad): the real placement of an axis or spindle line.
 Eigen::Isometry3d line_placement(const Eigen::Vector3d& origin_mm, const Eigen::Vector3d& location_mm,
                                  const Eigen::Vector3d& location_rad);
+
+// sin and cos of x; exact to the last bit, fast for the small angles of error tables.
+inline void sin_cos(double x, double& s, double& c) noexcept {
+  if (std::abs(x) < 1e-3) {
+    // Taylor series; the first omitted terms (x^7 / 5040, x^8 / 40320) are below half an ulp
+    // of the result for |x| < 1e-3 rad (206 arcsec), so this equals std::sin / std::cos.
+    const double x2 = x * x;
+    s = x * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0));
+    c = 1.0 - x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0));
+    return;
+  }
+  s = std::sin(x);
+  c = std::cos(x);
+}
+
+// R(a, b, c) and its angular velocity per unit change of (a, b, c), as matrix columns:
+// omega = a' e_x + b' Rx(a) e_y + c' Rx(a) Ry(b) e_z.
+inline void rotation_xyz(const Eigen::Vector3d& abc, Eigen::Matrix3d& r, Eigen::Matrix3d& rate) noexcept {
+  double sa, ca, sb, cb, sc, cc;
+  sin_cos(abc[0], sa, ca);
+  sin_cos(abc[1], sb, cb);
+  sin_cos(abc[2], sc, cc);
+  r << cb * cc, -cb * sc, sb,
+       ca * sc + sa * sb * cc, ca * cc - sa * sb * sc, -sa * cb,
+       sa * sc - ca * sb * cc, sa * cc + ca * sb * sc, ca * cb;
+  rate << 1.0, 0.0, sb,
+          0.0, ca, -sa * cb,
+          0.0, sa, ca * cb;
+}
 
 }  // namespace vc::machine

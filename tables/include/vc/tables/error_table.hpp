@@ -53,10 +53,11 @@ class ErrorTable {
   ErrorTable(std::string path, std::vector<GridVariable> grid, std::vector<Column> columns,
              std::vector<double> values, Interpolation interpolation);
 
-  // Value and slope of every column at the positions of the grid variables
+  // Value and (if with_slopes) slope of every column at the positions of the grid variables
   // (positions[i] belongs to grid()[i]).
-  // Real-time: no allocation, no locks, O(log nodes) per variable.
-  void evaluate(const double* positions, Sample& out) const noexcept;
+  // Real-time: no allocation, no locks, O(1) per variable on an evenly spaced grid,
+  // O(log nodes) otherwise.
+  void evaluate(const double* positions, Sample& out, bool with_slopes = true) const noexcept;
 
   const std::string& path() const { return path_; }
   const std::vector<GridVariable>& grid() const { return grid_; }
@@ -70,8 +71,8 @@ class ErrorTable {
   void refresh();
 
  private:
-  void evaluate_linear(const double* positions, Sample& out) const noexcept;
-  void evaluate_cubic(double position, Sample& out) const noexcept;
+  void evaluate_linear(const double* positions, Sample& out, bool with_slopes) const noexcept;
+  void evaluate_cubic(double position, Sample& out, bool with_slopes) const noexcept;
 
   std::string path_;
   std::vector<GridVariable> grid_;
