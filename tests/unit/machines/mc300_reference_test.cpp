@@ -17,6 +17,16 @@ constexpr double kErrorToleranceMm = 1e-9;    // reference README asks 1e-6
 constexpr double kErrorToleranceRad = 1e-12;  // reference README asks 1e-9
 constexpr double kJointTolerance = 1e-8;      // mm or deg; reference README asks 1e-6
 
+// The six error components of one reference row.
+void expect_matches(const VolumetricError& e, const test::CsvTable& ref, std::size_t row) {
+  EXPECT_NEAR(e.position_mm.x(), ref.at(row, "ex"), kErrorToleranceMm);
+  EXPECT_NEAR(e.position_mm.y(), ref.at(row, "ey"), kErrorToleranceMm);
+  EXPECT_NEAR(e.position_mm.z(), ref.at(row, "ez"), kErrorToleranceMm);
+  EXPECT_NEAR(e.direction_rad.x(), ref.at(row, "ekx"), kErrorToleranceRad);
+  EXPECT_NEAR(e.direction_rad.y(), ref.at(row, "eky"), kErrorToleranceRad);
+  EXPECT_NEAR(e.direction_rad.z(), ref.at(row, "ekz"), kErrorToleranceRad);
+}
+
 class Mc300Reference : public ::testing::Test {
  protected:
   static void SetUpTestSuite() { model_ = new Model(load_machine(test::machine_path("mc300"))); }
@@ -32,12 +42,7 @@ TEST_F(Mc300Reference, VolumetricErrorAtSixtyControlPoints) {
     const Joints q = ref.joints(i, "xyzbc");
     const VolumetricError e = volumetric_error(*model_, q, model_->tool_length_mm);
     SCOPED_TRACE("control point " + std::to_string(i + 1));
-    EXPECT_NEAR(e.position_mm.x(), ref.at(i, "ex"), kErrorToleranceMm);
-    EXPECT_NEAR(e.position_mm.y(), ref.at(i, "ey"), kErrorToleranceMm);
-    EXPECT_NEAR(e.position_mm.z(), ref.at(i, "ez"), kErrorToleranceMm);
-    EXPECT_NEAR(e.direction_rad.x(), ref.at(i, "ekx"), kErrorToleranceRad);
-    EXPECT_NEAR(e.direction_rad.y(), ref.at(i, "eky"), kErrorToleranceRad);
-    EXPECT_NEAR(e.direction_rad.z(), ref.at(i, "ekz"), kErrorToleranceRad);
+    expect_matches(e, ref, i);
   }
 }
 
@@ -78,12 +83,7 @@ TEST_F(Mc300Reference, EachOfTheFortyOneDeviationsAlone) {
       if (static_cast<int>(ref.at(i, "dev")) != dev) continue;
       const VolumetricError e = volumetric_error(single, ref.joints(i, "xyzbc"), single.tool_length_mm);
       SCOPED_TRACE("e" + std::to_string(dev) + " row " + std::to_string(i + 2));
-      EXPECT_NEAR(e.position_mm.x(), ref.at(i, "ex"), kErrorToleranceMm);
-      EXPECT_NEAR(e.position_mm.y(), ref.at(i, "ey"), kErrorToleranceMm);
-      EXPECT_NEAR(e.position_mm.z(), ref.at(i, "ez"), kErrorToleranceMm);
-      EXPECT_NEAR(e.direction_rad.x(), ref.at(i, "ekx"), kErrorToleranceRad);
-      EXPECT_NEAR(e.direction_rad.y(), ref.at(i, "eky"), kErrorToleranceRad);
-      EXPECT_NEAR(e.direction_rad.z(), ref.at(i, "ekz"), kErrorToleranceRad);
+      expect_matches(e, ref, i);
     }
   }
 }
