@@ -154,10 +154,16 @@ class MachineReader {
         throw LoadError(where(key.source()), "'" + k + "' is not a location error of " +
                                                  std::string(1, letter) + " (expected " + expected +
                                                  ", e.g. EC0" + letter + "_arcsec)");
-      if (!unit || unit->quantity != symbol->quantity())
-        throw LoadError(where(key.source()),
-                        "'" + k + "' needs a unit suffix: " +
-                            std::string(tables::unit_names(symbol->quantity())));
+      const std::string kind = symbol->quantity() == tables::Quantity::Length ? "a length" : "an angle";
+      const std::string units = std::string(tables::unit_names(symbol->quantity()));
+      if (underscore == std::string::npos)
+        throw LoadError(where(key.source()), "'" + k + "' needs a unit suffix (" + k + "_<unit>, unit one of " + units + ")");
+      const std::string unit_name = k.substr(underscore + 1);
+      if (!unit)
+        throw LoadError(where(key.source()), "unknown unit '" + unit_name + "' in '" + k + "' (use " + units + ")");
+      if (unit->quantity != symbol->quantity())
+        throw LoadError(where(key.source()), "unit '" + unit_name + "' does not fit " + k.substr(0, underscore) +
+                                                 ", which is " + kind + " (use " + units + ")");
       const double v = scalar(value, k) * unit->to_core;
       (symbol->component < 3 ? position_mm[symbol->component]
                              : orientation_rad[symbol->component - 3]) = v;
@@ -169,6 +175,7 @@ class MachineReader {
     const toml::table& m = *table(root, "machine", true, "the machine file");
     check_keys(m, "[machine]", {"name", "serial", "description"});
     model_.info.name = text(m, "name", true, "[machine]");
+    if (model_.info.name.empty()) throw LoadError(where(*m.get("name")), "the machine name must not be empty");
     model_.info.serial = text(m, "serial", false, "[machine]");
     model_.info.description = text(m, "description", false, "[machine]");
     if (const toml::table* s = table(root, "measurement", false, "")) {
@@ -333,6 +340,7 @@ class MachineReader {
     const int joint = pending.axis_order;
     Axis& axis = model_.axes[joint];
     const fs::path base = fs::path(path_).parent_path();
+    std::vector<std::string> listed;
     for (const toml::node& item : *pending.tables) {
       const toml::table& t = *item.as_table();
       const std::string context = std::string("a table of axis ") + axis.letter;
@@ -340,17 +348,21 @@ class MachineReader {
       const std::string file = text(t, "file", true, context);
       tables::TableOptions options;
       const std::string interp = text(t, "interpolation", false, context);
-      if (!interp.empty() && interp != "linear" && interp != "cubic")
+      if (t.get("interpolation") && interp != "linear" && interp != "cubic")
         throw LoadError(where(*t.get("interpolation")), "interpolation must be \"linear\" or \"cubic\"");
       options.interpolation = interp == "cubic" ? tables::Interpolation::Cubic : tables::Interpolation::Linear;
       const toml::table* scale = table(t, "scale", false, "");
       if (scale)
         for (auto&& [key, value] : *scale) options.scale[std::string(key.str())] = scalar(value, key.str());
       const std::string table_path = (base / file).lexically_normal().string();
+      if (std::find(listed.begin(), listed.end(), table_path) != listed.end())
+        throw LoadError(where(*t.get("file")), "table file '" + file + "' is listed twice under axis " +
+                                                   std::string(1, axis.letter) + ": its errors would count twice");
+      listed.push_back(table_path);
       if (!fs::is_regular_file(table_path))
         throw LoadError(where(*t.get("file")), "table file '" + file + "' not found (looked for " + table_path + ")");
       BoundTable bound{tables::load_table(table_path, options), {}};
-      bind(bound, axis, joint);
+      bind(bound, axis, where(*t.get("file")));
       if (scale)
         for (auto&& [key, value] : *scale) {
           bool found = false;
@@ -373,24 +385,26 @@ class MachineReader {
     return std::string("E") + tables::kComponentLetters[c.symbol.component] + c.symbol.axis;
   }
 
-  void bind(BoundTable& bound, const Axis& axis, int joint) const {
+  // Ties the table's grid variables to joints. Problems are reported in the CSV file, where
+  // they are, naming the machine-file line that lists the table.
+  void bind(BoundTable& bound, const Axis& axis, const SourceLocation& listed_at) const {
+    const std::string listed = " (table listed at " + listed_at.to_string() + ")";
     const auto& grid = bound.table.grid();
     for (std::size_t v = 0; v < grid.size(); ++v) {
       const int j = model_.joint_of(grid[v].axis);
       if (j < 0)
         throw LoadError(grid[v].where, std::string("grid variable ") + static_cast<char>(std::tolower(grid[v].axis)) +
-                                           " is not an axis of this machine (" + model_.coordinates() + ")");
+                                           " is not an axis of this machine (" + model_.coordinates() + ")" + listed);
       if (grid[v].rotary != (model_.axes[j].type == AxisType::Rotary))
         throw LoadError(grid[v].where, std::string("axis ") + grid[v].axis + " is " +
                                            (grid[v].rotary ? "linear: its positions are in mm"
-                                                           : "rotary: its positions are in deg"));
+                                                           : "rotary: its positions are in deg") + listed);
       bound.joint[v] = j;
     }
     for (const auto& c : bound.table.columns())
       if (c.symbol.axis != axis.letter)
         throw LoadError(c.where, column_name(c) + " is an error of axis " + c.symbol.axis +
-                                     ", but this table is listed under axis " + axis.letter);
-    (void)joint;
+                                     ", but this table is listed under axis " + axis.letter + listed);
   }
 
   // A table measured at p_meas instead of the pole, node by node (model.md, exact):

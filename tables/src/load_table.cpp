@@ -52,6 +52,7 @@ std::vector<Row> read_rows(const std::string& path) {
   int number = 0;
   while (std::getline(in, line)) {
     ++number;
+    if (number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // UTF-8 BOM (Excel)
     int offset = 0;
     const std::string content = trim(line, offset);
     if (content.empty() || content[0] == '#') continue;
@@ -78,10 +79,13 @@ double parse_number(const std::string& path, int line, const Cell& cell) {
   double v = 0.0;
   const char* begin = cell.text.data();
   const char* end = begin + cell.text.size();
-  if (!cell.text.empty() && *begin == '+') ++begin;
+  // from_chars takes no '+'; skip one, but never before another sign ("+-1").
+  if (cell.text.size() > 1 && *begin == '+' && begin[1] != '-' && begin[1] != '+') ++begin;
   const auto [ptr, ec] = std::from_chars(begin, end, v);
   if (cell.text.empty())
     throw LoadError({path, line, cell.column}, "empty cell: every cell needs a number");
+  if (ec == std::errc::result_out_of_range && ptr == end)
+    throw LoadError({path, line, cell.column}, "'" + cell.text + "' is out of the range of a number");
   if (ec != std::errc() || ptr != end)
     throw LoadError({path, line, cell.column}, "'" + cell.text + "' is not a number");
   if (!std::isfinite(v))
@@ -247,8 +251,15 @@ class TableReader {
 
   void check_monotonic(std::size_t d, std::size_t stride) const {
     const std::vector<double>& n = grid_[d].nodes;
+    const std::string grid_hint =
+        grid_.size() > 1 ? " (on a grid of several columns, the rows list every node, first column slowest)" : "";
     if (n.size() < 2)
       throw LoadError(grid_[d].where, "grid column needs at least two different positions");
+    for (std::size_t i = 1; i < n.size(); ++i)
+      if (n[i] == n[i - 1])
+        throw LoadError(cell_at(i * stride, d), "position " + format(n[i]) + " appears twice (lines " +
+                                                    std::to_string(lines_[(i - 1) * stride]) + " and " +
+                                                    std::to_string(lines_[i * stride]) + ")" + grid_hint);
     const bool increasing = n[1] > n[0];
     for (std::size_t i = 1; i < n.size(); ++i) {
       const bool ok = increasing ? n[i] > n[i - 1] : n[i] < n[i - 1];
@@ -256,7 +267,7 @@ class TableReader {
         throw LoadError(cell_at(i * stride, d),
                         "position " + format(n[i]) + " does not continue the " +
                             (increasing ? "increasing" : "decreasing") + " order after " +
-                            format(n[i - 1]) + ": grid positions must be strictly monotonic");
+                            format(n[i - 1]) + ": grid positions must be strictly monotonic" + grid_hint);
     }
   }
 
@@ -328,9 +339,33 @@ class TableReader {
       }
       for (std::size_t c = 0; c < ncol; ++c) values[target * ncol + c] = values_[r * ncol + c];
     }
+    const bool reversed = grid_[0].nodes.front() > grid_[0].nodes.back();
     for (GridVariable& g : grid_)
       if (g.nodes.front() > g.nodes.back()) std::reverse(g.nodes.begin(), g.nodes.end());
-    return ErrorTable(path_, grid_, columns_, std::move(values), options_.interpolation);
+    ErrorTable table(path_, grid_, columns_, std::move(values), options_.interpolation);
+    if (options_.interpolation == Interpolation::Cubic) check_spline_slopes(table, reversed);
+    return table;
+  }
+
+  // A spline overshoots the node-to-node slopes checked in check_slopes(): the limit holds
+  // anywhere on the grid (model.md), so the spline's own steepest slope is checked too.
+  void check_spline_slopes(const ErrorTable& table, bool reversed) const {
+    const SteepestSlope s = steepest_slope(table, options_.limits);
+    if (s.fraction <= 1.0) return;
+    const std::size_t last = table.grid()[0].nodes.size() - 1;
+    std::size_t a = static_cast<std::size_t>(s.node), b = a + 1;
+    if (reversed) {
+      a = last - a;
+      b = last - b;
+    }
+    const bool length = columns_[s.column].symbol.quantity() == Quantity::Length;
+    const double limit = length ? options_.limits.translation : options_.limits.rotation;
+    throw LoadError(cell_at(std::max(a, b), grid_.size() + s.column),
+                    "the cubic spline between lines " + std::to_string(lines_[std::min(a, b)]) + " and " +
+                        std::to_string(lines_[std::max(a, b)]) + " reaches a slope of " +
+                        format(s.fraction * limit) + (length ? " mm/" : " rad/") +
+                        (grid_[0].rotary ? "deg" : "mm") + ", above the limit " + format(limit) +
+                        " that keeps the correction invertible (use linear interpolation or smoother data)");
   }
 
   std::string path_;

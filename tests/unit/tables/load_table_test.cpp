@@ -208,6 +208,12 @@ TEST_F(LoadTable, IgnoresCommentsBlankLinesAndSpaces) {
   EXPECT_EQ(messy.columns()[0].where.line, 4);
 }
 
+// Excel's "CSV UTF-8" export starts the file with a byte-order mark.
+TEST_F(LoadTable, SkipsAUtf8ByteOrderMark) {
+  const std::string rows = "x[mm],EXX[um]\n0,0\n25,1.5\n";
+  expect_same_table(load("plain.csv", rows), load("bom.csv", "\xEF\xBB\xBF" + rows));
+}
+
 TEST_F(LoadTable, ParsesSignsAndExponents) {
   const ErrorTable t = load("signs.csv",
                             "x[mm],EXX[um],EYX[um],EZX[um]\n"

@@ -67,6 +67,8 @@ class ErrorTable {
   // Sample at a node, core units (for validation, re-referencing and reports).
   double value(int node, int column) const { return values_[node * columns_.size() + column]; }
   double& value(int node, int column) { return values_[node * columns_.size() + column]; }
+  // Cubic tables: second derivative of the spline at a node (per unit position squared).
+  double curvature(int node, int column) const { return curvature_[node * columns_.size() + column]; }
   // Recomputes derived data after values were changed through value().
   void refresh();
 

@@ -11,10 +11,13 @@ struct SlopeLimits {
   double rotation = 1e-4;     // rad per mm, or rad per deg
 };
 
-// The steepest slope between neighbouring nodes, as a fraction of its limit (1 = at the limit).
+// The steepest slope of the table as it is interpolated, as a fraction of its limit (1 = at
+// the limit): between neighbouring nodes for linear tables, the largest slope of the spline
+// inside each cell for cubic ones (a spline overshoots the node-to-node slopes).
 struct SteepestSlope {
   double fraction = 0.0;
   int column = -1;  // column of the table where it occurs
+  int node = -1;    // the cell's first node (in the table's increasing order)
 };
 SteepestSlope steepest_slope(const ErrorTable& table, const SlopeLimits& limits = {});
 
