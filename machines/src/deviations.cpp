@@ -6,12 +6,8 @@
 namespace vc::machine {
 namespace {
 
-std::string component_symbol(int component, char axis, bool location) {
-  std::string s = "E";
-  s += tables::kComponentLetters[component];
-  if (location) s += '0';
-  s += axis;
-  return s;
+std::string location_symbol(int component, char line) {
+  return tables::ErrorSymbol{component, line, true}.name();
 }
 
 // Location errors of a line: d0 (mm) and e0 (rad), components X Y Z A B C.
@@ -21,13 +17,13 @@ double& location_component(Eigen::Vector3d& d0, Eigen::Vector3d& e0, int k) {
 
 void list_locations(Eigen::Vector3d d0, Eigen::Vector3d e0, char line, std::vector<std::string>& out) {
   for (int k = 0; k < 6; ++k)
-    if (location_component(d0, e0, k) != 0.0) out.push_back(component_symbol(k, line, true));
+    if (location_component(d0, e0, k) != 0.0) out.push_back(location_symbol(k, line));
 }
 
 template <typename KeepFn>
 void zero_locations(Eigen::Vector3d& d0, Eigen::Vector3d& e0, char line, const KeepFn& kept) {
   for (int k = 0; k < 6; ++k)
-    if (!kept(component_symbol(k, line, true))) location_component(d0, e0, k) = 0.0;
+    if (!kept(location_symbol(k, line))) location_component(d0, e0, k) = 0.0;
 }
 
 }  // namespace
@@ -37,7 +33,7 @@ std::vector<std::string> deviation_symbols(const Model& model) {
   for (const Axis& axis : model.axes) {
     for (int t : axis.tables)
       for (const auto& c : model.tables[t].table.columns())
-        out.push_back(component_symbol(c.symbol.component, c.symbol.axis, false));
+        out.push_back(c.symbol.name());
     list_locations(axis.location_mm, axis.location_rad, axis.letter, out);
   }
   list_locations(model.spindle.location_mm, model.spindle.location_rad, 'S', out);
@@ -64,7 +60,7 @@ Model keep_only(const Model& model, const std::vector<std::string>& keep) {
     tables::ErrorTable& table = bound.table;
     const auto& columns = table.columns();
     for (std::size_t c = 0; c < columns.size(); ++c) {
-      if (kept(component_symbol(columns[c].symbol.component, columns[c].symbol.axis, false))) continue;
+      if (kept(columns[c].symbol.name())) continue;
       for (int node = 0; node < table.node_count(); ++node) table.value(node, static_cast<int>(c)) = 0.0;
     }
     table.refresh();

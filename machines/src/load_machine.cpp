@@ -367,7 +367,7 @@ class MachineReader {
         for (auto&& [key, value] : *scale) {
           bool found = false;
           for (const auto& c : bound.table.columns())
-            found |= column_name(c) == key.str();
+            found |= c.symbol.name() == key.str();
           if (!found)
             throw LoadError(where(key.source()), "scale names " + std::string(key.str()) +
                                                      ", which is not a column of " + table_path);
@@ -379,10 +379,6 @@ class MachineReader {
       axis.tables.push_back(static_cast<int>(model_.tables.size()));
       model_.tables.push_back(std::move(bound));
     }
-  }
-
-  static std::string column_name(const tables::Column& c) {
-    return std::string("E") + tables::kComponentLetters[c.symbol.component] + c.symbol.axis;
   }
 
   // Ties the table's grid variables to joints. Problems are reported in the CSV file, where
@@ -403,7 +399,7 @@ class MachineReader {
     }
     for (const auto& c : bound.table.columns())
       if (c.symbol.axis != axis.letter)
-        throw LoadError(c.where, column_name(c) + " is an error of axis " + c.symbol.axis +
+        throw LoadError(c.where, c.symbol.name() + " is an error of axis " + c.symbol.axis +
                                      ", but this table is listed under axis " + axis.letter + listed);
   }
 
@@ -436,8 +432,8 @@ class MachineReader {
       bool present = false;
       for (const auto& c : columns) present |= c.symbol.component == k;
       if (!present && std::abs(offset[(k + 1) % 3]) + std::abs(offset[(k + 2) % 3]) > 0.0)
-        throw LoadError(at, std::string("measured_at_mm moves E") + tables::kComponentLetters[k] +
-                                axis.letter + ", which the table does not have: add the column (zeros if not measured)");
+        throw LoadError(at, "measured_at_mm moves " + tables::ErrorSymbol{k, axis.letter, false}.name() +
+                                ", which the table does not have: add the column (zeros if not measured)");
     }
     table.refresh();
   }

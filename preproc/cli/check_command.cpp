@@ -68,14 +68,11 @@ double print_tables(const Model& model, std::ostream& out) {
           << (g.rotary ? " deg" : " mm") << (g.periodic ? " (periodic)" : "");
     out << "; " << (t.interpolation() == tables::Interpolation::Cubic ? "cubic" : "linear") << "; columns";
     for (const auto& c : t.columns())
-      out << " E" << tables::kComponentLetters[c.symbol.component] << c.symbol.axis;
+      out << ' ' << c.symbol.name();
     const tables::SteepestSlope s = tables::steepest_slope(t);
     worst = std::max(worst, s.fraction);
     out << "\n     steepest slope " << format_fixed(100.0 * s.fraction, 1) << " % of the invertibility limit";
-    if (s.column >= 0) {
-      const auto& sym = t.columns()[s.column].symbol;
-      out << " (E" << tables::kComponentLetters[sym.component] << sym.axis << ")";
-    }
+    if (s.column >= 0) out << " (" << t.columns()[s.column].symbol.name() << ")";
     out << '\n';
   }
   if (model.tables.empty()) out << "  (none)\n";

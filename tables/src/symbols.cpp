@@ -2,6 +2,13 @@
 
 namespace vc::tables {
 
+std::string ErrorSymbol::name() const {
+  std::string s = "E";
+  s += kComponentLetters[component];
+  if (location) s += '0';
+  return s + axis;
+}
+
 std::optional<ErrorSymbol> parse_error_symbol(std::string_view text) {
   const bool location = text.size() == 4 && text[2] == '0';
   if (!(text.size() == 3 || location) || text[0] != 'E') return std::nullopt;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "vc/tables/units.hpp"
@@ -25,6 +26,7 @@ struct ErrorSymbol {
   bool location;  // "EC0Y" (constant location error) rather than "ECY" (component error)
 
   Quantity quantity() const { return component < 3 ? Quantity::Length : Quantity::Angle; }
+  std::string name() const;  // "EXY" or "EC0Y"
 };
 
 // Parses "EXY" or "EC0Y" (upper case); nothing if `text` is not such a symbol.
