@@ -113,7 +113,6 @@ class TableReader {
     read_values();
     read_grid_structure();
     check_periodic_ends();
-    check_slopes();
     if (options_.interpolation == Interpolation::Cubic) check_cubic();
     return build();
   }
@@ -293,30 +292,6 @@ class TableReader {
     }
   }
 
-  void check_slopes() const {
-    const std::size_t ncol = columns_.size();
-    for (std::size_t d = 0; d < grid_.size(); ++d) {
-      const std::size_t n = grid_[d].nodes.size();
-      const char* per = grid_[d].rotary ? "deg" : "mm";
-      for (std::size_t r = 0; r < positions_.size(); ++r) {
-        if ((r / stride_[d]) % n == n - 1) continue;  // last node along d
-        const std::size_t next = r + stride_[d];
-        const double dx = std::abs(positions_[next][d] - positions_[r][d]);
-        for (std::size_t c = 0; c < ncol; ++c) {
-          const double slope = std::abs(values_[next * ncol + c] - values_[r * ncol + c]) / dx;
-          const bool length = columns_[c].symbol.quantity() == Quantity::Length;
-          const double limit = length ? options_.limits.translation : options_.limits.rotation;
-          if (slope > limit)
-            throw LoadError(cell_at(next, grid_.size() + c),
-                            "slope between lines " + std::to_string(lines_[r]) + " and " +
-                                std::to_string(lines_[next]) + " is " + format(slope) +
-                                (length ? " mm/" : " rad/") + per + ", above the limit " +
-                                format(limit) + " that keeps the correction invertible");
-        }
-      }
-    }
-  }
-
   void check_cubic() const {
     if (grid_.size() != 1)
       throw LoadError(grid_[1].where,
@@ -325,10 +300,12 @@ class TableReader {
       throw LoadError(grid_[0].where, "a periodic cubic table needs at least 5 rows");
   }
 
-  // Reorders every decreasing variable so that nodes increase.
+  // Reorders every decreasing variable so that nodes increase, then checks the slopes of the
+  // table as it will be interpolated.
   ErrorTable build() {
     const std::size_t ncol = columns_.size();
     std::vector<double> values(values_.size());
+    std::vector<std::size_t> row_of_node(positions_.size());  // data row of each stored node
     for (std::size_t r = 0; r < positions_.size(); ++r) {
       std::size_t target = 0;
       for (std::size_t d = 0; d < grid_.size(); ++d) {
@@ -338,34 +315,34 @@ class TableReader {
         target += i * stride_[d];
       }
       for (std::size_t c = 0; c < ncol; ++c) values[target * ncol + c] = values_[r * ncol + c];
+      row_of_node[target] = r;
     }
-    const bool reversed = grid_[0].nodes.front() > grid_[0].nodes.back();
     for (GridVariable& g : grid_)
       if (g.nodes.front() > g.nodes.back()) std::reverse(g.nodes.begin(), g.nodes.end());
     ErrorTable table(path_, grid_, columns_, std::move(values), options_.interpolation);
-    if (options_.interpolation == Interpolation::Cubic) check_spline_slopes(table, reversed);
+    check_slopes(table, row_of_node);
     return table;
   }
 
-  // A spline overshoots the node-to-node slopes checked in check_slopes(): the limit holds
-  // anywhere on the grid (model.md), so the spline's own steepest slope is checked too.
-  void check_spline_slopes(const ErrorTable& table, bool reversed) const {
+  // The slope limit holds anywhere on the grid (model.md): between neighbouring rows of a
+  // linear table, inside every cell of a cubic spline (which overshoots its nodes). The
+  // message names the two rows, in file order.
+  void check_slopes(const ErrorTable& table, const std::vector<std::size_t>& row_of_node) const {
     const SteepestSlope s = steepest_slope(table, options_.limits);
     if (s.fraction <= 1.0) return;
-    const std::size_t last = table.grid()[0].nodes.size() - 1;
-    std::size_t a = static_cast<std::size_t>(s.node), b = a + 1;
-    if (reversed) {
-      a = last - a;
-      b = last - b;
-    }
+    const std::size_t a = std::min(row_of_node[s.node], row_of_node[s.next]);
+    const std::size_t b = std::max(row_of_node[s.node], row_of_node[s.next]);
     const bool length = columns_[s.column].symbol.quantity() == Quantity::Length;
     const double limit = length ? options_.limits.translation : options_.limits.rotation;
-    throw LoadError(cell_at(std::max(a, b), grid_.size() + s.column),
-                    "the cubic spline between lines " + std::to_string(lines_[std::min(a, b)]) + " and " +
-                        std::to_string(lines_[std::max(a, b)]) + " reaches a slope of " +
-                        format(s.fraction * limit) + (length ? " mm/" : " rad/") +
-                        (grid_[0].rotary ? "deg" : "mm") + ", above the limit " + format(limit) +
-                        " that keeps the correction invertible (use linear interpolation or smoother data)");
+    const std::string slope = format(s.fraction * limit) + (length ? " mm/" : " rad/") +
+                              (grid_[s.variable].rotary ? "deg" : "mm");
+    const std::string lines = std::to_string(lines_[a]) + " and " + std::to_string(lines_[b]);
+    const std::string why = ", above the limit " + format(limit) + " that keeps the correction invertible";
+    throw LoadError(cell_at(b, grid_.size() + s.column),
+                    table.interpolation() == Interpolation::Cubic
+                        ? "the cubic spline between lines " + lines + " reaches a slope of " + slope + why +
+                              " (use linear interpolation or smoother data)"
+                        : "slope between lines " + lines + " is " + slope + why);
   }
 
   std::string path_;

@@ -37,7 +37,7 @@ SteepestSlope steepest_slope(const ErrorTable& table, const SlopeLimits& limits)
         const double f = max_spline_slope(x[i + 1] - x[i], table.value(i, c), table.value(i + 1, c),
                                           table.curvature(i, c), table.curvature(i + 1, c)) /
                          limit_of(table.columns()[c], limits);
-        if (f > steepest.fraction) steepest = {f, c, i};
+        if (f > steepest.fraction) steepest = {f, c, i, i + 1, 0};
       }
     return steepest;
   }
@@ -54,7 +54,7 @@ SteepestSlope steepest_slope(const ErrorTable& table, const SlopeLimits& limits)
         for (int c = 0; c < static_cast<int>(columns.size()); ++c) {
           const double f =
               std::abs(table.value(node + stride, c) - table.value(node, c)) / dx / limit_of(columns[c], limits);
-          if (f > steepest.fraction) steepest = {f, c, node};
+          if (f > steepest.fraction) steepest = {f, c, node, node + stride, d};
         }
       }
       stride *= size;

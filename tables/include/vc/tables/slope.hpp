@@ -17,7 +17,9 @@ struct SlopeLimits {
 struct SteepestSlope {
   double fraction = 0.0;
   int column = -1;  // column of the table where it occurs
-  int node = -1;    // the cell's first node (in the table's increasing order)
+  int node = -1;      // the two nodes bounding the segment or cell where it occurs
+  int next = -1;      //   (node indices of the table, in its increasing order)
+  int variable = -1;  // grid variable along which it occurs
 };
 SteepestSlope steepest_slope(const ErrorTable& table, const SlopeLimits& limits = {});
 
