@@ -109,14 +109,17 @@ Frame part_frame(const Model& model, Machine machine, const Joints& q, ChainMoti
   return walk_chain(model, machine, model.workpiece_chain, q, motion).then(model.fixture);
 }
 
+// The tool tip and direction (bed_T_tool's origin and z axis) seen in the part frame.
+ToolPose in_part_frame(const Frame& tool, const Frame& part) {
+  const Matrix3d part_R_bed = part.rotation.transpose();
+  return {part_R_bed * (tool.origin - part.origin), part_R_bed * tool.rotation.col(2)};
+}
+
 ToolPose evaluate(const Model& model, Machine machine, const Joints& q, double tool_length_mm,
                   PoseDerivatives* d) noexcept {
-  if (!d) {
-    const Frame tool = tool_frame(model, machine, q, tool_length_mm, nullptr);
-    const Frame part = part_frame(model, machine, q, nullptr);
-    const Matrix3d part_R_bed = part.rotation.transpose();
-    return {part_R_bed * (tool.origin - part.origin), part_R_bed * tool.rotation.col(2)};
-  }
+  if (!d)  // no ChainMotion to fill: the common, cheaper case
+    return in_part_frame(tool_frame(model, machine, q, tool_length_mm, nullptr),
+                         part_frame(model, machine, q, nullptr));
   ChainMotion tool_motion, part_motion;
   const Frame tool = tool_frame(model, machine, q, tool_length_mm, &tool_motion);
   const Frame part = part_frame(model, machine, q, &part_motion);
@@ -132,7 +135,7 @@ ToolPose evaluate(const Model& model, Machine machine, const Joints& q, double t
     d->direction.col(j) = part_R_bed * w_rel.cross(k_bed);
     d->axis_line.col(j) = part_R_bed * (tool_motion.axis_line.col(j) + part_motion.axis_line.col(j));
   }
-  return {part_R_bed * (tip_bed - part.origin), part_R_bed * k_bed};
+  return in_part_frame(tool, part);
 }
 
 }  // namespace
