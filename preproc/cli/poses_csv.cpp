@@ -1,50 +1,22 @@
 #include "poses_csv.hpp"
 
+#include "vc/tables/csv.hpp"
+
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 
 namespace vc::cli {
-namespace {
-
-struct Cell {
-  std::string text;
-  int column;
-};
-
-std::vector<Cell> split(const std::string& line) {
-  std::vector<Cell> cells;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t comma = line.find(',', start);
-    const std::size_t end = comma == std::string::npos ? line.size() : comma;
-    std::size_t b = start, e = end;
-    while (b < e && std::isspace(static_cast<unsigned char>(line[b]))) ++b;
-    while (e > b && std::isspace(static_cast<unsigned char>(line[e - 1]))) --e;
-    cells.push_back({line.substr(b, e - b), static_cast<int>(b) + 1});
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  return cells;
-}
-
-}  // namespace
 
 Poses read_poses(const std::string& path, const machine::Model& model) {
-  std::ifstream in(path);
-  if (!in) throw LoadError({path}, "cannot open the poses file");
   Poses poses;
-  std::string line;
-  int number = 0;
   bool header_read = false;
   const int n = model.joint_count();
-  while (std::getline(in, line)) {
-    ++number;
-    const std::vector<Cell> cells = split(line);
-    if (cells.size() == 1 && (cells[0].text.empty() || cells[0].text[0] == '#')) continue;
+  for (const tables::CsvRow& row : tables::read_csv_rows(path, "poses file")) {
+    const std::vector<tables::CsvCell>& cells = row.cells;
+    const int number = row.line;
     if (!header_read) {
-      for (const Cell& c : cells) {
+      for (const tables::CsvCell& c : cells) {
         const int j = c.text.size() == 1 ? model.joint_of(static_cast<char>(std::toupper(static_cast<unsigned char>(c.text[0])))) : -1;
         if (j < 0)
           throw LoadError({path, number, c.column}, "column '" + c.text + "' is not an axis of " +

@@ -1,72 +1,22 @@
 #include "vc/tables/load_table.hpp"
 
+#include "vc/tables/csv.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 namespace vc::tables {
 namespace {
-
-struct Cell {
-  std::string text;
-  int column;  // 1-based character column of the cell's first character
-};
-
-struct Row {
-  std::vector<Cell> cells;
-  int line;
-};
-
-std::string trim(const std::string& s, int& offset) {
-  std::size_t b = s.find_first_not_of(" \t\r");
-  if (b == std::string::npos) return {};
-  std::size_t e = s.find_last_not_of(" \t\r");
-  offset += static_cast<int>(b);
-  return s.substr(b, e - b + 1);
-}
-
-std::vector<Cell> split(const std::string& line) {
-  std::vector<Cell> cells;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t comma = line.find(',', start);
-    const std::string raw = line.substr(start, comma == std::string::npos ? comma : comma - start);
-    int column = static_cast<int>(start) + 1;
-    std::string text = trim(raw, column);
-    cells.push_back({text, column});
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  return cells;
-}
-
-// Reads the non-comment, non-blank lines of a CSV file.
-std::vector<Row> read_rows(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw LoadError({path}, "cannot open the table file");
-  std::vector<Row> rows;
-  std::string line;
-  int number = 0;
-  while (std::getline(in, line)) {
-    ++number;
-    if (number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // UTF-8 BOM (Excel)
-    int offset = 0;
-    const std::string content = trim(line, offset);
-    if (content.empty() || content[0] == '#') continue;
-    rows.push_back({split(line), number});
-  }
-  return rows;
-}
 
 struct HeaderCell {
   std::string name;
   std::string unit;
 };
 
-HeaderCell parse_header_cell(const std::string& path, int line, const Cell& cell) {
+HeaderCell parse_header_cell(const std::string& path, int line, const CsvCell& cell) {
   const std::size_t open = cell.text.find('[');
   const std::size_t close = cell.text.find(']');
   if (open == std::string::npos || close != cell.text.size() - 1 || close < open)
@@ -75,7 +25,7 @@ HeaderCell parse_header_cell(const std::string& path, int line, const Cell& cell
   return {cell.text.substr(0, open), cell.text.substr(open + 1, close - open - 1)};
 }
 
-double parse_number(const std::string& path, int line, const Cell& cell) {
+double parse_number(const std::string& path, int line, const CsvCell& cell) {
   double v = 0.0;
   const char* begin = cell.text.data();
   const char* end = begin + cell.text.size();
@@ -107,7 +57,7 @@ class TableReader {
       : path_(std::move(path)), options_(options) {}
 
   ErrorTable read() {
-    rows_ = read_rows(path_);
+    rows_ = read_csv_rows(path_, "table file");
     if (rows_.empty()) throw LoadError({path_}, "the table is empty: it needs a header line");
     read_header();
     read_values();
@@ -119,8 +69,8 @@ class TableReader {
 
  private:
   void read_header() {
-    const Row& header = rows_.front();
-    for (const Cell& cell : header.cells) {
+    const CsvRow& header = rows_.front();
+    for (const CsvCell& cell : header.cells) {
       const HeaderCell h = parse_header_cell(path_, header.line, cell);
       const SourceLocation where{path_, header.line, cell.column};
       const bool is_variable = h.name.size() == 1 && std::islower(static_cast<unsigned char>(h.name[0]));
@@ -175,9 +125,9 @@ class TableReader {
   void read_values() {
     const std::size_t width = grid_.size() + columns_.size();
     for (std::size_t r = 1; r < rows_.size(); ++r) {
-      const Row& row = rows_[r];
+      const CsvRow& row = rows_[r];
       if (row.cells.size() < width) {
-        const Cell& last = row.cells.back();
+        const CsvCell& last = row.cells.back();
         throw LoadError({path_, row.line, last.column + static_cast<int>(last.text.size())},
                         "expected " + std::to_string(width) + " cells, found " +
                             std::to_string(row.cells.size()) + ": no value for " +
@@ -188,7 +138,7 @@ class TableReader {
                         "expected " + std::to_string(width) + " cells, found " +
                             std::to_string(row.cells.size()));
       std::vector<double> numbers;
-      for (const Cell& cell : row.cells) numbers.push_back(parse_number(path_, row.line, cell));
+      for (const CsvCell& cell : row.cells) numbers.push_back(parse_number(path_, row.line, cell));
       positions_.emplace_back(numbers.begin(), numbers.begin() + static_cast<long>(grid_.size()));
       for (std::size_t c = 0; c < columns_.size(); ++c)
         values_.push_back(numbers[grid_.size() + c] * factors_[c]);
@@ -347,7 +297,7 @@ class TableReader {
 
   std::string path_;
   const TableOptions& options_;
-  std::vector<Row> rows_;
+  std::vector<CsvRow> rows_;
   std::vector<GridVariable> grid_;
   std::vector<Column> columns_;
   std::vector<double> factors_;
