@@ -168,16 +168,30 @@ Correction correct(const Model& model, const Joints& nominal, double tool_length
 }
 
 Uncorrection uncorrect(const Model& model, const Joints& corrected, double tool_length_mm) noexcept {
+  return uncorrect(model, corrected, tool_length_mm, 1.0, corrected);
+}
+
+Uncorrection uncorrect(const Model& model, const Joints& corrected, double tool_length_mm, double gain,
+                       const Joints& nominal_seed) noexcept {
   Uncorrection out;
   out.nominal = corrected;
+  if (!corrected.allFinite() || !nominal_seed.allFinite() || !std::isfinite(gain)) {
+    out.status = Status::NonFinite;
+    return out;
+  }
+  if (gain == 0.0) return out;  // nothing applied: the joints are the nominal ones
+  out.nominal = nominal_seed;
+  Joints correction_seed = corrected;  // where the correction of the current guess lands
   for (out.iterations = 1; out.iterations <= model.solver.max_iterations; ++out.iterations) {
-    const Correction c = correct(model, out.nominal, tool_length_mm, corrected);
+    const Correction c = correct(model, out.nominal, tool_length_mm, correction_seed);
     if (c.status != Status::Ok) {
       out.status = c.status;
       return out;
     }
-    const Joints difference = c.joints - corrected;
+    const Joints applied = out.nominal + gain * (c.joints - out.nominal);
+    const Joints difference = applied - corrected;
     out.nominal -= difference;
+    correction_seed = c.joints - difference;
     if (difference.cwiseAbs().maxCoeff() <= model.solver.position_tolerance_mm) return out;
   }
   out.status = Status::NotConverged;

@@ -47,20 +47,56 @@ Joints nominal_forward(const Model& model, WorldConvention convention, const Joi
   return world;
 }
 
+namespace {
+
+bool near(const Joints* seed, const Joints& point) {
+  return seed && seed->size() == point.size() && seed->allFinite() &&
+         (*seed - point).cwiseAbs().maxCoeff() <= Applied::kSeedRadius;
+}
+
+}  // namespace
+
 Status joints_from_world(const Model& model, WorldConvention convention, const Joints& world,
                          double tool_length_mm, Joints& joints, Correction* report) noexcept {
-  Joints nominal;
-  const Status s = nominal_inverse(model, convention, world, tool_length_mm, nominal);
-  if (s != Status::Ok) return s;
-  const Correction c = correct(model, nominal, tool_length_mm);
-  if (report) *report = c;
-  if (c.status == Status::Ok) joints = c.joints;
-  return c.status;
+  return joints_from_world(model, convention, world, tool_length_mm, Applied{}, joints, report);
 }
 
 Status world_from_joints(const Model& model, WorldConvention convention, const Joints& joints,
                          double tool_length_mm, Joints& world) noexcept {
-  const Uncorrection u = uncorrect(model, joints, tool_length_mm);
+  return world_from_joints(model, convention, joints, tool_length_mm, Applied{}, world);
+}
+
+Status joints_from_world(const Model& model, WorldConvention convention, const Joints& world,
+                         double tool_length_mm, const Applied& applied, Joints& joints,
+                         Correction* report) noexcept {
+  Joints nominal;
+  const Status s = nominal_inverse(model, convention, world, tool_length_mm, nominal);
+  if (s != Status::Ok) return s;
+  if (applied.gain == 0.0) {
+    joints = nominal;
+    if (report) *report = Correction{nominal, Status::Ok, 0, 0.0, 0.0, 0.0, 1.0};
+    return Status::Ok;
+  }
+  const Correction c = near(applied.seed, nominal) ? correct(model, nominal, tool_length_mm, *applied.seed)
+                                                   : correct(model, nominal, tool_length_mm);
+  if (report) *report = c;
+  if (c.status != Status::Ok) return c.status;
+  joints = nominal + applied.gain * (c.joints - nominal);
+  return Status::Ok;
+}
+
+Status world_from_joints(const Model& model, WorldConvention convention, const Joints& joints,
+                         double tool_length_mm, const Applied& applied, Joints& world,
+                         int* iterations) noexcept {
+  Joints nominal_seed = joints;
+  if (applied.seed) {
+    Joints from_seed;
+    if (nominal_inverse(model, convention, *applied.seed, tool_length_mm, from_seed) == Status::Ok &&
+        near(&from_seed, joints))
+      nominal_seed = from_seed;
+  }
+  const Uncorrection u = uncorrect(model, joints, tool_length_mm, applied.gain, nominal_seed);
+  if (iterations) *iterations = u.iterations;
   if (u.status != Status::Ok) return u.status;
   world = nominal_forward(model, convention, u.nominal, tool_length_mm);
   return Status::Ok;

@@ -23,6 +23,18 @@ std::string Model::coordinates() const {
   return s;
 }
 
+bool outside_tables(const Model& model, const Joints& q) noexcept {
+  for (const BoundTable& bound : model.tables) {
+    const auto& grid = bound.table.grid();
+    for (std::size_t v = 0; v < grid.size(); ++v) {
+      if (grid[v].periodic) continue;
+      const double x = q[bound.joint[v]];
+      if (x < grid[v].nodes.front() || x > grid[v].nodes.back()) return true;
+    }
+  }
+  return false;
+}
+
 Eigen::Matrix3d rotation_xyz(const Eigen::Vector3d& abc) noexcept {
   Eigen::Matrix3d r, rate;
   rotation_xyz(abc, r, rate);

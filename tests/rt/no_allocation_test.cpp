@@ -52,6 +52,11 @@ TEST_P(NoAllocation, RealTimeFunctionsNeverCallMalloc) {
       Joints joints, world;
       sink += static_cast<double>(joints_from_world(model, w, q, L, joints));
       sink += static_cast<double>(world_from_joints(model, w, joints, L, world));
+      // The module's calls: seeded, part of the correction.
+      const Applied inverse{0.5, &joints}, forward{0.5, &world};
+      sink += static_cast<double>(joints_from_world(model, w, q, L, inverse, joints));
+      sink += static_cast<double>(world_from_joints(model, w, joints, L, forward, world));
+      sink += outside_tables(model, joints);
     }
   }
   counting = false;

@@ -4,6 +4,8 @@
 // fade. Seeded; VC_RANDOM_POSES overrides the pose count.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
 #include <cstdlib>
 #include <random>
 
@@ -77,6 +79,49 @@ TEST_P(EveryMachine, ForwardIsTheExactInverseOfInverseInBothConventions) {
         EXPECT_GT((joints - world).cwiseAbs().maxCoeff(), 1e-6);
       }
     }
+  }
+}
+
+// The module's case: part of the correction (the enable ramp) and solvers seeded with the
+// previous answer, or with a far or non-finite seed (LinuxCNC's first call, a jump).
+TEST_P(EveryMachine, PartialCorrectionWithAnySeedRoundTrips) {
+  std::mt19937_64 rng(5);
+  const double L = model_.tool_length_mm;
+  for (WorldConvention convention : {WorldConvention::Axes, WorldConvention::Tcp}) {
+    for (int k = 0; k < pose_count() / 10; ++k) {
+      const Joints world = nominal_forward(model_, convention, random_pose(model_, rng), L);
+      const double gain = std::uniform_real_distribution<double>(0.0, 1.0)(rng);
+      Joints full, nominal;
+      ASSERT_EQ(joints_from_world(model_, convention, world, L, full), Status::Ok);
+      ASSERT_EQ(nominal_inverse(model_, convention, world, L, nominal), Status::Ok);
+      Joints near_seed = full, far_seed = random_pose(model_, rng), nan_seed = full;
+      near_seed.array() += 0.01;
+      nan_seed[0] = std::nan("");
+      for (const Joints* seed : std::array<const Joints*, 4>{nullptr, &near_seed, &far_seed, &nan_seed}) {
+        Joints joints, back;
+        ASSERT_EQ(joints_from_world(model_, convention, world, L, Applied{gain, seed}, joints), Status::Ok);
+        ASSERT_LT((joints - (nominal + gain * (full - nominal))).cwiseAbs().maxCoeff(), 1e-9) << text(world);
+        const Joints world_seed = seed ? Joints(world.array() + 0.02) : world;
+        ASSERT_EQ(world_from_joints(model_, convention, joints, L, Applied{gain, &world_seed}, back), Status::Ok);
+        ASSERT_LT((back - world).cwiseAbs().maxCoeff(), 1e-9) << text(world) << " gain " << gain;
+      }
+      Joints joints;
+      ASSERT_EQ(joints_from_world(model_, convention, world, L, Applied{0.0, nullptr}, joints), Status::Ok);
+      EXPECT_EQ(joints, nominal);
+    }
+  }
+}
+
+TEST_P(EveryMachine, OutsideTablesOnlyBeyondAGrid) {
+  std::mt19937_64 rng(6);
+  for (int k = 0; k < 100; ++k) EXPECT_FALSE(outside_tables(model_, random_pose(model_, rng)));
+  for (const BoundTable& bound : model_.tables) {
+    const tables::GridVariable& v = bound.table.grid()[0];
+    Joints q = random_pose(model_, rng);
+    q[bound.joint[0]] = v.nodes.back() + 1.0;
+    EXPECT_EQ(outside_tables(model_, q), !v.periodic) << bound.table.path();
+    q[bound.joint[0]] = v.nodes.front() - 1.0;
+    EXPECT_EQ(outside_tables(model_, q), !v.periodic) << bound.table.path();
   }
 }
 

@@ -44,5 +44,9 @@ struct Uncorrection {
   int iterations = 0;  // corrections evaluated
 };
 Uncorrection uncorrect(const Model& model, const Joints& corrected, double tool_length_mm) noexcept;
+// The same for a partly applied correction, q_c = q_n + gain * (correct(q_n) - q_n) with gain
+// in [0, 1] (the module's enable ramp), starting at `nominal_seed` (e.g. the previous answer).
+Uncorrection uncorrect(const Model& model, const Joints& corrected, double tool_length_mm, double gain,
+                       const Joints& nominal_seed) noexcept;
 
 }  // namespace vc::machine

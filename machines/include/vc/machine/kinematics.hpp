@@ -27,4 +27,22 @@ Status joints_from_world(const Model& model, WorldConvention convention, const J
 Status world_from_joints(const Model& model, WorldConvention convention, const Joints& joints,
                          double tool_length_mm, Joints& world) noexcept;
 
+// What the kinematics module asks: a fraction of the correction, and solvers that start near
+// the answer. LinuxCNC passes the previous joints to the inverse and the previous world
+// position to the forward; a seed farther than kSeedRadius (mm or deg, any joint) from the
+// nominal joints is ignored, so any seed gives the same answer (to the solver tolerance).
+struct Applied {
+  double gain = 1.0;                  // 0: nominal kinematics, 1: full correction
+  const Joints* seed = nullptr;       // joints (inverse) or world position (forward), or none
+  static constexpr double kSeedRadius = 1.0;
+};
+// q = q_n + gain * (correct(q_n) - q_n).
+Status joints_from_world(const Model& model, WorldConvention convention, const Joints& world,
+                         double tool_length_mm, const Applied& applied, Joints& joints,
+                         Correction* report = nullptr) noexcept;
+// Its exact inverse; `iterations` (optional) receives the corrections evaluated.
+Status world_from_joints(const Model& model, WorldConvention convention, const Joints& joints,
+                         double tool_length_mm, const Applied& applied, Joints& world,
+                         int* iterations = nullptr) noexcept;
+
 }  // namespace vc::machine

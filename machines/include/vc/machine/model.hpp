@@ -101,6 +101,11 @@ struct Model {
   std::string coordinates() const;     // lower-case letters in joint order, e.g. "xyzbc"
 };
 
+// True if a joint lies outside the grid of a table that reads it (the table then holds its
+// end value: the machine runs where it was not measured). Periodic rotary grids never are.
+// Real-time: no allocation.
+bool outside_tables(const Model& model, const Joints& q) noexcept;
+
 // R(a, b, c) = Rx(a) * Ry(b) * Rz(c) (model.md), exact trigonometry.
 Eigen::Matrix3d rotation_xyz(const Eigen::Vector3d& abc_rad) noexcept;
 
