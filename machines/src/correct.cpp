@@ -121,6 +121,7 @@ Correction correct(const Model& model, const Joints& nominal, double tool_length
 Correction correct(const Model& model, const Joints& nominal, double tool_length_mm,
                    const Joints& seed) noexcept {
   Correction out;
+  out.nominal = nominal;
   out.joints = seed;
   if (!nominal.allFinite() || !seed.allFinite() || !std::isfinite(tool_length_mm)) {
     out.status = Status::NonFinite;

@@ -74,7 +74,10 @@ Status joints_from_world(const Model& model, WorldConvention convention, const J
   if (s != Status::Ok) return s;
   if (applied.gain == 0.0) {
     joints = nominal;
-    if (report) *report = Correction{nominal, Status::Ok, 0, 0.0, 0.0, 0.0, 1.0};
+    if (report) {
+      *report = Correction{};
+      report->nominal = report->joints = nominal;
+    }
     return Status::Ok;
   }
   const Correction c = near(applied.seed, nominal) ? correct(model, nominal, tool_length_mm, *applied.seed)

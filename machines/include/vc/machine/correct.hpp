@@ -16,6 +16,7 @@
 namespace vc::machine {
 
 struct Correction {
+  Joints nominal;             // q_n
   Joints joints;              // q_c (not clamped to the travel: limits are LinuxCNC's business)
   Status status = Status::Ok;
   int iterations = 0;         // Newton steps taken

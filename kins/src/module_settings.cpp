@@ -1,0 +1,52 @@
+#include "module_settings.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+#include "vc/machine/load_machine.hpp"
+
+namespace vc::kins {
+namespace {
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+[[noreturn]] void refuse(const std::string& message) { throw std::runtime_error("error: " + message); }
+
+}  // namespace
+
+ModuleSettings settings_from_parameters(const char* machine, const char* coordinates, const char* world) {
+  if (!machine || !*machine)
+    refuse("no machine file: load it as `loadrt volkins machine=/path/to/machine.toml`");
+  ModuleSettings s;
+  // A relative path is taken from rtapi_app's working directory (LinuxCNC starts it in the
+  // configuration's directory); made absolute here so every message names the file tried.
+  s.model = machine::load_machine(std::filesystem::absolute(machine).lexically_normal().string());
+
+  const std::string wanted = s.model.coordinates();
+  const std::string given = coordinates && *coordinates ? lower(coordinates) : wanted;
+  if (given != wanted)
+    refuse("coordinates=" + std::string(coordinates) + " does not match the machine file " + s.model.path +
+           ", whose joints are the axes \"" + wanted + "\" in this order (one joint per axis)");
+
+  const std::string convention = world && *world ? lower(world) : "axes";
+  if (convention == "axes")
+    s.world = machine::WorldConvention::Axes;
+  else if (convention == "tcp")
+    s.world = machine::WorldConvention::Tcp;
+  else
+    refuse("world=" + std::string(world) + " is not a world convention: use world=axes or world=tcp");
+
+  static constexpr const char* kPoseOrder = "xyzabcuvw";
+  for (int j = 0; j < s.model.joint_count(); ++j)
+    s.pose_field[j] = static_cast<int>(std::strchr(kPoseOrder, wanted[j]) - kPoseOrder);
+  return s;
+}
+
+}  // namespace vc::kins

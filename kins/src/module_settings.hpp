@@ -1,0 +1,26 @@
+// What `loadrt volkins machine=... coordinates=... world=...` asks for, checked at load time.
+//
+// Pure C++ (no LinuxCNC headers) so the rules are unit-tested without a running HAL. Throws
+// vc::LoadError (machine file and tables: file, line, problem) or std::runtime_error (the
+// parameters themselves); never used in the servo thread.
+#pragma once
+
+#include <array>
+
+#include "vc/machine/kinematics.hpp"
+
+namespace vc::kins {
+
+struct ModuleSettings {
+  machine::Model model;
+  machine::WorldConvention world = machine::WorldConvention::Axes;
+  // For each joint, its field in LinuxCNC's EmcPose in the order x y z a b c u v w.
+  std::array<int, machine::kMaxAxes> pose_field{};
+};
+
+// machine: the machine file (required). coordinates: LinuxCNC's axis letters, one per joint in
+// the machine file's joint order (optional; default the machine's own). world: "axes" (default)
+// or "tcp".
+ModuleSettings settings_from_parameters(const char* machine, const char* coordinates, const char* world);
+
+}  // namespace vc::kins

@@ -1,0 +1,262 @@
+// volkins: LinuxCNC 2.9 kinematics with full volumetric correction (linear and angular).
+//
+//   [KINS] KINEMATICS = volkins machine=/path/machine.toml [coordinates=xyzbc] [world=axes|tcp]
+//
+// The thin shell over vc_machine: rtapi_app_main reads and validates the machine file and its
+// tables (any problem fails loadrt with file:line:problem, before anything is created in HAL);
+// kinematicsInverse applies the correction, kinematicsForward is its exact inverse, so the DRO,
+// homing and probing see nominal coordinates. The HAL function volkins.update (servo thread,
+// before motion-controller) ramps the correction in and out when volkins.enable changes, so
+// switching never jumps; the kinematics functions keep no state between calls (they read the
+// ramp and the parameters, and report on output pins).
+// Servo thread: no allocation, no locks, no I/O, bounded iterations, no exceptions.
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <exception>
+
+#include "module_settings.hpp"
+
+#include "rtapi.h"  // rtapi.h and hal.h declare C linkage themselves
+#include "hal.h"
+#include "emcpos.h"  // C++-aware (posemath overloads): included before the extern "C" block
+#include "rtapi_bool.h"
+extern "C" {
+#include "rtapi_app.h"
+#include "kinematics.h"  // no extern "C" guard of its own: the kinematics API must not be mangled
+}
+
+namespace {
+
+using vc::machine::Joints;
+namespace vm = vc::machine;
+
+constexpr double kDegPerRad = 57.295779513082320876798154814105;
+
+struct HalData {
+  // Pins.
+  hal_bit_t* enable;                          // in: correction wanted
+  hal_float_t* tool_length;                   // in: L (mm), net to motion.tooloffset.z
+  hal_float_t* gain;                          // out: fraction applied now (ramp, 0..1)
+  hal_float_t* correction[vm::kMaxAxes];      // out: joint - nominal joint of the last inverse
+  hal_s32_t* iterations;                      // out: Newton steps of the last inverse
+  hal_s32_t* forward_iterations;              // out: corrections evaluated by the last forward
+  hal_bit_t* out_of_table;                    // out: last inverse beyond a table's grid
+  hal_bit_t* limit_exceeded;                  // out: last inverse refused (max correction)
+  hal_s32_t* failures;                        // out: inverse and forward calls refused so far
+  // Parameters.
+  hal_float_t ramp_time;                      // s: 0 -> 1 (and back) takes this long
+  hal_float_t max_correction_mm;              // largest linear joint correction allowed
+  hal_float_t max_correction_deg;             // largest rotary joint correction allowed
+  hal_float_t pole_fade_start_deg;            // phi0 (model.md): no orientation correction below
+  hal_float_t pole_fade_full_deg;             // phi1: full orientation correction above
+  // State of the ramp (only volkins.update writes it).
+  double phase;
+};
+
+vc::kins::ModuleSettings* settings = nullptr;  // built in rtapi_app_main, read-only afterwards
+                                               // except model.fade (volkins.update)
+HalData* hal = nullptr;
+int comp_id = -1;
+
+char* machine = nullptr;
+char* coordinates = nullptr;
+char* world = nullptr;
+
+double pose_field(const EmcPose& pose, int field) {
+  switch (field) {
+    case 0: return pose.tran.x;
+    case 1: return pose.tran.y;
+    case 2: return pose.tran.z;
+    case 3: return pose.a;
+    case 4: return pose.b;
+    case 5: return pose.c;
+    case 6: return pose.u;
+    case 7: return pose.v;
+    default: return pose.w;
+  }
+}
+
+void set_pose_field(EmcPose& pose, int field, double value) {
+  switch (field) {
+    case 0: pose.tran.x = value; break;
+    case 1: pose.tran.y = value; break;
+    case 2: pose.tran.z = value; break;
+    case 3: pose.a = value; break;
+    case 4: pose.b = value; break;
+    case 5: pose.c = value; break;
+    case 6: pose.u = value; break;
+    case 7: pose.v = value; break;
+    default: pose.w = value; break;
+  }
+}
+
+Joints world_of(const EmcPose& pose) {
+  Joints w(settings->model.joint_count());
+  for (int j = 0; j < w.size(); ++j) w[j] = pose_field(pose, settings->pose_field[j]);
+  return w;
+}
+
+// Servo thread, before motion-controller: moves the ramp one period towards volkins.enable
+// (smoothstep, so joint velocity stays continuous) and takes up valid pole fade parameters.
+void update(void*, long period_ns) {
+  const double target = *hal->enable ? 1.0 : 0.0;
+  const double step = hal->ramp_time > 0.0 ? period_ns * 1e-9 / hal->ramp_time : 1.0;
+  hal->phase += std::clamp(target - hal->phase, -step, step);
+  const double s = hal->phase;
+  *hal->gain = s * s * (3.0 - 2.0 * s);
+
+  const double start = hal->pole_fade_start_deg, full = hal->pole_fade_full_deg;
+  if (start >= 0.0 && full > start && full <= 90.0) {
+    settings->model.fade.start_rad = start / kDegPerRad;
+    settings->model.fade.full_rad = full / kDegPerRad;
+  }
+}
+
+int refuse() {
+  ++*hal->failures;
+  return -1;
+}
+
+}  // namespace
+
+extern "C" {
+
+int kinematicsInverse(const EmcPose* pose, double* joints, const KINEMATICS_INVERSE_FLAGS*,
+                      KINEMATICS_FORWARD_FLAGS*) {
+  const vm::Model& model = settings->model;
+  const int n = model.joint_count();
+  const Joints previous = Eigen::Map<const Joints>(joints, n);  // LinuxCNC's seed
+  const vm::Applied applied{*hal->gain, &previous};
+  Joints q;
+  vm::Correction report;
+  const vm::Status s =
+      vm::joints_from_world(model, settings->world, world_of(*pose), *hal->tool_length, applied, q, &report);
+  *hal->iterations = report.iterations;
+  if (s != vm::Status::Ok) return refuse();
+  bool too_large = false;
+  for (int j = 0; j < n; ++j) {
+    const double c = q[j] - report.nominal[j];
+    const double limit =
+        model.axes[j].type == vm::AxisType::Linear ? hal->max_correction_mm : hal->max_correction_deg;
+    too_large |= !(std::abs(c) <= limit);
+    *hal->correction[j] = c;
+  }
+  *hal->out_of_table = vm::outside_tables(model, q);
+  *hal->limit_exceeded = too_large;
+  if (too_large) return refuse();
+  for (int j = 0; j < n; ++j) joints[j] = q[j];
+  return 0;
+}
+
+int kinematicsForward(const double* joints, EmcPose* pose, const KINEMATICS_FORWARD_FLAGS*,
+                      KINEMATICS_INVERSE_FLAGS*) {
+  const vm::Model& model = settings->model;
+  const Joints q = Eigen::Map<const Joints>(joints, model.joint_count());
+  const Joints seed = world_of(*pose);  // LinuxCNC passes the previous position (or home)
+  Joints w;
+  int iterations = 0;
+  const vm::Status s =
+      vm::world_from_joints(model, settings->world, q, *hal->tool_length, vm::Applied{*hal->gain, &seed}, w, &iterations);
+  *hal->forward_iterations = iterations;
+  if (s != vm::Status::Ok) return refuse();
+  for (int j = 0; j < w.size(); ++j) set_pose_field(*pose, settings->pose_field[j], w[j]);
+  return 0;
+}
+
+KINEMATICS_TYPE kinematicsType() { return KINEMATICS_BOTH; }
+
+KINS_NOT_SWITCHABLE
+EXPORT_SYMBOL(kinematicsType);
+EXPORT_SYMBOL(kinematicsForward);
+EXPORT_SYMBOL(kinematicsInverse);
+
+MODULE_LICENSE("GPL");
+MODULE_DESCRIPTION("Kinematics with volumetric error correction (volcomp)");
+RTAPI_MP_STRING(machine, "machine description file (TOML)");
+RTAPI_MP_STRING(coordinates, "axis letters, one per joint, in the machine file's order");
+RTAPI_MP_STRING(world, "world convention: axes (default) or tcp");
+
+}  // extern "C"
+
+namespace {
+
+// HAL pins, parameters and the update function; false (after a message) if HAL refused one.
+bool export_hal(const vm::Model& model) {
+  hal = static_cast<HalData*>(hal_malloc(sizeof(HalData)));
+  if (!hal) return false;
+  int r = 0;
+  r |= hal_pin_bit_newf(HAL_IN, &hal->enable, comp_id, "volkins.enable");
+  r |= hal_pin_float_newf(HAL_IN, &hal->tool_length, comp_id, "volkins.tool-length");
+  r |= hal_pin_float_newf(HAL_OUT, &hal->gain, comp_id, "volkins.gain");
+  for (int j = 0; j < model.joint_count(); ++j)
+    r |= hal_pin_float_newf(HAL_OUT, &hal->correction[j], comp_id, "volkins.joint.%d.correction", j);
+  r |= hal_pin_s32_newf(HAL_OUT, &hal->iterations, comp_id, "volkins.iterations");
+  r |= hal_pin_s32_newf(HAL_OUT, &hal->forward_iterations, comp_id, "volkins.forward-iterations");
+  r |= hal_pin_bit_newf(HAL_OUT, &hal->out_of_table, comp_id, "volkins.out-of-table");
+  r |= hal_pin_bit_newf(HAL_OUT, &hal->limit_exceeded, comp_id, "volkins.limit-exceeded");
+  r |= hal_pin_s32_newf(HAL_OUT, &hal->failures, comp_id, "volkins.failures");
+  r |= hal_param_float_newf(HAL_RW, &hal->ramp_time, comp_id, "volkins.ramp-time");
+  r |= hal_param_float_newf(HAL_RW, &hal->max_correction_mm, comp_id, "volkins.max-correction-mm");
+  r |= hal_param_float_newf(HAL_RW, &hal->max_correction_deg, comp_id, "volkins.max-correction-deg");
+  r |= hal_param_float_newf(HAL_RW, &hal->pole_fade_start_deg, comp_id, "volkins.pole-fade-start-deg");
+  r |= hal_param_float_newf(HAL_RW, &hal->pole_fade_full_deg, comp_id, "volkins.pole-fade-full-deg");
+  r |= hal_export_funct("volkins.update", update, nullptr, 1 /* uses floating point */, 0, comp_id);
+  if (r) return false;
+
+  // Defaults: correction on (after the ramp), the machine file's tool length and pole fade.
+  *hal->enable = 1;
+  *hal->tool_length = model.tool_length_mm;
+  *hal->gain = 0.0;
+  hal->phase = 0.0;
+  hal->ramp_time = 1.0;
+  hal->max_correction_mm = 1.0;
+  hal->max_correction_deg = 0.1;
+  hal->pole_fade_start_deg = model.fade.start_rad * kDegPerRad;
+  hal->pole_fade_full_deg = model.fade.full_rad * kDegPerRad;
+  return true;
+}
+
+}  // namespace
+
+extern "C" int rtapi_app_main(void) {
+  // Everything that can fail on the user's files happens before HAL sees the component, so a
+  // refused machine file leaves nothing loaded.
+  try {
+    settings = new vc::kins::ModuleSettings(vc::kins::settings_from_parameters(machine, coordinates, world));
+  } catch (const std::exception& e) {
+    rtapi_print_msg(RTAPI_MSG_ERR, "volkins: %s\n", e.what());
+    return -EINVAL;
+  } catch (...) {
+    rtapi_print_msg(RTAPI_MSG_ERR, "volkins: unknown error while loading the machine file\n");
+    return -EINVAL;
+  }
+  const vm::Model& model = settings->model;
+  for (const vc::Warning& w : model.warnings) rtapi_print_msg(RTAPI_MSG_WARN, "volkins: %s\n", w.to_string().c_str());
+
+  comp_id = hal_init("volkins");
+  if (comp_id < 0) {
+    delete settings;
+    settings = nullptr;
+    return comp_id;
+  }
+  if (!export_hal(model)) {
+    rtapi_print_msg(RTAPI_MSG_ERR, "volkins: cannot create its HAL pins\n");
+    hal_exit(comp_id);
+    delete settings;
+    settings = nullptr;
+    return -ENOMEM;
+  }
+  rtapi_print_msg(RTAPI_MSG_INFO, "volkins: %s (%s, %d tables), joints %s, world %s\n", model.path.c_str(),
+                  model.info.name.c_str(), static_cast<int>(model.tables.size()), model.coordinates().c_str(),
+                  settings->world == vm::WorldConvention::Tcp ? "tcp" : "axes");
+  hal_ready(comp_id);
+  return 0;
+}
+
+extern "C" void rtapi_app_exit(void) {
+  hal_exit(comp_id);
+  delete settings;
+  settings = nullptr;
+}
