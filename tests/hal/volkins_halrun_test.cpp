@@ -1,0 +1,144 @@
+// volkins in a real HAL (halrun, no motion): it loads with every shipped machine and exposes
+// its pins and parameters; the enable ramp moves as documented; bad machine files and bad
+// module parameters make loadrt fail with the loader's message and leave nothing loaded.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "linuxcnc_run.hpp"
+#include "vc/machine/load_machine.hpp"
+
+namespace vc {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string loadrt(const std::string& machine, const std::string& extra = "") {
+  return "loadrt volkins machine=" + machine + (extra.empty() ? "" : " " + extra) + "\n";
+}
+
+// Values of a float pin in the order `show pin NAME` printed them.
+std::vector<double> shown_values(const std::string& out, const std::string& pin) {
+  const std::regex line(R"(float\s+\S+\s+(\S+)\s+)" + std::regex_replace(pin, std::regex(R"(\.)"), R"(\.)") + R"(\s)");
+  std::vector<double> values;
+  for (auto it = std::sregex_iterator(out.begin(), out.end(), line); it != std::sregex_iterator(); ++it)
+    values.push_back(std::stod((*it)[1]));
+  return values;
+}
+
+// True if `show comp` listed a volkins component.
+bool volkins_listed(const std::string& out) {
+  return std::regex_search(out, std::regex(R"((^|\n)\s*\d+\s+RT\s+volkins\s)"));
+}
+
+class ShippedMachine : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ShippedMachine, LoadsAndExposesItsPins) {
+  const machine::Model model = machine::load_machine(test::machine_path(GetParam()));
+  const test::CommandResult r = test::halrun(
+      "load_" + GetParam(), loadrt(test::machine_path(GetParam())) + "show pin volkins\nshow param volkins\n");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  for (const char* pin : {"volkins.enable", "volkins.tool-length", "volkins.gain", "volkins.iterations",
+                          "volkins.forward-iterations", "volkins.out-of-table", "volkins.limit-exceeded",
+                          "volkins.failures", "volkins.ramp-time", "volkins.max-correction-mm",
+                          "volkins.max-correction-deg", "volkins.pole-fade-start-deg",
+                          "volkins.pole-fade-full-deg", "volkins.update.time"})
+    EXPECT_NE(r.out.find(pin), std::string::npos) << pin << " missing:\n" << r.out;
+  for (int j = 0; j < 6; ++j) {
+    const std::string pin = "volkins.joint." + std::to_string(j) + ".correction";
+    EXPECT_EQ(r.out.find(pin) != std::string::npos, j < model.joint_count()) << pin << "\n" << r.out;
+  }
+  // The tool length starts at the machine file's.
+  const std::vector<double> tool = shown_values(r.out, "volkins.tool-length");
+  ASSERT_EQ(tool.size(), 1u) << r.out;
+  EXPECT_DOUBLE_EQ(tool[0], model.tool_length_mm);
+}
+
+INSTANTIATE_TEST_SUITE_P(Shipped, ShippedMachine, ::testing::ValuesIn(test::shipped_machines()),
+                         [](const auto& p) { return p.param; });
+
+// volkins.update moves the gain 0 -> 1 in ramp-time seconds and back when enable drops.
+TEST(Volkins, EnableRampsTheGainInRampTime) {
+  const std::string script = loadrt(test::machine_path("mc300")) +
+                             "loadrt threads name1=servo period1=1000000\n"
+                             "addf volkins.update servo\n"
+                             "setp volkins.ramp-time 0.5\n"
+                             "start\n"
+                             "loadusr -w sleep 0.15\n"
+                             "show pin volkins.gain\n"
+                             "loadusr -w sleep 0.8\n"
+                             "show pin volkins.gain\n"
+                             "setp volkins.enable 0\n"
+                             "loadusr -w sleep 0.8\n"
+                             "show pin volkins.gain\n";
+  const test::CommandResult r = test::halrun("ramp", script);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const std::vector<double> gain = shown_values(r.out, "volkins.gain");
+  ASSERT_EQ(gain.size(), 3u) << r.out;
+  const double early = gain[0], on = gain[1], off = gain[2];
+  EXPECT_GT(early, 0.0) << r.out;
+  EXPECT_LT(early, 1.0) << r.out;
+  EXPECT_EQ(on, 1.0) << r.out;
+  EXPECT_EQ(off, 0.0) << r.out;
+}
+
+// Every golden bad machine file is refused by loadrt with the loader's message (the .expect
+// twin, with absolute paths), and afterwards no volkins component exists and a good machine
+// loads in the same HAL session.
+TEST(Volkins, BadMachineFilesFailLoadrtWithTheirMessage) {
+  const fs::path folder = test::source_path("tests/golden/bad_machines");
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(folder))
+    if (e.path().extension() == ".toml") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  ASSERT_GT(files.size(), 30u);
+  std::string script;
+  for (const fs::path& f : files) script += loadrt(f.string());
+  test::CommandResult r = test::halrun("bad_machines", script + "show comp\n");
+  // Paths as the .expect files write them: relative to the source tree.
+  const std::string root = fs::path(VC_SOURCE_DIR).lexically_normal().string() + "/";
+  for (std::size_t at; (at = r.out.find(root)) != std::string::npos;) r.out.erase(at, root.size());
+
+  for (const fs::path& f : files) {
+    std::ifstream in(fs::path(f).replace_extension(".expect"));
+    std::stringstream expected;
+    expected << in.rdbuf();
+    std::string message = expected.str();
+    message.erase(message.find_last_not_of(" \n\r") + 1);
+    EXPECT_NE(r.out.find("volkins: " + message + "\n"), std::string::npos)
+        << f.filename() << ": expected\n  " << message << "\nin\n" << r.out;
+  }
+  EXPECT_FALSE(volkins_listed(r.out)) << "a refused load left a component:\n" << r.out;
+
+  // The same HAL session then loads a good machine (nothing of the failures is in the way).
+  const test::CommandResult good =
+      test::halrun("bad_then_good", script + loadrt(test::machine_path("mill3")) + "show comp\n");
+  EXPECT_TRUE(volkins_listed(good.out)) << good.out;
+}
+
+TEST(Volkins, BadModuleParametersFailLoadrt) {
+  const std::string mc300 = test::machine_path("mc300");
+  struct Case {
+    std::string line, message;
+  };
+  const std::vector<Case> cases{
+      {"loadrt volkins\n", "volkins: error: no machine file"},
+      {loadrt(mc300, "coordinates=xyz"), "volkins: error: coordinates=xyz does not match the machine file"},
+      {loadrt(mc300, "coordinates=xyzcb"), "whose joints are the axes \"xyzbc\" in this order"},
+      {loadrt(mc300, "world=tool"), "volkins: error: world=tool is not a world convention"},
+      {loadrt("/nonexistent/machine.toml"), "volkins: /nonexistent/machine.toml: error:"},
+  };
+  for (const Case& c : cases) {
+    const test::CommandResult r = test::halrun("bad_parameters", c.line + "show comp\n");
+    EXPECT_NE(r.out.find(c.message), std::string::npos) << c.line << r.out;
+    EXPECT_NE(r.out.find("insmod for volkins failed"), std::string::npos) << c.line << r.out;
+    EXPECT_FALSE(volkins_listed(r.out)) << c.line << r.out;
+  }
+}
+
+}  // namespace
+}  // namespace vc

@@ -1,0 +1,47 @@
+// The module parameters' rules (machine, coordinates, world), without a HAL.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <stdexcept>
+
+#include "module_settings.hpp"
+#include "test_support.hpp"
+
+namespace vc::kins {
+namespace {
+
+TEST(ModuleSettings, DefaultsFollowTheMachineFile) {
+  const ModuleSettings s = settings_from_parameters(test::machine_path("mc300").c_str(), nullptr, nullptr);
+  EXPECT_EQ(s.world, machine::WorldConvention::Axes);
+  EXPECT_EQ(s.model.coordinates(), "xyzbc");
+  const std::array<int, 5> fields{0, 1, 2, 4, 5};  // x y z b c in EmcPose order x y z a b c u v w
+  for (int j = 0; j < 5; ++j) EXPECT_EQ(s.pose_field[j], fields[j]);
+}
+
+TEST(ModuleSettings, CoordinatesAndWorldAreCaseInsensitive) {
+  const ModuleSettings s = settings_from_parameters(test::machine_path("ac_trunnion").c_str(), "XYZAC", "TCP");
+  EXPECT_EQ(s.world, machine::WorldConvention::Tcp);
+  EXPECT_EQ(s.pose_field[3], 3);
+  EXPECT_EQ(s.pose_field[4], 5);
+}
+
+TEST(ModuleSettings, RelativePathsAreMadeAbsolute) {
+  const auto here = std::filesystem::current_path();
+  std::filesystem::current_path(test::source_path("machines/data"));
+  const ModuleSettings s = settings_from_parameters("mill3.toml", "", "");
+  std::filesystem::current_path(here);
+  EXPECT_EQ(s.model.path, test::machine_path("mill3"));
+}
+
+TEST(ModuleSettings, RefusesWhatItCannotHonour) {
+  const std::string mc300 = test::machine_path("mc300");
+  EXPECT_THROW(settings_from_parameters(nullptr, nullptr, nullptr), std::runtime_error);
+  EXPECT_THROW(settings_from_parameters("", nullptr, nullptr), std::runtime_error);
+  EXPECT_THROW(settings_from_parameters(mc300.c_str(), "xyzcb", nullptr), std::runtime_error);
+  EXPECT_THROW(settings_from_parameters(mc300.c_str(), "xyzbca", nullptr), std::runtime_error);
+  EXPECT_THROW(settings_from_parameters(mc300.c_str(), nullptr, "joints"), std::runtime_error);
+  EXPECT_THROW(settings_from_parameters("/nonexistent.toml", nullptr, nullptr), LoadError);
+}
+
+}  // namespace
+}  // namespace vc::kins
