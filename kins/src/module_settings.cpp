@@ -43,6 +43,10 @@ ModuleSettings settings_from_parameters(const char* machine, const char* coordin
   else
     refuse("world=" + std::string(world) + " is not a world convention: use world=axes or world=tcp");
 
+  s.z_joint = s.model.joint_of('Z');
+  if (s.world == machine::WorldConvention::Tcp && s.z_joint < 0)
+    refuse("world=tcp needs a Z axis (the tool length is taken along it); " + s.model.path + " has none");
+
   static constexpr const char* kPoseOrder = "xyzabcuvw";
   for (int j = 0; j < s.model.joint_count(); ++j)
     s.pose_field[j] = static_cast<int>(std::strchr(kPoseOrder, wanted[j]) - kPoseOrder);

@@ -16,11 +16,15 @@ struct ModuleSettings {
   machine::WorldConvention world = machine::WorldConvention::Axes;
   // For each joint, its field in LinuxCNC's EmcPose in the order x y z a b c u v w.
   std::array<int, machine::kMaxAxes> pose_field{};
+  // The Z joint. In the TCP convention LinuxCNC's G43 has added the tool length to world Z
+  // (as with its own TCP kinematics, whose tool-offset pin follows motion.tooloffset.z): the
+  // module takes it off before the core sees the tool tip, and adds it back in the forward.
+  int z_joint = -1;
 };
 
 // machine: the machine file (required). coordinates: LinuxCNC's axis letters, one per joint in
 // the machine file's joint order (optional; default the machine's own). world: "axes" (default)
-// or "tcp".
+// or "tcp" (needs a Z axis).
 ModuleSettings settings_from_parameters(const char* machine, const char* coordinates, const char* world);
 
 }  // namespace vc::kins

@@ -92,10 +92,17 @@ void set_pose_field(EmcPose& pose, int field, double value) {
   }
 }
 
-Joints world_of(const EmcPose& pose) {
+// LinuxCNC's world position as the core's world (TCP: less the tool length G43 added to Z).
+Joints world_of(const EmcPose& pose, double tool_length_mm) {
   Joints w(settings->model.joint_count());
   for (int j = 0; j < w.size(); ++j) w[j] = pose_field(pose, settings->pose_field[j]);
+  if (settings->world == vm::WorldConvention::Tcp) w[settings->z_joint] -= tool_length_mm;
   return w;
+}
+
+void set_world(EmcPose& pose, Joints w, double tool_length_mm) {
+  if (settings->world == vm::WorldConvention::Tcp) w[settings->z_joint] += tool_length_mm;
+  for (int j = 0; j < w.size(); ++j) set_pose_field(pose, settings->pose_field[j], w[j]);
 }
 
 // Servo thread, before motion-controller: moves the ramp one period towards volkins.enable
@@ -127,12 +134,12 @@ int kinematicsInverse(const EmcPose* pose, double* joints, const KINEMATICS_INVE
                       KINEMATICS_FORWARD_FLAGS*) {
   const vm::Model& model = settings->model;
   const int n = model.joint_count();
+  const double L = *hal->tool_length;
   const Joints previous = Eigen::Map<const Joints>(joints, n);  // LinuxCNC's seed
   const vm::Applied applied{*hal->gain, &previous};
   Joints q;
   vm::Correction report;
-  const vm::Status s =
-      vm::joints_from_world(model, settings->world, world_of(*pose), *hal->tool_length, applied, q, &report);
+  const vm::Status s = vm::joints_from_world(model, settings->world, world_of(*pose, L), L, applied, q, &report);
   *hal->iterations = report.iterations;
   if (s != vm::Status::Ok) return refuse();
   bool too_large = false;
@@ -154,14 +161,15 @@ int kinematicsForward(const double* joints, EmcPose* pose, const KINEMATICS_FORW
                       KINEMATICS_INVERSE_FLAGS*) {
   const vm::Model& model = settings->model;
   const Joints q = Eigen::Map<const Joints>(joints, model.joint_count());
-  const Joints seed = world_of(*pose);  // LinuxCNC passes the previous position (or home)
+  const double L = *hal->tool_length;
+  const Joints seed = world_of(*pose, L);  // LinuxCNC passes the previous position (or home)
   Joints w;
   int iterations = 0;
   const vm::Status s =
-      vm::world_from_joints(model, settings->world, q, *hal->tool_length, vm::Applied{*hal->gain, &seed}, w, &iterations);
+      vm::world_from_joints(model, settings->world, q, L, vm::Applied{*hal->gain, &seed}, w, &iterations);
   *hal->forward_iterations = iterations;
   if (s != vm::Status::Ok) return refuse();
-  for (int j = 0; j < w.size(); ++j) set_pose_field(*pose, settings->pose_field[j], w[j]);
+  set_world(*pose, w, L);
   return 0;
 }
 

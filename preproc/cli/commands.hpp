@@ -21,7 +21,16 @@ struct PoseArgs {
   std::vector<std::string> only;         // deviations to keep (error): all if empty
 };
 
+struct TraceArgs {
+  std::string machine;
+  std::string trace;               // CSV recorded by kins/configs/common/headless_driver.py
+  std::string world = "axes";      // the module's world convention
+  std::string output;              // per-sample errors CSV (optional)
+  double servo_period_s = 0.001;   // for the time column
+};
+
 int run_check(const CheckArgs& args, std::ostream& out);
+int run_trace(const TraceArgs& args, std::ostream& out);
 int run_error(const PoseArgs& args, std::ostream& out);
 int run_correct(const PoseArgs& args, std::ostream& out);
 

@@ -33,11 +33,21 @@ int main(int argc, char** argv) {
                         "keep only these deviations, e.g. --only EAX,EC0Y (the others are zero)")
       ->delimiter(',');
 
+  vc::cli::TraceArgs trace;
+  CLI::App* trace_cmd = app.add_subcommand(
+      "trace", "Tool-tip error along a recorded LinuxCNC session, and volkins checked against the core");
+  trace_cmd->add_option("MACHINE", trace.machine, "machine description file (.toml)")->required();
+  trace_cmd->add_option("TRACE", trace.trace, "trace CSV written by the headless driver")->required();
+  trace_cmd->add_option("--world", trace.world, "the module's world convention: axes or tcp")->capture_default_str();
+  trace_cmd->add_option("-o,--output", trace.output,
+                        "write t_s,ex_um,ey_um,ez_um,e_um,ek_urad,gain per sample to this CSV");
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*check_cmd) return vc::cli::run_check(check, std::cout);
     if (*error_cmd) return vc::cli::run_error(error, std::cout);
     if (*correct_cmd) return vc::cli::run_correct(correct, std::cout);
+    if (*trace_cmd) return vc::cli::run_trace(trace, std::cout);
   } catch (const std::exception& e) {
     std::cout.flush();
     std::cerr << e.what() << '\n';

@@ -18,13 +18,29 @@
 
 namespace vc::test {
 
-// A fresh, empty folder build/tests/runs/<name>.
+// A fresh, empty folder /tmp/volcomp-test-runs/<name>, open to everyone: as root, rtapi_app
+// runs under another uid, which must reach it wherever the checkout lives.
 inline std::filesystem::path run_folder(const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::path(VC_RUN_DIR) / name;
+  const std::filesystem::path base = std::filesystem::temp_directory_path() / "volcomp-test-runs";
+  const std::filesystem::path dir = base / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
-  std::filesystem::permissions(dir, std::filesystem::perms::all);  // rtapi_app may run as another uid
+  std::filesystem::permissions(base, std::filesystem::perms::all);
+  std::filesystem::permissions(dir, std::filesystem::perms::all);
   return dir;
+}
+
+// Copies the source folders rtapi_app reads (machine files, tables, golden bad machines) to
+// <dir>/src, keeping their relative layout; returns <dir>/src.
+inline std::filesystem::path stage_sources(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  const fs::path src = dir / "src";
+  for (const char* folder : {"machines/data", "tables/data", "tests/golden/bad_machines"}) {
+    fs::create_directories(src / folder);
+    fs::copy(source_path(folder), src / folder, fs::copy_options::recursive);
+  }
+  for (const auto& e : fs::recursive_directory_iterator(dir)) fs::permissions(e.path(), fs::perms::all);
+  return src;
 }
 
 // Runs `command` in `dir` with the LinuxCNC environment; stdout and stderr together.
@@ -43,11 +59,18 @@ inline CommandResult run_in(const std::filesystem::path& dir, const std::string&
   return result;
 }
 
-// halrun -k -f script (keep going after a failed command, so later lines can inspect the state).
-inline CommandResult halrun(const std::string& name, const std::string& script) {
+// halrun -k -f script (keep going after a failed command, so later lines can inspect the state)
+// in the run folder `name`, whose sources stage_sources() copied to <folder>/src: the script
+// writes @SRC@ for that path, and the output has it replaced by nothing again, so paths in
+// messages read relative to the source tree.
+inline CommandResult halrun(const std::string& name, std::string script) {
   const std::filesystem::path dir = run_folder(name);
+  const std::string src = stage_sources(dir).string() + "/";
+  for (std::size_t at; (at = script.find("@SRC@")) != std::string::npos;) script.replace(at, 5, src);
   std::ofstream(dir / "test.hal") << script;
-  return run_in(dir, "halrun -k -f test.hal", 120);
+  CommandResult r = run_in(dir, "halrun -k -f test.hal", 120);
+  for (std::size_t at; (at = r.out.find(src)) != std::string::npos;) r.out.erase(at, src.size());
+  return r;
 }
 
 }  // namespace vc::test

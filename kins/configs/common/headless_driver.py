@@ -1,0 +1,164 @@
+#!/usr/bin/python3
+"""Headless display for the volkins configurations: runs one part program and records a trace.
+
+LinuxCNC starts it as its DISPLAY (`DISPLAY = ../common/headless_driver.py` starts it as
+`headless_driver.py -ini <file>`); when it exits, LinuxCNC shuts down. It takes the machine out of
+estop, homes it, sets the compensation, runs the program and, at the same time, reads the HAL
+sampler stream that the configuration's trace.hal feeds at servo rate, writing every sample with
+full precision (repr), which stock halsampler (printf %f, 1e-6) cannot.
+
+Settings: the [DRIVER] section of the INI, each overridable by an environment variable
+(VOLKINS_<KEY>): PROGRAM (G-code file), COMPENSATION (on | off | toggle), TOGGLE_PERIOD (s,
+toggle mode: volkins.enable flips this often while the program runs), TRACE (CSV written),
+TRACE_COLUMNS (names of the sampler's pins, in its cfg order), RESULT (a file that receives
+"ok" or "error: ..." last, so a caller knows how the session ended), TIMEOUT (s).
+Must run with Debian's /usr/bin/python3 (the linuxcnc and hal modules live there).
+"""
+import os
+import sys
+import time
+import traceback
+
+import hal
+import linuxcnc
+
+SAMPLER_KEY = 0x48534130  # SAMPLER_SHMEM_KEY + channel 0 (src/hal/components/streamer.h)
+
+
+def setting(ini, key, default):
+    return os.environ.get("VOLKINS_" + key) or ini.find("DRIVER", key) or default
+
+
+class Session:
+    def __init__(self, ini_path):
+        self.ini = linuxcnc.ini(ini_path)
+        self.folder = os.path.dirname(os.path.abspath(ini_path))
+        self.stat = linuxcnc.stat()
+        self.command = linuxcnc.command()
+        self.errors = linuxcnc.error_channel()
+        self.deadline = time.time() + float(setting(self.ini, "TIMEOUT", "600"))
+        self.messages = []
+        self.comp = hal.component("headless-driver")
+        self.comp.ready()
+
+    def path(self, key, default):
+        return os.path.join(self.folder, setting(self.ini, key, default))
+
+    def check_errors(self):
+        while True:
+            e = self.errors.poll()
+            if not e:
+                return
+            self.messages.append(e[1].strip())
+
+    def wait_for(self, condition, what):
+        while not condition():
+            if time.time() > self.deadline:
+                raise RuntimeError("timed out waiting for " + what)
+            time.sleep(0.01)
+            self.stat.poll()
+            self.check_errors()
+
+    def start_machine(self):
+        self.wait_for(lambda: self.stat.task_state == linuxcnc.STATE_ESTOP, "LinuxCNC to start")
+        self.command.state(linuxcnc.STATE_ESTOP_RESET)
+        self.command.state(linuxcnc.STATE_ON)
+        self.wait_for(lambda: self.stat.task_state == linuxcnc.STATE_ON, "machine on")
+        self.command.home(-1)
+        joints = self.stat.joints
+        self.wait_for(lambda: all(self.stat.homed[:joints]), "homing")
+
+    def has_volkins(self):
+        return hal.component_exists("volkins")
+
+    def set_compensation(self, on):
+        if self.has_volkins():
+            hal.set_p("volkins.enable", "1" if on else "0")
+
+    def settle_compensation(self, on):
+        """Sets volkins.enable and waits until its ramp has finished."""
+        if not self.has_volkins():
+            return
+        self.set_compensation(on)
+        target = 1.0 if on else 0.0
+        self.wait_for(lambda: hal.get_value("volkins.gain") == target, "the compensation ramp")
+
+    def run(self):
+        program = self.path("PROGRAM", "program.ngc")
+        mode = setting(self.ini, "COMPENSATION", "on")
+        if mode not in ("on", "off", "toggle"):
+            raise RuntimeError("COMPENSATION must be on, off or toggle, not " + mode)
+        toggle_period = float(setting(self.ini, "TOGGLE_PERIOD", "1.5"))
+        columns = setting(self.ini, "TRACE_COLUMNS", "").split()
+
+        self.start_machine()
+        self.settle_compensation(mode != "off")
+        self.command.mode(linuxcnc.MODE_AUTO)
+        self.command.wait_complete()
+        self.command.program_open(program)
+        self.command.wait_complete()
+
+        stream = hal.stream(self.comp, SAMPLER_KEY)
+        rows = []
+        hal.set_p("sampler.0.enable", "1")
+        self.command.auto(linuxcnc.AUTO_RUN, 0)
+        started = time.time()
+        self.wait_for(lambda: self.stat.interp_state != linuxcnc.INTERP_IDLE, "the program to start")
+        enabled = True
+        while True:
+            sample = stream.read()
+            if sample is not None:
+                rows.append(sample)
+                continue
+            self.stat.poll()
+            self.check_errors()
+            if self.stat.interp_state == linuxcnc.INTERP_IDLE:
+                break
+            if time.time() > self.deadline:
+                raise RuntimeError("timed out running " + program)
+            if mode == "toggle" and time.time() - started > toggle_period:
+                enabled = not enabled
+                self.set_compensation(enabled)
+                started = time.time()
+            time.sleep(0.002)
+        time.sleep(0.1)  # the last samples of the move
+        hal.set_p("sampler.0.enable", "0")
+        while True:
+            sample = stream.read()
+            if sample is None:
+                break
+            rows.append(sample)
+        if stream.num_overruns:
+            raise RuntimeError("the sampler overran %d times: samples are missing" % stream.num_overruns)
+        if self.stat.task_state != linuxcnc.STATE_ON or self.messages:
+            raise RuntimeError("the program did not run cleanly: " + "; ".join(self.messages))
+
+        with open(self.path("TRACE", "trace.csv"), "w") as out:
+            out.write(",".join(columns) + "\n")
+            for row in rows:
+                out.write(",".join(repr(float(v)) for v in row) + "\n")
+        return len(rows)
+
+
+def main():
+    ini_path = sys.argv[sys.argv.index("-ini") + 1]
+    session = Session(ini_path)
+    result = session.path("RESULT", "result.txt")
+    try:
+        samples = session.run()
+        message = "ok %d samples\n" % samples
+        code = 0
+    except Exception as e:  # reported to the caller through the result file
+        message = "error: %s\n%s" % (e, traceback.format_exc())
+        code = 1
+    with open(result, "w") as out:
+        out.write(message)
+    try:
+        session.command.state(linuxcnc.STATE_OFF)
+    except linuxcnc.error:
+        pass
+    sys.exit(code)
+
+
+if __name__ == "__main__":
+    main()

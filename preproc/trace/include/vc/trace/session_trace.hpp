@@ -1,0 +1,63 @@
+// A trace recorded in a LinuxCNC session (kins/configs/common/headless_driver.py) and what it
+// shows about the tool: the accuracy the machine achieved and whether volkins did exactly
+// what the core computes.
+//
+// How LinuxCNC turns world commands into joints (measured bit for bit with trivkins, see
+// shared/docs/examples/headless-linuxcnc/README.md): at servo cycle n, axis.*.pos-cmd is the
+// newest planner point C[n]; the kinematics inverse gives p[n] = IK(C[n]); the joint cubic
+// interpolator outputs joint[n] = (p[n-3] + 4 p[n-2] + p[n-1]) / 6. So the recorded joints lag
+// and smooth the command: a check compares them with the same filter of the expected p,
+// never with IK(C[n]) itself.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "vc/machine/kinematics.hpp"
+
+namespace vc::trace {
+
+struct SessionTrace {
+  std::string path;
+  std::vector<machine::Joints> world;   // axis.<letter>.pos-cmd (mm, deg), joint order
+  std::vector<machine::Joints> joints;  // joint.<j>.motor-pos-cmd
+  std::vector<double> gain;             // volkins.gain (0 if the session ran without volkins)
+  std::vector<double> tool_length_mm;   // motion.tooloffset.z
+  std::vector<double> controller_ticks; // motion-controller.time (CPU clock ticks)
+  std::size_t size() const { return world.size(); }
+};
+
+// Reads a trace CSV: header with the machine's axis letters (x,y,z,b,c), joints j0.., gain,
+// tool_length and controller_time. Throws LoadError naming file, line and column.
+SessionTrace read_session_trace(const std::string& path, const machine::Model& model);
+
+// LinuxCNC's joint interpolation of kinematics outputs p at sample n >= 3.
+machine::Joints interpolated(const std::vector<machine::Joints>& p, std::size_t n);
+
+struct SampleCheck {
+  std::size_t sample;
+  // The tool: real tip at the recorded joints minus the ideal tip at LinuxCNC's interpolation
+  // of the nominal joints (so the trajectory lag is not counted), part frame, mm; and the
+  // tool direction error |k' x k| (rad).
+  Eigen::Vector3d tip_error_mm;
+  double direction_error_rad;
+  // The module: recorded joints minus LinuxCNC's interpolation of the joints the core computes
+  // for the recorded commands with the recorded gain (largest over joints, mm or deg).
+  double module_mismatch;
+  // The correction: at the joints the core computes for this sample's command, real pose minus
+  // the commanded ideal pose (where the gain is 1; mm, and rad where the pole fade is 1).
+  double command_pose_mm;
+  double command_pose_rad;
+  bool full_correction;  // gain 1 and fade 1: both pose residuals are meant to be ~0
+};
+
+struct TraceSummary {
+  std::vector<SampleCheck> samples;  // from sample 3 on, except around tool length changes
+  std::size_t skipped = 0;           // samples within 4 cycles of a tool length change
+};
+
+// `convention` as the module was loaded (TCP: world Z includes the tool length, as G43 adds it).
+TraceSummary check_trace(const machine::Model& model, machine::WorldConvention convention,
+                         const SessionTrace& trace);
+
+}  // namespace vc::trace

@@ -1,0 +1,117 @@
+#include "vc/trace/session_trace.hpp"
+
+#include <charconv>
+#include <cmath>
+
+#include "vc/tables/csv.hpp"
+#include "vc/tables/source_error.hpp"
+
+namespace vc::trace {
+namespace {
+
+using machine::Joints;
+
+double number(const tables::CsvCell& cell, const std::string& path, int line) {
+  double v = 0.0;
+  const char* end = cell.text.data() + cell.text.size();
+  const auto [ptr, ec] = std::from_chars(cell.text.data(), end, v);
+  if (ec != std::errc() || ptr != end) throw LoadError({path, line, cell.column}, "'" + cell.text + "' is not a number");
+  return v;
+}
+
+// The world position LinuxCNC commanded, as the core's world (TCP: without G43's tool length).
+Joints core_world(const machine::Model& model, machine::WorldConvention convention, Joints world, double L) {
+  if (convention == machine::WorldConvention::Tcp) world[model.joint_of('Z')] -= L;
+  return world;
+}
+
+}  // namespace
+
+SessionTrace read_session_trace(const std::string& path, const machine::Model& model) {
+  const std::vector<tables::CsvRow> rows = tables::read_csv_rows(path, "session trace");
+  if (rows.empty()) throw LoadError({path, 1, 1}, "the trace is empty");
+  const int n = model.joint_count();
+  const std::string axes = model.coordinates();
+  std::vector<std::string> wanted;
+  for (char a : axes) wanted.emplace_back(1, a);
+  for (int j = 0; j < n; ++j) wanted.push_back("j" + std::to_string(j));
+  for (const char* extra : {"gain", "tool_length", "controller_time"}) wanted.emplace_back(extra);
+
+  std::vector<int> column(wanted.size(), -1);
+  const tables::CsvRow& header = rows.front();
+  for (std::size_t c = 0; c < header.cells.size(); ++c)
+    for (std::size_t w = 0; w < wanted.size(); ++w)
+      if (header.cells[c].text == wanted[w]) column[w] = static_cast<int>(c);
+  for (std::size_t w = 0; w < wanted.size(); ++w)
+    if (column[w] < 0)
+      throw LoadError({path, header.line, 1}, "no column '" + wanted[w] + "' (the machine's axes are " + axes + ")");
+
+  SessionTrace t;
+  t.path = path;
+  for (std::size_t r = 1; r < rows.size(); ++r) {
+    const tables::CsvRow& row = rows[r];
+    if (row.cells.size() != header.cells.size())
+      throw LoadError({path, row.line, 1}, std::to_string(row.cells.size()) + " cells, the header has " +
+                                               std::to_string(header.cells.size()));
+    auto value = [&](std::size_t w) { return number(row.cells[column[w]], path, row.line); };
+    Joints world(n), joints(n);
+    for (int j = 0; j < n; ++j) {
+      world[j] = value(j);
+      joints[j] = value(n + j);
+    }
+    t.world.push_back(world);
+    t.joints.push_back(joints);
+    t.gain.push_back(value(2 * n));
+    t.tool_length_mm.push_back(value(2 * n + 1));
+    t.controller_ticks.push_back(value(2 * n + 2));
+  }
+  return t;
+}
+
+Joints interpolated(const std::vector<Joints>& p, std::size_t n) {
+  return (p[n - 3] + 4.0 * p[n - 2] + p[n - 1]) / 6.0;
+}
+
+TraceSummary check_trace(const machine::Model& model, machine::WorldConvention convention,
+                         const SessionTrace& trace) {
+  using machine::Machine;
+  TraceSummary out;
+  const std::size_t count = trace.size();
+  // Kinematics outputs per sample. Cycle k's inverse ran with that cycle's gain (volkins.update
+  // runs first) and the tool length of cycle k-1 (motion writes tooloffset.z at its end).
+  std::vector<Joints> nominal(count), expected(count);
+  std::vector<machine::Correction> corrections(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    const double L = trace.tool_length_mm[k == 0 ? 0 : k - 1];
+    const Joints world = core_world(model, convention, trace.world[k], L);
+    machine::nominal_inverse(model, convention, world, L, nominal[k]);
+    machine::joints_from_world(model, convention, world, L, machine::Applied{trace.gain[k], nullptr}, expected[k],
+                               &corrections[k]);
+  }
+  std::size_t last_tool_change = 0;
+  for (std::size_t n = 1; n < count; ++n) {
+    if (trace.tool_length_mm[n] != trace.tool_length_mm[n - 1]) last_tool_change = n;
+    if (n < 3 || (last_tool_change > 0 && n <= last_tool_change + 4)) {
+      out.skipped += n >= 3;
+      continue;
+    }
+    const double L = trace.tool_length_mm[n - 1];
+    SampleCheck s;
+    s.sample = n;
+    const machine::ToolPose real = machine::tool_pose(model, Machine::Real, trace.joints[n], L);
+    const machine::ToolPose ideal = machine::tool_pose(model, Machine::Ideal, interpolated(nominal, n), L);
+    s.tip_error_mm = real.tip_mm - ideal.tip_mm;
+    s.direction_error_rad = ideal.direction.cross(real.direction).norm();
+    s.module_mismatch = (trace.joints[n] - interpolated(expected, n)).cwiseAbs().maxCoeff();
+
+    const machine::ToolPose commanded = machine::tool_pose(model, Machine::Ideal, nominal[n], L);
+    const machine::ToolPose achieved = machine::tool_pose(model, Machine::Real, expected[n], L);
+    s.command_pose_mm = (achieved.tip_mm - commanded.tip_mm).norm();
+    s.command_pose_rad = commanded.direction.cross(achieved.direction).norm();
+    s.full_correction = trace.gain[n] == 1.0 && corrections[n].fade == 1.0;
+    out.samples.push_back(s);
+  }
+  return out;
+}
+
+}  // namespace vc::trace
