@@ -108,7 +108,7 @@ TraceSummary check_trace(const machine::Model& model, machine::WorldConvention c
     const machine::ToolPose achieved = machine::tool_pose(model, Machine::Real, expected[n], L);
     s.command_pose_mm = (achieved.tip_mm - commanded.tip_mm).norm();
     s.command_pose_rad = commanded.direction.cross(achieved.direction).norm();
-    s.full_correction = trace.gain[n] == 1.0 && corrections[n].fade == 1.0;
+    s.full_correction = trace.gain[n] == 1.0 && corrections[n].fade == 1.0 && model.rotary_count() == 2;
     out.samples.push_back(s);
   }
   return out;

@@ -48,7 +48,9 @@ struct SampleCheck {
   // the commanded ideal pose (where the gain is 1; mm, and rad where the pole fade is 1).
   double command_pose_mm;
   double command_pose_rad;
-  bool full_correction;  // gain 1 and fade 1: both pose residuals are meant to be ~0
+  // Gain 1, fade 1 and two rotary axes: position and tool direction are both corrected (a
+  // machine without two rotary axes cannot turn its tool: only the position is).
+  bool full_correction;
 };
 
 struct TraceSummary {
