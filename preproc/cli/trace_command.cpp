@@ -41,9 +41,10 @@ int run_trace(const TraceArgs& args, std::ostream& out) {
     csv << "t_s,ex_um,ey_um,ez_um,e_um,ek_urad,gain\n";
     for (const trace::SampleCheck& s : summary.samples) {
       csv << format_fixed(static_cast<double>(s.sample) * args.servo_period_s, 3);
-      for (int k = 0; k < 3; ++k) csv << ',' << format_fixed(s.tip_error_mm[k] * 1e3, 4);
-      csv << ',' << format_fixed(s.tip_error_mm.norm() * 1e3, 4) << ','
-          << format_fixed(s.direction_error_rad * 1e6, 3) << ',' << format_number(session.gain[s.sample]) << '\n';
+      // Full precision: with compensation on, the errors are nanometres.
+      for (int k = 0; k < 3; ++k) csv << ',' << format_number(s.tip_error_mm[k] * 1e3);
+      csv << ',' << format_number(s.tip_error_mm.norm() * 1e3) << ',' << format_number(s.direction_error_rad * 1e6)
+          << ',' << format_number(session.gain[s.sample]) << '\n';
     }
   }
   out << "trace: " << args.trace << " (" << summary.samples.size() << " samples checked, " << summary.skipped
