@@ -13,9 +13,11 @@ program=${2:-kins/configs/mc300/nc/contour_5axis.ngc}
 ini=kins/configs/mc300/mc300.ini
 runs=$(mktemp -d /tmp/volcomp-servo-cost.XXXXXX)
 chmod 755 "$runs"
-stats() {  # median and p99 of the controller_time column
-  awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "controller_time") c = i; next } { print $c }' "$1" |
-    sort -n | awk '{ v[NR] = $1 } END { printf "%d %d", v[int(NR * 0.5) + 1], v[int(NR * 0.99) + 1] }'
+ticks() {  # the controller_time column of a trace
+  awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "controller_time") c = i; next } { print $c }' "$1"
+}
+stats() {  # median and p99 of a column of numbers
+  sort -n "$1" | awk '{ v[NR] = $1 } END { printf "%d %d", v[int(NR * 0.5) + 1], v[int(NR * 0.99) + 1] }'
 }
 for r in $(seq "$rounds"); do
   for kins in trivkins volkins; do
@@ -25,13 +27,13 @@ for r in $(seq "$rounds"); do
     else
       kins/configs/run_headless.sh "$ini" "$runs/$kins-$r" --program "$program" --compensation on >/dev/null
     fi
-    trace="$runs/$kins-$r/kins/configs/mc300/trace.csv"
-    read -r median p99 <<< "$(stats "$trace")"
+    ticks "$runs/$kins-$r/kins/configs/mc300/trace.csv" > "$runs/$kins-$r.ticks"
+    read -r median p99 <<< "$(stats "$runs/$kins-$r.ticks")"
     echo "$kins run $r: motion-controller.time median $median ticks, p99 $p99 ticks"
-    awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "controller_time") c = i; next } { print $c }' "$trace" >> "$runs/$kins.all"
+    cat "$runs/$kins-$r.ticks" >> "$runs/$kins.all"
   done
 done
-m_triv=$(sort -n "$runs/trivkins.all" | awk '{ v[NR] = $1 } END { print v[int(NR * 0.5) + 1] }')
-m_vol=$(sort -n "$runs/volkins.all" | awk '{ v[NR] = $1 } END { print v[int(NR * 0.5) + 1] }')
+read -r m_triv _ <<< "$(stats "$runs/trivkins.all")"
+read -r m_vol _ <<< "$(stats "$runs/volkins.all")"
 awk -v a="$m_vol" -v b="$m_triv" 'BEGIN { printf "median over all samples: volkins %d ticks, trivkins %d ticks, ratio %.2f\n", a, b, a / b }'
 rm -rf "$runs"
