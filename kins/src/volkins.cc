@@ -64,7 +64,9 @@ char* machine = nullptr;
 char* coordinates = nullptr;
 char* world = nullptr;
 
-double pose_field(const EmcPose& pose, int field) {
+// A field of LinuxCNC's EmcPose by its index in x y z a b c u v w (const or not).
+template <class Pose>
+auto& pose_field(Pose& pose, int field) {
   switch (field) {
     case 0: return pose.tran.x;
     case 1: return pose.tran.y;
@@ -78,20 +80,6 @@ double pose_field(const EmcPose& pose, int field) {
   }
 }
 
-void set_pose_field(EmcPose& pose, int field, double value) {
-  switch (field) {
-    case 0: pose.tran.x = value; break;
-    case 1: pose.tran.y = value; break;
-    case 2: pose.tran.z = value; break;
-    case 3: pose.a = value; break;
-    case 4: pose.b = value; break;
-    case 5: pose.c = value; break;
-    case 6: pose.u = value; break;
-    case 7: pose.v = value; break;
-    default: pose.w = value; break;
-  }
-}
-
 // LinuxCNC's world position as the core's world (TCP: less the tool length G43 added to Z).
 Joints world_of(const EmcPose& pose, double tool_length_mm) {
   Joints w(settings->model.joint_count());
@@ -102,7 +90,7 @@ Joints world_of(const EmcPose& pose, double tool_length_mm) {
 
 void set_world(EmcPose& pose, Joints w, double tool_length_mm) {
   if (settings->world == vm::WorldConvention::Tcp) w[settings->z_joint] += tool_length_mm;
-  for (int j = 0; j < w.size(); ++j) set_pose_field(pose, settings->pose_field[j], w[j]);
+  for (int j = 0; j < w.size(); ++j) pose_field(pose, settings->pose_field[j]) = w[j];
 }
 
 // Servo thread, before motion-controller: moves the ramp one period towards volkins.enable

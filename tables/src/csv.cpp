@@ -1,5 +1,7 @@
 #include "vc/tables/csv.hpp"
 
+#include <charconv>
+#include <cmath>
 #include <fstream>
 
 #include "vc/tables/source_error.hpp"
@@ -48,6 +50,24 @@ std::vector<CsvRow> read_csv_rows(const std::string& path, const std::string& wh
     rows.push_back({split_csv_line(line), number});
   }
   return rows;
+}
+
+double csv_number(const std::string& path, int line, const CsvCell& cell) {
+  double v = 0.0;
+  const char* begin = cell.text.data();
+  const char* end = begin + cell.text.size();
+  // from_chars takes no '+'; skip one, but never before another sign ("+-1").
+  if (cell.text.size() > 1 && *begin == '+' && begin[1] != '-' && begin[1] != '+') ++begin;
+  const auto [ptr, ec] = std::from_chars(begin, end, v);
+  if (cell.text.empty())
+    throw LoadError({path, line, cell.column}, "empty cell: every cell needs a number");
+  if (ec == std::errc::result_out_of_range && ptr == end)
+    throw LoadError({path, line, cell.column}, "'" + cell.text + "' is out of the range of a number");
+  if (ec != std::errc() || ptr != end)
+    throw LoadError({path, line, cell.column}, "'" + cell.text + "' is not a number");
+  if (!std::isfinite(v))
+    throw LoadError({path, line, cell.column}, "'" + cell.text + "' is not a finite number");
+  return v;
 }
 
 }  // namespace vc::tables

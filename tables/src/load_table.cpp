@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <sstream>
 
@@ -23,24 +22,6 @@ HeaderCell parse_header_cell(const std::string& path, int line, const CsvCell& c
     throw LoadError({path, line, cell.column},
                     "column '" + cell.text + "' needs a unit in brackets, as in x[mm] or EXX[um]");
   return {cell.text.substr(0, open), cell.text.substr(open + 1, close - open - 1)};
-}
-
-double parse_number(const std::string& path, int line, const CsvCell& cell) {
-  double v = 0.0;
-  const char* begin = cell.text.data();
-  const char* end = begin + cell.text.size();
-  // from_chars takes no '+'; skip one, but never before another sign ("+-1").
-  if (cell.text.size() > 1 && *begin == '+' && begin[1] != '-' && begin[1] != '+') ++begin;
-  const auto [ptr, ec] = std::from_chars(begin, end, v);
-  if (cell.text.empty())
-    throw LoadError({path, line, cell.column}, "empty cell: every cell needs a number");
-  if (ec == std::errc::result_out_of_range && ptr == end)
-    throw LoadError({path, line, cell.column}, "'" + cell.text + "' is out of the range of a number");
-  if (ec != std::errc() || ptr != end)
-    throw LoadError({path, line, cell.column}, "'" + cell.text + "' is not a number");
-  if (!std::isfinite(v))
-    throw LoadError({path, line, cell.column}, "'" + cell.text + "' is not a finite number");
-  return v;
 }
 
 std::string format(double v) {
@@ -138,7 +119,7 @@ class TableReader {
                         "expected " + std::to_string(width) + " cells, found " +
                             std::to_string(row.cells.size()));
       std::vector<double> numbers;
-      for (const CsvCell& cell : row.cells) numbers.push_back(parse_number(path_, row.line, cell));
+      for (const CsvCell& cell : row.cells) numbers.push_back(csv_number(path_, row.line, cell));
       positions_.emplace_back(numbers.begin(), numbers.begin() + static_cast<long>(grid_.size()));
       for (std::size_t c = 0; c < columns_.size(); ++c)
         values_.push_back(numbers[grid_.size() + c] * factors_[c]);

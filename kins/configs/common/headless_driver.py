@@ -102,7 +102,7 @@ class Session:
         rows = []
         hal.set_p("sampler.0.enable", "1")
         self.command.auto(linuxcnc.AUTO_RUN, 0)
-        started = time.time()
+        last_toggle = time.time()
         self.wait_for(lambda: self.stat.interp_state != linuxcnc.INTERP_IDLE, "the program to start")
         enabled = True
         while True:
@@ -116,10 +116,10 @@ class Session:
                 break
             if time.time() > self.deadline:
                 raise RuntimeError("timed out running " + program)
-            if mode == "toggle" and time.time() - started > toggle_period:
+            if mode == "toggle" and time.time() - last_toggle > toggle_period:
                 enabled = not enabled
                 self.set_compensation(enabled)
-                started = time.time()
+                last_toggle = time.time()
             time.sleep(0.002)
         time.sleep(0.1)  # the last samples of the move
         hal.set_p("sampler.0.enable", "0")

@@ -1,6 +1,5 @@
 #include "vc/trace/session_trace.hpp"
 
-#include <charconv>
 #include <cmath>
 
 #include "vc/tables/csv.hpp"
@@ -10,14 +9,6 @@ namespace vc::trace {
 namespace {
 
 using machine::Joints;
-
-double number(const tables::CsvCell& cell, const std::string& path, int line) {
-  double v = 0.0;
-  const char* end = cell.text.data() + cell.text.size();
-  const auto [ptr, ec] = std::from_chars(cell.text.data(), end, v);
-  if (ec != std::errc() || ptr != end) throw LoadError({path, line, cell.column}, "'" + cell.text + "' is not a number");
-  return v;
-}
 
 // The world position LinuxCNC commanded, as the core's world (TCP: without G43's tool length).
 Joints core_world(const machine::Model& model, machine::WorldConvention convention, Joints world, double L) {
@@ -53,7 +44,7 @@ SessionTrace read_session_trace(const std::string& path, const machine::Model& m
     if (row.cells.size() != header.cells.size())
       throw LoadError({path, row.line, 1}, std::to_string(row.cells.size()) + " cells, the header has " +
                                                std::to_string(header.cells.size()));
-    auto value = [&](std::size_t w) { return number(row.cells[column[w]], path, row.line); };
+    auto value = [&](std::size_t w) { return tables::csv_number(path, row.line, row.cells[column[w]]); };
     Joints world(n), joints(n);
     for (int j = 0; j < n; ++j) {
       world[j] = value(j);

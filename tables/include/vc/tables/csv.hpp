@@ -20,6 +20,10 @@ struct CsvRow {
 // Cells of one line, separated by commas.
 std::vector<CsvCell> split_csv_line(const std::string& line);
 
+// The number in a cell (a leading '+' allowed); throws LoadError at the cell if it is empty,
+// not a number, out of range or not finite.
+double csv_number(const std::string& path, int line, const CsvCell& cell);
+
 // The lines of a file that are neither blank nor comments ('#'), split into cells; a UTF-8
 // byte-order mark (Excel's "CSV UTF-8") is skipped. Throws LoadError "cannot open the <what>".
 std::vector<CsvRow> read_csv_rows(const std::string& path, const std::string& what);
