@@ -46,7 +46,7 @@ class MachineReader {
     model_.path = path_;
     check_keys(root, "the machine file",
                {"machine", "measurement", "spindle", "fixture", "correction", "tool_chain",
-                "workpiece_chain"});
+                "workpiece_chain", "stiffness"});
     read_info(root);
     read_spindle(root);
     read_fixture(root);
@@ -56,6 +56,7 @@ class MachineReader {
     order_joints(root);
     for (int j = 0; j < model_.joint_count(); ++j) model_.axes[j].moved_by = 1u << j;
     check_axes_span(root);
+    read_stiffness(root);
     for (PendingTables& p : pending_) load_tables(p);
     return std::move(model_);
   }
@@ -224,6 +225,45 @@ class MachineReader {
       if (!v || *v < 1 || *v > 100)
         throw LoadError(where(*n), "max_iterations must be an integer from 1 to 100");
       model_.solver.max_iterations = static_cast<int>(*v);
+    }
+  }
+
+  // [stiffness]: X = { compliance_um_per_N = 0.02 } or, position-dependent,
+  // Z = { position_mm = [-300, 0], compliance_um_per_N = [0.05, 0.03] }.
+  void read_stiffness(const toml::table& root) {
+    model_.compliance.assign(static_cast<std::size_t>(model_.joint_count()), AxisCompliance{});
+    const toml::table* t = table(root, "stiffness", false, "");
+    if (!t) return;
+    for (const auto& [key, node] : *t) {
+      const std::string letter(key.str());
+      const int j = letter.size() == 1 ? model_.joint_of(letter[0]) : -1;
+      if (j < 0 || model_.axes[static_cast<std::size_t>(j)].type != AxisType::Linear)
+        throw LoadError(where(key.source()), "'" + letter + "' in [stiffness] is not a linear axis of this machine (" +
+                                                 model_.coordinates() + ")");
+      const toml::table* axis = node.as_table();
+      if (!axis) throw LoadError(where(node), "[stiffness] " + letter + " must be a table");
+      const std::string context = "[stiffness] " + letter;
+      check_keys(*axis, context, {"position_mm", "compliance_um_per_N"});
+      AxisCompliance& c = model_.compliance[static_cast<std::size_t>(j)];
+      const toml::node* values = axis->get("compliance_um_per_N");
+      if (!values) throw LoadError(where(*axis), context + " needs 'compliance_um_per_N'");
+      if (values->is_array()) {
+        const toml::node* positions = axis->get("position_mm");
+        const std::size_t n = values->as_array()->size();
+        if (!positions) throw LoadError(where(*values), "a list of compliances needs 'position_mm' of the same length");
+        c.position_mm = numbers(*axis, "position_mm", n, true, context);
+        c.mm_per_N = numbers(*axis, "compliance_um_per_N", n, true, context);
+        for (std::size_t i = 1; i < n; ++i)
+          if (!(c.position_mm[i] > c.position_mm[i - 1]))
+            throw LoadError(where(*positions), "position_mm must increase");
+      } else {
+        if (axis->get("position_mm")) throw LoadError(where(*axis->get("position_mm")), "position_mm needs a list of compliances");
+        c.mm_per_N = {scalar(*values, "compliance_um_per_N")};
+      }
+      for (double& v : c.mm_per_N) {
+        if (v < 0) throw LoadError(where(*values), "a compliance cannot be negative");
+        v *= 1e-3;  // um/N -> mm/N
+      }
     }
   }
 

@@ -11,6 +11,16 @@ int Model::rotary_count() const {
   return n;
 }
 
+double AxisCompliance::at(double q) const {
+  if (mm_per_N.empty()) return 0.0;
+  if (position_mm.empty() || q <= position_mm.front()) return mm_per_N.front();
+  if (q >= position_mm.back()) return mm_per_N.back();
+  std::size_t i = 1;
+  while (position_mm[i] < q) ++i;
+  const double t = (q - position_mm[i - 1]) / (position_mm[i] - position_mm[i - 1]);
+  return mm_per_N[i - 1] + t * (mm_per_N[i] - mm_per_N[i - 1]);
+}
+
 int Model::joint_of(char letter) const {
   for (int i = 0; i < joint_count(); ++i)
     if (axes[i].letter == letter) return i;

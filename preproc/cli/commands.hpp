@@ -29,6 +29,19 @@ struct TraceArgs {
   double servo_period_s = 0.001;   // for the time column
 };
 
+struct PredistortArgs {
+  std::string machine;
+  std::string input;
+  std::string output;              // "-": stdout (AXIS filter)
+  std::string var_file;            // LinuxCNC parameter file: work offsets, G28/G30 homes
+  std::string tool_table;          // LinuxCNC tool table: tool lengths (mm)
+  std::string process;             // cutting conditions per tool: cutting-force deflection
+  std::string world = "axes";      // world convention of the uncompensated kinematics
+  double tolerance_mm = 0.0005;
+  bool quiet = false;
+};
+
+int run_predistort(const PredistortArgs& args, std::ostream& report);
 int run_check(const CheckArgs& args, std::ostream& out);
 int run_trace(const TraceArgs& args, std::ostream& out);
 int run_error(const PoseArgs& args, std::ostream& out);

@@ -42,12 +42,33 @@ int main(int argc, char** argv) {
   trace_cmd->add_option("-o,--output", trace.output,
                         "write t_s,ex_um,ey_um,ez_um,e_um,ek_urad,gain per sample to this CSV");
 
+  vc::cli::PredistortArgs predistort;
+  CLI::App* predistort_cmd = app.add_subcommand(
+      "predistort", "Write a part program that makes the uncompensated machine cut the nominal part");
+  predistort_cmd->add_option("MACHINE", predistort.machine, "machine description file (.toml)")->required();
+  predistort_cmd->add_option("PROGRAM", predistort.input, "part program (RS274/NGC)")->required();
+  predistort_cmd->add_option("-o,--output", predistort.output, "pre-distorted program, or - for stdout")
+      ->required();
+  predistort_cmd->add_option("--var", predistort.var_file,
+                             "LinuxCNC parameter file (.var): work offsets G54..G59.3, G28/G30 homes");
+  predistort_cmd->add_option("--tool-table", predistort.tool_table, "LinuxCNC tool table (.tbl): tool lengths, mm");
+  predistort_cmd->add_option("--process", predistort.process,
+                             "cutting conditions per tool (.toml): adds the cutting-force deflection");
+  predistort_cmd->add_option("--tolerance", predistort.tolerance_mm,
+                             "largest path deviation from the exact correction, mm")
+      ->capture_default_str();
+  predistort_cmd->add_option("--world", predistort.world,
+                             "world convention of the machine's kinematics: axes (trivkins) or tcp")
+      ->capture_default_str();
+  predistort_cmd->add_flag("-q,--quiet", predistort.quiet, "no summary on stderr");
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*check_cmd) return vc::cli::run_check(check, std::cout);
     if (*error_cmd) return vc::cli::run_error(error, std::cout);
     if (*correct_cmd) return vc::cli::run_correct(correct, std::cout);
     if (*trace_cmd) return vc::cli::run_trace(trace, std::cout);
+    if (*predistort_cmd) return vc::cli::run_predistort(predistort, std::cerr);
   } catch (const std::exception& e) {
     std::cout.flush();
     std::cerr << e.what() << '\n';

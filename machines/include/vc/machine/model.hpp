@@ -81,6 +81,15 @@ struct SolverOptions {
   double direction_tolerance_rad = 1e-12;
 };
 
+// Compliance of the tool relative to the part along one linear axis, under a force along
+// that axis (seeds/004: per axis, depending on the axis position). Piecewise linear in the
+// axis position, held at the ends; one value without positions is a constant.
+struct AxisCompliance {
+  std::vector<double> position_mm;  // increasing; empty for a constant
+  std::vector<double> mm_per_N;     // empty: rigid (no model for this axis)
+  double at(double q) const;
+};
+
 struct Model {
   std::string path;  // machine file
   MachineInfo info;
@@ -93,6 +102,7 @@ struct Model {
   PoleFade fade;
   SolverOptions solver;
   std::vector<BoundTable> tables;
+  std::vector<AxisCompliance> compliance;  // per joint ([stiffness]); all rigid if absent
   Warnings warnings;                   // found at load time, for `check` and loadrt
 
   int joint_count() const { return static_cast<int>(axes.size()); }

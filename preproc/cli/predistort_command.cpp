@@ -1,0 +1,145 @@
+// volcomp predistort: writes a part program that makes an uncompensated machine cut the
+// nominal part. Never leaves a half-written output: the program is written to a temporary
+// file beside the output and renamed over it only when complete. `-o -` writes to stdout,
+// as a LinuxCNC AXIS program filter does ([FILTER] ngc = volcomp predistort MACHINE -o - ...),
+// with AXIS's FILTER_PROGRESS protocol on stderr.
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <unistd.h>
+
+#include "commands.hpp"
+#include "format.hpp"
+#include "vc/machine/load_machine.hpp"
+#include "vc/predistort/deflection.hpp"
+#include "vc/predistort/predistort.hpp"
+#include "vc/tables/source_error.hpp"
+
+namespace vc::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Progress on stderr: FILTER_PROGRESS=<percent> lines for AXIS (it sets AXIS_PROGRESS_BAR
+// for its filters), a bar on a terminal, nothing otherwise.
+class Progress {
+ public:
+  explicit Progress(long total) : total_(std::max(total, 1L)) {
+    axis_ = std::getenv("AXIS_PROGRESS_BAR") != nullptr;
+    terminal_ = !axis_ && isatty(STDERR_FILENO);
+  }
+  void operator()(long bytes) {
+    const int percent = static_cast<int>(std::min(100L, bytes * 100 / total_));
+    if (percent == last_) return;
+    last_ = percent;
+    if (axis_) {
+      std::fprintf(stderr, "FILTER_PROGRESS=%d\n", percent);
+    } else if (terminal_) {
+      const int filled = percent / 4;
+      std::fprintf(stderr, "\r[%.*s%.*s] %3d%%", filled, "#########################", 25 - filled,
+                   "                         ", percent);
+      if (percent == 100) std::fputc('\n', stderr);
+    }
+    std::fflush(stderr);
+  }
+
+ private:
+  long total_;
+  bool axis_ = false, terminal_ = false;
+  int last_ = -1;
+};
+
+}  // namespace
+
+int run_predistort(const PredistortArgs& args, std::ostream& report) {
+  if (!(args.tolerance_mm > 0.0 && args.tolerance_mm <= 0.1))
+    throw std::runtime_error("--tolerance must be in (0, 0.1] mm");
+  if (args.world != "axes" && args.world != "tcp")
+    throw std::runtime_error("--world must be axes or tcp, not " + args.world);
+  const machine::Model model = machine::load_machine(args.machine);
+
+  std::optional<interpreter::ToolTable> tools;
+  if (!args.tool_table.empty()) tools = interpreter::read_tool_table(args.tool_table);
+  std::optional<gcode::Parameters> parameters;
+  if (!args.var_file.empty()) {
+    parameters.emplace();
+    interpreter::read_var_file(args.var_file, *parameters);
+  }
+  std::optional<predistort::Deflection> deflection;
+  if (!args.process.empty()) {
+    bool stiff = false;
+    for (const auto& c : model.compliance) stiff = stiff || !c.mm_per_N.empty();
+    if (!stiff)
+      throw LoadError({args.machine}, "--process needs a [stiffness] table in the machine file");
+    deflection.emplace(model, predistort::load_process(args.process, tools ? &*tools : nullptr));
+  }
+
+  predistort::Job job;
+  job.model = &model;
+  job.setup.file = args.input;
+  job.setup.machine_axes = predistort::program_axes(model);
+  job.setup.tools = tools ? &*tools : nullptr;
+  job.setup.var_file = parameters ? &*parameters : nullptr;
+  job.setup.tool_length_in_world = args.world == "axes";
+  job.corrector.tolerance_mm = args.tolerance_mm;
+  job.corrector.world = args.world == "tcp" ? machine::WorldConvention::Tcp : machine::WorldConvention::Axes;
+  job.deflection = deflection ? &*deflection : nullptr;
+  job.provenance = {args.machine, model.info.name, {}, args.var_file, args.tool_table, args.process, args.world,
+                    args.tolerance_mm};
+  for (const auto& t : model.tables) job.provenance.tables.push_back(t.table.path());
+
+  std::ifstream in(args.input, std::ios::binary);
+  if (!in) throw LoadError({args.input}, "cannot open the program");
+  std::error_code size_error;
+  const auto size = fs::file_size(args.input, size_error);
+  Progress progress(size_error ? 1 : static_cast<long>(size));
+
+  predistort::Summary summary;
+  if (args.output == "-") {
+    summary = predistort::predistort(in, std::cout, job, std::ref(progress));
+    std::cout.flush();
+    if (!std::cout) throw std::runtime_error("cannot write to stdout");
+  } else {
+    // A temporary file in the output's folder (same file system: the rename is atomic).
+    const fs::path output(args.output);
+    std::string temporary = (output.parent_path().empty() ? fs::path(".") : output.parent_path()) /
+                            ("." + output.filename().string() + ".XXXXXX");
+    const int fd = mkstemp(temporary.data());
+    if (fd < 0) throw std::runtime_error("cannot create a temporary file beside " + args.output);
+    close(fd);
+    try {
+      std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+      summary = predistort::predistort(in, out, job, std::ref(progress));
+      out.close();
+      if (!out) throw std::runtime_error("cannot write " + temporary);
+      fs::permissions(temporary, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read |
+                                     fs::perms::others_read);
+      fs::rename(temporary, output);
+    } catch (...) {
+      std::error_code ignored;
+      fs::remove(temporary, ignored);
+      throw;
+    }
+  }
+
+  if (!args.quiet) {
+    const auto& c = summary.corrector;
+    report << "volcomp predistort: " << summary.lines << " lines, " << c.moves << " moves corrected into "
+           << c.pieces << " pieces (" << c.corrections << " corrections, " << c.checks << " checks), max error at "
+           << "the check points " << format_fixed(c.max_checked_error_mm * 1e3, 3) << " um (tolerance "
+           << format_number(args.tolerance_mm * 1e3) << " um)";
+    if (c.max_deflection_mm > 0) report << ", max deflection taken off " << format_fixed(c.max_deflection_mm * 1e3, 3) << " um";
+    report << '\n';
+    if (summary.written_as_is_moves)
+      report << "  " << summary.written_as_is_moves
+             << " moves written as they are (G28/G30, or rapids before every axis was set)\n";
+    if (c.tolerance_misses) report << "  warning: " << c.tolerance_misses << " moves could not meet the tolerance\n";
+    if (c.out_of_table) report << "  warning: " << c.out_of_table << " points outside the error tables' grids\n";
+  }
+  return 0;
+}
+
+}  // namespace vc::cli

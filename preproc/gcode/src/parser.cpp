@@ -1,0 +1,135 @@
+// parse_block: LinuxCNC's line reading. First the line is normalized as LinuxCNC does
+// (comments taken out, spaces and tabs dropped, letters lower-cased), keeping where each
+// character came from; then words and assignments are read one after the other, their
+// values and expressions by the X3 grammar (parser_def.hpp), the only file that includes it.
+#include "vc/gcode/parser.hpp"
+
+#include <cctype>
+#include <string>
+#include <vector>
+
+#include "parser_def.hpp"
+
+namespace vc::gcode {
+namespace {
+
+namespace x3 = boost::spirit::x3;
+
+// The line without comments and blanks, lower case, and the raw offset of each character.
+struct Normalized {
+  std::string text;
+  std::vector<int> raw;  // raw offset of text[i]; raw[text.size()] = end of the raw line
+};
+
+std::string describe(char c) {
+  if (std::isprint(static_cast<unsigned char>(c))) return std::string("'") + c + "'";
+  return "byte " + std::to_string(static_cast<unsigned char>(c));
+}
+
+void normalize(std::string_view line, Normalized& n, Block& block) {
+  n.text.clear();
+  n.raw.clear();
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (c == ' ' || c == '\t') continue;
+    if (c == ';') {
+      block.comments.push_back({std::string(line.substr(i + 1)), static_cast<int>(i), static_cast<int>(line.size())});
+      break;
+    }
+    if (c == '(') {
+      const std::size_t close = line.find_first_of("()", i + 1);
+      if (close == std::string_view::npos) throw SyntaxError(static_cast<int>(i), "unclosed comment: '(' without ')'");
+      if (line[close] == '(') throw SyntaxError(static_cast<int>(close), "nested comment: '(' inside a comment");
+      block.comments.push_back(
+          {std::string(line.substr(i + 1, close - i - 1)), static_cast<int>(i), static_cast<int>(close + 1)});
+      i = close;
+      continue;
+    }
+    if (c == ')') throw SyntaxError(static_cast<int>(i), "')' without '('");
+    if (!std::isprint(static_cast<unsigned char>(c)))
+      throw SyntaxError(static_cast<int>(i), "unexpected " + describe(c) + " (not a printable character)");
+    n.text += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    n.raw.push_back(static_cast<int>(i));
+  }
+  n.raw.push_back(static_cast<int>(line.size()));
+}
+
+// Parses `rule` at text[pos...]; returns the end position. X3's expectation failures
+// become SyntaxErrors at the raw offset where the expected thing is missing.
+template <typename Rule, typename Attribute>
+std::size_t parse_at(const Normalized& n, std::size_t pos, const Rule& rule, Attribute& attribute,
+                     const char* expected) {
+  auto first = n.text.begin() + static_cast<std::ptrdiff_t>(pos);
+  const auto last = n.text.end();
+  try {
+    if (!x3::parse(first, last, rule, attribute)) throw SyntaxError(n.raw[pos], std::string("expected ") + expected);
+  } catch (const x3::expectation_failure<std::string::const_iterator>& e) {
+    const auto at = static_cast<std::size_t>(e.where() - n.text.begin());
+    const std::string found = at < n.text.size() ? ", found " + describe(n.text[at]) : ", found the end of the line";
+    throw SyntaxError(n.raw[at], "expected " + e.which() + found);
+  }
+  return static_cast<std::size_t>(first - n.text.begin());
+}
+
+bool is_word_letter(char c) {
+  // RS274/NGC word letters LinuxCNC knows (E and O are not words; N only at the start).
+  return std::string_view("abcdfghijklmpqrstuvwxyz").find(c) != std::string_view::npos;
+}
+
+}  // namespace
+
+void parse_block(std::string_view line, Block& block) {
+  block.clear();
+  thread_local Normalized n;
+  normalize(line, n, block);
+  std::size_t pos = 0;
+  if (n.text == "%") {
+    block.percent = true;
+    return;
+  }
+  if (pos < n.text.size() && n.text[pos] == '/') {
+    block.block_delete = true;
+    ++pos;
+  }
+  if (pos < n.text.size() && n.text[pos] == 'n') {
+    const std::size_t start = pos++;
+    const std::size_t digits = pos;
+    while (pos < n.text.size() && (std::isdigit(static_cast<unsigned char>(n.text[pos])) || n.text[pos] == '.')) ++pos;
+    if (pos == digits) throw SyntaxError(n.raw[digits], "expected a line number after 'N'");
+    block.has_line_number = true;
+    block.line_number = std::stod(n.text.substr(digits, pos - digits));
+    (void)start;
+  }
+  while (pos < n.text.size()) {
+    const char c = n.text[pos];
+    if (c == 'o') {
+      block.o_word = n.raw[pos];  // O-word control flow: recorded, not read further
+      return;
+    }
+    if (c == '#') {
+      Assignment a;
+      a.begin = n.raw[pos];
+      pos = parse_at(n, pos, parser::parameter, a.target, "a parameter");
+      if (pos >= n.text.size() || n.text[pos] != '=')
+        throw SyntaxError(n.raw[pos], "expected '=' after the parameter (a parameter alone is not a word)");
+      pos = parse_at(n, pos + 1, parser::value, a.value, "a value after '='");
+      a.end = n.raw[pos - 1] + 1;
+      block.assignments.push_back(std::move(a));
+      continue;
+    }
+    if (c == 'n') throw SyntaxError(n.raw[pos], "a line number (N) must start the line");
+    if (!is_word_letter(c)) {
+      if (std::isalpha(static_cast<unsigned char>(c)))
+        throw SyntaxError(n.raw[pos], std::string("unknown word letter '") +
+                                          static_cast<char>(std::toupper(static_cast<unsigned char>(c))) + "'");
+      throw SyntaxError(n.raw[pos], "expected a word (letter and value), found " + describe(c));
+    }
+    Word w{static_cast<char>(std::toupper(static_cast<unsigned char>(c))), ast::Expression(), n.raw[pos], 0};
+    const std::string expected = std::string("a number or [expression] after '") + w.letter + "'";
+    pos = parse_at(n, pos + 1, parser::value, w.value, expected.c_str());
+    w.end = n.raw[pos - 1] + 1;
+    block.words.push_back(std::move(w));
+  }
+}
+
+}  // namespace vc::gcode

@@ -1,0 +1,125 @@
+// The grammar of RS274/NGC values and expressions, LinuxCNC's dialect, over a line that has
+// been lower-cased and stripped of spaces and comments (as LinuxCNC's reader does first).
+//
+//   value      = number | '[' expression ']' | parameter | function | ('-' | '+') value
+//   expression = xor_level: level ((and|or|xor) level)*   (lowest precedence)
+//                compare:   sum ((eq|ne|gt|ge|lt|le) sum)*
+//                sum:       product (('+'|'-') product)*
+//                product:   power (('*'|'/'|mod) power)*
+//                power:     value ('**' value)*                (highest)
+//   parameter  = '#' ('<' name '>' | value)
+//   function   = name '[' expression ']' | atan '[' e ']' '/' '[' e ']' | exists '[' #<name> ']'
+// Numbers have no exponent and no inf/nan ("1e5" is the word e). The grammar builds the AST
+// only; evaluate.cpp gives it meaning.
+#pragma once
+
+#include <boost/spirit/home/x3.hpp>
+
+#include "ast_adapted.hpp"
+
+namespace vc::gcode::parser {
+namespace x3 = boost::spirit::x3;
+
+// Digits with an optional point anywhere ("1", "1.", ".5"), a sign, and nothing else.
+struct NgcRealPolicies : x3::real_policies<double> {
+  template <typename Iterator>
+  static bool parse_exp(Iterator&, Iterator const&) { return false; }
+  template <typename Iterator, typename Attribute>
+  static bool parse_nan(Iterator&, Iterator const&, Attribute&) { return false; }
+  template <typename Iterator, typename Attribute>
+  static bool parse_inf(Iterator&, Iterator const&, Attribute&) { return false; }
+};
+const x3::real_parser<double, NgcRealPolicies> number{};
+
+struct FunctionSymbols : x3::symbols<ast::Function> {
+  FunctionSymbols() {
+    add("abs", ast::Function::Abs)("acos", ast::Function::Acos)("asin", ast::Function::Asin)(
+        "cos", ast::Function::Cos)("exp", ast::Function::Exp)("fix", ast::Function::Fix)(
+        "fup", ast::Function::Fup)("round", ast::Function::Round)("ln", ast::Function::Ln)(
+        "sin", ast::Function::Sin)("sqrt", ast::Function::Sqrt)("tan", ast::Function::Tan);
+  }
+};
+struct SignSymbols : x3::symbols<ast::Function> {
+  SignSymbols() { add("-", ast::Function::Minus)("+", ast::Function::Plus); }
+};
+struct LogicSymbols : x3::symbols<ast::Operator> {
+  LogicSymbols() { add("and", ast::Operator::And)("or", ast::Operator::Or)("xor", ast::Operator::Xor); }
+};
+struct CompareSymbols : x3::symbols<ast::Operator> {
+  CompareSymbols() {
+    add("eq", ast::Operator::Eq)("ne", ast::Operator::Ne)("gt", ast::Operator::Gt)("ge", ast::Operator::Ge)(
+        "lt", ast::Operator::Lt)("le", ast::Operator::Le);
+  }
+};
+struct SumSymbols : x3::symbols<ast::Operator> {
+  SumSymbols() { add("+", ast::Operator::Plus)("-", ast::Operator::Minus); }
+};
+struct ProductSymbols : x3::symbols<ast::Operator> {
+  ProductSymbols() { add("*", ast::Operator::Times)("/", ast::Operator::Divide)("mod", ast::Operator::Modulo); }
+};
+struct PowerSymbols : x3::symbols<ast::Operator> {
+  PowerSymbols() { add("**", ast::Operator::Power); }
+};
+
+// ---- rule IDs --------------------------------------------------------------------------
+struct value_class;
+struct expression_class;
+struct compare_class;
+struct sum_class;
+struct product_class;
+struct power_class;
+struct bracketed_class;
+struct parameter_class;
+struct numbered_class;
+struct named_class;
+struct function_class;
+struct atan_class;
+struct exists_class;
+struct signed_class;
+
+// ---- rules -----------------------------------------------------------------------------
+const x3::rule<value_class, ast::Expression> value = "a number, [expression], #parameter or function";
+const x3::rule<expression_class, ast::Chain> expression = "an expression";
+const x3::rule<compare_class, ast::Chain> compare = "an expression";
+const x3::rule<sum_class, ast::Chain> sum = "an expression";
+const x3::rule<product_class, ast::Chain> product = "an expression";
+const x3::rule<power_class, ast::Chain> power = "an expression";
+const x3::rule<bracketed_class, ast::Expression> bracketed = "[expression]";
+const x3::rule<parameter_class, ast::Expression> parameter = "a parameter";
+const x3::rule<numbered_class, ast::NumberedParameter> numbered = "a parameter number";
+const x3::rule<named_class, ast::NamedParameter> named = "<name>";
+const x3::rule<function_class, ast::Unary> function = "a function";
+const x3::rule<atan_class, ast::Atan2> atan2 = "atan[y]/[x]";
+const x3::rule<exists_class, ast::Unary> exists = "exists[#<name>]";
+const x3::rule<signed_class, ast::Unary> signed_value = "a signed value";
+
+// ---- grammar ---------------------------------------------------------------------------
+const FunctionSymbols functions;
+const SignSymbols signs;
+const LogicSymbols logic_operators;
+const CompareSymbols compare_operators;
+const SumSymbols sum_operators;
+const ProductSymbols product_operators;
+const PowerSymbols power_operators;
+
+const auto name_text = x3::lexeme[+(x3::char_ - '>')];
+
+const auto value_def = number | bracketed | parameter | atan2 | exists | function | signed_value;
+const auto bracketed_def = '[' > expression > ']';
+const auto expression_def = compare >> *(logic_operators > compare);
+const auto compare_def = sum >> *(compare_operators > sum);
+const auto sum_def = product >> *(sum_operators > product);
+const auto product_def = power >> *(product_operators > power);
+const auto power_def = value >> *(power_operators > value);
+const auto parameter_def = '#' > (named | numbered);
+const auto named_def = '<' > name_text > '>';
+const auto numbered_def = value;
+const auto function_def = functions > '[' > expression > ']';
+const auto atan2_def = x3::lit("atan") > '[' > expression > ']' > '/' > '[' > expression > ']';
+const auto exists_def = x3::lit("exists") > x3::attr(ast::Function::Exists) > '[' > '#' > named > ']';
+const auto signed_value_def = signs > value;
+
+BOOST_SPIRIT_DEFINE(value, expression, compare, sum, product, power, bracketed, parameter, numbered, named,
+                    function, atan2, exists, signed_value)
+
+}  // namespace vc::gcode::parser

@@ -1,0 +1,97 @@
+// RS274/NGC as LinuxCNC interprets it, for the subset that a pre-distorter can translate
+// faithfully: modal state (units, distance modes, plane, work offsets, tool length, feed
+// mode), and for each block the moves it makes. What it cannot translate (cutter
+// compensation, canned cycles, O-word control flow, G92 offsets, ...) is refused with
+// file:line:column and a reason (vc::LoadError), never mistranslated.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "vc/gcode/block.hpp"
+#include "vc/gcode/parameters.hpp"
+#include "vc/interpreter/linuxcnc_files.hpp"
+#include "vc/interpreter/move.hpp"
+
+namespace vc::interpreter {
+
+struct Setup {
+  std::string file;                   // program path, for messages
+  unsigned machine_axes = 0;          // bit i: the machine has program axis i (XYZABC)
+  const ToolTable* tools = nullptr;   // null: no tool table given
+  const gcode::Parameters* var_file = nullptr;  // null: no parameter file given
+  // World convention of the kinematics the program runs on: with TCP kinematics LinuxCNC
+  // still adds the tool length to world Z and the kinematics takes it off again, so the
+  // tool length is not part of the frame (model.md, kins/README.md).
+  bool tool_length_in_world = true;
+};
+
+// What one block does, for a writer that copies the block and replaces its motion.
+struct Effect {
+  std::vector<Move> moves;           // in the order LinuxCNC makes them
+  bool translate = false;            // moves must be replaced by corrected ones
+  std::vector<int> motion_words;     // words (indices into block.words) the corrected moves replace
+  std::vector<int> stop_words;       // M0 M1 M2 M30 M60: LinuxCNC runs them after the motion
+  int g64_word = -1, g64_p_word = -1, g64_q_word = -1;  // path blending words, if any
+  int f_word = -1;                   // F word, if any
+  int motion_code_word = -1;         // G0/G1/G2/G3 word, if any (replaced with the moves)
+  int modal_motion = 800;            // motion mode after the block, G code x10 (800: none)
+  // Modal state the moves are written in.
+  bool inches = false;
+  bool incremental = false;          // G91
+  bool arc_absolute = false;         // G90.1
+  bool program_end = false;          // M2 / M30
+  bool moved_as_written = false;     // the block moves the machine but is written as it is (G28/G30, a
+                                     // rapid to a partly known position)
+  void clear();
+};
+
+class Interpreter {
+ public:
+  explicit Interpreter(Setup setup);
+
+  // Interprets one block (line `line` of the file). Throws vc::LoadError on anything it
+  // cannot translate faithfully.
+  void execute(const gcode::Block& block, int line, Effect& effect);
+
+  const gcode::Parameters& parameters() const { return parameters_; }
+  // Where the program is (program coordinates of the active frame) and that frame.
+  const Position& position() const { return position_; }
+  Frame frame() const;
+
+ private:
+  struct Words;  // the block's evaluated words
+  void refuse(int line, int offset, const std::string& message) const;
+  void set_tool_length(const Words& w, int line);
+  void set_coordinate_system(int index, int line, int offset);
+  void set_offsets(const Words& w, int line);  // G10 L2 / L20
+  void go_home(const Words& w, int code, int line, Effect& effect);
+  void move(const Words& w, int line, Effect& effect);
+  Position world_position() const;
+  void set_world_position(const Position& world);  // after a frame change, as LinuxCNC does
+  Position end_point(const Words& w, int line) const;
+  void arc_geometry(const Words& w, const Position& end, int line, Move& move) const;
+
+  Setup setup_;
+  gcode::Parameters parameters_;
+  // Modal state, LinuxCNC's defaults at program start.
+  bool inches_ = false;
+  bool incremental_ = false;
+  bool arc_absolute_ = false;
+  int plane_ = 170;            // G17 x10
+  int motion_ = 800;           // G80 x10: none yet
+  bool inverse_time_ = false;
+  double feed_ = 0.0;          // program units per minute, or 1/min in G93
+  double spindle_rpm_ = 0.0;
+  bool spindle_on_ = false;
+  int selected_tool_ = -1;     // T word
+  int tool_in_spindle_ = -1;   // after M6 / M61
+  double tool_length_ = 0.0;   // mm, G43
+  int coordinate_system_ = 1;  // 1..9: G54..G59.3
+  bool offsets_known_ = false; // the active system's offsets came from the .var file or G10
+  unsigned offsets_set_ = 0;   // bit n: system n set by G10 in this program
+  Position position_{};        // current point, program coordinates (mm, deg)
+  unsigned known_ = 0;         // axes whose current position is known
+};
+
+}  // namespace vc::interpreter

@@ -1,0 +1,86 @@
+// What a part program makes the machine do, as the interpreter works it out: moves in
+// program coordinates (mm, deg), and the frame that maps them to the machine.
+#pragma once
+
+#include <array>
+#include <cmath>
+
+namespace vc::interpreter {
+
+// Program axes in word order: X Y Z A B C (U V W are not supported; LinuxCNC's rs274 has
+// none either).
+inline constexpr int kAxes = 6;
+inline constexpr char kAxisLetters[kAxes + 1] = "XYZABC";
+using Position = std::array<double, kAxes>;  // mm for X Y Z, deg for A B C
+inline constexpr unsigned kAllAxes = (1u << kAxes) - 1;
+
+inline bool is_linear(int axis) { return axis < 3; }
+
+// Program coordinates -> LinuxCNC world coordinates, as LinuxCNC's canon maps them:
+//     world = rotate_z(program) + offset
+// offset = the work offset (G54..G59.3) plus the tool length on Z (G43), or zero for G53
+// moves. Rotation (G10 L2 R) turns X and Y about the program origin.
+struct Frame {
+  Position offset{};
+  double rotation_deg = 0.0;
+
+  Position world(const Position& p) const {
+    Position w = p;
+    if (rotation_deg != 0.0) {
+      const double a = rotation_deg * M_PI / 180.0, c = std::cos(a), s = std::sin(a);
+      w[0] = c * p[0] - s * p[1];
+      w[1] = s * p[0] + c * p[1];
+    }
+    for (int i = 0; i < kAxes; ++i) w[i] += offset[i];
+    return w;
+  }
+  Position program(const Position& w) const {
+    Position p = w;
+    for (int i = 0; i < kAxes; ++i) p[i] -= offset[i];
+    if (rotation_deg != 0.0) {
+      const double a = rotation_deg * M_PI / 180.0, c = std::cos(a), s = std::sin(a);
+      const double x = p[0], y = p[1];
+      p[0] = c * x + s * y;
+      p[1] = -s * x + c * y;
+    }
+    return p;
+  }
+};
+
+enum class MoveKind { Rapid, Line, Arc };
+
+// A circular or helical arc (G2/G3) in the plane of two program axes. `first`, `second`
+// and `normal` are axis indices with normal = first x second (G17: X Y Z, G18: Z X Y,
+// G19: Y Z X), so counter-clockwise is a positive angle. The other axes move linearly.
+struct Arc {
+  int first = 0, second = 1, normal = 2;
+  double center_first = 0, center_second = 0;  // program coordinates, mm
+  double sweep_rad = 0;   // signed: > 0 counter-clockwise (G3); full turns included
+  int turns = 1;          // P word (>= 1)
+  bool clockwise = false;
+};
+
+struct Move {
+  MoveKind kind = MoveKind::Line;
+  Position start{}, end{};      // program coordinates, mm and deg
+  unsigned known_start = 0;     // bit i: start[i] is known (the program has set that axis)
+  Frame frame;                  // program -> world for this move (identity offset for G53)
+  bool machine_coordinates = false;  // G53
+  double tool_length_mm = 0.0;  // active tool length offset (G43), L of the correction
+  int tool = 0;                 // tool in the spindle
+  Arc arc;                      // kind == Arc
+  // Feed: units/min in program units (G94), or 1/min (G93 inverse time).
+  bool inverse_time = false;
+  double feed = 0.0;
+  bool spindle_on = false;
+  double spindle_rpm = 0.0;
+  int line = 0;                 // 1-based line in the source file
+};
+
+// Point at fraction s in [0, 1] of a move's nominal path in program coordinates: straight
+// for lines and rapids (LinuxCNC interpolates world coordinates linearly), a circle with
+// radius changing linearly from start to end for arcs (LinuxCNC's spiral for a small radius
+// mismatch) with the other axes linear in s.
+Position point_at(const Move& move, double s);
+
+}  // namespace vc::interpreter

@@ -1,0 +1,98 @@
+// Corrects the moves of a part program: every point of a move is mapped to the machine and
+// corrected with the core correction (the same as the kinematics module applies), and the
+// move is split where needed so that the path LinuxCNC interpolates between the corrected
+// points stays within a tolerance of the exact correction everywhere along the move.
+//
+// Error measured (the quantity the tolerance bounds): at a point of a piece, the tool tip of
+// the real machine at the joints LinuxCNC interpolates there, plus the cutting-force
+// deflection, against the ideal machine's tool tip at the corresponding nominal point.
+// Checked at 1/4, 1/2 and 3/4 of each piece against 0.7 x tolerance (a single kink of the
+// correction inside a piece is then caught); pieces short enough that a sampled bound on
+// the correction's slope keeps them inside the tolerance are accepted unchecked.
+#pragma once
+
+#include <vector>
+
+#include "vc/interpreter/move.hpp"
+#include "vc/machine/kinematics.hpp"
+#include "vc/predistort/deflection.hpp"
+
+namespace vc::predistort {
+
+using interpreter::Move;
+using interpreter::MoveKind;
+using interpreter::Position;
+
+struct CorrectorOptions {
+  double tolerance_mm = 0.0005;
+  machine::WorldConvention world = machine::WorldConvention::Axes;
+  int max_depth = 24;  // halvings of one move (2^24 pieces) before giving up on the tolerance
+};
+
+// One output piece of a move: go from the previous piece's end to `end` (program
+// coordinates, corrected), straight or along an arc about `center` (same plane and
+// direction as the move's arc, radius equal at both ends).
+struct Piece {
+  MoveKind kind = MoveKind::Line;
+  Position end{};
+  double center_first = 0, center_second = 0;
+  int turns = 1;
+  double fraction = 1.0;  // share of the move (for G93 inverse-time feeds)
+};
+
+struct CorrectorStats {
+  long moves = 0, pieces = 0, corrections = 0, checks = 0;
+  long tolerance_misses = 0;      // moves where max_depth was reached
+  long out_of_table = 0;          // corrected points outside a table's grid
+  double max_checked_error_mm = 0.0;  // largest error at an accepted piece's check points
+  double max_deflection_mm = 0.0;
+};
+
+class PathCorrector {
+ public:
+  PathCorrector(const machine::Model& model, CorrectorOptions options, const Deflection* deflection);
+
+  // Appends the pieces of `move` to `pieces` (cleared first). The first piece starts where
+  // the previous corrected move ended; if the machine is elsewhere (the previous move was
+  // written uncorrected), a short piece first goes to the corrected start.
+  void correct(const Move& move, std::vector<Piece>& pieces);
+  // The machine is now at an uncorrected, or unknown, position (a move written as it is).
+  void lost_position() { have_last_ = false; }
+
+  const CorrectorStats& stats() const { return stats_; }
+
+  // A point of a move: where the nominal path is, and where its correction sends the machine.
+  struct Node {
+    double s = 0.0;
+    machine::Joints nominal;    // q_n at the nominal point (ideal machine)
+    machine::Joints target;     // q_n shifted against the deflection
+    machine::Joints corrected;  // q_c
+    machine::Joints world;      // corrected world coordinates (what LinuxCNC interpolates)
+    Position program{};         // corrected point in program coordinates
+    Eigen::Vector3d deflection_mm = Eigen::Vector3d::Zero();  // part frame
+  };
+
+ private:
+  Node node_at(const Move& move, double s);
+  machine::Joints joints_of(const Position& world) const;
+  Position program_of(const Move& move, const machine::Joints& joints, const Position& like) const;
+  double error_between(const Move& move, const Node& a, const Node& b, const Piece& piece, double t);
+  Position commanded_at(const Move& move, const Node& a, const Piece& piece, double t) const;
+  Eigen::Vector3d force_at(const Move& move, double s);
+  void refine(const Move& move, const Node& a, const Node& b, int depth, std::vector<Piece>& pieces);
+  Piece piece_between(const Move& move, const Node& a, const Node& b) const;
+  double slope_bound(const Move& move, const Node& a, const Node& b);
+  const std::array<double, machine::kMaxAxes>& slopes_for(double tool_length_mm);
+
+  const machine::Model& model_;
+  CorrectorOptions options_;
+  const Deflection* deflection_;
+  int joint_axis_[machine::kMaxAxes];  // program axis of each joint
+  CorrectorStats stats_;
+  bool have_last_ = false;
+  Node last_;                          // end of the previous corrected move
+  // Sampled slope bound of the correction, per tool length (tip mm per unit of each joint).
+  std::vector<std::pair<double, std::array<double, machine::kMaxAxes>>> slopes_;
+};
+
+}  // namespace vc::predistort

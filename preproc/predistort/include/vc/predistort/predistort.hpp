@@ -1,0 +1,37 @@
+// The pre-distorter end to end: reads a part program line by line, interprets it, corrects
+// its moves and writes the pre-distorted program. Streaming: memory does not grow with the
+// program (one line, its block and its pieces at a time).
+#pragma once
+
+#include <functional>
+#include <istream>
+#include <ostream>
+
+#include "vc/interpreter/interpreter.hpp"
+#include "vc/predistort/path_corrector.hpp"
+#include "vc/predistort/writer.hpp"
+
+namespace vc::predistort {
+
+struct Job {
+  const machine::Model* model = nullptr;
+  interpreter::Setup setup;       // file, axes, tool table, parameters, world convention
+  CorrectorOptions corrector;
+  const Deflection* deflection = nullptr;
+  Provenance provenance;          // for the header comment
+};
+
+struct Summary {
+  long lines = 0, translated_lines = 0, written_as_is_moves = 0;
+  CorrectorStats corrector;
+};
+
+// `progress(bytes_read)` is called every few thousand lines. Throws vc::LoadError
+// (file:line:column) on anything the program cannot be translated with.
+Summary predistort(std::istream& in, std::ostream& out, const Job& job,
+                   const std::function<void(long bytes_read)>& progress = {});
+
+// The program axes (bit i of XYZABC) a machine has.
+unsigned program_axes(const machine::Model& model);
+
+}  // namespace vc::predistort

@@ -1,0 +1,61 @@
+// Writes the pre-distorted program: every line as it was, except that the motion of a
+// translated line is replaced by its corrected pieces (the first on the line itself, the
+// others on lines of their own after it), and path blending is stated so that LinuxCNC
+// cannot merge the fine corrections away.
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vc/gcode/block.hpp"
+#include "vc/interpreter/interpreter.hpp"
+#include "vc/predistort/path_corrector.hpp"
+
+namespace vc::predistort {
+
+// What the header comment names.
+struct Provenance {
+  std::string machine, machine_name;
+  std::vector<std::string> tables;
+  std::string parameters, tool_table, process, world;
+  double tolerance_mm = 0.0;
+};
+
+class Writer {
+ public:
+  // `axes`: bit i set for each program axis (XYZABC) the machine has; all are written.
+  Writer(std::ostream& out, unsigned axes, double tolerance_mm);
+
+  void header(const Provenance& provenance);
+  // A line that does not move the machine in a way to correct: as it is, with G64 stated.
+  void verbatim(std::string_view raw, const gcode::Block& block, const interpreter::Effect& effect,
+                const interpreter::Interpreter& interpreter);
+  // A line whose moves are replaced by `pieces` (one list per move of effect.moves).
+  void translated(std::string_view raw, const gcode::Block& block, const interpreter::Effect& effect,
+                  const std::vector<std::vector<Piece>>& pieces);
+
+ private:
+  // A change to the raw line: [begin, end) replaced by text.
+  struct Edit {
+    int begin, end;
+    std::string text;
+  };
+  void blending_edits(const gcode::Block& block, const interpreter::Effect& effect);
+  void write_edited(std::string_view raw);
+  void append_piece(std::string& line, const interpreter::Move& move, const Piece& piece,
+                    const interpreter::Effect& effect, bool with_code, bool with_feed);
+  void append_number(std::string& line, char letter, double value, int decimals) const;
+
+  std::ostream& out_;
+  unsigned axes_;
+  double tolerance_mm_;
+  int motion_ = -1;            // motion mode LinuxCNC is in (G code x10), -1 unknown
+  interpreter::Position at_{};  // where the written program leaves the machine, program coordinates
+  interpreter::Frame frame_;    // the frame `at_` is in
+  std::string line_;            // reused buffers
+  std::vector<Edit> edits_;
+};
+
+}  // namespace vc::predistort

@@ -1,0 +1,278 @@
+#include "vc/predistort/path_corrector.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace vc::predistort {
+namespace {
+
+using machine::Joints;
+using machine::Machine;
+using machine::Status;
+
+constexpr double kTwoPi = 2.0 * M_PI;
+constexpr double kCheckPoints[] = {0.25, 0.5, 0.75};
+constexpr double kAcceptShare = 0.7;     // of the tolerance, at the check points
+constexpr double kUncheckedShare = 0.25;  // of the tolerance, for the slope bound
+
+[[noreturn]] void fail(const Move& move, const std::string& what, Status status) {
+  throw std::runtime_error("line " + std::to_string(move.line) + ": " + what + " (" +
+                           machine::describe(status) + ")");
+}
+
+// Angle from `from` to `to` turning the given way, in (0, 2 pi] (a full turn if equal).
+double turn_between(double from, double to, bool counter_clockwise) {
+  double sweep = counter_clockwise ? to - from : from - to;
+  while (sweep <= 1e-12) sweep += kTwoPi;
+  while (sweep > kTwoPi) sweep -= kTwoPi;
+  return counter_clockwise ? sweep : -sweep;
+}
+
+}  // namespace
+
+PathCorrector::PathCorrector(const machine::Model& model, CorrectorOptions options, const Deflection* deflection)
+    : model_(model), options_(options), deflection_(deflection) {
+  for (int j = 0; j < model.joint_count(); ++j) {
+    const char letter = model.axes[static_cast<std::size_t>(j)].letter;
+    joint_axis_[j] = static_cast<int>(std::string_view(interpreter::kAxisLetters).find(letter));
+  }
+}
+
+Joints PathCorrector::joints_of(const Position& world) const {
+  Joints q(model_.joint_count());
+  for (int j = 0; j < model_.joint_count(); ++j) q[j] = world[static_cast<std::size_t>(joint_axis_[j])];
+  return q;
+}
+
+Position PathCorrector::program_of(const Move& move, const Joints& world_joints, const Position& like) const {
+  Position world = move.frame.world(like);
+  for (int j = 0; j < model_.joint_count(); ++j) world[static_cast<std::size_t>(joint_axis_[j])] = world_joints[j];
+  return move.frame.program(world);
+}
+
+Eigen::Vector3d PathCorrector::force_at(const Move& move, double s) {
+  if (!deflection_ || move.kind == MoveKind::Rapid) return Eigen::Vector3d::Zero();
+  // Feed direction and tool axis of the nominal path at s (ideal machine, part frame).
+  const double h = 1e-4;
+  const double s0 = std::max(0.0, s - h), s1 = std::min(1.0, s + h);
+  Joints q0, q1;
+  const double L = move.tool_length_mm;
+  machine::nominal_inverse(model_, options_.world, joints_of(move.frame.world(interpreter::point_at(move, s0))), L, q0);
+  machine::nominal_inverse(model_, options_.world, joints_of(move.frame.world(interpreter::point_at(move, s1))), L, q1);
+  const machine::ToolPose p0 = machine::tool_pose(model_, Machine::Ideal, q0, L);
+  const machine::ToolPose p1 = machine::tool_pose(model_, Machine::Ideal, q1, L);
+  const Eigen::Vector3d step = p1.tip_mm - p0.tip_mm;
+  if (step.norm() < 1e-12) return Eigen::Vector3d::Zero();
+  // Path length of the whole move (for inverse-time feeds): this step scaled up.
+  const double length = step.norm() / (s1 - s0);
+  return deflection_->force(move, step.normalized(), p0.direction, length);
+}
+
+PathCorrector::Node PathCorrector::node_at(const Move& move, double s) {
+  Node n;
+  n.s = s;
+  const Position p = interpreter::point_at(move, s);
+  const double L = move.tool_length_mm;
+  Status status = machine::nominal_inverse(model_, options_.world, joints_of(move.frame.world(p)), L, n.nominal);
+  if (status != Status::Ok) fail(move, "no nominal joints for a point of the move", status);
+  n.target = n.nominal;
+  if (deflection_) {
+    const Eigen::Vector3d force = force_at(move, s);
+    if (force.squaredNorm() > 0) {
+      Joints shift;
+      deflection_->at(n.nominal, L, force, shift, n.deflection_mm);
+      n.target -= shift;
+      stats_.max_deflection_mm = std::max(stats_.max_deflection_mm, n.deflection_mm.norm());
+    }
+  }
+  const bool seeded = have_last_ && last_.corrected.size() == n.target.size() &&
+                      (last_.corrected - n.target).cwiseAbs().maxCoeff() < 1.0;
+  const machine::Correction c = seeded ? machine::correct(model_, n.target, L, last_.corrected)
+                                       : machine::correct(model_, n.target, L);
+  ++stats_.corrections;
+  if (c.status != Status::Ok) fail(move, "the correction failed", c.status);
+  n.corrected = c.joints;
+  if (machine::outside_tables(model_, n.corrected)) ++stats_.out_of_table;
+  n.world = machine::nominal_forward(model_, options_.world, n.corrected, L);
+  n.program = program_of(move, n.world, p);
+  return n;
+}
+
+Piece PathCorrector::piece_between(const Move& move, const Node& a, const Node& b) const {
+  Piece piece;
+  piece.kind = move.kind;
+  piece.end = b.program;
+  piece.fraction = b.s - a.s;
+  if (move.kind != MoveKind::Arc) return piece;
+  // A circle through both corrected ends, its center nearest to the nominal center moved by
+  // the mean correction of the two ends (in the plane).
+  const interpreter::Arc& arc = move.arc;
+  const auto f = static_cast<std::size_t>(arc.first), g = static_cast<std::size_t>(arc.second);
+  const Position na = interpreter::point_at(move, a.s), nb = interpreter::point_at(move, b.s);
+  const double cf = arc.center_first + 0.5 * ((a.program[f] - na[f]) + (b.program[f] - nb[f]));
+  const double cg = arc.center_second + 0.5 * ((a.program[g] - na[g]) + (b.program[g] - nb[g]));
+  const double vf = b.program[f] - a.program[f], vg = b.program[g] - a.program[g];
+  const double chord = std::hypot(vf, vg);
+  if (chord < 1e-9) {
+    piece.center_first = cf;
+    piece.center_second = cg;
+  } else {
+    const double mf = 0.5 * (a.program[f] + b.program[f]), mg = 0.5 * (a.program[g] + b.program[g]);
+    const double nf = -vg / chord, ng = vf / chord;  // unit normal of the chord
+    const double along = (cf - mf) * nf + (cg - mg) * ng;
+    piece.center_first = mf + along * nf;
+    piece.center_second = mg + along * ng;
+  }
+  const double share = std::abs(piece.fraction * arc.sweep_rad);
+  piece.turns = share > kTwoPi + 1e-9 ? static_cast<int>(std::ceil(share / kTwoPi - 1e-9)) : 1;
+  // LinuxCNC decides the sweep from the center and the ends: if the corrected ends would
+  // make it go the other way round (an arc of almost no or almost a full turn), write a line.
+  const double t0 = std::atan2(a.program[g] - piece.center_second, a.program[f] - piece.center_first);
+  const double t1 = std::atan2(b.program[g] - piece.center_second, b.program[f] - piece.center_first);
+  const double sweep =
+      turn_between(t0, t1, !arc.clockwise) + (arc.clockwise ? -1 : 1) * kTwoPi * (piece.turns - 1);
+  if (std::abs(sweep - piece.fraction * arc.sweep_rad) > M_PI / 2) piece.kind = MoveKind::Line;
+  return piece;
+}
+
+Position PathCorrector::commanded_at(const Move& move, const Node& a, const Piece& piece, double t) const {
+  Position p;
+  for (std::size_t i = 0; i < p.size(); ++i) p[i] = a.program[i] + t * (piece.end[i] - a.program[i]);
+  if (piece.kind != MoveKind::Arc) return p;
+  // LinuxCNC's arc through the piece's ends about its center (equal radii: a circle).
+  const interpreter::Arc& arc = move.arc;
+  const auto f = static_cast<std::size_t>(arc.first), g = static_cast<std::size_t>(arc.second);
+  const double t0 = std::atan2(a.program[g] - piece.center_second, a.program[f] - piece.center_first);
+  const double t1 = std::atan2(piece.end[g] - piece.center_second, piece.end[f] - piece.center_first);
+  const double r = std::hypot(a.program[f] - piece.center_first, a.program[g] - piece.center_second);
+  const double sweep = turn_between(t0, t1, !arc.clockwise) + (arc.clockwise ? -1 : 1) * kTwoPi * (piece.turns - 1);
+  p[f] = piece.center_first + r * std::cos(t0 + t * sweep);
+  p[g] = piece.center_second + r * std::sin(t0 + t * sweep);
+  return p;
+}
+
+double PathCorrector::error_between(const Move& move, const Node& a, const Node& b, const Piece& piece, double t) {
+  ++stats_.checks;
+  const double L = move.tool_length_mm;
+  const double s = a.s + t * (b.s - a.s);
+  Joints nominal, commanded;
+  machine::nominal_inverse(model_, options_.world, joints_of(move.frame.world(interpreter::point_at(move, s))), L,
+                           nominal);
+  machine::nominal_inverse(model_, options_.world, joints_of(move.frame.world(commanded_at(move, a, piece, t))), L,
+                           commanded);
+  const Eigen::Vector3d deflection = a.deflection_mm + t * (b.deflection_mm - a.deflection_mm);
+  const Eigen::Vector3d actual = machine::tool_pose(model_, Machine::Real, commanded, L).tip_mm + deflection;
+  return (actual - machine::tool_pose(model_, Machine::Ideal, nominal, L).tip_mm).norm();
+}
+
+const std::array<double, machine::kMaxAxes>& PathCorrector::slopes_for(double tool_length_mm) {
+  for (const auto& [L, k] : slopes_)
+    if (L == tool_length_mm) return k;
+  // Largest tip-space slope of the correction along each joint, sampled over the travel
+  // (central differences of q_c - q_n mapped to the tip by the ideal Jacobian).
+  std::array<double, machine::kMaxAxes> k{};
+  const int n = model_.joint_count();
+  std::uint64_t state = 0x9E3779B97F4A7C15ull;
+  auto uniform = [&state]() {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  const double h = 0.25;
+  for (int sample = 0; sample < 400; ++sample) {
+    Joints q(n);
+    for (int j = 0; j < n; ++j) {
+      const machine::Axis& axis = model_.axes[static_cast<std::size_t>(j)];
+      q[j] = axis.travel_min + uniform() * (axis.travel_max - axis.travel_min);
+    }
+    machine::PoseDerivatives d;
+    machine::tool_pose(model_, Machine::Ideal, q, tool_length_mm, d);
+    for (int j = 0; j < n; ++j) {
+      Joints up = q, down = q;
+      up[j] += h;
+      down[j] -= h;
+      const machine::Correction cu = machine::correct(model_, up, tool_length_mm);
+      const machine::Correction cd = machine::correct(model_, down, tool_length_mm);
+      if (cu.status != Status::Ok || cd.status != Status::Ok) continue;
+      const Joints rate = ((cu.joints - up) - (cd.joints - down)) / (2 * h);
+      const Eigen::Vector3d tip = d.tip.leftCols(n) * rate;
+      k[static_cast<std::size_t>(j)] = std::max(k[static_cast<std::size_t>(j)], tip.norm());
+    }
+  }
+  slopes_.emplace_back(tool_length_mm, k);
+  return slopes_.back().second;
+}
+
+double PathCorrector::slope_bound(const Move& move, const Node& a, const Node& b) {
+  const auto& k = slopes_for(move.tool_length_mm);
+  double bound = 0.0;
+  for (int j = 0; j < model_.joint_count(); ++j)
+    bound += k[static_cast<std::size_t>(j)] * std::abs(b.nominal[j] - a.nominal[j]);
+  return bound;
+}
+
+void PathCorrector::refine(const Move& move, const Node& a, const Node& b, int depth, std::vector<Piece>& pieces) {
+  const Piece piece = piece_between(move, a, b);
+  bool accept = move.kind == MoveKind::Line && !deflection_ &&
+                slope_bound(move, a, b) <= kUncheckedShare * options_.tolerance_mm;
+  if (!accept) {
+    double worst = 0.0;
+    for (double t : kCheckPoints) worst = std::max(worst, error_between(move, a, b, piece, t));
+    accept = worst <= kAcceptShare * options_.tolerance_mm;
+    if (accept) stats_.max_checked_error_mm = std::max(stats_.max_checked_error_mm, worst);
+  }
+  if (!accept && depth >= options_.max_depth) {
+    ++stats_.tolerance_misses;
+    accept = true;
+  }
+  if (accept) {
+    pieces.push_back(piece);
+    return;
+  }
+  const Node mid = node_at(move, 0.5 * (a.s + b.s));
+  refine(move, a, mid, depth + 1, pieces);
+  refine(move, mid, b, depth + 1, pieces);
+}
+
+void PathCorrector::correct(const Move& move, std::vector<Piece>& pieces) {
+  pieces.clear();
+  ++stats_.moves;
+  Node a = node_at(move, 0.0);
+  // A short piece to the corrected start if the machine is not there (the previous move was
+  // written uncorrected, or the tool length changed and with it the correction).
+  if (move.kind != MoveKind::Rapid &&
+      (!have_last_ || (last_.world - a.world).cwiseAbs().maxCoeff() > 1e-9)) {
+    Piece lead;
+    lead.kind = MoveKind::Line;
+    lead.end = a.program;
+    lead.fraction = 1.0;
+    pieces.push_back(lead);
+  }
+  const Node b = node_at(move, 1.0);
+  if (move.kind == MoveKind::Rapid) {
+    pieces.push_back(piece_between(move, a, b));
+  } else if (move.kind == MoveKind::Arc && std::abs(move.arc.sweep_rad) > M_PI) {
+    // Long arcs: whole if the tolerance allows, else in pieces of at most half a turn.
+    const Piece whole = piece_between(move, a, b);
+    double worst = 0.0;
+    for (double t : kCheckPoints) worst = std::max(worst, error_between(move, a, b, whole, t));
+    if (worst <= kAcceptShare * options_.tolerance_mm) {
+      pieces.push_back(whole);
+    } else {
+      const int n = static_cast<int>(std::ceil(std::abs(move.arc.sweep_rad) / M_PI));
+      Node from = a;
+      for (int i = 1; i <= n; ++i) {
+        const Node to = i == n ? b : node_at(move, static_cast<double>(i) / n);
+        refine(move, from, to, 1, pieces);
+        from = to;
+      }
+    }
+  } else {
+    refine(move, a, b, 0, pieces);
+  }
+  stats_.pieces += static_cast<long>(pieces.size());
+  last_ = b;
+  have_last_ = true;
+}
+
+}  // namespace vc::predistort

@@ -1,0 +1,232 @@
+#include "vc/predistort/writer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace vc::predistort {
+namespace {
+
+using interpreter::kAxes;
+using interpreter::kAxisLetters;
+using interpreter::MoveKind;
+
+constexpr double kInch = 25.4;
+// Decimals written: 1 nm in mm, 2.5 nm in inches, 1e-6 deg (9 nm at 500 mm).
+int decimals(int axis, bool inches) { return interpreter::is_linear(axis) ? (inches ? 7 : 6) : 6; }
+
+int code_of(MoveKind kind, bool clockwise) {
+  return kind == MoveKind::Rapid ? 0 : kind == MoveKind::Line ? 10 : clockwise ? 20 : 30;
+}
+
+// Integer in units of 10^-decimals: exact decimal output, and G91 increments that add up.
+std::int64_t units(double value, int decimals) {
+  static constexpr double kScale[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8};
+  return std::llround(value * kScale[decimals]);
+}
+
+}  // namespace
+
+Writer::Writer(std::ostream& out, unsigned axes, double tolerance_mm)
+    : out_(out), axes_(axes), tolerance_mm_(tolerance_mm) {}
+
+void Writer::header(const Provenance& p) {
+  out_ << "(volcomp predistort: this program is pre-distorted for an UNCOMPENSATED machine: run it with the "
+          "volkins correction disabled)\n";
+  out_ << "(machine: " << p.machine << ", " << p.machine_name << ")\n";
+  for (const std::string& t : p.tables) out_ << "(table: " << t << ")\n";
+  out_ << "(tolerance: " << p.tolerance_mm << " mm; world: " << p.world << "; parameters: "
+       << (p.parameters.empty() ? "none" : p.parameters) << "; tool table: "
+       << (p.tool_table.empty() ? "none" : p.tool_table) << "; cutting process: "
+       << (p.process.empty() ? "none" : p.process) << ")\n";
+  line_.clear();
+  line_ += "G21 G64";
+  append_number(line_, 'P', tolerance_mm_, 6);
+  line_ += " Q0 (millimetres as assumed; blending within the tolerance, no segment merging)\n";
+  out_ << line_;
+}
+
+void Writer::append_number(std::string& line, char letter, double value, int decimals) const {
+  std::int64_t u = units(value, decimals);
+  line += ' ';
+  line += letter;
+  if (u < 0) {
+    line += '-';
+    u = -u;
+  }
+  char digits[24];
+  int n = 0;
+  do {
+    digits[n++] = static_cast<char>('0' + u % 10);
+    u /= 10;
+  } while (u > 0 || n <= decimals);
+  int last = 0;  // drop trailing zeros of the fraction
+  while (last < decimals && digits[last] == '0') ++last;
+  for (int i = n - 1; i >= decimals; --i) line += digits[i];
+  if (last < decimals) {
+    line += '.';
+    for (int i = decimals - 1; i >= last; --i) line += digits[i];
+  }
+}
+
+void Writer::blending_edits(const gcode::Block& block, const interpreter::Effect& effect) {
+  // G64 in the program: Q0 (no naive-cam merging of the fine pieces) and, without P, the
+  // tolerance as blending limit. An explicit P is kept: it is the programmer's choice.
+  if (effect.g64_word < 0) return;
+  if (effect.g64_q_word >= 0) {
+    const gcode::Word& q = block.words[static_cast<std::size_t>(effect.g64_q_word)];
+    edits_.push_back({q.begin, q.end, "Q0"});
+    return;
+  }
+  const gcode::Word& g64 = block.words[static_cast<std::size_t>(effect.g64_word)];
+  std::string text;
+  if (effect.g64_p_word < 0) append_number(text, 'P', tolerance_mm_, 6);
+  text += " Q0";
+  edits_.push_back({g64.end, g64.end, text});
+}
+
+void Writer::write_edited(std::string_view raw) {
+  std::sort(edits_.begin(), edits_.end(), [](const Edit& a, const Edit& b) { return a.begin < b.begin; });
+  line_.clear();
+  std::size_t from = 0;
+  for (const Edit& e : edits_) {
+    line_.append(raw.substr(from, static_cast<std::size_t>(e.begin) - from));
+    const std::size_t next = static_cast<std::size_t>(e.end);
+    const bool space_after = next >= raw.size() || raw[next] == ' ' || raw[next] == '\t';
+    if (!e.text.empty()) {
+      // One space between the text and the words on either side of it.
+      if (!line_.empty() && line_.back() != ' ' && line_.back() != '\t') line_ += ' ';
+      line_ += e.text;
+      if (!space_after) line_ += ' ';
+    } else if (!line_.empty() && line_.back() == ' ' && space_after) {
+      line_.pop_back();  // a removed word takes the space before it along
+    }
+    from = next;
+  }
+  line_.append(raw.substr(std::min(from, raw.size())));
+  line_ += '\n';
+  out_ << line_;
+}
+
+void Writer::verbatim(std::string_view raw, const gcode::Block& block, const interpreter::Effect& effect,
+                      const interpreter::Interpreter& interpreter) {
+  edits_.clear();
+  blending_edits(block, effect);
+  write_edited(raw);
+  motion_ = effect.modal_motion;
+  if (effect.moved_as_written) {
+    at_ = interpreter.position();
+    frame_ = interpreter.frame();
+  }
+}
+
+void Writer::append_piece(std::string& line, const interpreter::Move& move, const Piece& piece,
+                          const interpreter::Effect& effect, bool with_code, bool with_feed) {
+  const bool inches = effect.inches;
+  const int code = code_of(piece.kind, move.arc.clockwise);
+  if (with_code || code != motion_) {
+    line += " G";
+    line += std::to_string(code / 10);
+    motion_ = code;
+  }
+  // Re-express where the machine is if the frame changed (work offset, tool length, G53).
+  const bool same_frame = frame_.offset == move.frame.offset && frame_.rotation_deg == move.frame.rotation_deg;
+  if (!same_frame) {
+    at_ = move.frame.program(frame_.world(at_));
+    frame_ = move.frame;
+  }
+  const interpreter::Position start = at_;
+  for (int i = 0; i < kAxes; ++i) {
+    if (!(axes_ >> i & 1u)) continue;
+    const double scale = interpreter::is_linear(i) && inches ? 1.0 / kInch : 1.0;
+    const int d = decimals(i, inches);
+    if (effect.incremental && !move.machine_coordinates) {
+      // The increment between the written (rounded) positions, so that increments add up.
+      const double step = static_cast<double>(units(piece.end[i] * scale, d) - units(at_[i] * scale, d)) /
+                          std::pow(10.0, d);
+      append_number(line, kAxisLetters[i], step, d);
+    } else {
+      append_number(line, kAxisLetters[i], piece.end[i] * scale, d);
+    }
+    at_[i] = std::round(piece.end[i] * scale * std::pow(10.0, d)) / std::pow(10.0, d) / scale;
+  }
+  if (piece.kind == MoveKind::Arc) {
+    const interpreter::Arc& arc = move.arc;
+    const char letters[3] = {'I', 'J', 'K'};  // center words of X, Y, Z
+    const double scale = inches ? 1.0 / kInch : 1.0;
+    const int d = inches ? 7 : 6;
+    const double cf = effect.arc_absolute ? piece.center_first : piece.center_first - start[arc.first];
+    const double cg = effect.arc_absolute ? piece.center_second : piece.center_second - start[arc.second];
+    // Written in I J K order.
+    if (arc.first < arc.second) {
+      append_number(line, letters[arc.first], cf * scale, d);
+      append_number(line, letters[arc.second], cg * scale, d);
+    } else {
+      append_number(line, letters[arc.second], cg * scale, d);
+      append_number(line, letters[arc.first], cf * scale, d);
+    }
+    if (piece.turns > 1) line += " P" + std::to_string(piece.turns);
+  }
+  if (with_feed) append_number(line, 'F', move.feed / std::max(piece.fraction, 1e-9), 6);
+}
+
+void Writer::translated(std::string_view raw, const gcode::Block& block, const interpreter::Effect& effect,
+                        const std::vector<std::vector<Piece>>& pieces) {
+  std::size_t count = 0;
+  for (const auto& p : pieces) count += p.size();
+  const bool split = count > 1;
+  const bool per_piece_feed = split && effect.moves.front().inverse_time;
+
+  // Words replaced by the pieces: motion code, axes and arc words; when split, also the
+  // stop codes (they go after the last piece) and an inverse-time F (one per piece).
+  std::vector<int> removed(effect.motion_words);
+  if (effect.motion_code_word >= 0) removed.push_back(effect.motion_code_word);
+  if (split) removed.insert(removed.end(), effect.stop_words.begin(), effect.stop_words.end());
+  if (per_piece_feed && effect.f_word >= 0) removed.push_back(effect.f_word);
+  std::sort(removed.begin(), removed.end(), [&](int a, int b) {
+    return block.words[static_cast<std::size_t>(a)].begin < block.words[static_cast<std::size_t>(b)].begin;
+  });
+
+  // The original line, without the removed words, with the first piece where the first
+  // removed word was.
+  edits_.clear();
+  blending_edits(block, effect);
+  for (std::size_t i = 0; i < removed.size(); ++i) {
+    const gcode::Word& w = block.words[static_cast<std::size_t>(removed[i])];
+    std::string text;
+    if (i == 0) {
+      append_piece(text, effect.moves.front(), pieces.front().front(), effect, effect.motion_code_word >= 0,
+                   per_piece_feed);
+      text.erase(0, 1);  // its leading space
+    }
+    edits_.push_back({w.begin, w.end, std::move(text)});
+  }
+  write_edited(raw);
+
+  // The other pieces, each on a line of its own.
+  bool first = true;
+  for (std::size_t m = 0; m < pieces.size(); ++m) {
+    const interpreter::Move& move = effect.moves[m];
+    for (const Piece& piece : pieces[m]) {
+      if (first) {
+        first = false;
+        continue;
+      }
+      line_.clear();
+      if (move.machine_coordinates) line_ += " G53";
+      append_piece(line_, move, piece, effect, move.machine_coordinates, per_piece_feed);
+      out_ << std::string_view(line_).substr(1) << '\n';
+    }
+  }
+  if (split && !effect.stop_words.empty()) {
+    line_.clear();
+    for (int index : effect.stop_words) {
+      const gcode::Word& w = block.words[static_cast<std::size_t>(index)];
+      if (!line_.empty()) line_ += ' ';
+      line_.append(raw.substr(static_cast<std::size_t>(w.begin), static_cast<std::size_t>(w.end - w.begin)));
+    }
+    out_ << line_ << '\n';
+  }
+}
+
+}  // namespace vc::predistort

@@ -1,0 +1,404 @@
+// The pre-distorter end to end, judged by independent readings: LinuxCNC's own interpreter
+// (`rs274 -g`) reads the input and the output programs, the machine model turns the moves
+// into tool-tip paths, and the tests measure how far the real machine running the output
+// strays from the ideal machine running the input.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+
+#include "program_reader.hpp"
+#include "rs274.hpp"
+#include "test_support.hpp"
+#include "vc/machine/kinematics.hpp"
+#include "vc/machine/load_machine.hpp"
+#include "vc/predistort/predistort.hpp"
+
+namespace vc {
+namespace {
+
+namespace fs = std::filesystem;
+using Point = std::array<double, 6>;
+
+test::CommandResult volcomp(const std::string& args) {
+  const std::string command = std::string(VC_VOLCOMP) + " " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string out;
+  char buffer[4096];
+  while (std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
+  const int status = pclose(pipe);
+  return {out, WEXITSTATUS(status)};
+}
+
+std::string program(const std::string& name) { return test::source_path("tests/programs/" + name); }
+
+machine::Joints joints_of(const machine::Model& model, const Point& world) {
+  machine::Joints q(model.joint_count());
+  for (int j = 0; j < model.joint_count(); ++j)
+    q[j] = world[std::string_view("XYZABC").find(model.axes[static_cast<std::size_t>(j)].letter)];
+  return q;
+}
+
+using Polyline = std::vector<Eigen::Vector3d>;
+
+// Tool-tip paths (part frame) of a machine running canonical moves, one polyline per move
+// (empty for rapids: they are corrected at their ends only), sampled every `step_mm`.
+std::vector<Polyline> tip_paths(const machine::Model& model, machine::Machine which,
+                                const std::vector<test::CanonMove>& moves, double step_mm) {
+  std::vector<Polyline> paths;
+  Point at = moves.empty() ? Point{} : moves.front().end;
+  for (const test::CanonMove& m : moves) {
+    Polyline path;
+    if (m.kind != test::CanonMove::Traverse) {
+      auto tip = [&](const Point& w) {
+        return machine::tool_pose(model, which, joints_of(model, w), m.tool_length_mm).tip_mm;
+      };
+      path.push_back(tip(at));
+      for (const Point& w : test::sample(m, at, step_mm)) path.push_back(tip(w));
+    }
+    paths.push_back(std::move(path));
+    at = m.end;
+  }
+  return paths;
+}
+
+// Which input move each output move belongs to: the pieces of a move end, in order, with
+// the one that ends within `radius` of the input move's end (world coordinates). Pieces
+// shorter than that (the short moves to a corrected start) never end a move: a full circle
+// ends where it starts.
+std::vector<std::size_t> owners(const std::vector<test::CanonMove>& input, const std::vector<Point>& output_ends,
+                                double radius) {
+  std::vector<std::size_t> owner;
+  std::size_t k = 0;  // the input move being built
+  Point previous = output_ends.empty() ? Point{} : output_ends.front();
+  for (const Point& end : output_ends) {
+    std::size_t mine = std::min(k, input.size() - 1);
+    double length = 0;
+    for (int i = 0; i < 6; ++i) length = std::max(length, std::abs(end[i] - previous[i]));
+    previous = end;
+    if (length < radius) {
+      owner.push_back(mine);
+      continue;
+    }
+    // An input move may have no output (a rapid written as it is): look a few moves ahead.
+    for (std::size_t j = k; j < std::min(input.size(), k + 3); ++j) {
+      double d = 0;
+      for (int i = 0; i < 6; ++i) d = std::max(d, std::abs(end[i] - input[j].end[i]));
+      if (d < radius) {
+        mine = j;
+        k = j + 1;
+        break;
+      }
+    }
+    owner.push_back(mine);
+  }
+  return owner;
+}
+
+double distance_to(const Eigen::Vector3d& p, const Polyline& line) {
+  double best = 1e9;
+  for (std::size_t k = 1; k < line.size(); ++k) {
+    const Eigen::Vector3d ab = line[k] - line[k - 1];
+    const double t = ab.squaredNorm() > 0 ? std::clamp((p - line[k - 1]).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+    best = std::min(best, (line[k - 1] + t * ab - p).norm());
+  }
+  return line.size() == 1 ? (line[0] - p).norm() : best;
+}
+
+// Largest distance from the actual tool tip to the nominal path of the same program move;
+// `checked` counts the samples compared (so that a test cannot pass on none).
+double largest_deviation(const std::vector<Polyline>& actual, const std::vector<std::size_t>& owner,
+                         const std::vector<Polyline>& nominal, std::size_t& checked) {
+  double worst = 0;
+  checked = 0;
+  for (std::size_t m = 0; m < actual.size(); ++m)
+    for (const Eigen::Vector3d& p : actual[m])
+      if (!nominal[owner[m]].empty()) {
+        worst = std::max(worst, distance_to(p, nominal[owner[m]]));
+        ++checked;
+      }
+  return worst;
+}
+
+std::vector<Point> ends_of(const std::vector<test::CanonMove>& moves) {
+  std::vector<Point> ends;
+  for (const auto& m : moves) ends.push_back(m.end);
+  return ends;
+}
+
+// The unmodified program on the real machine against the ideal machine, sample by sample.
+double raw_error(const std::vector<Polyline>& real, const std::vector<Polyline>& ideal) {
+  double worst = 0;
+  for (std::size_t m = 0; m < real.size(); ++m)
+    for (std::size_t k = 0; k < real[m].size(); ++k) worst = std::max(worst, (real[m][k] - ideal[m][k]).norm());
+  return worst;
+}
+
+struct Case {
+  std::string machine, program, tools, var;
+};
+
+class Predistorted : public ::testing::Test {
+ protected:
+  static std::string run(const Case& c, const std::string& out, const std::string& extra = "") {
+    const auto r = volcomp("predistort " + test::machine_path(c.machine) + " " + program(c.program) + " -o " + out +
+                           " --tool-table " + program(c.tools) + " --var " + program(c.var) + " " + extra);
+    EXPECT_EQ(r.exit_code, 0) << r.out;
+    return r.out;
+  }
+};
+
+const Case kPocket{"mill3", "mill3_pocket.ngc", "mill3.tbl", "mill3.var"};
+const Case kSwarf{"mc300", "mc300_swarf.ngc", "mc300.tbl", "mc300.var"};
+
+// 3 axes, read back by LinuxCNC's interpreter (4 decimals: 0.05 um rounding per axis).
+TEST_F(Predistorted, PocketFollowsTheNominalPathWithinTheTolerance) {
+  if (!test::rs274_available()) GTEST_SKIP() << "rs274 not installed";
+  const fs::path dir = test::run_folder("predistort_pocket");
+  const std::string out = (dir / "pocket_predistorted.ngc").string();
+  std::cout << run(kPocket, out);
+  const machine::Model model = machine::load_machine(test::machine_path("mill3"));
+  const auto input = test::rs274_moves("rs274_pocket_in", program(kPocket.program), program(kPocket.tools),
+                                       program(kPocket.var));
+  const auto output = test::rs274_moves("rs274_pocket_out", out, program(kPocket.tools), program(kPocket.var));
+  const auto nominal = tip_paths(model, machine::Machine::Ideal, input, 0.05);
+  const double raw = raw_error(tip_paths(model, machine::Machine::Real, input, 0.05), nominal);
+  std::size_t samples = 0;
+  const double deviation = largest_deviation(tip_paths(model, machine::Machine::Real, output, 0.05),
+                                             owners(input, ends_of(output), 0.1), nominal, samples);
+  EXPECT_GT(samples, 20000u);
+  std::cout << "mill3 pocket: " << samples << " samples; raw error max " << raw * 1e3
+            << " um; pre-distorted max deviation " << deviation * 1e3 << " um\n";
+  EXPECT_GT(raw, 0.010);               // the unmodified program shows the machine's error
+  EXPECT_LT(deviation, 0.0005 + 1e-4);  // tolerance + rs274's rounding of the output
+}
+
+// 5 axes: the output read at full precision by the project's interpreter (rs274 rounds
+// degrees to 1e-4, 0.5 um at the MC-300's lever arms); rs274 checks that reading below.
+TEST_F(Predistorted, SwarfFollowsTheNominalPathWithinTheTolerance) {
+  if (!test::rs274_available()) GTEST_SKIP() << "rs274 not installed";
+  const fs::path dir = test::run_folder("predistort_swarf");
+  const std::string out = (dir / "swarf_predistorted.ngc").string();
+  std::cout << run(kSwarf, out);
+  const machine::Model model = machine::load_machine(test::machine_path("mc300"));
+  const auto input = test::rs274_moves("rs274_swarf_in", program(kSwarf.program), program(kSwarf.tools),
+                                       program(kSwarf.var));
+  const interpreter::ToolTable tools = interpreter::read_tool_table(program(kSwarf.tools));
+  gcode::Parameters parameters;
+  interpreter::read_var_file(program(kSwarf.var), parameters);
+  interpreter::Setup setup;
+  setup.machine_axes = predistort::program_axes(model);
+  setup.tools = &tools;
+  setup.var_file = &parameters;
+  std::vector<test::CanonMove> output;
+  for (const interpreter::Move& m : test::read_moves(out, setup)) {
+    test::CanonMove c;
+    c.kind = m.kind == interpreter::MoveKind::Rapid ? test::CanonMove::Traverse : test::CanonMove::Feed;
+    ASSERT_NE(m.kind, interpreter::MoveKind::Arc);
+    c.end = m.frame.world(m.end);
+    c.tool_length_mm = m.tool_length_mm;
+    output.push_back(c);
+  }
+  // LinuxCNC reads the same moves (to its 4 printed decimals).
+  const auto rs274_output = test::rs274_moves("rs274_swarf_out", out, program(kSwarf.tools), program(kSwarf.var));
+  ASSERT_EQ(rs274_output.size(), output.size());
+  for (std::size_t k = 0; k < output.size(); ++k)
+    for (int i = 0; i < 6; ++i) ASSERT_NEAR(rs274_output[k].end[i], output[k].end[i], 6e-5) << "move " << k;
+
+  const auto nominal = tip_paths(model, machine::Machine::Ideal, input, 0.05);
+  const double raw = raw_error(tip_paths(model, machine::Machine::Real, input, 0.05), nominal);
+  std::size_t samples = 0;
+  const double deviation = largest_deviation(tip_paths(model, machine::Machine::Real, output, 0.05),
+                                             owners(input, ends_of(output), 0.1), nominal, samples);
+  EXPECT_GT(samples, 10000u);
+  std::cout << "MC-300 swarf: " << samples << " samples; raw error max " << raw * 1e3 << " um; pre-distorted max deviation "
+            << deviation * 1e3 << " um\n";
+  EXPECT_GT(raw, 0.020);
+  EXPECT_LT(deviation, 0.0005);
+}
+
+// At every program point the output sends the machine exactly where the kinematics module
+// would (the core's joints_from_world, which volkins calls), to the written decimals.
+TEST_F(Predistorted, ProgramPointsAgreeWithTheModuleCorrection) {
+  if (!test::rs274_available()) GTEST_SKIP() << "rs274 not installed";
+  for (const Case& c : {kPocket, kSwarf}) {
+    const fs::path dir = test::run_folder("predistort_points_" + c.machine);
+    const std::string out = (dir / "out.ngc").string();
+    run(c, out);
+    const machine::Model model = machine::load_machine(test::machine_path(c.machine));
+    const auto input = test::rs274_moves("rs274_points_in_" + c.machine, program(c.program), program(c.tools),
+                                         program(c.var));
+    const interpreter::ToolTable tools = interpreter::read_tool_table(program(c.tools));
+    gcode::Parameters parameters;
+    interpreter::read_var_file(program(c.var), parameters);
+    interpreter::Setup setup;
+    setup.machine_axes = predistort::program_axes(model);
+    setup.tools = &tools;
+    setup.var_file = &parameters;
+    const std::vector<interpreter::Move> output = test::read_moves(out, setup);
+    std::size_t next = 0, matched = 0, unmatched_feeds = 0;
+    double worst = 0;
+    for (const test::CanonMove& m : input) {
+      machine::Joints corrected;
+      ASSERT_EQ(machine::joints_from_world(model, machine::WorldConvention::Axes, joints_of(model, m.end),
+                                           m.tool_length_mm, corrected),
+                machine::Status::Ok);
+      bool found = false;
+      for (std::size_t k = next; k < output.size() && k < next + 5000; ++k) {
+        const machine::Joints written = joints_of(model, output[k].frame.world(output[k].end));
+        const double d = (written - corrected).cwiseAbs().maxCoeff();
+        if (d < 2e-6) {
+          worst = std::max(worst, d);
+          next = k + 1;
+          found = true;
+          break;
+        }
+      }
+      matched += found;
+      if (!found && m.kind != test::CanonMove::Traverse) ++unmatched_feeds;
+    }
+    std::cout << c.program << ": " << matched << " of " << input.size()
+              << " program points found corrected in the output, largest difference " << worst << "\n";
+    EXPECT_EQ(unmatched_feeds, 0u);
+    EXPECT_GE(matched + 3, input.size());  // rapids written as they are: first Z, G28
+  }
+}
+
+// Cutting-force deflection: the machine under the cutting load of mill3_process.toml,
+// simulated here from the force model's formulas (Kienzle's kc, mean force from cutting
+// power) and the machine file's compliance, follows the nominal path only if the
+// pre-distorter took the deflection off.
+TEST_F(Predistorted, CuttingForceDeflectionIsTakenOff) {
+  if (!test::rs274_available()) GTEST_SKIP() << "rs274 not installed";
+  const machine::Model model = machine::load_machine(test::machine_path("mill3"));
+  const interpreter::ToolTable tools = interpreter::read_tool_table(program(kPocket.tools));
+  const predistort::CuttingProcess process = predistort::load_process(program("mill3_process.toml"), &tools);
+  gcode::Parameters parameters;
+  interpreter::read_var_file(program(kPocket.var), parameters);
+  interpreter::Setup setup;
+  setup.machine_axes = predistort::program_axes(model);
+  setup.tools = &tools;
+  setup.var_file = &parameters;
+  const auto input = test::rs274_moves("rs274_force_in", program(kPocket.program), program(kPocket.tools),
+                                       program(kPocket.var));
+  const auto nominal = tip_paths(model, machine::Machine::Ideal, input, 0.05);
+
+  // The tool tip under load: real machine plus compliance x force.
+  auto loaded_path = [&](const std::string& path) {
+    std::vector<Polyline> tips;
+    std::vector<Point> ends;
+    double largest = 0;
+    for (const interpreter::Move& m : test::read_moves(path, setup)) {
+      ends.push_back(m.frame.world(m.end));
+      tips.emplace_back();
+      if (m.kind == interpreter::MoveKind::Rapid) continue;
+      const bool cutting = m.kind != interpreter::MoveKind::Rapid && process.tools.count(m.tool) && m.spindle_on;
+      std::vector<Eigen::Vector3d> tip;
+      std::vector<machine::Joints> joints;
+      const int n = 200;
+      for (int k = 0; k <= n; ++k) {
+        joints.push_back(joints_of(model, m.frame.world(interpreter::point_at(m, static_cast<double>(k) / n))));
+        tip.push_back(machine::tool_pose(model, machine::Machine::Real, joints.back(), m.tool_length_mm).tip_mm);
+      }
+      const double length = (tip.back() - tip.front()).norm();
+      for (int k = 0; k <= n; ++k) {
+        Eigen::Vector3d deflection = Eigen::Vector3d::Zero();
+        const Eigen::Vector3d step = tip[static_cast<std::size_t>(std::min(k + 1, n))] - tip[static_cast<std::size_t>(std::max(k - 1, 0))];
+        if (cutting && length > 0.1 && std::hypot(step.x(), step.y()) > 1e-9) {
+          const predistort::ToolProcess& p = process.tools.at(m.tool);
+          const Eigen::Vector3d t = Eigen::Vector3d(step.x(), step.y(), 0).normalized();
+          const double vf = m.feed * std::hypot(step.x(), step.y()) / step.norm();
+          const double hm = vf / (p.teeth * m.spindle_rpm) * std::sqrt(p.width_of_cut_mm / p.diameter_mm);
+          const double kc = p.specific_force_N_per_mm2 / std::pow(hm, p.chip_exponent);
+          const double fc = kc * p.depth_of_cut_mm * p.width_of_cut_mm * vf / (M_PI * p.diameter_mm * m.spindle_rpm);
+          const Eigen::Vector3d left(-t.y(), t.x(), 0);  // tool axis +z on this 3-axis mill
+          const Eigen::Vector3d force = -fc * t - p.material_side * p.radial_ratio * fc * left;
+          for (int j = 0; j < 3; ++j) {
+            const Eigen::Vector3d axis = Eigen::Vector3d::Unit(j);  // mill3: +X, +Y, +Z move the tip +x, +y, +z
+            deflection += model.compliance[static_cast<std::size_t>(j)].at(joints[static_cast<std::size_t>(k)][j]) *
+                          force.dot(axis) * axis;
+          }
+        } else if (cutting && length <= 0.1) {
+          continue;  // corner transition pieces: the force there is between two directions
+        }
+        largest = std::max(largest, deflection.norm());
+        tips.back().push_back(tip[static_cast<std::size_t>(k)] + deflection);
+      }
+    }
+    return std::tuple{tips, owners(input, ends, 0.1), largest};
+  };
+
+  const fs::path dir = test::run_folder("predistort_force");
+  const std::string with = (dir / "with_force.ngc").string(), without = (dir / "without_force.ngc").string();
+  std::cout << run(kPocket, with, "--process " + program("mill3_process.toml"));
+  run(kPocket, without);
+  const auto [loaded_with, owner_with, deflection] = loaded_path(with);
+  const auto [loaded_without, owner_without, unused] = loaded_path(without);
+  std::size_t samples_with = 0, samples_without = 0;
+  const double with_force = largest_deviation(loaded_with, owner_with, nominal, samples_with);
+  const double without_force = largest_deviation(loaded_without, owner_without, nominal, samples_without);
+  EXPECT_GT(samples_with, 5000u);
+  EXPECT_GT(samples_without, 5000u);
+  std::cout << "mill3 pocket under load: largest deflection " << deflection * 1e3 << " um; deviation "
+            << without_force * 1e3 << " um with geometric pre-distortion only, " << with_force * 1e3
+            << " um with the deflection taken off\n";
+  EXPECT_GT(without_force, 0.003);
+  EXPECT_LT(with_force, 0.0005 + 1e-4);
+}
+
+TEST(PredistortCli, BadInputNamesLineAndColumnAndLeavesTheOutputAlone) {
+  const fs::path dir = test::run_folder("predistort_bad");
+  const fs::path out = dir / "out.ngc";
+  std::ofstream(out) << "OLD\n";
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"G21 G90\nG0 X0 Y0 Z0\nG1 X1 E5\n", "bad.ngc:3:7: error: unknown word letter 'E'"},
+      {"G21\nG0 X0 Y0 Z0\nG43 H9\n", "bad.ngc:3:5: error: tool 9 is not in the tool table"},
+      {"G21\nG0 X0 Y0 Z0\nG1 X1 (unclosed\n", "bad.ngc:3:7"},
+      {"G21\nG0 X0 Y0 Z0\nG41 G1 X1 F100\n", "bad.ngc:3:1: error: G41: cutter radius compensation"},
+  };
+  for (const auto& [text, expected] : cases) {
+    std::ofstream(dir / "bad.ngc") << text;
+    const auto r = volcomp("predistort " + test::machine_path("mill3") + " " + (dir / "bad.ngc").string() +
+                           " -o " + out.string() + " --var " + program("mill3.var") + " --tool-table " +
+                           program("mill3.tbl"));
+    EXPECT_NE(r.exit_code, 0) << text;
+    EXPECT_NE(r.out.find(expected), std::string::npos) << r.out;
+    std::ifstream kept(out);
+    std::string content((std::istreambuf_iterator<char>(kept)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(content, "OLD\n");  // untouched, and no temporary file left beside it
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);
+  }
+}
+
+TEST(PredistortCli, CannedCyclesAreRefusedWithTheReason) {
+  const auto r = volcomp("predistort " + test::machine_path("mill3") + " " + program("drilling_cycle.ngc") +
+                         " -o - --var " + program("mill3.var") + " --tool-table " + program("mill3.tbl"));
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.out.find("drilling_cycle.ngc:6:1: error: G81: canned cycles are not translated"), std::string::npos)
+      << r.out;
+}
+
+TEST(PredistortCli, WorksAsAnAxisFilter) {
+  // AXIS runs `filter PROGRAM`, reads the program from stdout and FILTER_PROGRESS=n from stderr.
+  const std::string command = "AXIS_PROGRESS_BAR=1 " + std::string(VC_VOLCOMP) + " predistort " +
+                              test::machine_path("mill3") + " -o - --var " + program("mill3.var") +
+                              " --tool-table " + program("mill3.tbl") + " -q " + program(kPocket.program);
+  const fs::path dir = test::run_folder("predistort_filter");
+  const int status = std::system((command + " > " + (dir / "out.ngc").string() + " 2> " +
+                                  (dir / "err.txt").string()).c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  std::ifstream err(dir / "err.txt"), out(dir / "out.ngc");
+  const std::string errors((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
+  std::string first;
+  std::getline(out, first);
+  EXPECT_EQ(first, "%");
+  EXPECT_NE(errors.find("FILTER_PROGRESS=100\n"), std::string::npos) << errors;
+  EXPECT_EQ(errors.find("error"), std::string::npos) << errors;
+}
+
+}  // namespace
+}  // namespace vc

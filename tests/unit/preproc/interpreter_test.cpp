@@ -1,0 +1,162 @@
+// The interpreter's meaning of blocks: positions, frames, arcs, and what it refuses.
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "vc/gcode/parser.hpp"
+#include "vc/interpreter/interpreter.hpp"
+#include "vc/tables/source_error.hpp"
+
+namespace vc::interpreter {
+namespace {
+
+constexpr unsigned kXyzbc = 0b110111;
+
+struct Interpreted {
+  std::vector<Move> moves;
+  std::vector<Effect> effects;
+};
+
+Interpreted interpret(const std::string& program, const ToolTable* tools = nullptr,
+              const gcode::Parameters* var = nullptr, unsigned axes = kXyzbc) {
+  Setup setup;
+  setup.file = "test.ngc";
+  setup.machine_axes = axes;
+  setup.tools = tools;
+  setup.var_file = var;
+  Interpreter interp(setup);
+  std::istringstream in(program);
+  Interpreted run;
+  gcode::Block block;
+  int line = 0;
+  for (std::string text; std::getline(in, text);) {
+    Effect effect;
+    gcode::parse_block(text, block);
+    interp.execute(block, ++line, effect);
+    run.moves.insert(run.moves.end(), effect.moves.begin(), effect.moves.end());
+    run.effects.push_back(effect);
+  }
+  return run;
+}
+
+std::string refusal(const std::string& program, const ToolTable* tools = nullptr) {
+  gcode::Parameters zero;
+  try {
+    interpret(program, tools, &zero);
+  } catch (const LoadError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+const std::string kStart = "G21 G90 G54\nG0 X0 Y0 Z0 B0 C0\n";
+
+TEST(Interpreter, LinesInMillimetresInchesAbsoluteAndIncremental) {
+  gcode::Parameters var;
+  const Interpreted r = interpret(kStart + "G1 X10 Y-5 F100\nG91 X1 Y1\nG90 G20 X1\n", nullptr, &var);
+  ASSERT_EQ(r.moves.size(), 4u);
+  EXPECT_EQ(r.moves[1].kind, MoveKind::Line);
+  EXPECT_DOUBLE_EQ(r.moves[1].end[0], 10.0);
+  EXPECT_DOUBLE_EQ(r.moves[2].end[0], 11.0);
+  EXPECT_DOUBLE_EQ(r.moves[2].end[1], -4.0);
+  EXPECT_DOUBLE_EQ(r.moves[3].end[0], 25.4);
+  EXPECT_TRUE(r.effects[4].inches);
+}
+
+TEST(Interpreter, WorkOffsetsFromTheParameterFileAndG10) {
+  gcode::Parameters var;
+  var[5221] = 100;  // G54 X
+  var[5243] = -20;  // G55 Z
+  const Interpreted r = interpret(kStart + "G55 G0 X1 Z1\nG10 L2 P1 Y7\nG54 G1 Y0 F10\nG10 L20 P1 X0\nG0 X5\n", nullptr, &var);
+  ASSERT_EQ(r.moves.size(), 4u);
+  EXPECT_DOUBLE_EQ(r.moves[0].frame.world(r.moves[0].end)[0], 100.0);  // G54 X0
+  EXPECT_DOUBLE_EQ(r.moves[1].frame.world(r.moves[1].end)[2], -19.0);  // G55 Z1
+  EXPECT_DOUBLE_EQ(r.moves[2].frame.world(r.moves[2].end)[1], 7.0);    // G54 after G10 L2 Y7
+  // G10 L20: the current X (world 1) becomes X0; X5 is then world 6.
+  EXPECT_DOUBLE_EQ(r.moves[3].frame.world(r.moves[3].end)[0], 6.0);
+}
+
+TEST(Interpreter, ToolLengthKeepsTheMachineStillAndShiftsWorldZ) {
+  ToolTable tools{{1, {1, 100.0, 10.0}}};
+  gcode::Parameters var;
+  const Interpreted r = interpret(kStart + "G43 H1\nG1 X1 F100\nG1 Z0\n", &tools, &var);
+  ASSERT_EQ(r.moves.size(), 3u);
+  EXPECT_DOUBLE_EQ(r.moves[1].start[2], -100.0);  // program Z after G43: the tip, machine unmoved
+  EXPECT_DOUBLE_EQ(r.moves[1].frame.world(r.moves[1].end)[2], 0.0);
+  EXPECT_DOUBLE_EQ(r.moves[2].frame.world(r.moves[2].end)[2], 100.0);
+  EXPECT_DOUBLE_EQ(r.moves[2].tool_length_mm, 100.0);
+}
+
+TEST(Interpreter, MachineCoordinatesIgnoreWorkOffsets) {
+  gcode::Parameters var;
+  var[5221] = 100;
+  const Interpreted r = interpret(kStart + "G53 G0 X-5\n", nullptr, &var);
+  ASSERT_EQ(r.moves.size(), 2u);
+  EXPECT_TRUE(r.moves[1].machine_coordinates);
+  EXPECT_DOUBLE_EQ(r.moves[1].frame.world(r.moves[1].end)[0], -5.0);
+}
+
+TEST(Interpreter, ArcsInEveryPlaneWithCenterAndRadiusForms) {
+  gcode::Parameters var;
+  const Interpreted r = interpret(kStart +
+                              "G1 X10 F100\n"
+                              "G3 X0 Y10 I-10 J0\n"      // quarter turn CCW about the origin
+                              "G2 X10 Y0 R-10\n"         // R < 0: the long way round (270 deg)
+                              "G18 G2 X20 Z0 I5 K0\n"    // XZ plane
+                              "G19 G3 Y0 Z10 J-5 K5\n"
+                              "G17 G2 X20 Y0 I-5 J0 P3\n",  // three full turns
+                          nullptr, &var);
+  ASSERT_EQ(r.moves.size(), 7u);
+  EXPECT_NEAR(r.moves[2].arc.sweep_rad, M_PI / 2, 1e-12);
+  EXPECT_NEAR(r.moves[3].arc.sweep_rad, -1.5 * M_PI, 1e-12);
+  EXPECT_NEAR(r.moves[3].arc.center_first, 10.0, 1e-12);  // the long way round (0, 10) -> (10, 0)
+  EXPECT_NEAR(r.moves[3].arc.center_second, 10.0, 1e-12);
+  EXPECT_EQ(r.moves[4].arc.first, 2);  // G18: Z then X
+  EXPECT_NEAR(r.moves[6].arc.sweep_rad, -6 * M_PI, 1e-12);
+  const Position mid = point_at(r.moves[2], 0.5);
+  EXPECT_NEAR(mid[0], 10 * std::cos(M_PI / 4), 1e-12);
+  EXPECT_NEAR(mid[1], 10 * std::sin(M_PI / 4), 1e-12);
+}
+
+TEST(Interpreter, ParametersAndExpressions) {
+  gcode::Parameters var;
+  const Interpreted r = interpret(kStart + "#1 = 3\n#<depth> = [#1 * 2]\nG1 X#<depth> Y[#1 + 1] F100\n", nullptr, &var);
+  ASSERT_EQ(r.moves.size(), 2u);
+  EXPECT_DOUBLE_EQ(r.moves[1].end[0], 6.0);
+  EXPECT_DOUBLE_EQ(r.moves[1].end[1], 4.0);
+}
+
+TEST(Interpreter, RefusesWhatItCannotTranslateWithLineAndColumn) {
+  EXPECT_EQ(refusal(kStart + "G41 D1 G1 X5\n").substr(0, 14), "test.ngc:3:1: ");
+  EXPECT_NE(refusal(kStart + "G41 D1 G1 X5\n").find("cutter radius compensation"), std::string::npos);
+  EXPECT_NE(refusal(kStart + "G1 F10 G81 X1 Z-1 R1\n").find("test.ngc:3:8: error: G81: canned cycles"), std::string::npos);
+  EXPECT_NE(refusal(kStart + "o100 sub\n").find("O-word"), std::string::npos);
+  EXPECT_NE(refusal(kStart + "G92 X0\n").find("G92"), std::string::npos);
+  EXPECT_NE(refusal(kStart + "G43 H7\n", nullptr).find("tool table"), std::string::npos);
+  const ToolTable tools{{1, {1, 100.0, 10.0}}};
+  EXPECT_NE(refusal(kStart + "G43 H7\n", &tools).find("test.ngc:3:5: error: tool 7 is not in the tool table"),
+            std::string::npos);
+  EXPECT_NE(refusal("G1 X1 Y1 F100\n").find("unknown position"), std::string::npos);
+  EXPECT_NE(refusal(kStart + "G1 A5 F100\n").find("no A axis"), std::string::npos);
+  EXPECT_NE(refusal(kStart + "G2 X1 Y1 I0.2 J0.1\n").find("radius to end of arc differs"), std::string::npos);
+  EXPECT_NE(refusal(kStart + "G1 X[1/0]\n").find("test.ngc:3:"), std::string::npos);
+}
+
+TEST(Interpreter, RefusesUnknownWorkOffsetsWithoutParameterFile) {
+  interpreter::Setup setup;
+  setup.file = "p.ngc";
+  setup.machine_axes = kXyzbc;
+  Interpreter interp(setup);
+  gcode::Block block;
+  Effect effect;
+  gcode::parse_block("G0 X0 Y0 Z0 B0 C0", block);
+  try {
+    interp.execute(block, 1, effect);
+    FAIL() << "accepted";
+  } catch (const LoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("work offset G54 is not known: pass --var"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace vc::interpreter
