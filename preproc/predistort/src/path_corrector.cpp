@@ -74,7 +74,8 @@ PathCorrector::Node PathCorrector::node_at(const Move& move, double s) {
   n.s = s;
   const Position p = interpreter::point_at(move, s);
   const double L = move.tool_length_mm;
-  Status status = machine::nominal_inverse(model_, options_.world, joints_of(move.frame.world(p)), L, n.nominal);
+  n.input = joints_of(move.frame.world(p));
+  Status status = machine::nominal_inverse(model_, options_.world, n.input, L, n.nominal);
   if (status != Status::Ok) fail(move, "no nominal joints for a point of the move", status);
   n.target = n.nominal;
   if (deflection_) {
@@ -86,9 +87,11 @@ PathCorrector::Node PathCorrector::node_at(const Move& move, double s) {
       stats_.max_deflection_mm = std::max(stats_.max_deflection_mm, n.deflection_mm.norm());
     }
   }
+  // Seed: this point plus the correction of the last one (the correction changes little
+  // between neighbouring points, so Newton starts next to the answer).
   const bool seeded = have_last_ && last_.corrected.size() == n.target.size() &&
-                      (last_.corrected - n.target).cwiseAbs().maxCoeff() < 1.0;
-  const machine::Correction c = seeded ? machine::correct(model_, n.target, L, last_.corrected)
+                      (last_.target - n.target).cwiseAbs().maxCoeff() < 1.0;
+  const machine::Correction c = seeded ? machine::correct(model_, n.target, L, n.target + (last_.corrected - last_.target))
                                        : machine::correct(model_, n.target, L);
   ++stats_.corrections;
   if (c.status != Status::Ok) fail(move, "the correction failed", c.status);
@@ -237,7 +240,19 @@ void PathCorrector::refine(const Move& move, const Node& a, const Node& b, int d
 void PathCorrector::correct(const Move& move, std::vector<Piece>& pieces) {
   pieces.clear();
   ++stats_.moves;
-  Node a = node_at(move, 0.0);
+  // The start is where the previous move ended: its correction is known, unless the tool
+  // length or the cutting force changed.
+  Node a;
+  const bool continues = have_last_ && !last_loaded_ && last_tool_length_ == move.tool_length_mm &&
+                         (!deflection_ || move.kind == MoveKind::Rapid) &&
+                         last_.input == joints_of(move.frame.world(move.start));
+  if (continues) {
+    a = last_;
+    a.s = 0.0;
+    a.program = program_of(move, a.world, move.start);
+  } else {
+    a = node_at(move, 0.0);
+  }
   // A short piece to the corrected start if the machine is not there (the previous move was
   // written uncorrected, or the tool length changed and with it the correction).
   if (move.kind != MoveKind::Rapid &&
@@ -273,6 +288,8 @@ void PathCorrector::correct(const Move& move, std::vector<Piece>& pieces) {
   stats_.pieces += static_cast<long>(pieces.size());
   last_ = b;
   have_last_ = true;
+  last_tool_length_ = move.tool_length_mm;
+  last_loaded_ = b.deflection_mm.squaredNorm() > 0;
 }
 
 }  // namespace vc::predistort

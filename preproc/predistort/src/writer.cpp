@@ -19,11 +19,10 @@ int code_of(MoveKind kind, bool clockwise) {
   return kind == MoveKind::Rapid ? 0 : kind == MoveKind::Line ? 10 : clockwise ? 20 : 30;
 }
 
+constexpr double kScale[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8};
+
 // Integer in units of 10^-decimals: exact decimal output, and G91 increments that add up.
-std::int64_t units(double value, int decimals) {
-  static constexpr double kScale[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8};
-  return std::llround(value * kScale[decimals]);
-}
+std::int64_t units(double value, int decimals) { return std::llround(value * kScale[decimals]); }
 
 }  // namespace
 
@@ -142,13 +141,12 @@ void Writer::append_piece(std::string& line, const interpreter::Move& move, cons
     const int d = decimals(i, inches);
     if (effect.incremental && !move.machine_coordinates) {
       // The increment between the written (rounded) positions, so that increments add up.
-      const double step = static_cast<double>(units(piece.end[i] * scale, d) - units(at_[i] * scale, d)) /
-                          std::pow(10.0, d);
+      const double step = static_cast<double>(units(piece.end[i] * scale, d) - units(at_[i] * scale, d)) / kScale[d];
       append_number(line, kAxisLetters[i], step, d);
     } else {
       append_number(line, kAxisLetters[i], piece.end[i] * scale, d);
     }
-    at_[i] = std::round(piece.end[i] * scale * std::pow(10.0, d)) / std::pow(10.0, d) / scale;
+    at_[i] = static_cast<double>(units(piece.end[i] * scale, d)) / kScale[d] / scale;  // as written
   }
   if (piece.kind == MoveKind::Arc) {
     const interpreter::Arc& arc = move.arc;

@@ -64,6 +64,7 @@ class PathCorrector {
   // A point of a move: where the nominal path is, and where its correction sends the machine.
   struct Node {
     double s = 0.0;
+    machine::Joints input;      // world coordinates of the nominal point (what the program says)
     machine::Joints nominal;    // q_n at the nominal point (ideal machine)
     machine::Joints target;     // q_n shifted against the deflection
     machine::Joints corrected;  // q_c
@@ -91,6 +92,8 @@ class PathCorrector {
   CorrectorStats stats_;
   bool have_last_ = false;
   Node last_;                          // end of the previous corrected move
+  double last_tool_length_ = 0.0;
+  bool last_loaded_ = false;           // a cutting force acted at last_
   // Sampled slope bound of the correction, per tool length (tip mm per unit of each joint).
   std::vector<std::pair<double, std::array<double, machine::kMaxAxes>>> slopes_;
 };
