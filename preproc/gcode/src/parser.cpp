@@ -92,13 +92,9 @@ void parse_block(std::string_view line, Block& block) {
     ++pos;
   }
   if (pos < n.text.size() && n.text[pos] == 'n') {
-    const std::size_t start = pos++;
-    const std::size_t digits = pos;
-    while (pos < n.text.size() && (std::isdigit(static_cast<unsigned char>(n.text[pos])) || n.text[pos] == '.')) ++pos;
-    if (pos == digits) throw SyntaxError(n.raw[digits], "expected a line number after 'N'");
+    pos = parse_at(n, pos + 1, parser::number, block.line_number, "a line number after 'N'");
+    if (block.line_number < 0) throw SyntaxError(n.raw[pos - 1], "a line number cannot be negative");
     block.has_line_number = true;
-    block.line_number = std::stod(n.text.substr(digits, pos - digits));
-    (void)start;
   }
   while (pos < n.text.size()) {
     const char c = n.text[pos];

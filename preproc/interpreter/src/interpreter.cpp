@@ -58,6 +58,11 @@ struct Interpreter::Words {
   std::vector<Code> g, m;
 
   const Value& operator[](char c) const { return letters[static_cast<std::size_t>(c - 'A')]; }
+  // A word that must hold a whole number (tool, turns, L, P): its value, or -1 if it does not.
+  int whole(char c) const {
+    const double v = get(c);
+    return v == std::floor(v) && v >= 0 && v <= 1e6 ? static_cast<int>(v) : -1;
+  }
   bool has(char c) const { return (*this)[c].has; }
   // Where the first axis or arc word is written (for messages about the motion).
   int first_motion_offset() const {
@@ -125,7 +130,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     if (word.letter == 'G' || word.letter == 'M') {
       const double tenths = value * 10.0;
       const double rounded = std::round(tenths);
-      if (std::abs(tenths - rounded) > 1e-6 || rounded < 0)
+      if (std::abs(tenths - rounded) > 1e-6 || rounded < 0 || rounded > 10000)
         refuse(line, word.begin, std::string("unknown ") + word.letter + " code");
       (word.letter == 'G' ? w.g : w.m).push_back({static_cast<int>(rounded), i, word.begin});
       continue;
@@ -190,11 +195,15 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
   if (w.find_g({950})) refuse(line, w.find_g({950})->offset, "G95 (feed per revolution) is not supported");
   if (w.has('F')) feed_ = w.get('F');
   if (w.has('S')) spindle_rpm_ = w.get('S');
-  if (w.has('T')) selected_tool_ = static_cast<int>(std::lround(w.get('T')));
+  if (w.has('T')) {
+    selected_tool_ = w.whole('T');
+    if (selected_tool_ < 0) refuse(line, w['T'].offset, "T must be a whole number >= 0");
+  }
   if (w.find_m({60})) tool_in_spindle_ = selected_tool_;
   if (const auto* m61 = w.find_m({610})) {
     if (!w.has('Q')) refuse(line, m61->offset, "M61 needs a Q word (tool number)");
-    tool_in_spindle_ = static_cast<int>(std::lround(w.get('Q')));
+    tool_in_spindle_ = w.whole('Q');
+    if (tool_in_spindle_ < 0) refuse(line, w['Q'].offset, "M61 Q must be a whole number >= 0");
   }
   if (w.find_m({30, 40})) spindle_on_ = true;
   if (w.find_m({50})) spindle_on_ = false;
@@ -250,7 +259,8 @@ void Interpreter::set_tool_length(const Words& w, int line) {
     tool_length_ = w.get('Z') * (inches_ ? kInch : 1.0);
   } else {
     int tool = tool_in_spindle_;
-    if (w.has('H')) tool = static_cast<int>(std::lround(w.get('H')));
+    if (w.has('H')) tool = w.whole('H');
+    if (w.has('H') && tool < 0) refuse(line, w['H'].offset, "H must be a whole number >= 0");
     else if (tool < 0)
       refuse(line, g->offset, "G43 without H and no tool in the spindle yet (use G43 Hn, or M6 Tn first)");
     if (!setup_.tools)
@@ -273,11 +283,11 @@ void Interpreter::set_coordinate_system(int index, int, int) {
 void Interpreter::set_offsets(const Words& w, int line) {
   const auto* g10 = w.find_g({100});
   if (!w.has('L')) refuse(line, g10->offset, "G10 needs an L word");
-  const int l = static_cast<int>(std::lround(w.get('L')));
+  const int l = w.whole('L');
   if (l != 2 && l != 20)
     refuse(line, w['L'].offset, "G10 L" + std::to_string(l) + " is not supported (G10 L2 and L20 are)");
   if (!w.has('P')) refuse(line, g10->offset, "G10 L" + std::to_string(l) + " needs a P word (1..9, or 0)");
-  int system = static_cast<int>(std::lround(w.get('P')));
+  int system = w.whole('P');
   if (system < 0 || system > 9) refuse(line, w['P'].offset, "G10 P must be 0..9");
   if (system == 0) system = coordinate_system_;
   const Position world = world_position();
@@ -441,8 +451,8 @@ void Interpreter::arc_geometry(const Words& w, const Position& end, int line, Mo
   else { arc.first = 1; arc.second = 2; arc.normal = 0; first_letter = 'J'; second_letter = 'K'; }
   if (w.has('P')) {
     const double p = w.get('P');
-    if (p != std::floor(p) || p < 1) refuse(line, w['P'].offset, "P (turns) of an arc must be a whole number >= 1");
-    arc.turns = static_cast<int>(p);
+    if (w.whole('P') < 1 || p > 1000) refuse(line, w['P'].offset, "P (turns) of an arc must be a whole number 1..1000");
+    arc.turns = w.whole('P');
   }
   const double scale = inches_ ? kInch : 1.0;
   const double tolerance = inches_ ? kArcRadiusTolerance_inch * kInch : kArcRadiusTolerance_mm;
