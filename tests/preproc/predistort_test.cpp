@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <map>
 
 #include "program_reader.hpp"
 #include "rs274.hpp"
@@ -154,6 +155,70 @@ class Predistorted : public ::testing::Test {
 
 const Case kPocket{"mill3", "mill3_pocket.ngc", "mill3.tbl", "mill3.var"};
 const Case kSwarf{"mc300", "mc300_swarf.ngc", "mc300.tbl", "mc300.var"};
+const Case kInch{"mill3", "mill3_inch.ngc", "mill3.tbl", "mill3.var"};
+
+// The output read by the project's interpreter at full precision, as canonical moves.
+std::vector<test::CanonMove> read_output(const machine::Model& model, const Case& c, const std::string& path) {
+  static std::map<std::string, interpreter::ToolTable> tools;
+  static std::map<std::string, gcode::Parameters> parameters;
+  tools[c.tools] = interpreter::read_tool_table(program(c.tools));
+  interpreter::read_var_file(program(c.var), parameters[c.var]);
+  interpreter::Setup setup;
+  setup.machine_axes = predistort::program_axes(model);
+  setup.tools = &tools[c.tools];
+  setup.var_file = &parameters[c.var];
+  std::vector<test::CanonMove> moves;
+  for (const interpreter::Move& m : test::read_moves(path, setup)) {
+    test::CanonMove cm;
+    cm.kind = m.kind == interpreter::MoveKind::Rapid ? test::CanonMove::Traverse
+              : m.kind == interpreter::MoveKind::Line ? test::CanonMove::Feed
+                                                      : test::CanonMove::Arc;
+    cm.end = m.frame.world(m.end);
+    cm.tool_length_mm = m.tool_length_mm;
+    if (m.kind == interpreter::MoveKind::Arc) {
+      cm.first = m.arc.first;
+      cm.second = m.arc.second;
+      cm.normal = m.arc.normal;
+      interpreter::Position center = m.end;
+      center[static_cast<std::size_t>(m.arc.first)] = m.arc.center_first;
+      center[static_cast<std::size_t>(m.arc.second)] = m.arc.center_second;
+      const interpreter::Position world_center = m.frame.world(center);
+      cm.center_first = world_center[static_cast<std::size_t>(m.arc.first)];
+      cm.center_second = world_center[static_cast<std::size_t>(m.arc.second)];
+      cm.rotation = (m.arc.clockwise ? -1 : 1) * m.arc.turns;
+    }
+    moves.push_back(cm);
+  }
+  return moves;
+}
+
+// LinuxCNC reads the output as the project's interpreter does: the same moves, ends and
+// arc centers, to rs274's 4 printed decimals (`resolution`). rs274 also lists the rapids the
+// pre-distorter wrote as they were (the interpreter reports only the moves it corrects).
+void expect_same_moves(const std::vector<test::CanonMove>& rs274, const std::vector<test::CanonMove>& ours,
+                       double resolution) {
+  auto same_end = [&](const test::CanonMove& a, const test::CanonMove& b) {
+    for (int i = 0; i < 6; ++i)
+      if (std::abs(a.end[i] - b.end[i]) > resolution) return false;
+    return true;
+  };
+  std::size_t k = 0, skipped = 0;
+  for (std::size_t m = 0; m < ours.size(); ++m, ++k) {
+    while (k < rs274.size() && rs274[k].kind == test::CanonMove::Traverse && !same_end(rs274[k], ours[m])) {
+      ++k;
+      ++skipped;
+    }
+    ASSERT_LT(k, rs274.size()) << "our move " << m << " is not in rs274's reading";
+    ASSERT_EQ(rs274[k].kind, ours[m].kind) << "move " << m;
+    ASSERT_TRUE(same_end(rs274[k], ours[m])) << "move " << m;
+    if (ours[m].kind == test::CanonMove::Arc) {
+      EXPECT_NEAR(rs274[k].center_first, ours[m].center_first, resolution) << "move " << m;
+      EXPECT_NEAR(rs274[k].center_second, ours[m].center_second, resolution) << "move " << m;
+      EXPECT_EQ(rs274[k].rotation, ours[m].rotation) << "move " << m;
+    }
+  }
+  EXPECT_LE(skipped + (rs274.size() - k), 3u);  // the first rapid to Z, G28's two
+}
 
 // 3 axes, read back by LinuxCNC's interpreter (4 decimals: 0.05 um rounding per axis).
 TEST_F(Predistorted, PocketFollowsTheNominalPathWithinTheTolerance) {
@@ -187,27 +252,10 @@ TEST_F(Predistorted, SwarfFollowsTheNominalPathWithinTheTolerance) {
   const machine::Model model = machine::load_machine(test::machine_path("mc300"));
   const auto input = test::rs274_moves("rs274_swarf_in", program(kSwarf.program), program(kSwarf.tools),
                                        program(kSwarf.var));
-  const interpreter::ToolTable tools = interpreter::read_tool_table(program(kSwarf.tools));
-  gcode::Parameters parameters;
-  interpreter::read_var_file(program(kSwarf.var), parameters);
-  interpreter::Setup setup;
-  setup.machine_axes = predistort::program_axes(model);
-  setup.tools = &tools;
-  setup.var_file = &parameters;
-  std::vector<test::CanonMove> output;
-  for (const interpreter::Move& m : test::read_moves(out, setup)) {
-    test::CanonMove c;
-    c.kind = m.kind == interpreter::MoveKind::Rapid ? test::CanonMove::Traverse : test::CanonMove::Feed;
-    ASSERT_NE(m.kind, interpreter::MoveKind::Arc);
-    c.end = m.frame.world(m.end);
-    c.tool_length_mm = m.tool_length_mm;
-    output.push_back(c);
-  }
-  // LinuxCNC reads the same moves (to its 4 printed decimals).
-  const auto rs274_output = test::rs274_moves("rs274_swarf_out", out, program(kSwarf.tools), program(kSwarf.var));
-  ASSERT_EQ(rs274_output.size(), output.size());
-  for (std::size_t k = 0; k < output.size(); ++k)
-    for (int i = 0; i < 6; ++i) ASSERT_NEAR(rs274_output[k].end[i], output[k].end[i], 6e-5) << "move " << k;
+  const std::vector<test::CanonMove> output = read_output(model, kSwarf, out);
+  for (const auto& m : output) ASSERT_NE(m.kind, test::CanonMove::Arc);
+  expect_same_moves(test::rs274_moves("rs274_swarf_out", out, program(kSwarf.tools), program(kSwarf.var)), output,
+                    6e-5);
 
   const auto nominal = tip_paths(model, machine::Machine::Ideal, input, 0.05);
   const double raw = raw_error(tip_paths(model, machine::Machine::Real, input, 0.05), nominal);
@@ -225,13 +273,17 @@ TEST_F(Predistorted, SwarfFollowsTheNominalPathWithinTheTolerance) {
 // would (the core's joints_from_world, which volkins calls), to the written decimals.
 TEST_F(Predistorted, ProgramPointsAgreeWithTheModuleCorrection) {
   if (!test::rs274_available()) GTEST_SKIP() << "rs274 not installed";
-  for (const Case& c : {kPocket, kSwarf}) {
-    const fs::path dir = test::run_folder("predistort_points_" + c.machine);
+  for (const Case& c : {kPocket, kSwarf, kInch}) {
+    const std::string name = c.program.substr(0, c.program.find('.'));
+    const fs::path dir = test::run_folder("predistort_points_" + name);
     const std::string out = (dir / "out.ngc").string();
     run(c, out);
     const machine::Model model = machine::load_machine(test::machine_path(c.machine));
-    const auto input = test::rs274_moves("rs274_points_in_" + c.machine, program(c.program), program(c.tools),
+    const auto input = test::rs274_moves("rs274_points_in_" + name, program(c.program), program(c.tools),
                                          program(c.var));
+    const double resolution = 6e-5 * (c.program.find("inch") != std::string::npos ? 25.4 : 1.0);
+    expect_same_moves(test::rs274_moves("rs274_points_out_" + name, out, program(c.tools), program(c.var)),
+                      read_output(model, c, out), resolution);
     const interpreter::ToolTable tools = interpreter::read_tool_table(program(c.tools));
     gcode::Parameters parameters;
     interpreter::read_var_file(program(c.var), parameters);

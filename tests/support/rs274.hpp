@@ -43,6 +43,7 @@ inline std::vector<CanonMove> rs274_moves(const std::string& name, const std::fi
   const fs::path dir = run_folder(name);
   fs::copy_file(program, dir / "program.ngc");
   std::string args = "rs274 -g program.ngc";
+  std::vector<double> tool_lengths_mm;  // to undo the 4-decimal printing of tool lengths
   if (!tool_table_mm.empty()) {
     std::ifstream in(tool_table_mm);
     std::ofstream out(dir / "tools.tbl");
@@ -51,6 +52,7 @@ inline std::vector<CanonMove> rs274_moves(const std::string& name, const std::fi
       std::istringstream words(body);
       while (words >> word) {
         if (word[0] == 'Z' || word[0] == 'z') {
+          tool_lengths_mm.push_back(std::stod(word.substr(1)));
           std::ostringstream inches;
           inches.precision(17);
           inches << "Z" << std::stod(word.substr(1)) / 25.4;
@@ -122,7 +124,10 @@ inline std::vector<CanonMove> rs274_moves(const std::string& name, const std::fi
     } else if (call == "SET_XY_ROTATION") {
       rotation_deg = v[0];
     } else if (call == "USE_TOOL_LENGTH_OFFSET") {
+      // Printed with 4 decimals in program units (2.5 um in inches): take the table's value.
       tool_z = length(v[2]);
+      for (double l : tool_lengths_mm)
+        if (std::abs(l - tool_z) < 0.003) tool_z = l;
     } else if (call == "SELECT_PLANE") {
       plane = line.find("XZ") != std::string::npos ? 18 : line.find("YZ") != std::string::npos ? 19 : 17;
     } else if (call == "STRAIGHT_TRAVERSE" || call == "STRAIGHT_FEED") {
