@@ -81,7 +81,7 @@ void Writer::blending_edits(const gcode::Block& block, const interpreter::Effect
   std::string text;
   if (effect.g64_p_word < 0) append_number(text, 'P', tolerance_mm_, 6);
   text += " Q0";
-  edits_.push_back({g64.end, g64.end, text});
+  edits_.push_back({g64.end, g64.end, text.substr(1)});
 }
 
 void Writer::write_edited(std::string_view raw) {
