@@ -11,16 +11,6 @@
 namespace vc {
 namespace {
 
-test::CommandResult run(const std::string& args) {
-  const std::string command = std::string(VC_VOLCOMP) + " " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string out;
-  char buffer[4096];
-  while (std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
-  const int status = pclose(pipe);
-  return {out, WEXITSTATUS(status)};
-}
-
 std::string write_temp(const std::string& name, const std::string& text) {
   const auto path = std::filesystem::temp_directory_path() / ("volcomp_cli_" + name);
   std::ofstream(path) << text;
@@ -32,7 +22,7 @@ const std::string kPoses = test::source_path("tests/reference/mc300/ctrl60_poses
 
 TEST(VolcompCli, CheckAcceptsEveryShippedMachine) {
   for (const std::string& name : test::shipped_machines()) {
-    const auto r = run("check " + test::machine_path(name) + " --samples 2000");
+    const auto r = test::run_volcomp("check " + test::machine_path(name) + " --samples 2000");
     EXPECT_EQ(r.exit_code, 0) << r.out;
     EXPECT_NE(r.out.find("usable"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("largest position error"), std::string::npos) << r.out;
@@ -40,7 +30,7 @@ TEST(VolcompCli, CheckAcceptsEveryShippedMachine) {
 }
 
 TEST(VolcompCli, ErrorMatchesTheReferenceAtSixtyControlPoints) {
-  const auto r = run("error " + kMc300 + " --poses " + kPoses);
+  const auto r = test::run_volcomp("error " + kMc300 + " --poses " + kPoses);
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const std::string out = write_temp("error.csv", r.out);
   const test::CsvTable got(out), ref(test::source_path("tests/reference/mc300/ctrl60_ref.csv"));
@@ -51,7 +41,7 @@ TEST(VolcompCli, ErrorMatchesTheReferenceAtSixtyControlPoints) {
 }
 
 TEST(VolcompCli, CorrectMatchesTheReferenceAtSixtyControlPoints) {
-  const auto r = run("correct " + kMc300 + " --poses " + kPoses + " --tool-length 100");
+  const auto r = test::run_volcomp("correct " + kMc300 + " --poses " + kPoses + " --tool-length 100");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_EQ(r.out.substr(0, r.out.find('\n')),
             "x,y,z,b,c,cx,cy,cz,cb,cc,residual_mm,residual_rad,iterations");
@@ -64,38 +54,38 @@ TEST(VolcompCli, CorrectMatchesTheReferenceAtSixtyControlPoints) {
 }
 
 TEST(VolcompCli, OnlyKeepsTheNamedDeviations) {
-  const auto all = run("error " + kMc300 + " --poses " + kPoses);
-  const auto yy = run("error " + kMc300 + " --poses " + kPoses + " --only EYY");
+  const auto all = test::run_volcomp("error " + kMc300 + " --poses " + kPoses);
+  const auto yy = test::run_volcomp("error " + kMc300 + " --poses " + kPoses + " --only EYY");
   ASSERT_EQ(yy.exit_code, 0) << yy.out;
   EXPECT_NE(all.out, yy.out);
   const test::CsvTable got(write_temp("only.csv", yy.out));
   for (std::size_t i = 0; i < got.size(); ++i) EXPECT_EQ(got.at(i, "ekx"), 0.0);
-  const auto bad = run("error " + kMc300 + " --poses " + kPoses + " --only EQQ");
+  const auto bad = test::run_volcomp("error " + kMc300 + " --poses " + kPoses + " --only EQQ");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.out.find("'EQQ' is not a deviation"), std::string::npos) << bad.out;
 }
 
 TEST(VolcompCli, BadPosesFileNamesLineAndColumn) {
   const std::string poses = write_temp("bad_poses.csv", "x,y,z,b,c\n-300,-150,-130,0,0\n-300,-150,abc,0,0\n");
-  const auto r = run("correct " + kMc300 + " --poses " + poses);
+  const auto r = test::run_volcomp("correct " + kMc300 + " --poses " + poses);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.out.find(poses + ":3:11: error: 'abc' is not a finite number"), std::string::npos) << r.out;
   const std::string wrong_axis = write_temp("wrong_axis.csv", "x,y,z,a,c\n");
-  const auto w = run("error " + kMc300 + " --poses " + wrong_axis);
+  const auto w = test::run_volcomp("error " + kMc300 + " --poses " + wrong_axis);
   EXPECT_EQ(w.exit_code, 2);
   EXPECT_NE(w.out.find(wrong_axis + ":1:7: error: column 'a' is not an axis of MC-300 (xyzbc)"), std::string::npos)
       << w.out;
 }
 
 TEST(VolcompCli, BadMachineFileFailsWithItsLocation) {
-  const auto r = run("check " + test::source_path("tests/reference/mc300/README.md"));
+  const auto r = test::run_volcomp("check " + test::source_path("tests/reference/mc300/README.md"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.out.find("README.md:3:8: error: "), std::string::npos) << r.out;
 }
 
 TEST(VolcompCli, HelpIsEverywhere) {
   for (const char* sub : {"", "check ", "error ", "correct "}) {
-    const auto r = run(std::string(sub) + "--help");
+    const auto r = test::run_volcomp(std::string(sub) + "--help");
     EXPECT_EQ(r.exit_code, 0) << sub;
     EXPECT_NE(r.out.find("Usage"), std::string::npos) << sub;
   }

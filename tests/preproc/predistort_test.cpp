@@ -25,16 +25,6 @@ namespace {
 namespace fs = std::filesystem;
 using Point = std::array<double, 6>;
 
-test::CommandResult volcomp(const std::string& args) {
-  const std::string command = std::string(VC_VOLCOMP) + " " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string out;
-  char buffer[4096];
-  while (std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
-  const int status = pclose(pipe);
-  return {out, WEXITSTATUS(status)};
-}
-
 std::string program(const std::string& name) { return test::source_path("tests/programs/" + name); }
 
 machine::Joints joints_of(const machine::Model& model, const Point& world) {
@@ -146,7 +136,7 @@ struct Case {
 class Predistorted : public ::testing::Test {
  protected:
   static std::string run(const Case& c, const std::string& out, const std::string& extra = "") {
-    const auto r = volcomp("predistort " + test::machine_path(c.machine) + " " + program(c.program) + " -o " + out +
+    const auto r = test::run_volcomp("predistort " + test::machine_path(c.machine) + " " + program(c.program) + " -o " + out +
                            " --tool-table " + program(c.tools) + " --var " + program(c.var) + " " + extra);
     EXPECT_EQ(r.exit_code, 0) << r.out;
     return r.out;
@@ -414,7 +404,7 @@ TEST(PredistortCli, BadInputNamesLineAndColumnAndLeavesTheOutputAlone) {
   };
   for (const auto& [text, expected] : cases) {
     std::ofstream(dir / "bad.ngc") << text;
-    const auto r = volcomp("predistort " + test::machine_path("mill3") + " " + (dir / "bad.ngc").string() +
+    const auto r = test::run_volcomp("predistort " + test::machine_path("mill3") + " " + (dir / "bad.ngc").string() +
                            " -o " + out.string() + " --var " + program("mill3.var") + " --tool-table " +
                            program("mill3.tbl"));
     EXPECT_NE(r.exit_code, 0) << text;
@@ -427,7 +417,7 @@ TEST(PredistortCli, BadInputNamesLineAndColumnAndLeavesTheOutputAlone) {
 }
 
 TEST(PredistortCli, CannedCyclesAreRefusedWithTheReason) {
-  const auto r = volcomp("predistort " + test::machine_path("mill3") + " " + program("drilling_cycle.ngc") +
+  const auto r = test::run_volcomp("predistort " + test::machine_path("mill3") + " " + program("drilling_cycle.ngc") +
                          " -o - --var " + program("mill3.var") + " --tool-table " + program("mill3.tbl"));
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.out.find("drilling_cycle.ngc:6:1: error: G81: canned cycles are not translated"), std::string::npos)

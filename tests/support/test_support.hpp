@@ -1,6 +1,9 @@
 // Helpers shared by the tests: where the source tree is, and a CSV reader for reference data.
 #pragma once
 
+#include <sys/wait.h>
+
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -66,5 +69,16 @@ struct CommandResult {
   std::string out;
   int exit_code;
 };
+
+// Runs the volcomp just built with `args`; stdout and stderr together.
+inline CommandResult run_volcomp(const std::string& args) {
+  const std::string command = std::string(VC_VOLCOMP) + " " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string out;
+  char buffer[4096];
+  while (std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
+  const int status = pclose(pipe);
+  return {out, WEXITSTATUS(status)};
+}
 
 }  // namespace vc::test

@@ -217,7 +217,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     static constexpr int kSystems[] = {540, 550, 560, 570, 580, 590, 591, 592, 593};
     const int index = static_cast<int>(std::find(std::begin(kSystems), std::end(kSystems), c->code) -
                                        std::begin(kSystems)) + 1;
-    set_coordinate_system(index, line, c->offset);
+    set_coordinate_system(index);
   }
   if (const auto* g64 = w.find_g({640})) {
     effect.g64_word = g64->index;
@@ -274,7 +274,7 @@ void Interpreter::set_tool_length(const Words& w, int line) {
   set_world_position(world);  // LinuxCNC keeps the machine still; the program position changes
 }
 
-void Interpreter::set_coordinate_system(int index, int, int) {
+void Interpreter::set_coordinate_system(int index) {
   const Position world = world_position();
   coordinate_system_ = index;
   set_world_position(world);

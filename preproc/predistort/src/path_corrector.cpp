@@ -29,6 +29,20 @@ double turn_between(double from, double to, bool counter_clockwise) {
   return counter_clockwise ? sweep : -sweep;
 }
 
+// The circle LinuxCNC moves along for an arc piece from `start`: start angle, radius and
+// signed sweep about the piece's centre (its ends are at equal radius).
+struct PieceCircle {
+  double start_angle, radius, sweep;
+};
+PieceCircle circle_of(const interpreter::Arc& arc, const Position& start, const Piece& piece) {
+  const auto f = static_cast<std::size_t>(arc.first), g = static_cast<std::size_t>(arc.second);
+  const double t0 = std::atan2(start[g] - piece.center_second, start[f] - piece.center_first);
+  const double t1 = std::atan2(piece.end[g] - piece.center_second, piece.end[f] - piece.center_first);
+  const double turns = (arc.clockwise ? -1 : 1) * kTwoPi * (piece.turns - 1);
+  return {t0, std::hypot(start[f] - piece.center_first, start[g] - piece.center_second),
+          turn_between(t0, t1, !arc.clockwise) + turns};
+}
+
 }  // namespace
 
 PathCorrector::PathCorrector(const machine::Model& model, CorrectorOptions options, const Deflection* deflection)
@@ -131,11 +145,8 @@ Piece PathCorrector::piece_between(const Move& move, const Node& a, const Node& 
   piece.turns = share > kTwoPi + 1e-9 ? static_cast<int>(std::ceil(share / kTwoPi - 1e-9)) : 1;
   // LinuxCNC decides the sweep from the center and the ends: if the corrected ends would
   // make it go the other way round (an arc of almost no or almost a full turn), write a line.
-  const double t0 = std::atan2(a.program[g] - piece.center_second, a.program[f] - piece.center_first);
-  const double t1 = std::atan2(b.program[g] - piece.center_second, b.program[f] - piece.center_first);
-  const double sweep =
-      turn_between(t0, t1, !arc.clockwise) + (arc.clockwise ? -1 : 1) * kTwoPi * (piece.turns - 1);
-  if (std::abs(sweep - piece.fraction * arc.sweep_rad) > M_PI / 2) piece.kind = MoveKind::Line;
+  if (std::abs(circle_of(arc, a.program, piece).sweep - piece.fraction * arc.sweep_rad) > M_PI / 2)
+    piece.kind = MoveKind::Line;
   return piece;
 }
 
@@ -145,13 +156,9 @@ Position PathCorrector::commanded_at(const Move& move, const Node& a, const Piec
   if (piece.kind != MoveKind::Arc) return p;
   // LinuxCNC's arc through the piece's ends about its center (equal radii: a circle).
   const interpreter::Arc& arc = move.arc;
-  const auto f = static_cast<std::size_t>(arc.first), g = static_cast<std::size_t>(arc.second);
-  const double t0 = std::atan2(a.program[g] - piece.center_second, a.program[f] - piece.center_first);
-  const double t1 = std::atan2(piece.end[g] - piece.center_second, piece.end[f] - piece.center_first);
-  const double r = std::hypot(a.program[f] - piece.center_first, a.program[g] - piece.center_second);
-  const double sweep = turn_between(t0, t1, !arc.clockwise) + (arc.clockwise ? -1 : 1) * kTwoPi * (piece.turns - 1);
-  p[f] = piece.center_first + r * std::cos(t0 + t * sweep);
-  p[g] = piece.center_second + r * std::sin(t0 + t * sweep);
+  const PieceCircle c = circle_of(arc, a.program, piece);
+  p[static_cast<std::size_t>(arc.first)] = piece.center_first + c.radius * std::cos(c.start_angle + t * c.sweep);
+  p[static_cast<std::size_t>(arc.second)] = piece.center_second + c.radius * std::sin(c.start_angle + t * c.sweep);
   return p;
 }
 

@@ -63,7 +63,7 @@ class Interpreter {
   struct Words;  // the block's evaluated words
   void refuse(int line, int offset, const std::string& message) const;
   void set_tool_length(const Words& w, int line);
-  void set_coordinate_system(int index, int line, int offset);
+  void set_coordinate_system(int index);
   void set_offsets(const Words& w, int line);  // G10 L2 / L20
   void go_home(const Words& w, int code, int line, Effect& effect);
   void move(const Words& w, int line, Effect& effect);
