@@ -310,6 +310,50 @@ TEST_F(Predistorted, ProgramPointsAgreeWithTheModuleCorrection) {
   }
 }
 
+// The TCP world convention (kinematics with tool-centre-point control, volkins world=tcp):
+// program X Y Z are the tool tip in the part frame and LinuxCNC's tool length offset is not
+// part of the kinematics' world. At every program point the output is the world position
+// whose nominal kinematics give the joints the module's correction gives.
+TEST_F(Predistorted, TcpProgramPointsAgreeWithTheModuleCorrection) {
+  const fs::path dir = test::run_folder("predistort_tcp");
+  const std::string out = (dir / "out.ngc").string();
+  run(kSwarf, out, "--world tcp");
+  const machine::Model model = machine::load_machine(test::machine_path("mc300"));
+  const interpreter::ToolTable tools = interpreter::read_tool_table(program(kSwarf.tools));
+  gcode::Parameters parameters;
+  interpreter::read_var_file(program(kSwarf.var), parameters);
+  interpreter::Setup setup;
+  setup.machine_axes = predistort::program_axes(model);
+  setup.tools = &tools;
+  setup.var_file = &parameters;
+  setup.tool_length_in_world = false;
+  const auto input = test::read_moves(program(kSwarf.program), setup);
+  const auto output = test::read_moves(out, setup);
+  ASSERT_GT(input.size(), 300u);
+  std::size_t next = 0, matched = 0;
+  double worst = 0;
+  for (const interpreter::Move& m : input) {
+    machine::Joints joints;
+    ASSERT_EQ(machine::joints_from_world(model, machine::WorldConvention::Tcp, joints_of(model, m.frame.world(m.end)),
+                                         m.tool_length_mm, joints),
+              machine::Status::Ok);
+    const machine::Joints expected =
+        machine::nominal_forward(model, machine::WorldConvention::Tcp, joints, m.tool_length_mm);
+    for (std::size_t k = next; k < output.size(); ++k) {
+      const double d = (joints_of(model, output[k].frame.world(output[k].end)) - expected).cwiseAbs().maxCoeff();
+      if (d < 2e-6) {
+        worst = std::max(worst, d);
+        next = k + 1;
+        ++matched;
+        break;
+      }
+    }
+  }
+  std::cout << "MC-300 swarf, TCP: " << matched << " of " << input.size()
+            << " program points found corrected in the output, largest difference " << worst << "\n";
+  EXPECT_EQ(matched, input.size());
+}
+
 // Cutting-force deflection: the machine under the cutting load of mill3_process.toml,
 // simulated here from the force model's formulas (Kienzle's kc, mean force from cutting
 // power) and the machine file's compliance, follows the nominal path only if the
