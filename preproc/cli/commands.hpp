@@ -41,6 +41,29 @@ struct PredistortArgs {
   bool quiet = false;
 };
 
+struct SimulateArgs {
+  std::string machine;             // the "true" machine
+  std::string input;
+  std::string output;              // tool path CSV
+  std::string var_file, tool_table, process;
+  std::string compensation;        // machine file volkins corrects with (none: uncompensated)
+  std::string world = "axes";
+  double step_mm = 0.5;
+  std::vector<int> ball_end_tools;
+};
+
+struct MeasureArgs {
+  std::string path;                // tool path CSV (volcomp simulate)
+  std::string plan;                // CMM plan CSV
+  std::string output;              // CMM report CSV
+  double noise_um = 0.0;
+  double probe_radius_mm = 0.0;
+  double flute_length_mm = 30.0;
+  unsigned seed = 1;
+};
+
+int run_simulate(const SimulateArgs& args, std::ostream& report);
+int run_measure(const MeasureArgs& args, std::ostream& report);
 int run_predistort(const PredistortArgs& args, std::ostream& report);
 int run_check(const CheckArgs& args, std::ostream& out);
 int run_trace(const TraceArgs& args, std::ostream& out);

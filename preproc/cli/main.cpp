@@ -62,6 +62,34 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   predistort_cmd->add_flag("-q,--quiet", predistort.quiet, "no summary on stderr");
 
+  vc::cli::SimulateArgs simulate;
+  CLI::App* simulate_cmd = app.add_subcommand(
+      "simulate", "Run a program on a (true) machine and write the actual tool path (part frame)");
+  simulate_cmd->add_option("MACHINE", simulate.machine, "the true machine's description file (.toml)")->required();
+  simulate_cmd->add_option("PROGRAM", simulate.input, "part program (RS274/NGC)")->required();
+  simulate_cmd->add_option("-o,--output", simulate.output, "tool path CSV")->required();
+  simulate_cmd->add_option("--var", simulate.var_file, "LinuxCNC parameter file (.var)");
+  simulate_cmd->add_option("--tool-table", simulate.tool_table, "LinuxCNC tool table (.tbl): lengths and diameters, mm");
+  simulate_cmd->add_option("--process", simulate.process, "cutting conditions per tool (.toml): cutting-force deflection");
+  simulate_cmd->add_option("--compensation", simulate.compensation,
+                           "machine file the kinematics module corrects with (default: none, uncompensated)");
+  simulate_cmd->add_option("--world", simulate.world, "world convention: axes or tcp")->capture_default_str();
+  simulate_cmd->add_option("--step", simulate.step_mm, "largest distance between samples, mm")->capture_default_str();
+  simulate_cmd->add_option("--ball-end", simulate.ball_end_tools, "tools with a ball end, e.g. --ball-end 2,5")
+      ->delimiter(',');
+
+  vc::cli::MeasureArgs measure;
+  CLI::App* measure_cmd = app.add_subcommand(
+      "measure", "Virtual CMM: measure the surface a tool path machined at the points of a plan");
+  measure_cmd->add_option("PATH", measure.path, "tool path CSV (volcomp simulate)")->required();
+  measure_cmd->add_option("PLAN", measure.plan, "CMM plan CSV: id,x[mm],y[mm],z[mm],i,j,k")->required();
+  measure_cmd->add_option("-o,--output", measure.output, "CMM report CSV")->required();
+  measure_cmd->add_option("--noise", measure.noise_um, "gaussian noise (standard deviation), um")->capture_default_str();
+  measure_cmd->add_option("--probe-radius", measure.probe_radius_mm, "stylus ball radius, mm")->capture_default_str();
+  measure_cmd->add_option("--flute-length", measure.flute_length_mm, "cutting length of the tools, mm")
+      ->capture_default_str();
+  measure_cmd->add_option("--seed", measure.seed, "seed of the noise")->capture_default_str();
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*check_cmd) return vc::cli::run_check(check, std::cout);
@@ -69,6 +97,8 @@ int main(int argc, char** argv) {
     if (*correct_cmd) return vc::cli::run_correct(correct, std::cout);
     if (*trace_cmd) return vc::cli::run_trace(trace, std::cout);
     if (*predistort_cmd) return vc::cli::run_predistort(predistort, std::cerr);
+    if (*simulate_cmd) return vc::cli::run_simulate(simulate, std::cerr);
+    if (*measure_cmd) return vc::cli::run_measure(measure, std::cerr);
   } catch (const std::exception& e) {
     std::cout.flush();
     std::cerr << e.what() << '\n';

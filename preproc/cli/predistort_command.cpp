@@ -11,8 +11,10 @@
 #include <optional>
 #include <unistd.h>
 
+#include "atomic_output.hpp"
 #include "commands.hpp"
 #include "format.hpp"
+#include "program_files.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/predistort/deflection.hpp"
 #include "vc/predistort/predistort.hpp"
@@ -57,35 +59,16 @@ class Progress {
 int run_predistort(const PredistortArgs& args, std::ostream& report) {
   if (!(args.tolerance_mm > 0.0 && args.tolerance_mm <= 0.1))
     throw std::runtime_error("--tolerance must be in (0, 0.1] mm");
-  if (args.world != "axes" && args.world != "tcp")
-    throw std::runtime_error("--world must be axes or tcp, not " + args.world);
+  const machine::WorldConvention world = world_convention(args.world);
   const machine::Model model = machine::load_machine(args.machine);
-
-  std::optional<interpreter::ToolTable> tools;
-  if (!args.tool_table.empty()) tools = interpreter::read_tool_table(args.tool_table);
-  std::optional<gcode::Parameters> parameters;
-  if (!args.var_file.empty()) {
-    parameters.emplace();
-    interpreter::read_var_file(args.var_file, *parameters);
-  }
-  std::optional<predistort::Deflection> deflection;
-  if (!args.process.empty()) {
-    bool stiff = false;
-    for (const auto& c : model.compliance) stiff = stiff || !c.mm_per_N.empty();
-    if (!stiff)
-      throw LoadError({args.machine}, "--process needs a [stiffness] table in the machine file");
-    deflection.emplace(model, predistort::load_process(args.process, tools ? &*tools : nullptr));
-  }
+  const ProgramFiles files(args.tool_table, args.var_file);
+  const std::optional<predistort::Deflection> deflection = files.deflection(args.process, model);
 
   predistort::Job job;
   job.model = &model;
-  job.setup.file = args.input;
-  job.setup.machine_axes = predistort::program_axes(model);
-  job.setup.tools = tools ? &*tools : nullptr;
-  job.setup.var_file = parameters ? &*parameters : nullptr;
-  job.setup.tool_length_in_world = args.world == "axes";
+  job.setup = files.setup(args.input, model, world == machine::WorldConvention::Tcp);
   job.corrector.tolerance_mm = args.tolerance_mm;
-  job.corrector.world = args.world == "tcp" ? machine::WorldConvention::Tcp : machine::WorldConvention::Axes;
+  job.corrector.world = world;
   job.deflection = deflection ? &*deflection : nullptr;
   job.provenance = {args.machine, model.info.name, {}, args.var_file, args.tool_table, args.process, args.world,
                     args.tolerance_mm};
@@ -103,26 +86,7 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
     std::cout.flush();
     if (!std::cout) throw std::runtime_error("cannot write to stdout");
   } else {
-    // A temporary file in the output's folder (same file system: the rename is atomic).
-    const fs::path output(args.output);
-    std::string temporary = (output.parent_path().empty() ? fs::path(".") : output.parent_path()) /
-                            ("." + output.filename().string() + ".XXXXXX");
-    const int fd = mkstemp(temporary.data());
-    if (fd < 0) throw std::runtime_error("cannot create a temporary file beside " + args.output);
-    close(fd);
-    try {
-      std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-      summary = predistort::predistort(in, out, job, std::ref(progress));
-      out.close();
-      if (!out) throw std::runtime_error("cannot write " + temporary);
-      fs::permissions(temporary, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read |
-                                     fs::perms::others_read);
-      fs::rename(temporary, output);
-    } catch (...) {
-      std::error_code ignored;
-      fs::remove(temporary, ignored);
-      throw;
-    }
+    write_atomically(args.output, [&](std::ostream& out) { summary = predistort::predistort(in, out, job, std::ref(progress)); });
   }
 
   if (!args.quiet) {

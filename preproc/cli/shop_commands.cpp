@@ -1,0 +1,89 @@
+// volcomp simulate and volcomp measure: the virtual shop. A program runs on a "true"
+// machine and leaves a tool path; a virtual CMM measures the surface that path machined.
+#include <fstream>
+#include <optional>
+
+#include "atomic_output.hpp"
+#include "commands.hpp"
+#include "format.hpp"
+#include "program_files.hpp"
+#include "vc/machine/load_machine.hpp"
+#include "vc/shop/cmm.hpp"
+#include "vc/shop/machined_surface.hpp"
+#include "vc/tables/source_error.hpp"
+
+namespace vc::cli {
+
+int run_simulate(const SimulateArgs& args, std::ostream& report) {
+  if (!(args.step_mm > 0 && args.step_mm <= 10)) throw std::runtime_error("--step must be in (0, 10] mm");
+  const machine::WorldConvention world = world_convention(args.world);
+  const machine::Model machine = machine::load_machine(args.machine);
+  std::optional<machine::Model> compensation;
+  if (!args.compensation.empty()) compensation = machine::load_machine(args.compensation);
+  const ProgramFiles files(args.tool_table, args.var_file);
+  const std::optional<predistort::Deflection> deflection = files.deflection(args.process, machine);
+
+  shop::SimulationOptions options;
+  options.step_mm = args.step_mm;
+  options.world = world;
+  options.compensation = compensation ? &*compensation : nullptr;
+  options.deflection = deflection ? &*deflection : nullptr;
+  options.ball_end_tools.insert(args.ball_end_tools.begin(), args.ball_end_tools.end());
+
+  std::ifstream in(args.input, std::ios::binary);
+  if (!in) throw LoadError({args.input}, "cannot open the program");
+  long samples = 0, cutting = 0;
+  double largest = 0;
+  write_atomically(args.output, [&](std::ostream& out) {
+    shop::write_path_header(out, {"volcomp simulate: tool tip and axis in the part frame, error = tip - ideal tip",
+                            "machine " + args.machine + ", program " + args.input,
+                            "compensation " + (args.compensation.empty() ? std::string("none") : args.compensation) +
+                                ", cutting-force deflection " + (args.process.empty() ? std::string("none") : args.process)});
+    shop::simulate(machine, in, files.setup(args.input, machine, world == machine::WorldConvention::Tcp), options,
+                   [&](const shop::PathSample& s) {
+                     shop::write_path_sample(out, s);
+                     ++samples;
+                     if (s.cutting) {
+                       ++cutting;
+                       largest = std::max(largest, s.error_mm.norm());
+                     }
+                   });
+  });
+  report << "volcomp simulate: " << samples << " samples (" << cutting << " cutting), largest tool-tip error while cutting "
+         << format_fixed(largest * 1e3, 3) << " um\n";
+  return 0;
+}
+
+int run_measure(const MeasureArgs& args, std::ostream& report) {
+  if (!(args.noise_um >= 0 && args.noise_um <= 100)) throw std::runtime_error("--noise must be in [0, 100] um");
+  if (!(args.probe_radius_mm >= 0 && args.probe_radius_mm <= 5)) throw std::runtime_error("--probe-radius must be in [0, 5] mm");
+  const shop::ToolPath path = shop::read_tool_path(args.path);
+  for (const shop::PathSample& s : path)
+    if (s.cutting && !(s.radius_mm > 0))
+      throw std::runtime_error(args.path + ": tool T" + std::to_string(s.tool) +
+                               " has no radius (give volcomp simulate a tool table with its D column)");
+  shop::SurfaceOptions surface_options;
+  surface_options.flute_length_mm = args.flute_length_mm;
+  const shop::MachinedSurface surface(path, surface_options);
+  const std::vector<shop::CmmPoint> plan = shop::read_cmm_points(args.plan, false);
+  std::vector<shop::CmmPoint> measured;
+  try {
+    measured = shop::measure(surface, plan, {args.noise_um, args.probe_radius_mm, args.seed});
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(args.plan + ": " + e.what());
+  }
+  double largest = 0;
+  for (const auto& p : measured) largest = std::max(largest, std::abs(*p.deviation_mm));
+  write_atomically(args.output, [&](std::ostream& out) {
+    shop::write_cmm_report(out, measured,
+                     {"volcomp measure: virtual CMM, deviation along the normal, + = material left",
+                      "tool path " + args.path + ", plan " + args.plan,
+                      "noise " + format_number(args.noise_um) + " um (seed " + std::to_string(args.seed) +
+                          "), probe radius " + format_number(args.probe_radius_mm) + " mm"});
+  });
+  report << "volcomp measure: " << measured.size() << " points, largest deviation " << format_fixed(largest * 1e3, 3)
+         << " um\n";
+  return 0;
+}
+
+}  // namespace vc::cli

@@ -1,0 +1,129 @@
+#include "vc/shop/machined_surface.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace vc::shop {
+namespace {
+
+constexpr double kFar = std::numeric_limits<double>::infinity();
+
+// Signed distance of p to one tool (tip t, unit axis a, radius r, cutting length l):
+// negative inside. Exact for the flat cylinder and the ball-ended one.
+double tool_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& t, const Eigen::Vector3d& a, double r,
+                     double l, ToolEnd end) {
+  if (end == ToolEnd::Ball) {
+    const Eigen::Vector3d w = p - (t + r * a);  // from the ball centre
+    const double h = w.dot(a);
+    if (h >= 0) return std::max((w - h * a).norm() - r, h - (l - r));
+    return w.norm() - r;
+  }
+  const Eigen::Vector3d w = p - t;
+  const double h = w.dot(a);
+  const double rho = (w - h * a).norm();
+  // Outside distances to the side (rho - r) and to the end faces (below the tip, above l).
+  const double side = rho - r, bottom = -h, top = h - l;
+  const double ends = std::max(bottom, top);
+  if (side <= 0 && ends <= 0) return std::max(side, ends);
+  if (side <= 0) return ends;
+  if (ends <= 0) return side;
+  return std::hypot(side, ends);
+}
+
+long key_of(long i, long j, long k) { return (i * 73856093L) ^ (j * 19349663L) ^ (k * 83492791L); }
+
+}  // namespace
+
+MachinedSurface::MachinedSurface(const ToolPath& path, SurfaceOptions options) : path_(path), options_(options) {
+  // Each cutting segment goes into every cell its tool can reach (its bounding box).
+  for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+    const PathSample& a = path[i];
+    const PathSample& b = path[i + 1];
+    if (a.move != b.move || !a.cutting) continue;
+    const double grow = a.radius_mm + options_.reach_mm + 1.0;
+    Eigen::Vector3d lo = a.tip.cwiseMin(b.tip), hi = a.tip.cwiseMax(b.tip);
+    for (const Eigen::Vector3d& q : {Eigen::Vector3d(a.tip + options_.flute_length_mm * a.axis),
+                                     Eigen::Vector3d(b.tip + options_.flute_length_mm * b.axis)}) {
+      lo = lo.cwiseMin(q);
+      hi = hi.cwiseMax(q);
+    }
+    lo.array() -= grow;
+    hi.array() += grow;
+    const Eigen::Vector3d clo = (lo / cell_mm_).array().floor(), chi = (hi / cell_mm_).array().floor();
+    for (long x = static_cast<long>(clo.x()); x <= static_cast<long>(chi.x()); ++x)
+      for (long y = static_cast<long>(clo.y()); y <= static_cast<long>(chi.y()); ++y)
+        for (long z = static_cast<long>(clo.z()); z <= static_cast<long>(chi.z()); ++z)
+          cells_[key_of(x, y, z)].push_back(static_cast<int>(i));
+  }
+}
+
+long MachinedSurface::cell_key(const Eigen::Vector3d& p) const {
+  const Eigen::Vector3d c = (p / cell_mm_).array().floor();
+  return key_of(static_cast<long>(c.x()), static_cast<long>(c.y()), static_cast<long>(c.z()));
+}
+
+// The tool between two samples: at the fraction u where it passes p most closely across its
+// axis (for a plunge along the axis, the deeper end), and at both ends.
+double MachinedSurface::segment_distance(int i, const Eigen::Vector3d& p, double& u) const {
+  const PathSample& a = path_[static_cast<std::size_t>(i)];
+  const PathSample& b = path_[static_cast<std::size_t>(i) + 1];
+  const Eigen::Vector3d axis = (a.axis + b.axis).normalized();
+  const Eigen::Vector3d d = b.tip - a.tip, w = p - a.tip;
+  const Eigen::Vector3d d_across = d - d.dot(axis) * axis, w_across = w - w.dot(axis) * axis;
+  const double dd = d_across.squaredNorm();
+  double candidates[3] = {0.0, 1.0, dd > 1e-18 ? std::clamp(w_across.dot(d_across) / dd, 0.0, 1.0) : 0.0};
+  double best = kFar;
+  for (double c : candidates) {
+    const Eigen::Vector3d tip = a.tip + c * d;
+    const Eigen::Vector3d tool_axis = ((1 - c) * a.axis + c * b.axis).normalized();
+    const double distance = tool_distance(p, tip, tool_axis, a.radius_mm, options_.flute_length_mm, a.end);
+    if (distance < best) {
+      best = distance;
+      u = c;
+    }
+  }
+  return best;
+}
+
+double MachinedSurface::removed(const Eigen::Vector3d& p, Contact* best) const {
+  const auto it = cells_.find(cell_key(p));
+  if (it == cells_.end()) return kFar;
+  double nearest = kFar;
+  for (int i : it->second) {
+    double u = 0;
+    const double distance = segment_distance(i, p, u);
+    if (distance < nearest) {
+      nearest = distance;
+      if (best) *best = {i, u, distance};
+    }
+  }
+  return nearest;
+}
+
+std::optional<Contact> MachinedSurface::contact(const Eigen::Vector3d& p) const {
+  Contact c;
+  const double distance = removed(p, &c);
+  if (!(std::abs(distance) <= options_.reach_mm)) return std::nullopt;
+  return c;
+}
+
+std::optional<double> MachinedSurface::deviation(const Eigen::Vector3d& p, const Eigen::Vector3d& n) const {
+  // Root of f(t) = removed(p + t n): f falls with slope -1 where the tool's surface faces n,
+  // so start with that slope and refine by secants.
+  double t0 = 0.0, f0 = removed(p);
+  if (!(std::abs(f0) <= options_.reach_mm)) return std::nullopt;
+  double t1 = t0 + f0, f1 = removed(p + t1 * n);
+  for (int k = 0; k < 40 && std::abs(f1) > 1e-10; ++k) {
+    const double slope = (f1 - f0) / (t1 - t0);
+    const double t2 = std::abs(slope) > 1e-3 ? t1 - f1 / slope : t1 + f1;
+    t0 = t1, f0 = f1;
+    t1 = std::clamp(t2, -2 * options_.reach_mm, 2 * options_.reach_mm);
+    f1 = removed(p + t1 * n);
+    if (!std::isfinite(f1)) return std::nullopt;
+  }
+  if (std::abs(f1) > 1e-7) return std::nullopt;
+  return t1;
+}
+
+}  // namespace vc::shop

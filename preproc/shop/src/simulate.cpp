@@ -1,0 +1,155 @@
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <string_view>
+
+#include "vc/gcode/parser.hpp"
+#include "vc/machine/forward.hpp"
+#include "vc/shop/tool_path.hpp"
+#include "vc/tables/source_error.hpp"
+
+namespace vc::shop {
+namespace {
+
+using interpreter::Move;
+using interpreter::MoveKind;
+using interpreter::Position;
+
+// Samples of a move: enough that neighbouring samples are at most step_mm apart, that chords
+// of an arc stray less than chord_tolerance_mm from it, and that rotary axes turn at most
+// step_deg between them.
+int sample_count(const Move& m, const SimulationOptions& o) {
+  double length = 0;
+  for (int i = 0; i < 3; ++i) length += (m.end[i] - m.start[i]) * (m.end[i] - m.start[i]);
+  length = std::sqrt(length);
+  double n = length / o.step_mm;
+  if (m.kind == MoveKind::Arc) {
+    const auto f = static_cast<std::size_t>(m.arc.first), g = static_cast<std::size_t>(m.arc.second);
+    const double r = std::max(std::hypot(m.start[f] - m.arc.center_first, m.start[g] - m.arc.center_second),
+                              std::hypot(m.end[f] - m.arc.center_first, m.end[g] - m.arc.center_second));
+    const double sweep = std::abs(m.arc.sweep_rad);
+    n = std::max(n, sweep * r / o.step_mm);
+    if (r > o.chord_tolerance_mm) n = std::max(n, sweep / (2 * std::acos(1 - o.chord_tolerance_mm / r)));
+  }
+  for (int i = 3; i < interpreter::kAxes; ++i) n = std::max(n, std::abs(m.end[i] - m.start[i]) / o.step_deg);
+  return std::max(1, static_cast<int>(std::ceil(n)));
+}
+
+class Simulator {
+ public:
+  Simulator(const machine::Model& machine, const interpreter::Setup& setup, const SimulationOptions& options)
+      : machine_(machine), setup_(setup), options_(options) {
+    for (int j = 0; j < machine.joint_count(); ++j)
+      axis_of_joint_[j] = static_cast<int>(std::string_view(interpreter::kAxisLetters)
+                                               .find(machine.axes[static_cast<std::size_t>(j)].letter));
+  }
+
+  void run(const Move& m, int number, const std::function<void(const PathSample&)>& sink) {
+    const int n = sample_count(m, options_);
+    const bool cutting = m.kind != MoveKind::Rapid && m.spindle_on;
+    PathSample sample;
+    sample.move = number;
+    sample.line = m.line;
+    sample.tool = m.tool;
+    sample.radius_mm = radius_of(m.tool);
+    sample.end = options_.ball_end_tools.count(m.tool) ? ToolEnd::Ball : ToolEnd::Flat;
+    sample.cutting = cutting;
+    sample.tool_length_mm = m.tool_length_mm;
+    for (int k = 0; k <= n; ++k) {
+      sample.s = static_cast<double>(k) / n;
+      sample.program = interpreter::point_at(m, sample.s);
+      const machine::Joints nominal = nominal_joints(m, sample.program);
+      sample.joints = nominal;
+      if (options_.compensation) {
+        const machine::Status status = machine::joints_from_world(*options_.compensation, options_.world,
+                                                                  world_of(m, sample.program), m.tool_length_mm,
+                                                                  sample.joints);
+        if (status != machine::Status::Ok)
+          throw LoadError({setup_.file, m.line}, "the compensation does not converge at this move");
+      }
+      const machine::ToolPose real =
+          machine::tool_pose(machine_, machine::Machine::Real, sample.joints, m.tool_length_mm);
+      const machine::ToolPose ideal = machine::tool_pose(machine_, machine::Machine::Ideal, nominal, m.tool_length_mm);
+      sample.tip = real.tip_mm;
+      sample.axis = real.direction;
+      if (cutting && options_.deflection) sample.tip += deflection(m, sample.s, nominal, ideal);
+      sample.error_mm = sample.tip - ideal.tip_mm;
+      sink(sample);
+    }
+  }
+
+ private:
+  double radius_of(int tool) const {
+    if (!setup_.tools) return 0.0;
+    const auto it = setup_.tools->find(tool);
+    return it == setup_.tools->end() ? 0.0 : it->second.diameter / 2;
+  }
+
+  machine::Joints world_of(const Move& m, const Position& program) const {
+    const Position world = m.frame.world(program);
+    machine::Joints w(machine_.joint_count());
+    for (int j = 0; j < machine_.joint_count(); ++j) w[j] = world[static_cast<std::size_t>(axis_of_joint_[j])];
+    return w;
+  }
+
+  machine::Joints nominal_joints(const Move& m, const Position& program) const {
+    machine::Joints q;
+    if (machine::nominal_inverse(machine_, options_.world, world_of(m, program), m.tool_length_mm, q) !=
+        machine::Status::Ok)
+      throw LoadError({setup_.file, m.line}, "no joint position reaches this point of the move");
+    return q;
+  }
+
+  // Deflection under the move's mean cutting force at fraction s (part frame, mm). The force
+  // follows the ideal tip's direction of travel there.
+  Eigen::Vector3d deflection(const Move& m, double s, const machine::Joints& nominal,
+                             const machine::ToolPose& ideal) const {
+    constexpr double ds = 1e-4;
+    auto ideal_tip = [&](double at) {
+      const Position p = interpreter::point_at(m, std::clamp(at, 0.0, 1.0));
+      return machine::tool_pose(machine_, machine::Machine::Ideal, nominal_joints(m, p), m.tool_length_mm).tip_mm;
+    };
+    const Eigen::Vector3d feed = ideal_tip(s + ds) - ideal_tip(s - ds);
+    if (feed.norm() < 1e-12) return Eigen::Vector3d::Zero();
+    double length = 0;
+    for (int i = 0; i < 3; ++i) length += (m.end[i] - m.start[i]) * (m.end[i] - m.start[i]);
+    const Eigen::Vector3d force = options_.deflection->force(m, feed.normalized(), ideal.direction, std::sqrt(length));
+    machine::Joints shift;
+    Eigen::Vector3d delta;
+    options_.deflection->at(nominal, m.tool_length_mm, force, shift, delta);
+    return delta;
+  }
+
+  const machine::Model& machine_;
+  const interpreter::Setup& setup_;
+  const SimulationOptions& options_;
+  int axis_of_joint_[machine::kMaxAxes];
+};
+
+}  // namespace
+
+void simulate(const machine::Model& machine, std::istream& program, const interpreter::Setup& setup,
+              const SimulationOptions& options, const std::function<void(const PathSample&)>& sink) {
+  if (options.compensation && options.compensation->coordinates() != machine.coordinates())
+    throw LoadError({options.compensation->path}, "the compensation model's axes (" +
+                                                      options.compensation->coordinates() +
+                                                      ") are not the machine's (" + machine.coordinates() + ")");
+  interpreter::Interpreter interpreter(setup);
+  Simulator simulator(machine, setup, options);
+  gcode::Block block;
+  interpreter::Effect effect;
+  std::string raw;
+  int moves = 0;
+  for (int line = 1; std::getline(program, raw); ++line) {
+    if (!raw.empty() && raw.back() == '\r') raw.pop_back();
+    try {
+      gcode::parse_block(raw, block);
+    } catch (const gcode::SyntaxError& e) {
+      throw LoadError({setup.file, line, e.offset + 1}, e.what());
+    }
+    interpreter.execute(block, line, effect);
+    for (const Move& m : effect.moves) simulator.run(m, ++moves, sink);
+  }
+}
+
+}  // namespace vc::shop
