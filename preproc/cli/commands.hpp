@@ -62,6 +62,36 @@ struct MeasureArgs {
   unsigned seed = 1;
 };
 
+struct SelftuneArgs {
+  std::string machine;             // the model (machine file) the program was made for
+  std::string input;               // program Pi that machined the measured part
+  std::string report;              // CMM report Ri
+  std::string output;              // program P(i+1)
+  std::string strategy = "local";  // local or model
+  std::string var_file, tool_table, world = "axes";
+  bool compensated = false;        // Pi ran with volkins correcting with MACHINE
+  std::vector<int> ball_end_tools;
+  double flute_length_mm = 30.0;
+  double cutoff_mm = 10.0, outlier_sigmas = 4.0;
+  // local
+  double gain = 1.0, radius_mm = 15.0, step_mm = 1.0, tolerance_mm = 0.0005;
+  // model
+  std::string tables_out;          // folder of the updated machine file and tables
+  std::string nominal;             // the original program P0 (default: PROGRAM)
+  std::vector<std::string> deviations;
+  int nodes = 5;
+  double regularisation = 1e-3, smoothness = 1e-2;
+};
+
+struct PerturbArgs {
+  std::string machine;
+  std::string folder;
+  double low = 0.2, high = 0.5;
+  unsigned seed = 1;
+};
+
+int run_perturb(const PerturbArgs& args, std::ostream& report);
+int run_selftune(const SelftuneArgs& args, std::ostream& report);
 int run_simulate(const SimulateArgs& args, std::ostream& report);
 int run_measure(const MeasureArgs& args, std::ostream& report);
 int run_predistort(const PredistortArgs& args, std::ostream& report);

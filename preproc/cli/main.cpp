@@ -90,6 +90,53 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   measure_cmd->add_option("--seed", measure.seed, "seed of the noise")->capture_default_str();
 
+  vc::cli::PerturbArgs perturb;
+  CLI::App* perturb_cmd = app.add_subcommand(
+      "perturb", "Write a \"true\" machine for the virtual shop: every table off by a smooth 20-50 %");
+  perturb_cmd->add_option("MACHINE", perturb.machine, "machine file (.toml)")->required();
+  perturb_cmd->add_option("-o,--output", perturb.folder, "folder for the true machine file and its extra tables")
+      ->required();
+  perturb_cmd->add_option("--low", perturb.low, "smallest relative change")->capture_default_str();
+  perturb_cmd->add_option("--high", perturb.high, "largest relative change")->capture_default_str();
+  perturb_cmd->add_option("--seed", perturb.seed, "seed of the shapes")->capture_default_str();
+
+  vc::cli::SelftuneArgs selftune;
+  CLI::App* selftune_cmd = app.add_subcommand(
+      "selftune", "Program of the next part from the measured deviations of this one (local or model strategy)");
+  selftune_cmd->add_option("MACHINE", selftune.machine, "machine file the program was made for (.toml)")->required();
+  selftune_cmd->add_option("PROGRAM", selftune.input, "program Pi that machined the measured part")->required();
+  selftune_cmd->add_option("REPORT", selftune.report, "CMM report Ri: id,x[mm],y[mm],z[mm],i,j,k,deviation[um]")
+      ->required();
+  selftune_cmd->add_option("-o,--output", selftune.output, "program P(i+1)");
+  selftune_cmd->add_option("--strategy", selftune.strategy, "local (shift the path) or model (tune the tables)")
+      ->capture_default_str();
+  selftune_cmd->add_option("--var", selftune.var_file, "LinuxCNC parameter file (.var)");
+  selftune_cmd->add_option("--tool-table", selftune.tool_table, "LinuxCNC tool table (.tbl): lengths and diameters, mm");
+  selftune_cmd->add_option("--world", selftune.world, "world convention: axes or tcp")->capture_default_str();
+  selftune_cmd->add_flag("--compensated", selftune.compensated,
+                         "PROGRAM ran with volkins correcting with MACHINE (not pre-distorted)");
+  selftune_cmd->add_option("--ball-end", selftune.ball_end_tools, "tools with a ball end")->delimiter(',');
+  selftune_cmd->add_option("--flute-length", selftune.flute_length_mm, "cutting length of the tools, mm")
+      ->capture_default_str();
+  selftune_cmd->add_option("--cutoff", selftune.cutoff_mm, "shorter wavelengths are not tuned (low-pass), mm")
+      ->capture_default_str();
+  selftune_cmd->add_option("--outlier-sigmas", selftune.outlier_sigmas, "outlier threshold, robust sigmas")
+      ->capture_default_str();
+  selftune_cmd->add_option("--gain", selftune.gain, "local: share of the deviation taken off")->capture_default_str();
+  selftune_cmd->add_option("--radius", selftune.radius_mm, "local: deviations reach the path within this, mm")
+      ->capture_default_str();
+  selftune_cmd->add_option("--step", selftune.step_mm, "local: longest piece of a shifted move, mm")->capture_default_str();
+  selftune_cmd->add_option("--tolerance", selftune.tolerance_mm, "chord and blending tolerance, mm")->capture_default_str();
+  selftune_cmd->add_option("--tables-out", selftune.tables_out, "model: folder for the updated machine file and tables");
+  selftune_cmd->add_option("--nominal", selftune.nominal, "model: the original program P0 (default: PROGRAM)");
+  selftune_cmd->add_option("--deviations", selftune.deviations, "model: component errors to tune (default: all)")
+      ->delimiter(',');
+  selftune_cmd->add_option("--nodes", selftune.nodes, "model: table nodes over each axis's travel")->capture_default_str();
+  selftune_cmd->add_option("--regularisation", selftune.regularisation, "model: ridge on scaled unknowns")
+      ->capture_default_str();
+  selftune_cmd->add_option("--smoothness", selftune.smoothness, "model: penalty on second differences")
+      ->capture_default_str();
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*check_cmd) return vc::cli::run_check(check, std::cout);
@@ -99,6 +146,8 @@ int main(int argc, char** argv) {
     if (*predistort_cmd) return vc::cli::run_predistort(predistort, std::cerr);
     if (*simulate_cmd) return vc::cli::run_simulate(simulate, std::cerr);
     if (*measure_cmd) return vc::cli::run_measure(measure, std::cerr);
+    if (*perturb_cmd) return vc::cli::run_perturb(perturb, std::cerr);
+    if (*selftune_cmd) return vc::cli::run_selftune(selftune, std::cerr);
   } catch (const std::exception& e) {
     std::cout.flush();
     std::cerr << e.what() << '\n';

@@ -70,7 +70,7 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
   job.corrector.tolerance_mm = args.tolerance_mm;
   job.corrector.world = world;
   job.deflection = deflection ? &*deflection : nullptr;
-  job.provenance = {args.machine, model.info.name, {}, args.var_file, args.tool_table, args.process, args.world,
+  job.provenance = {{}, args.machine, model.info.name, {}, args.var_file, args.tool_table, args.process, args.world,
                     args.tolerance_mm};
   for (const auto& t : model.tables) job.provenance.tables.push_back(t.table.path());
 

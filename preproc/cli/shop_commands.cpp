@@ -10,6 +10,7 @@
 #include "vc/machine/load_machine.hpp"
 #include "vc/shop/cmm.hpp"
 #include "vc/shop/machined_surface.hpp"
+#include "vc/shop/table_set.hpp"
 #include "vc/tables/source_error.hpp"
 
 namespace vc::cli {
@@ -83,6 +84,19 @@ int run_measure(const MeasureArgs& args, std::ostream& report) {
   });
   report << "volcomp measure: " << measured.size() << " points, largest deviation " << format_fixed(largest * 1e3, 3)
          << " um\n";
+  return 0;
+}
+
+int run_perturb(const PerturbArgs& args, std::ostream& report) {
+  if (!(args.low >= 0 && args.low <= args.high && args.high <= 2))
+    throw std::runtime_error("need 0 <= --low <= --high <= 2");
+  const machine::Model model = machine::load_machine(args.machine);
+  const std::vector<shop::ExtraTable> extras = shop::perturbation_tables(model, args.low, args.high, args.seed);
+  const std::string written = shop::write_machine_with_tables(
+      model, args.folder, extras,
+      "virtual shop: the true machine's tables are off by " + format_number(args.low * 100) + "-" +
+          format_number(args.high * 100) + " % (volcomp perturb, seed " + std::to_string(args.seed) + ")");
+  report << "volcomp perturb: " << written << " (" << extras.size() << " perturbation tables)\n";
   return 0;
 }
 

@@ -30,8 +30,11 @@ Writer::Writer(std::ostream& out, unsigned axes, double tolerance_mm)
     : out_(out), axes_(axes), tolerance_mm_(tolerance_mm) {}
 
 void Writer::header(const Provenance& p) {
-  out_ << "(volcomp predistort: this program is pre-distorted for an UNCOMPENSATED machine: run it with the "
-          "volkins correction disabled)\n";
+  if (p.title.empty())
+    out_ << "(volcomp predistort: this program is pre-distorted for an UNCOMPENSATED machine: run it with the "
+            "volkins correction disabled)\n";
+  else
+    out_ << '(' << p.title << ")\n";
   out_ << "(machine: " << p.machine << ", " << p.machine_name << ")\n";
   for (const std::string& t : p.tables) out_ << "(table: " << t << ")\n";
   out_ << "(tolerance: " << p.tolerance_mm << " mm; world: " << p.world << "; parameters: "

@@ -86,26 +86,28 @@ double MachinedSurface::segment_distance(int i, const Eigen::Vector3d& p, double
   return best;
 }
 
-double MachinedSurface::removed(const Eigen::Vector3d& p, Contact* best) const {
+double MachinedSurface::removed(const Eigen::Vector3d& p) const {
   const auto it = cells_.find(cell_key(p));
   if (it == cells_.end()) return kFar;
-  double nearest = kFar;
-  for (int i : it->second) {
-    double u = 0;
-    const double distance = segment_distance(i, p, u);
-    if (distance < nearest) {
-      nearest = distance;
-      if (best) *best = {i, u, distance};
-    }
-  }
+  double nearest = kFar, u = 0;
+  for (int i : it->second) nearest = std::min(nearest, segment_distance(i, p, u));
   return nearest;
 }
 
-std::optional<Contact> MachinedSurface::contact(const Eigen::Vector3d& p) const {
-  Contact c;
-  const double distance = removed(p, &c);
-  if (!(std::abs(distance) <= options_.reach_mm)) return std::nullopt;
-  return c;
+std::vector<Contact> MachinedSurface::contacts(const Eigen::Vector3d& p, double within_mm) const {
+  std::vector<Contact> found;
+  const auto it = cells_.find(cell_key(p));
+  if (it == cells_.end()) return found;
+  for (int i : it->second) {
+    Contact c{i, 0.0, 0.0};
+    c.depth_mm = segment_distance(i, p, c.u);
+    found.push_back(c);
+  }
+  std::sort(found.begin(), found.end(), [](const Contact& a, const Contact& b) { return a.depth_mm < b.depth_mm; });
+  if (found.empty() || !(std::abs(found.front().depth_mm) <= options_.reach_mm)) return {};
+  const double limit = found.front().depth_mm + within_mm;
+  found.erase(std::find_if(found.begin(), found.end(), [&](const Contact& c) { return c.depth_mm > limit; }), found.end());
+  return found;
 }
 
 std::optional<double> MachinedSurface::deviation(const Eigen::Vector3d& p, const Eigen::Vector3d& n) const {

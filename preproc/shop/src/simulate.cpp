@@ -3,6 +3,7 @@
 #include <string>
 #include <string_view>
 
+#include "move_sampling.hpp"
 #include "vc/gcode/parser.hpp"
 #include "vc/machine/forward.hpp"
 #include "vc/shop/tool_path.hpp"
@@ -15,26 +16,6 @@ using interpreter::Move;
 using interpreter::MoveKind;
 using interpreter::Position;
 
-// Samples of a move: enough that neighbouring samples are at most step_mm apart, that chords
-// of an arc stray less than chord_tolerance_mm from it, and that rotary axes turn at most
-// step_deg between them.
-int sample_count(const Move& m, const SimulationOptions& o) {
-  double length = 0;
-  for (int i = 0; i < 3; ++i) length += (m.end[i] - m.start[i]) * (m.end[i] - m.start[i]);
-  length = std::sqrt(length);
-  double n = length / o.step_mm;
-  if (m.kind == MoveKind::Arc) {
-    const auto f = static_cast<std::size_t>(m.arc.first), g = static_cast<std::size_t>(m.arc.second);
-    const double r = std::max(std::hypot(m.start[f] - m.arc.center_first, m.start[g] - m.arc.center_second),
-                              std::hypot(m.end[f] - m.arc.center_first, m.end[g] - m.arc.center_second));
-    const double sweep = std::abs(m.arc.sweep_rad);
-    n = std::max(n, sweep * r / o.step_mm);
-    if (r > o.chord_tolerance_mm) n = std::max(n, sweep / (2 * std::acos(1 - o.chord_tolerance_mm / r)));
-  }
-  for (int i = 3; i < interpreter::kAxes; ++i) n = std::max(n, std::abs(m.end[i] - m.start[i]) / o.step_deg);
-  return std::max(1, static_cast<int>(std::ceil(n)));
-}
-
 class Simulator {
  public:
   Simulator(const machine::Model& machine, const interpreter::Setup& setup, const SimulationOptions& options)
@@ -45,7 +26,7 @@ class Simulator {
   }
 
   void run(const Move& m, int number, const std::function<void(const PathSample&)>& sink) {
-    const int n = sample_count(m, options_);
+    const int n = piece_count(m, options_.step_mm, options_.chord_tolerance_mm, options_.step_deg);
     const bool cutting = m.kind != MoveKind::Rapid && m.spindle_on;
     PathSample sample;
     sample.move = number;

@@ -17,6 +17,7 @@ namespace vc::predistort {
 
 // What the header comment names.
 struct Provenance {
+  std::string title;  // first line of the header; empty: the pre-distorter's own
   std::string machine, machine_name;
   std::vector<std::string> tables;
   std::string parameters, tool_table, process, world;

@@ -33,14 +33,16 @@ class MachinedSurface {
   // p + t n. Nothing if no cut reaches within reach_mm of p.
   std::optional<double> deviation(const Eigen::Vector3d& p, const Eigen::Vector3d& n) const;
 
-  // The segment that cut p, or nothing if no cutting tool came within reach_mm of it.
-  std::optional<Contact> contact(const Eigen::Vector3d& p) const;
+  // The segments whose tools pass within `within_mm` of the deepest one at p (the deepest
+  // first): the cuts that shaped the surface there. Empty if no cutting tool came within
+  // reach_mm of p.
+  std::vector<Contact> contacts(const Eigen::Vector3d& p, double within_mm) const;
 
   const ToolPath& path() const { return path_; }
 
  private:
   // min over segments of the tool's signed distance at p (< 0: inside the removed volume).
-  double removed(const Eigen::Vector3d& p, Contact* best = nullptr) const;
+  double removed(const Eigen::Vector3d& p) const;
   double segment_distance(int i, const Eigen::Vector3d& p, double& u) const;
   long cell_key(const Eigen::Vector3d& p) const;
 

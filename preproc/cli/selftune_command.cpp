@@ -1,0 +1,129 @@
+// volcomp selftune: the program of the next part from the measured deviations of this one
+// (seeds/000 ch. I fig. 1.12: P1 = P0, part i machined with Pi and measured (Ri), P(i+1)
+// derived from Pi and Ri). Local strategy: Pi's path shifted against the deviations. Model
+// strategy: the machine's tables tuned from the deviations (written as a new table set),
+// and the original program pre-distorted with them.
+#include <fstream>
+#include <optional>
+#include <sstream>
+
+#include "atomic_output.hpp"
+#include "commands.hpp"
+#include "format.hpp"
+#include "program_files.hpp"
+#include "vc/machine/load_machine.hpp"
+#include "vc/predistort/predistort.hpp"
+#include "vc/shop/first_part.hpp"
+#include "vc/shop/selftune_local.hpp"
+#include "vc/shop/selftune_model.hpp"
+#include "vc/tables/source_error.hpp"
+
+namespace vc::cli {
+namespace {
+
+std::ifstream open_program(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw LoadError({path}, "cannot open the program");
+  return in;
+}
+
+std::string um(double mm) { return format_fixed(mm * 1e3, 3) + " um"; }
+
+void print_first_part(const shop::FirstPart& part, std::ostream& report) {
+  report << "volcomp selftune: " << part.points.size() << " points matched to the program's cuts; short-wave part "
+         << "(below the cut-off) RMS " << um(part.short_wave_rms_mm) << ", robust sigma " << um(part.robust_sigma_mm)
+         << "; " << part.outliers << " outliers left out\n";
+  for (const shop::MatchedPoint& m : part.points)
+    if (m.outlier)
+      report << "  outlier " << m.point.id << " (report line " << m.point.line << "): deviation "
+             << um(*m.point.deviation_mm) << ", its face around it " << um(m.filtered_mm) << "\n";
+}
+
+}  // namespace
+
+int run_selftune(const SelftuneArgs& args, std::ostream& report) {
+  if (args.strategy != "local" && args.strategy != "model")
+    throw std::runtime_error("--strategy must be local or model, not " + args.strategy);
+  if (args.strategy == "model" && args.tables_out.empty())
+    throw std::runtime_error("--strategy model needs --tables-out FOLDER for the updated tables");
+  if (args.output.empty() && !(args.strategy == "model" && args.compensated))
+    throw std::runtime_error("-o/--output is required (the program of the next part)");
+  if (!(args.gain > 0 && args.gain <= 1.5)) throw std::runtime_error("--gain must be in (0, 1.5]");
+  if (!(args.radius_mm > 0) || !(args.step_mm > 0) || !(args.cutoff_mm > 0))
+    throw std::runtime_error("--radius, --step and --cutoff must be positive");
+  if (!(args.tolerance_mm > 0.0 && args.tolerance_mm <= 0.1)) throw std::runtime_error("--tolerance must be in (0, 0.1] mm");
+
+  const machine::WorldConvention world = world_convention(args.world);
+  const machine::Model model = machine::load_machine(args.machine);
+  const ProgramFiles files(args.tool_table, args.var_file);
+  const bool tcp = world == machine::WorldConvention::Tcp;
+
+  shop::FirstPartOptions options;
+  options.simulation.world = world;
+  options.simulation.compensation = args.compensated ? &model : nullptr;
+  options.simulation.ball_end_tools.insert(args.ball_end_tools.begin(), args.ball_end_tools.end());
+  options.surface.flute_length_mm = args.flute_length_mm;
+  options.cutoff_mm = args.cutoff_mm;
+  options.outlier_sigmas = args.outlier_sigmas;
+  const std::vector<shop::CmmPoint> measured = shop::read_cmm_points(args.report, true);
+  shop::FirstPart part;
+  {
+    std::ifstream in = open_program(args.input);
+    try {
+      part = shop::analyse_first_part(model, in, files.setup(args.input, model, tcp), measured, options);
+    } catch (const std::runtime_error& e) {
+      if (dynamic_cast<const LoadError*>(&e)) throw;
+      throw std::runtime_error(args.report + ": " + e.what());
+    }
+  }
+  print_first_part(part, report);
+  const shop::FormError before = shop::form_error(measured);
+  report << "  measured form error: largest " << um(before.largest_mm) << ", RMS " << um(before.rms_mm) << "\n";
+
+  predistort::Provenance provenance{"", args.machine, model.info.name, {}, args.var_file, args.tool_table, "",
+                                    args.world, args.tolerance_mm};
+  if (args.strategy == "local") {
+    provenance.title = "volcomp selftune (local): " + args.input + " shifted against the deviations of " + args.report +
+                       " (gain " + format_number(args.gain) + ", radius " + format_number(args.radius_mm) + " mm)";
+    shop::LocalOptions local{args.gain, args.radius_mm, args.step_mm, args.tolerance_mm, world};
+    shop::LocalSummary summary;
+    std::ifstream in = open_program(args.input);
+    write_atomically(args.output, [&](std::ostream& out) {
+      summary = shop::shift_program(model, part, in, files.setup(args.input, model, tcp), provenance, out, local);
+    });
+    report << "  local: " << summary.moves_shifted << " moves shifted (" << summary.pieces << " pieces), coverage "
+           << format_fixed(summary.covered_fraction * 100, 1) << " % of " << format_fixed(summary.cutting_length_mm, 1)
+           << " mm of cutting path, largest shift " << um(summary.largest_shift_mm) << "\n";
+    return 0;
+  }
+
+  shop::ModelOptions fit_options{args.deviations, args.nodes, args.regularisation, args.smoothness};
+  const shop::ModelFit fit = shop::fit_tables(model, part, fit_options);
+  const std::string comment = "volcomp selftune (model) from " + args.report;
+  const std::string machine_out = shop::write_machine_with_tables(model, args.tables_out, fit.tables, comment);
+  report << "  model: " << fit.parameters << " unknowns (" << fit.unobservable << " not seen by this part) from "
+         << fit.points << " points; deviation left unexplained by the model RMS " << um(fit.rms_before_mm) << " -> "
+         << um(fit.rms_after_mm) << " after the fit; largest table change " << um(fit.largest_change_mm) << ", "
+         << format_fixed(fit.largest_change_rad * 1e6, 3) << " urad\n  updated machine file: " << machine_out << "\n";
+  const machine::Model tuned = machine::load_machine(machine_out);  // as the module will read it
+  if (args.compensated) {
+    report << "  load it in volkins; the program stays as it is\n";
+    return 0;
+  }
+  const std::string nominal = args.nominal.empty() ? args.input : args.nominal;
+  predistort::Job job;
+  job.model = &tuned;
+  job.setup = files.setup(nominal, tuned, tcp);
+  job.corrector.tolerance_mm = args.tolerance_mm;
+  job.corrector.world = world;
+  job.provenance = provenance;
+  job.provenance.machine = machine_out;
+  for (const auto& t : tuned.tables) job.provenance.tables.push_back(t.table.path());
+  std::ifstream in = open_program(nominal);
+  predistort::Summary summary;
+  write_atomically(args.output, [&](std::ostream& out) { summary = predistort::predistort(in, out, job); });
+  report << "  " << nominal << " pre-distorted with the updated tables: " << summary.corrector.pieces << " pieces\n";
+  return 0;
+}
+
+}  // namespace vc::cli

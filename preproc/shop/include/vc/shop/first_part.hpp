@@ -1,0 +1,59 @@
+// What a measured part says about the program that made it (the first step of self-tuning,
+// seeds/000 ch. I fig. 1.12: part i machined with program Pi, its deviations Ri measured).
+//
+// Each report point is matched to the cuts of Pi that shaped it (on the path the machine
+// model predicts for Pi); a point far from every cut surface means the report does not
+// belong to the program (another part, another frame, wrong units) and is refused.
+// Then what the tables should not absorb is separated (seeds/000 ch. V, section 5.6): the
+// deviations are low-pass filtered over the points of each face (waves shorter than the
+// cut-off: vibration marks, noise), and points whose short-wave part is far beyond the
+// others' (dwell marks, chips, probing errors) are flagged as outliers and left out.
+#pragma once
+
+#include <istream>
+#include <vector>
+
+#include "vc/shop/cmm.hpp"
+#include "vc/shop/machined_surface.hpp"
+#include "vc/shop/tool_path.hpp"
+
+namespace vc::shop {
+
+struct FirstPartOptions {
+  SimulationOptions simulation;      // how the program ran (world, module compensation, tools)
+  SurfaceOptions surface;
+  double cutoff_mm = 10.0;           // wavelengths shorter than this are not tuned
+  double outlier_sigmas = 4.0;       // short-wave part beyond this many robust sigmas: outlier
+  double outlier_floor_mm = 0.003;   // ... and beyond this (noise alone is never an outlier)
+  double largest_deviation_mm = 1.0; // a larger deviation means a wrong unit, not a machine
+};
+
+struct MatchedPoint {
+  CmmPoint point;
+  std::vector<Contact> cuts;   // path segments that shaped the surface there, deepest first
+  double predicted_mm = 0.0;   // deviation the model predicts for the program
+  double filtered_mm = 0.0;    // measured deviation, low-pass over its face
+  double short_wave_mm = 0.0;  // measured - filtered
+  bool outlier = false;
+};
+
+struct FirstPart {
+  ToolPath path;               // the program's path as the model predicts it
+  std::vector<MatchedPoint> points;
+  int outliers = 0;
+  double short_wave_rms_mm = 0.0;  // of the points kept
+  double robust_sigma_mm = 0.0;    // of the short-wave parts
+};
+
+// Throws std::runtime_error (naming the point and its report line) for a report that does
+// not fit the program.
+FirstPart analyse_first_part(const machine::Model& model, std::istream& program, const interpreter::Setup& setup,
+                             const std::vector<CmmPoint>& report, const FirstPartOptions& options);
+
+// Largest |deviation| and RMS of a set of points (form error figures), measured values.
+struct FormError {
+  double largest_mm = 0.0, rms_mm = 0.0;
+};
+FormError form_error(const std::vector<CmmPoint>& points);
+
+}  // namespace vc::shop

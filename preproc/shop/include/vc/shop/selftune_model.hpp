@@ -1,0 +1,44 @@
+// Self-tuning, model strategy: the measured deviations identify corrections to the machine's
+// error tables, which then serve every part (the one measured and the next, different one).
+//
+// Unknowns: for each tuned component error (EXX, EYX, ... of each axis) its values at
+// `nodes` equally spaced positions over the axis's travel, linearly interpolated (a low-order
+// shape; a linear shape of a straightness is a squareness). Each kept report point k, cut at
+// joints q_k, gives one equation
+//     n_k . (d tip(q_k) / d p) dp = filtered deviation_k - deviation the current model predicts
+// (the model predicts no deviation for a program pre-distorted with it). Least squares with
+// columns scaled to unit norm, a ridge (regularisation) for what the part cannot see, and a
+// penalty on second differences along each table (smoothness).
+// The result is one table per axis, "selftune_<axis>.csv", summed with the measured tables;
+// an earlier tuning of the same name is carried over and added to.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "vc/shop/first_part.hpp"
+#include "vc/shop/table_set.hpp"
+
+namespace vc::shop {
+
+struct ModelOptions {
+  std::vector<std::string> deviations;  // component errors to tune, e.g. EXX,EYX; empty: all of every axis
+  int nodes = 5;
+  double regularisation = 1e-3;
+  double smoothness = 1e-2;
+};
+
+struct ModelFit {
+  std::vector<ExtraTable> tables;
+  int points = 0, parameters = 0, unobservable = 0;
+  double rms_before_mm = 0.0, rms_after_mm = 0.0;  // of the equations' right-hand side and residual
+  double largest_change_mm = 0.0, largest_change_rad = 0.0;
+};
+
+// Throws std::invalid_argument for a deviation symbol the machine does not have.
+ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const ModelOptions& options);
+
+// The file name of an axis's tuning table.
+std::string tuning_table_name(char axis);
+
+}  // namespace vc::shop

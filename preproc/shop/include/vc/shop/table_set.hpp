@@ -1,0 +1,49 @@
+// A machine file with extra error tables: how the self-tuning writes its updated table set,
+// and how the tests make a "true" machine that differs from the model. The machine file is
+// copied as it is (its comments stay), with its table paths pointed back at the original
+// tables and each extra table listed under its axis, so the measured tables stay untouched
+// and the tuning is a separate, visible table per axis, summed with them.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "vc/machine/model.hpp"
+#include "vc/tables/error_table.hpp"
+
+namespace vc::shop {
+
+struct ExtraTable {
+  int joint = 0;             // the axis whose section lists it
+  std::string file_name;     // written in the output folder, e.g. "selftune_x.csv"
+  tables::ErrorTable table;  // core units (mm, rad)
+};
+
+// Writes a table as CSV: positions in mm or deg, translations in um, rotations in urad.
+void write_table_csv(const tables::ErrorTable& table, const std::string& path,
+                     const std::vector<std::string>& comments);
+
+// Writes `folder`/<machine file name> and the extra tables beside it; returns the machine
+// file's path. A table already listed under the same axis with the same file name (an
+// earlier tuning) is replaced by the extra one. Throws std::runtime_error if the machine
+// file cannot be read or written.
+std::string write_machine_with_tables(const machine::Model& model, const std::string& folder,
+                                      const std::vector<ExtraTable>& extras, const std::string& comment);
+
+// An empty table (all zero) over the travel of `joint` with `nodes` equally spaced
+// positions and the given error columns, linear interpolation.
+tables::ErrorTable zero_table(const machine::Model& model, int joint, int nodes,
+                              const std::vector<tables::ErrorSymbol>& columns, const std::string& path);
+
+}  // namespace vc::shop
+
+namespace vc::shop {
+
+// A "true" machine for the virtual shop: for every table of `model`, an extra table on the
+// same grid holding f(x) times its values, where f is smooth along the table's first grid
+// variable, f = s (a + b sin(pi t + phi)), t in [0, 1] over the grid, with its magnitude in
+// [low, high] (e.g. 0.2 .. 0.5: the true errors are 20-50 % off the measured ones), the sign
+// s, the phase phi and a, b drawn per column from `seed`.
+std::vector<ExtraTable> perturbation_tables(const machine::Model& model, double low, double high, unsigned seed);
+
+}  // namespace vc::shop

@@ -1,0 +1,180 @@
+#include "vc/shop/selftune_model.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <map>
+#include <stdexcept>
+
+#include "vc/machine/forward.hpp"
+
+namespace vc::shop {
+namespace {
+
+// A tuning table on a copy of the model: its index there and its columns.
+struct Probe {
+  int joint;
+  int table;  // index into the tuned model's tables
+  std::vector<tables::ErrorSymbol> columns;
+};
+
+// The components to tune on each joint.
+std::map<int, std::vector<tables::ErrorSymbol>> selected(const machine::Model& model, const ModelOptions& options) {
+  std::map<int, std::vector<tables::ErrorSymbol>> by_joint;
+  if (options.deviations.empty()) {
+    for (int j = 0; j < model.joint_count(); ++j)
+      for (int c = 0; c < 6; ++c) by_joint[j].push_back({c, model.axes[static_cast<std::size_t>(j)].letter, false});
+    return by_joint;
+  }
+  for (const std::string& name : options.deviations) {
+    const auto symbol = tables::parse_error_symbol(name);
+    if (!symbol || symbol->location)
+      throw std::invalid_argument(name + " is not a component error (EXX, EYX, ..., ECC): location errors are "
+                                         "tuned through the linear shape of a component");
+    const int j = model.joint_of(symbol->axis);
+    if (j < 0) throw std::invalid_argument(name + ": the machine has no axis " + std::string(1, symbol->axis));
+    auto& list = by_joint[j];
+    if (std::none_of(list.begin(), list.end(), [&](const auto& s) { return s.component == symbol->component; }))
+      list.push_back(*symbol);
+  }
+  return by_joint;
+}
+
+}  // namespace
+
+std::string tuning_table_name(char axis) {
+  return std::string("selftune_") + static_cast<char>(std::tolower(axis)) + ".csv";
+}
+
+ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const ModelOptions& options) {
+  if (options.nodes < 2 || options.nodes > 101) throw std::invalid_argument("--nodes must be in [2, 101]");
+  // Probe tables (all zero) on a copy of the model: the unknowns are their values.
+  machine::Model tuned = model;
+  std::vector<Probe> probes;
+  for (const auto& [joint, columns] : selected(model, options)) {
+    const char letter = model.axes[static_cast<std::size_t>(joint)].letter;
+    machine::BoundTable bound{zero_table(model, joint, options.nodes, columns, tuning_table_name(letter)), {}};
+    bound.joint[0] = joint;
+    tuned.axes[static_cast<std::size_t>(joint)].tables.push_back(static_cast<int>(tuned.tables.size()));
+    tuned.axes[static_cast<std::size_t>(joint)].moved_by |= 1u << joint;
+    probes.push_back({joint, static_cast<int>(tuned.tables.size()), columns});
+    tuned.tables.push_back(std::move(bound));
+  }
+  struct Unknown {
+    int probe, node, column;
+  };
+  std::vector<Unknown> unknowns;
+  for (std::size_t p = 0; p < probes.size(); ++p)
+    for (int node = 0; node < options.nodes; ++node)
+      for (std::size_t c = 0; c < probes[p].columns.size(); ++c)
+        unknowns.push_back({static_cast<int>(p), node, static_cast<int>(c)});
+
+  // One equation per kept point: sensitivities by a small value at one node at a time.
+  std::vector<const MatchedPoint*> kept;
+  for (const MatchedPoint& m : part.points)
+    if (!m.outlier) kept.push_back(&m);
+  const auto rows = static_cast<Eigen::Index>(kept.size()), cols = static_cast<Eigen::Index>(unknowns.size());
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(rows, cols);
+  Eigen::VectorXd b(rows);
+  for (Eigen::Index k = 0; k < rows; ++k) {
+    const MatchedPoint& m = *kept[static_cast<std::size_t>(k)];
+    const Contact& cut = m.cuts.front();
+    const PathSample& s0 = part.path[static_cast<std::size_t>(cut.sample)];
+    const PathSample& s1 = part.path[static_cast<std::size_t>(cut.sample) + 1];
+    const machine::Joints q = s0.joints + cut.u * (s1.joints - s0.joints);
+    const Eigen::Vector3d base = machine::tool_pose(tuned, machine::Machine::Real, q, s0.tool_length_mm).tip_mm;
+    for (Eigen::Index u = 0; u < cols; ++u) {
+      const Unknown& x = unknowns[static_cast<std::size_t>(u)];
+      tables::ErrorTable& t = tuned.tables[static_cast<std::size_t>(probes[static_cast<std::size_t>(x.probe)].table)].table;
+      const double step = probes[static_cast<std::size_t>(x.probe)].columns[static_cast<std::size_t>(x.column)].quantity() ==
+                                  tables::Quantity::Length ? 1e-3 : 1e-5;
+      t.value(x.node, x.column) = step;
+      const Eigen::Vector3d moved = machine::tool_pose(tuned, machine::Machine::Real, q, s0.tool_length_mm).tip_mm;
+      t.value(x.node, x.column) = 0.0;
+      a(k, u) = m.point.normal.dot(moved - base) / step;
+    }
+    b[k] = m.filtered_mm - m.predicted_mm;
+  }
+
+  // Scaled columns, ridge and second-difference smoothness; unobservable columns stay zero.
+  ModelFit fit;
+  fit.points = static_cast<int>(rows);
+  fit.parameters = static_cast<int>(cols);
+  Eigen::VectorXd scale(cols);
+  for (Eigen::Index u = 0; u < cols; ++u) {
+    scale[u] = a.col(u).norm();
+    if (scale[u] < 1e-9 * std::sqrt(static_cast<double>(rows))) {
+      scale[u] = 0;
+      ++fit.unobservable;
+    }
+  }
+  Eigen::MatrixXd as = a;
+  for (Eigen::Index u = 0; u < cols; ++u) as.col(u) *= scale[u] > 0 ? 1 / scale[u] : 0.0;
+  Eigen::MatrixXd normal = as.transpose() * as;
+  normal.diagonal().array() += options.regularisation;
+  for (Eigen::Index u = 0; u < cols; ++u)
+    if (scale[u] == 0) normal(u, u) = 1;  // pinned at zero
+  // Second differences of scaled values along each table column: x[i-1] - 2 x[i] + x[i+1].
+  const auto index = [&](int probe, int node, int column) {
+    for (Eigen::Index u = 0; u < cols; ++u) {
+      const Unknown& x = unknowns[static_cast<std::size_t>(u)];
+      if (x.probe == probe && x.node == node && x.column == column) return u;
+    }
+    return Eigen::Index(-1);
+  };
+  for (std::size_t p = 0; p < probes.size(); ++p)
+    for (std::size_t c = 0; c < probes[p].columns.size(); ++c)
+      for (int node = 1; node + 1 < options.nodes; ++node) {
+        const Eigen::Index i[3] = {index(static_cast<int>(p), node - 1, static_cast<int>(c)),
+                                   index(static_cast<int>(p), node, static_cast<int>(c)),
+                                   index(static_cast<int>(p), node + 1, static_cast<int>(c))};
+        const double w[3] = {1, -2, 1};
+        for (int r = 0; r < 3; ++r)
+          for (int s = 0; s < 3; ++s) normal(i[r], i[s]) += options.smoothness * w[r] * w[s];
+      }
+  const Eigen::VectorXd xs = normal.ldlt().solve(as.transpose() * b);
+  Eigen::VectorXd x(cols);
+  for (Eigen::Index u = 0; u < cols; ++u) x[u] = scale[u] > 0 ? xs[u] / scale[u] : 0.0;
+  fit.rms_before_mm = rows ? b.norm() / std::sqrt(static_cast<double>(rows)) : 0.0;
+  fit.rms_after_mm = rows ? (b - a * x).norm() / std::sqrt(static_cast<double>(rows)) : 0.0;
+
+  // The tables: an earlier tuning of the axis (same file name) plus this one.
+  for (std::size_t p = 0; p < probes.size(); ++p) {
+    const Probe& probe = probes[p];
+    const char letter = model.axes[static_cast<std::size_t>(probe.joint)].letter;
+    std::vector<tables::ErrorSymbol> columns = probe.columns;
+    const machine::BoundTable* earlier = nullptr;
+    for (int t : model.axes[static_cast<std::size_t>(probe.joint)].tables)
+      if (std::filesystem::path(model.tables[static_cast<std::size_t>(t)].table.path()).filename() == tuning_table_name(letter))
+        earlier = &model.tables[static_cast<std::size_t>(t)];
+    if (earlier)
+      for (const auto& c : earlier->table.columns())
+        if (std::none_of(columns.begin(), columns.end(), [&](const auto& s) { return s.component == c.symbol.component; }))
+          columns.push_back(c.symbol);
+    tables::ErrorTable table = zero_table(model, probe.joint, options.nodes, columns, tuning_table_name(letter));
+    for (int node = 0; node < options.nodes; ++node) {
+      if (earlier) {
+        tables::ErrorTable::Sample sample;
+        const double at = table.grid()[0].nodes[static_cast<std::size_t>(node)];
+        earlier->table.evaluate(&at, sample, false);
+        for (std::size_t c = 0; c < earlier->table.columns().size(); ++c)
+          for (std::size_t d = 0; d < columns.size(); ++d)
+            if (columns[d].component == earlier->table.columns()[c].symbol.component)
+              table.value(node, static_cast<int>(d)) += sample.value[c];
+      }
+      for (std::size_t c = 0; c < probe.columns.size(); ++c) {
+        const double change = x[index(static_cast<int>(p), node, static_cast<int>(c))];
+        table.value(node, static_cast<int>(c)) += change;
+        if (probe.columns[c].quantity() == tables::Quantity::Length)
+          fit.largest_change_mm = std::max(fit.largest_change_mm, std::abs(change));
+        else
+          fit.largest_change_rad = std::max(fit.largest_change_rad, std::abs(change));
+      }
+    }
+    fit.tables.push_back({probe.joint, tuning_table_name(letter), std::move(table)});
+  }
+  return fit;
+}
+
+}  // namespace vc::shop

@@ -1,0 +1,166 @@
+#include "vc/shop/table_set.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <stdexcept>
+#include <toml++/toml.h>
+
+namespace vc::shop {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string number(double v) {
+  char buffer[32];
+  return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, v).ptr);
+}
+
+std::string trimmed(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t");
+  return b == std::string::npos ? std::string() : s.substr(b);
+}
+
+// One array-of-tables element of a chain ([[workpiece_chain]] / [[tool_chain]]).
+struct AxisSection {
+  char letter;
+  std::string chain;  // "workpiece_chain" or "tool_chain"
+  int header_line;    // 0-based
+};
+
+}  // namespace
+
+void write_table_csv(const tables::ErrorTable& table, const std::string& path, const std::vector<std::string>& comments) {
+  std::ofstream out(path, std::ios::trunc);
+  if (!out) throw std::runtime_error("cannot write " + path);
+  for (const std::string& c : comments) out << "# " << c << '\n';
+  const auto& grid = table.grid();
+  for (std::size_t v = 0; v < grid.size(); ++v)
+    out << (v ? "," : "") << static_cast<char>(std::tolower(grid[v].axis)) << (grid[v].rotary ? "[deg]" : "[mm]");
+  for (const auto& c : table.columns())
+    out << ',' << c.symbol.name() << (c.symbol.quantity() == tables::Quantity::Length ? "[um]" : "[urad]");
+  out << '\n';
+  // Rows in node order, first variable slowest (as the loader reads them).
+  std::vector<std::size_t> index(grid.size(), 0);
+  for (int node = 0; node < table.node_count(); ++node) {
+    int rest = node;
+    for (std::size_t v = grid.size(); v-- > 0;) {
+      index[v] = static_cast<std::size_t>(rest) % grid[v].nodes.size();
+      rest /= static_cast<int>(grid[v].nodes.size());
+    }
+    for (std::size_t v = 0; v < grid.size(); ++v) out << (v ? "," : "") << number(grid[v].nodes[index[v]] + 0.0);
+    for (std::size_t c = 0; c < table.columns().size(); ++c) {
+      // um or urad, to a thousandth of them
+      const bool length = table.columns()[c].symbol.quantity() == tables::Quantity::Length;
+      out << ',' << number(std::round(table.value(node, static_cast<int>(c)) * (length ? 1e6 : 1e9)) / 1e3 + 0.0);  // no "-0"
+    }
+    out << '\n';
+  }
+  if (!out) throw std::runtime_error("cannot write " + path);
+}
+
+tables::ErrorTable zero_table(const machine::Model& model, int joint, int nodes,
+                              const std::vector<tables::ErrorSymbol>& columns, const std::string& path) {
+  const machine::Axis& axis = model.axes[static_cast<std::size_t>(joint)];
+  tables::GridVariable g;
+  g.axis = axis.letter;
+  g.rotary = axis.type == machine::AxisType::Rotary;
+  g.periodic = false;
+  for (int i = 0; i < nodes; ++i)
+    g.nodes.push_back(axis.travel_min + (axis.travel_max - axis.travel_min) * i / (nodes - 1));
+  std::vector<tables::Column> cols;
+  for (const auto& s : columns) cols.push_back({s, {path}});
+  return tables::ErrorTable(path, {g}, cols, std::vector<double>(static_cast<std::size_t>(nodes) * columns.size(), 0.0),
+                            tables::Interpolation::Linear);
+}
+
+std::string write_machine_with_tables(const machine::Model& model, const std::string& folder,
+                                      const std::vector<ExtraTable>& extras, const std::string& comment) {
+  const fs::path source(model.path);
+  const fs::path base = source.parent_path();
+  std::vector<std::string> lines;
+  {
+    std::ifstream in(source);
+    if (!in) throw std::runtime_error("cannot read " + model.path);
+    for (std::string l; std::getline(in, l);) lines.push_back(l);
+  }
+  fs::create_directories(folder);
+  const fs::path out_dir = fs::absolute(folder);
+  const toml::table root = toml::parse_file(model.path);  // the model loaded from it: it parses
+
+  std::map<int, std::string> replaced_lines;                // 0-based line -> new text
+  std::vector<AxisSection> sections;
+  std::vector<std::pair<char, std::string>> existing;      // (axis, file name) already listed
+  for (const char* chain : {"workpiece_chain", "tool_chain"}) {
+    const toml::array* axes = root[chain].as_array();
+    if (!axes) continue;
+    for (const toml::node& element : *axes) {
+      const toml::table& axis = *element.as_table();
+      const char letter = axis["axis"].value_or(std::string("?"))[0];
+      sections.push_back({letter, chain, static_cast<int>(element.source().begin.line) - 1});
+      const toml::array* list = axis["tables"].as_array();
+      if (!list) continue;
+      for (const toml::node& t : *list) {
+        const toml::node* file = t.as_table()->get("file");
+        const std::string value = file->value_or(std::string());
+        const std::string name = fs::path(value).filename().string();
+        existing.emplace_back(letter, name);
+        // The path as seen from the new folder: the extra table itself, or the original.
+        const bool is_extra = std::any_of(extras.begin(), extras.end(), [&](const ExtraTable& e) {
+          return e.file_name == name && model.axes[static_cast<std::size_t>(e.joint)].letter == letter;
+        });
+        const std::string target =
+            is_extra ? name : fs::relative(fs::absolute(base / value), out_dir).generic_string();
+        const int line = static_cast<int>(file->source().begin.line) - 1;
+        std::string& text = replaced_lines.count(line) ? replaced_lines[line] : (replaced_lines[line] = lines[line]);
+        const auto open = static_cast<std::size_t>(file->source().begin.column) - 1;
+        const char quote = text[open];
+        const auto close = text.find(quote, open + 1);
+        if ((quote != '"' && quote != '\'') || close == std::string::npos)
+          throw std::runtime_error(model.path + ":" + std::to_string(line + 1) + ": cannot rewrite this table path");
+        text = text.substr(0, open) + '"' + target + '"' + text.substr(close + 1);
+      }
+    }
+  }
+  for (const auto& [line, text] : replaced_lines) lines[static_cast<std::size_t>(line)] = text;
+
+  // New tables go at the end of their axis's section: before the next header that is not
+  // one of its sub-tables, and before the comments that lead into that header.
+  std::map<int, std::vector<std::string>, std::greater<>> insertions;
+  for (const ExtraTable& e : extras) {
+    const char letter = model.axes[static_cast<std::size_t>(e.joint)].letter;
+    write_table_csv(e.table, (out_dir / e.file_name).string(),
+                    {comment, "error = actual - nominal; summed with the axis's other tables",
+                     "units: positions mm or deg, translations um, rotations urad"});
+    if (std::find(existing.begin(), existing.end(), std::pair(letter, e.file_name)) != existing.end()) continue;
+    const auto section = std::find_if(sections.begin(), sections.end(), [&](const AxisSection& s) { return s.letter == letter; });
+    if (section == sections.end()) throw std::runtime_error("axis " + std::string(1, letter) + " has no section in " + model.path);
+    int at = section->header_line + 1;
+    while (at < static_cast<int>(lines.size())) {
+      const std::string t = trimmed(lines[static_cast<std::size_t>(at)]);
+      if (!t.empty() && t[0] == '[' && t.rfind("[" + section->chain + ".", 0) != 0 &&
+          t.rfind("[[" + section->chain + ".", 0) != 0)
+        break;
+      ++at;
+    }
+    while (at > section->header_line + 1) {
+      const std::string t = trimmed(lines[static_cast<std::size_t>(at - 1)]);
+      if (!t.empty() && t[0] != '#') break;
+      --at;
+    }
+    insertions[at].insert(insertions[at].end(), {"[[" + section->chain + ".tables]]",
+                                                 "file = \"" + e.file_name + "\"   # " + comment});
+  }
+  for (const auto& [at, text] : insertions) lines.insert(lines.begin() + at, text.begin(), text.end());
+
+  const fs::path machine_out = out_dir / source.filename();
+  std::ofstream out(machine_out, std::ios::trunc);
+  for (const std::string& l : lines) out << l << '\n';
+  if (!out) throw std::runtime_error("cannot write " + machine_out.string());
+  return machine_out.string();
+}
+
+}  // namespace vc::shop
