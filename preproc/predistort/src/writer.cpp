@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <sstream>
 
 namespace vc::predistort {
 namespace {
@@ -24,6 +25,16 @@ constexpr double kScale[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8};
 // Integer in units of 10^-decimals: exact decimal output, and G91 increments that add up.
 std::int64_t units(double value, int decimals) { return std::llround(value * kScale[decimals]); }
 
+// Text inside a G-code comment: LinuxCNC refuses a '(' there (nested comment), and a ')'
+// would end it early.
+std::string commented(std::string text) {
+  for (char& c : text) {
+    if (c == '(') c = '[';
+    if (c == ')') c = ']';
+  }
+  return text;
+}
+
 }  // namespace
 
 Writer::Writer(std::ostream& out, unsigned axes, double tolerance_mm)
@@ -34,13 +45,15 @@ void Writer::header(const Provenance& p) {
     out_ << "(volcomp predistort: this program is pre-distorted for an UNCOMPENSATED machine: run it with the "
             "volkins correction disabled)\n";
   else
-    out_ << '(' << p.title << ")\n";
-  out_ << "(machine: " << p.machine << ", " << p.machine_name << ")\n";
-  for (const std::string& t : p.tables) out_ << "(table: " << t << ")\n";
-  out_ << "(tolerance: " << p.tolerance_mm << " mm; world: " << p.world << "; parameters: "
-       << (p.parameters.empty() ? "none" : p.parameters) << "; tool table: "
-       << (p.tool_table.empty() ? "none" : p.tool_table) << "; cutting process: "
-       << (p.process.empty() ? "none" : p.process) << ")\n";
+    out_ << '(' << commented(p.title) << ")\n";
+  out_ << '(' << commented("machine: " + p.machine + ", " + p.machine_name) << ")\n";
+  for (const std::string& t : p.tables) out_ << '(' << commented("table: " + t) << ")\n";
+  std::ostringstream files;
+  files << "tolerance: " << p.tolerance_mm << " mm; world: " << p.world << "; parameters: "
+        << (p.parameters.empty() ? "none" : p.parameters) << "; tool table: "
+        << (p.tool_table.empty() ? "none" : p.tool_table) << "; cutting process: "
+        << (p.process.empty() ? "none" : p.process);
+  out_ << '(' << commented(files.str()) << ")\n";
   line_.clear();
   line_ += "G21 G64";
   append_number(line_, 'P', tolerance_mm_, 6);

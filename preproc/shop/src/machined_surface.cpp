@@ -111,20 +111,27 @@ std::vector<Contact> MachinedSurface::contacts(const Eigen::Vector3d& p, double 
 }
 
 std::optional<double> MachinedSurface::deviation(const Eigen::Vector3d& p, const Eigen::Vector3d& n) const {
-  // Root of f(t) = removed(p + t n): f falls with slope -1 where the tool's surface faces n,
-  // so start with that slope and refine by secants.
+  // Root of f(t) = removed(p + t n). f falls with slope -1 where the tool's surface faces n:
+  // the first step takes that slope, the next ones secants (the slope where it is steep
+  // enough to trust, -1 otherwise).
+  constexpr double kExact = 1e-10;
   double t0 = 0.0, f0 = removed(p);
   if (!(std::abs(f0) <= options_.reach_mm)) return std::nullopt;
-  double t1 = t0 + f0, f1 = removed(p + t1 * n);
-  for (int k = 0; k < 40 && std::abs(f1) > 1e-10; ++k) {
-    const double slope = (f1 - f0) / (t1 - t0);
-    const double t2 = std::abs(slope) > 1e-3 ? t1 - f1 / slope : t1 + f1;
-    t0 = t1, f0 = f1;
-    t1 = std::clamp(t2, -2 * options_.reach_mm, 2 * options_.reach_mm);
-    f1 = removed(p + t1 * n);
+  if (std::abs(f0) <= kExact) return 0.0;
+  double t1 = f0, f1 = removed(p + t1 * n);
+  for (int k = 0; k < 40; ++k) {
     if (!std::isfinite(f1)) return std::nullopt;
+    if (std::abs(f1) <= kExact) return t1;
+    const double slope = (f1 - f0) / (t1 - t0);
+    const double t2 = std::clamp(slope < -0.05 ? t1 - f1 / slope : t1 + f1, -2 * options_.reach_mm,
+                                 2 * options_.reach_mm);
+    if (t2 == t1) break;
+    t0 = t1, f0 = f1;
+    t1 = t2, f1 = removed(p + t1 * n);
   }
-  if (std::abs(f1) > 1e-7) return std::nullopt;
+  // A point on the edge of a wall parallel to n stays within round-off of a tool's side
+  // (f flat near 0): the surface is then where the iteration stopped, to 1 nm.
+  if (!(std::abs(f1) <= 1e-6)) return std::nullopt;
   return t1;
 }
 

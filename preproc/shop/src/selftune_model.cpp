@@ -97,24 +97,24 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
     b[k] = m.filtered_mm - m.predicted_mm;
   }
 
-  // Scaled columns, ridge and second-difference smoothness; unobservable columns stay zero.
+  // Unknowns in um and urad (their effects on the tip are then of one size), a ridge relative
+  // to the mean diagonal (what the part cannot see stays near zero) and second-difference
+  // smoothness.
   ModelFit fit;
   fit.points = static_cast<int>(rows);
   fit.parameters = static_cast<int>(cols);
   Eigen::VectorXd scale(cols);
   for (Eigen::Index u = 0; u < cols; ++u) {
-    scale[u] = a.col(u).norm();
-    if (scale[u] < 1e-9 * std::sqrt(static_cast<double>(rows))) {
-      scale[u] = 0;
-      ++fit.unobservable;
-    }
+    const Unknown& x = unknowns[static_cast<std::size_t>(u)];
+    scale[u] = probes[static_cast<std::size_t>(x.probe)].columns[static_cast<std::size_t>(x.column)].quantity() ==
+                       tables::Quantity::Length ? 1e-3 : 1e-6;
   }
-  Eigen::MatrixXd as = a;
-  for (Eigen::Index u = 0; u < cols; ++u) as.col(u) *= scale[u] > 0 ? 1 / scale[u] : 0.0;
+  const Eigen::MatrixXd as = a * scale.asDiagonal();
   Eigen::MatrixXd normal = as.transpose() * as;
-  normal.diagonal().array() += options.regularisation;
+  const double mean_diagonal = cols ? normal.diagonal().mean() : 0.0;
   for (Eigen::Index u = 0; u < cols; ++u)
-    if (scale[u] == 0) normal(u, u) = 1;  // pinned at zero
+    if (normal(u, u) < 1e-12 * mean_diagonal) ++fit.unobservable;
+  normal.diagonal().array() += options.regularisation * mean_diagonal;
   // Second differences of scaled values along each table column: x[i-1] - 2 x[i] + x[i+1].
   const auto index = [&](int probe, int node, int column) {
     for (Eigen::Index u = 0; u < cols; ++u) {
@@ -131,11 +131,11 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
                                    index(static_cast<int>(p), node + 1, static_cast<int>(c))};
         const double w[3] = {1, -2, 1};
         for (int r = 0; r < 3; ++r)
-          for (int s = 0; s < 3; ++s) normal(i[r], i[s]) += options.smoothness * w[r] * w[s];
+          for (int s = 0; s < 3; ++s) normal(i[r], i[s]) += options.smoothness * mean_diagonal * w[r] * w[s];
       }
   const Eigen::VectorXd xs = normal.ldlt().solve(as.transpose() * b);
   Eigen::VectorXd x(cols);
-  for (Eigen::Index u = 0; u < cols; ++u) x[u] = scale[u] > 0 ? xs[u] / scale[u] : 0.0;
+  for (Eigen::Index u = 0; u < cols; ++u) x[u] = xs[u] * scale[u];
   fit.rms_before_mm = rows ? b.norm() / std::sqrt(static_cast<double>(rows)) : 0.0;
   fit.rms_after_mm = rows ? (b - a * x).norm() / std::sqrt(static_cast<double>(rows)) : 0.0;
 
