@@ -26,7 +26,9 @@ struct Contact {
 
 class MachinedSurface {
  public:
+  // Keeps a reference to `path`, which must outlive it.
   MachinedSurface(const ToolPath& path, SurfaceOptions options = {});
+  MachinedSurface(ToolPath&& path, SurfaceOptions options = {}) = delete;
 
   // Deviation of the machined surface from the nominal point p along the unit normal n (out
   // of the material), mm, + = material left: where the removed volume ends on the line

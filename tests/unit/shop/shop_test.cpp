@@ -1,0 +1,227 @@
+// The virtual shop's pieces against known answers: the surface a tool path leaves, the
+// virtual CMM's noise and probe, the report reader's checks, and the table sets.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "test_support.hpp"
+#include "vc/machine/forward.hpp"
+#include "vc/machine/load_machine.hpp"
+#include "vc/shop/cmm.hpp"
+#include "vc/shop/table_set.hpp"
+#include "vc/tables/source_error.hpp"
+
+namespace vc {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A straight pass along x from -50 to 50 of a flat end mill (radius 5, tip at y, z), its
+// axis tilted by `tilt` rad toward +y, sampled every 5 mm.
+shop::ToolPath pass(double y, double z, double tilt = 0.0, shop::ToolEnd end = shop::ToolEnd::Flat) {
+  shop::ToolPath path;
+  for (int k = 0; k <= 20; ++k) {
+    shop::PathSample s;
+    s.move = 1;
+    s.cutting = true;
+    s.radius_mm = 5;
+    s.end = end;
+    s.tip = {-50 + 5.0 * k, y, z};
+    s.axis = {0, std::sin(tilt), std::cos(tilt)};
+    path.push_back(s);
+  }
+  return path;
+}
+
+TEST(MachinedSurface, WallAndFloorOfAStraightPassMoveWithTheTool) {
+  // Tool centre 5 mm off the wall y = 0 (material at y > 0, normal -y), tip on the floor
+  // z = -5 (material below, normal +z), moved by dy and dz.
+  for (const auto& [dy, dz] : {std::pair{0.0, 0.0}, {0.003, -0.002}, {-0.0047, 0.0081}}) {
+    const shop::ToolPath path = pass(-5 + dy, -5 + dz);
+    const shop::MachinedSurface surface(path);
+    for (double x : {-40.0, -12.3, 0.0, 33.3}) {
+      const auto wall = surface.deviation({x, 0, -3}, {0, -1, 0});
+      ASSERT_TRUE(wall);
+      EXPECT_NEAR(*wall, -dy, 1e-9) << "wall at x " << x;
+      const auto floor = surface.deviation({x, -5, -5}, {0, 0, 1});
+      ASSERT_TRUE(floor);
+      EXPECT_NEAR(*floor, dz, 1e-9) << "floor at x " << x;
+    }
+  }
+}
+
+TEST(MachinedSurface, TiltedToolCutsItsWallAtAnAngle) {
+  // The side of a cylinder tilted by t toward +y reaches, h above its tip, to y_c + h tan t +
+  // R / cos t (its horizontal section is an ellipse).
+  const double tilt = 1e-3, r = 5;
+  const shop::ToolPath path = pass(-5, -5, tilt);
+  const shop::MachinedSurface surface(path);
+  for (double h : {0.5, 2.0, 4.0}) {
+    const auto wall = surface.deviation({0, 0, -5 + h}, {0, -1, 0});
+    ASSERT_TRUE(wall);
+    EXPECT_NEAR(*wall, -(h * std::tan(tilt) + r / std::cos(tilt) - r), 1e-9) << "h " << h;
+  }
+}
+
+TEST(MachinedSurface, BallEndLeavesASphereBelowItsCentre) {
+  const shop::ToolPath path = pass(0, -5, 0, shop::ToolEnd::Ball);
+  const shop::MachinedSurface surface(path);
+  // Under the path: the ball's lowest point is the tip; 3 mm to the side of it the surface
+  // is on the sphere, z = -5 + 5 - sqrt(25 - 9) = -4 (measured along z).
+  EXPECT_NEAR(*surface.deviation({0, 0, -5}, {0, 0, 1}), 0.0, 1e-9);
+  EXPECT_NEAR(*surface.deviation({0, 3, -4.001}, {0, 0, 1}), 0.001, 1e-9);
+}
+
+TEST(MachinedSurface, PointsNoCutReachesAreNotOnTheSurface) {
+  const shop::ToolPath path = pass(-5, -5);
+  const shop::MachinedSurface surface(path);
+  EXPECT_FALSE(surface.deviation({0, 3, -3}, {0, -1, 0}));    // 3 mm inside the material
+  EXPECT_FALSE(surface.deviation({80, 0, -3}, {0, -1, 0}));   // beyond the end of the pass
+  EXPECT_TRUE(surface.contacts({80, 0, -3}, 0.05).empty());
+  EXPECT_EQ(surface.contacts({0, 0, -3}, 0.05).size(), 2u);   // the segments ending and starting at x = 0
+}
+
+std::vector<shop::CmmPoint> floor_plan(int n) {
+  std::vector<shop::CmmPoint> plan;
+  for (int i = 0; i < n; ++i) {
+    shop::CmmPoint p;
+    p.id = "P" + std::to_string(i);
+    p.nominal = {-45 + 90.0 * i / n, -5 + 4.0 * std::sin(i), -5};
+    plan.push_back(p);
+  }
+  return plan;
+}
+
+TEST(VirtualCmm, NoiseHasTheStatedSpreadAndTheSeedRepeatsIt) {
+  const shop::ToolPath path = pass(-5, -5.002);
+  const shop::MachinedSurface surface(path);
+  const auto plan = floor_plan(4000);
+  const auto a = shop::measure(surface, plan, {1.0, 0.0, 7});
+  const auto b = shop::measure(surface, plan, {1.0, 0.0, 7});
+  double mean = 0, square = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(*a[i].deviation_mm, *b[i].deviation_mm);
+    const double noise = *a[i].deviation_mm + 0.002;
+    mean += noise;
+    square += noise * noise;
+  }
+  mean /= static_cast<double>(a.size());
+  const double sigma = std::sqrt(square / static_cast<double>(a.size()) - mean * mean);
+  EXPECT_NEAR(mean, 0.0, 0.1e-3);  // 4 sigma of the mean
+  EXPECT_NEAR(sigma, 1e-3, 0.05e-3);
+}
+
+TEST(VirtualCmm, ProbeBallRestsOnTheHighestMaterial) {
+  // On a flat floor the ball changes nothing. Next to a step (a second pass 50 um higher
+  // from y = 0 on) a 1 mm ball 0.2 mm from the step rests on its edge, sqrt(1 - 0.2^2) - 1 =
+  // -20.2 um at most (the footprint is sampled on rings: a little lower), never on the floor.
+  const shop::ToolPath one = pass(-5, -5.05);
+  const shop::MachinedSurface flat(one);
+  const auto plain = shop::measure(flat, floor_plan(50), {});
+  const auto probed = shop::measure(flat, floor_plan(50), {0.0, 1.0, 1});
+  for (std::size_t i = 0; i < plain.size(); ++i) EXPECT_NEAR(*plain[i].deviation_mm, *probed[i].deviation_mm, 1e-12);
+
+  shop::ToolPath two = one;
+  for (shop::PathSample s : pass(5, -5.0)) {
+    s.move = 2;
+    two.push_back(s);
+  }
+  const shop::MachinedSurface step(two);
+  shop::CmmPoint p;
+  p.id = "S";
+  p.nominal = {0, -0.2, -5};
+  EXPECT_NEAR(*shop::measure(step, {p}, {}).front().deviation_mm, -0.05, 1e-9);
+  const double on_edge = *shop::measure(step, {p}, {0.0, 1.0, 1}).front().deviation_mm;
+  EXPECT_LE(on_edge, std::sqrt(1 - 0.04) - 1 + 1e-9);
+  EXPECT_GT(on_edge, -0.035);
+}
+
+class Files : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("vc_shop_test_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string write(const std::string& name, const std::string& text) {
+    const std::string path = (dir_ / name).string();
+    std::ofstream(path) << text;
+    return path;
+  }
+  fs::path dir_;
+};
+
+TEST_F(Files, ReportsGiveDeviationsInTheirUnitsOrFromMeasuredPoints) {
+  const auto a = shop::read_cmm_points(
+      write("a.csv", "# comment\nid,x[mm],y[mm],z[mm],i,j,k,deviation[mm]\nA,1,2,3,0,0,1,0.004\n"), true);
+  EXPECT_NEAR(*a.at(0).deviation_mm, 0.004, 1e-15);
+  const auto b = shop::read_cmm_points(
+      write("b.csv", "id,x[um],y[mm],z[mm],i,j,k,mx[mm],my[mm],mz[mm]\nB,1000,2,3,0.6,0.8,0,1.003,2.004,7\n"), true);
+  EXPECT_NEAR(b.at(0).nominal.x(), 1.0, 1e-15);
+  EXPECT_NEAR(*b.at(0).deviation_mm, 0.6 * 0.003 + 0.8 * 0.004, 1e-12);
+}
+
+TEST_F(Files, BadReportsAreRefusedWithFileLineAndColumn) {
+  auto refused = [&](const std::string& text, bool report, const std::string& where, const std::string& what) {
+    const std::string path = write("bad.csv", text);
+    try {
+      shop::read_cmm_points(path, report);
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const LoadError& e) {
+      EXPECT_NE(std::string(e.what()).find(path + ":" + where), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  refused("id,x,y[mm],z[mm],i,j,k\n", false, "1", "x needs its unit");
+  refused("id,x[deg],y[mm],z[mm],i,j,k\n", false, "1:6", "not a length unit");
+  refused("id,x[mm],y[mm],z[mm],i,j,k\nA,0,0,0,0,0,2\n", false, "2:9", "not a unit vector");
+  refused("id,x[mm],y[mm],z[mm],i,j,k\nA,0,0,0,0,0,1\nA,1,0,0,0,0,1\n", false, "3:1", "already on line 2");
+  refused("id,x[mm],y[mm],z[mm],i,j,k\nA,0,zero,0,0,0,1\n", false, "2:5", "");
+  refused("id,x[mm],y[mm],z[mm],i,j,k\nA,0,0,0,0,0,1\n", true, "1", "a report needs deviation");
+}
+
+TEST_F(Files, PerturbedMachineIsTheModelPlusItsPerturbationTables) {
+  const machine::Model model = machine::load_machine(test::machine_path("mill3"));
+  const auto extras = shop::perturbation_tables(model, 0.2, 0.5, 3);
+  ASSERT_EQ(extras.size(), model.tables.size());
+  const std::string written = shop::write_machine_with_tables(model, dir_.string(), extras, "test");
+  const machine::Model perturbed = machine::load_machine(written);
+  ASSERT_EQ(perturbed.tables.size(), 2 * model.tables.size());
+  // The machine file's comments stay; each table got one of the same size, 20-50 % of it.
+  std::ifstream in(written);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("# mill3: a 3-axis vertical bed mill"), std::string::npos);
+  for (const shop::ExtraTable& e : extras) {
+    const tables::ErrorTable* original = nullptr;
+    for (const auto& t : model.tables)
+      if ("perturbation_" + fs::path(t.table.path()).filename().string() == e.file_name) original = &t.table;
+    ASSERT_NE(original, nullptr) << e.file_name;
+    for (int node = 0; node < original->node_count(); ++node)
+      for (int c = 0; c < static_cast<int>(original->columns().size()); ++c) {
+        const double v = original->value(node, c), p = e.table.value(node, c);
+        if (std::abs(v) > 1e-6) {
+          EXPECT_GE(std::abs(p / v), 0.2 - 1e-9);
+          EXPECT_LE(std::abs(p / v), 0.5 + 1e-9);
+        }
+      }
+  }
+  // The perturbed machine's error is the model's plus the perturbation's (linear in the
+  // tables to first order: products of errors, ~1e-5 relative, are the difference).
+  std::mt19937 random(5);
+  for (int k = 0; k < 100; ++k) {
+    machine::Joints q(3);
+    for (int j = 0; j < 3; ++j)
+      q[j] = std::uniform_real_distribution<double>(model.axes[static_cast<std::size_t>(j)].travel_min,
+                                                    model.axes[static_cast<std::size_t>(j)].travel_max)(random);
+    const auto e_model = machine::volumetric_error(model, q, 100).position_mm;
+    const auto e_true = machine::volumetric_error(perturbed, q, 100).position_mm;
+    const double ratio = (e_true - e_model).norm() / std::max(e_model.norm(), 1e-6);
+    EXPECT_LT(ratio, 0.5 + 0.02);
+  }
+}
+
+}  // namespace
+}  // namespace vc
