@@ -74,7 +74,7 @@ struct SelftuneArgs {
   double flute_length_mm = 30.0;
   double cutoff_mm = 10.0, outlier_sigmas = 4.0;
   // local
-  double gain = 1.0, radius_mm = 15.0, step_mm = 1.0, tolerance_mm = 0.0005;
+  double gain = 1.0, radius_mm = 40.0, step_mm = 1.0, tolerance_mm = 0.0005;
   // model
   std::string tables_out;          // folder of the updated machine file and tables
   std::string nominal;             // the original program P0 (default: PROGRAM)

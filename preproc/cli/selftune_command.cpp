@@ -30,9 +30,10 @@ std::ifstream open_program(const std::string& path) {
 std::string um(double mm) { return format_fixed(mm * 1e3, 3) + " um"; }
 
 void print_first_part(const shop::FirstPart& part, std::ostream& report) {
-  report << "volcomp selftune: " << part.points.size() << " points matched to the program's cuts; short-wave part "
-         << "(below the cut-off) RMS " << um(part.short_wave_rms_mm) << ", robust sigma " << um(part.robust_sigma_mm)
-         << "; " << part.outliers << " outliers left out\n";
+  report << "volcomp selftune: " << part.points.size() << " points matched to the program's cuts; points differ from "
+         << "their neighbours by " << um(part.robust_sigma_mm) << " (robust sigma: noise and short waves); "
+         << part.outliers << " outliers left out; short-wave part below the cut-off RMS " << um(part.short_wave_rms_mm)
+         << "\n";
   for (const shop::MatchedPoint& m : part.points)
     if (m.outlier)
       report << "  outlier " << m.point.id << " (report line " << m.point.line << "): deviation "

@@ -1,6 +1,7 @@
 #include "vc/shop/first_part.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -20,23 +21,52 @@ double median(std::vector<double> v) {
   return *mid;
 }
 
-// Gaussian low-pass of the measured deviations over the points of the same face (normal
-// within 10 deg) within the cut-off, leaving out outliers.
+// Weighted mean of the measured deviations of the points of a's face (normal within 10 deg)
+// within `reach`, leaving out outliers (and `a` itself if asked); nothing if there are none.
+template <typename Weight>
+std::optional<double> face_mean(const MatchedPoint& a, const std::vector<MatchedPoint>& points, double reach,
+                                bool without_a, Weight weight) {
+  double sum = 0, total = 0;
+  for (const MatchedPoint& b : points) {
+    if (b.outlier || (without_a && &b == &a) || a.point.normal.dot(b.point.normal) < kSameFace) continue;
+    const double d = (a.point.nominal - b.point.nominal).norm();
+    if (d > reach) continue;
+    const double w = weight(d);
+    sum += w * *b.point.deviation_mm;
+    total += w;
+  }
+  if (total <= 0) return std::nullopt;
+  return sum / total;
+}
+
+// Gaussian low-pass over each face with the weighting function of ISO 16610-21,
+// exp(-pi (d / (alpha lc))^2), alpha = sqrt(ln 2 / pi): a wave of the cut-off length lc
+// keeps half its amplitude, longer ones nearly all, shorter ones little.
 void low_pass(std::vector<MatchedPoint>& points, double cutoff_mm) {
-  const double sigma = cutoff_mm / 2;
+  const double width = std::sqrt(std::log(2.0) / M_PI) * cutoff_mm;
   for (MatchedPoint& a : points) {
-    double sum = 0, weight = 0;
-    for (const MatchedPoint& b : points) {
-      if (b.outlier || a.point.normal.dot(b.point.normal) < kSameFace) continue;
-      const double d = (a.point.nominal - b.point.nominal).norm();
-      if (d > cutoff_mm) continue;
-      const double w = std::exp(-0.5 * (d / sigma) * (d / sigma));
-      sum += w * *b.point.deviation_mm;
-      weight += w;
-    }
-    a.filtered_mm = weight > 0 ? sum / weight : *a.point.deviation_mm;
+    a.filtered_mm = face_mean(a, points, cutoff_mm, false, [&](double d) { return std::exp(-M_PI * (d / width) * (d / width)); })
+                        .value_or(*a.point.deviation_mm);
     a.short_wave_mm = *a.point.deviation_mm - a.filtered_mm;
   }
+}
+
+// Flags the points that stand out from their face's neighbours (within `reach`, themselves
+// left out) by more than the limit; returns the robust sigma of those differences.
+double flag_outliers(std::vector<MatchedPoint>& points, double reach, double sigmas, double floor_mm) {
+  std::vector<double> differences(points.size(), 0.0);
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const auto around = face_mean(points[k], points, reach, true, [](double) { return 1.0; });
+    differences[k] = around ? *points[k].point.deviation_mm - *around : 0.0;
+  }
+  std::vector<double> spread = differences;
+  const double centre = median(spread);
+  for (double& s : spread) s = std::abs(s - centre);
+  const double sigma = 1.4826 * median(spread);
+  const double limit = std::max(sigmas * sigma, floor_mm);
+  for (std::size_t k = 0; k < points.size(); ++k)
+    if (std::abs(differences[k] - centre) > limit) points[k].outlier = true;
+  return sigma;
 }
 
 }  // namespace
@@ -76,27 +106,22 @@ FirstPart analyse_first_part(const machine::Model& model, std::istream& program,
     part.points.push_back(std::move(m));
   }
 
-  // Short waves and outliers: filter, flag what stands out, filter again without it.
-  low_pass(part.points, options.cutoff_mm);
-  std::vector<double> short_waves;
-  for (const MatchedPoint& m : part.points) short_waves.push_back(m.short_wave_mm);
-  const double centre = median(short_waves);
-  for (double& s : short_waves) s = std::abs(s - centre);
-  part.robust_sigma_mm = 1.4826 * median(short_waves);
-  const double limit = std::max(options.outlier_sigmas * part.robust_sigma_mm, options.outlier_floor_mm);
-  for (MatchedPoint& m : part.points)
-    if (std::abs(m.short_wave_mm - centre) > limit) {
-      m.outlier = true;
-      ++part.outliers;
-    }
+  // Outliers first (against their neighbours, twice: a first outlier hides the next one),
+  // then the low-pass of what is left.
+  for (int pass = 0; pass < 2; ++pass)
+    part.robust_sigma_mm = flag_outliers(part.points, options.outlier_reach_mm, options.outlier_sigmas,
+                                         options.outlier_floor_mm);
   low_pass(part.points, options.cutoff_mm);
   double sum = 0;
   int kept = 0;
-  for (const MatchedPoint& m : part.points)
-    if (!m.outlier) {
-      sum += m.short_wave_mm * m.short_wave_mm;
-      ++kept;
+  for (const MatchedPoint& m : part.points) {
+    if (m.outlier) {
+      ++part.outliers;
+      continue;
     }
+    sum += m.short_wave_mm * m.short_wave_mm;
+    ++kept;
+  }
   part.short_wave_rms_mm = kept ? std::sqrt(sum / kept) : 0.0;
   return part;
 }

@@ -6,8 +6,9 @@
 // belong to the program (another part, another frame, wrong units) and is refused.
 // Then what the tables should not absorb is separated (seeds/000 ch. V, section 5.6): the
 // deviations are low-pass filtered over the points of each face (waves shorter than the
-// cut-off: vibration marks, noise), and points whose short-wave part is far beyond the
-// others' (dwell marks, chips, probing errors) are flagged as outliers and left out.
+// cut-off: vibration marks), and points that differ from their neighbours on the face far
+// more than the others do (dwell marks, chips, probing errors) are flagged as outliers and
+// left out. Noise is averaged by the strategies (the local radius, the least squares).
 #pragma once
 
 #include <istream>
@@ -23,7 +24,8 @@ struct FirstPartOptions {
   SimulationOptions simulation;      // how the program ran (world, module compensation, tools)
   SurfaceOptions surface;
   double cutoff_mm = 10.0;           // wavelengths shorter than this are not tuned
-  double outlier_sigmas = 4.0;       // short-wave part beyond this many robust sigmas: outlier
+  double outlier_reach_mm = 25.0;    // a point is compared with its face's points within this
+  double outlier_sigmas = 4.0;       // ... and is an outlier beyond this many robust sigmas
   double outlier_floor_mm = 0.003;   // ... and beyond this (noise alone is never an outlier)
   double largest_deviation_mm = 1.0; // a larger deviation means a wrong unit, not a machine
 };
@@ -42,7 +44,7 @@ struct FirstPart {
   std::vector<MatchedPoint> points;
   int outliers = 0;
   double short_wave_rms_mm = 0.0;  // of the points kept
-  double robust_sigma_mm = 0.0;    // of the short-wave parts
+  double robust_sigma_mm = 0.0;    // of the points' differences from their neighbours
 };
 
 // Throws std::runtime_error (naming the point and its report line) for a report that does

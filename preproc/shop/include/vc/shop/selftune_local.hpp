@@ -20,7 +20,7 @@ namespace vc::shop {
 
 struct LocalOptions {
   double gain = 1.0;
-  double radius_mm = 15.0;
+  double radius_mm = 40.0;
   double step_mm = 1.0;
   double tolerance_mm = 0.0005;
   machine::WorldConvention world = machine::WorldConvention::Axes;
