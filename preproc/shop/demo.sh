@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# The virtual shop demo: self-tuning from the first part on mill3 (preproc/shop/README.md).
+# A "true" machine is mill3 with every table off by a smooth 20-50 %; part A is machined,
+# measured with 1 um noise and tuned, three parts per strategy; then a different part (B) is
+# machined with the tuned tables. Prints the form error of every part.
+#
+#   preproc/shop/demo.sh [BUILD_DIR] [WORK_DIR]      (default build, a temporary folder)
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+volcomp="${1:-build}/preproc/volcomp"
+work=${2:-$(mktemp -d /tmp/volcomp-shop.XXXXXX)}
+mkdir -p "$work"
+parts=tests/programs/selftune
+files=(--var tests/programs/mill3.var --tool-table tests/programs/mill3.tbl)
+model=machines/data/mill3.toml
+
+"$volcomp" perturb "$model" -o "$work/true" --seed 11 2>/dev/null
+form_error() {  # program plan name: machines it on the true machine, measures it (noisy report + exact form error)
+  "$volcomp" simulate "$work/true/mill3.toml" "$1" -o "$work/$3.path.csv" "${files[@]}" 2>/dev/null
+  "$volcomp" measure "$work/$3.path.csv" "$2" -o "$work/$3.report.csv" --noise 1 --seed "${#3}" 2>/dev/null
+  "$volcomp" measure "$work/$3.path.csv" "$2" -o "$work/$3.exact.csv" 2>&1 | sed 's/.*largest deviation //'
+}
+
+for strategy in local model; do
+  machine=$model
+  "$volcomp" predistort "$model" "$parts/part_a.ngc" -o "$work/$strategy-p1.ngc" "${files[@]}" -q
+  for i in 1 2 3; do
+    echo "$strategy strategy, part $i: form error $(form_error "$work/$strategy-p$i.ngc" "$parts/part_a_points.csv" "$strategy-part$i")"
+    [ $i = 3 ] && break
+    extra=()
+    [ $strategy = model ] && extra=(--nominal "$parts/part_a.ngc" --tables-out "$work/tables$i")
+    "$volcomp" selftune "$machine" "$work/$strategy-p$i.ngc" "$work/$strategy-part$i.report.csv" \
+      -o "$work/$strategy-p$((i + 1)).ngc" --strategy $strategy "${extra[@]}" "${files[@]}" 2>&1 | sed 's/^/    /'
+    [ $strategy = model ] && machine=$work/tables$i/mill3.toml
+  done
+done
+"$volcomp" predistort "$model" "$parts/part_b.ngc" -o "$work/b-model.ngc" "${files[@]}" -q
+"$volcomp" predistort "$machine" "$parts/part_b.ngc" -o "$work/b-tuned.ngc" "${files[@]}" -q
+echo "part B with the measured tables: form error $(form_error "$work/b-model.ngc" "$parts/part_b_points.csv" b-model)"
+echo "part B with the tuned tables:    form error $(form_error "$work/b-tuned.ngc" "$parts/part_b_points.csv" b-tuned)"
+echo "files in $work"
