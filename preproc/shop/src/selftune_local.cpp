@@ -6,7 +6,7 @@
 #include <string_view>
 
 #include "move_sampling.hpp"
-#include "vc/gcode/parser.hpp"
+#include "program_blocks.hpp"
 #include "vc/machine/forward.hpp"
 #include "vc/tables/source_error.hpp"
 
@@ -100,6 +100,46 @@ class PathShift {
   int axis_of_joint_[machine::kMaxAxes];
 };
 
+// The pieces of one move: cutting moves cut into pieces whose ends are shifted; moves that
+// do not cut, or that no measured point is near, as they are.
+void shifted_pieces(const Move& m, const PathShift& shift, const LocalOptions& options, LocalSummary& summary,
+                    double& covered_length, std::vector<predistort::Piece>& pieces) {
+  predistort::Piece whole;
+  whole.kind = m.kind;
+  whole.end = m.end;
+  whole.center_first = m.arc.center_first;
+  whole.center_second = m.arc.center_second;
+  whole.turns = m.arc.turns;
+  if (m.kind == MoveKind::Rapid || !m.spindle_on) {
+    pieces.push_back(whole);
+    return;
+  }
+  const int n = piece_count(m, options.step_mm, options.tolerance_mm, 0.05);
+  const double length = path_length(m);
+  summary.cutting_length_mm += length;
+  bool any = false;
+  for (int i = 1; i <= n; ++i) {
+    predistort::Piece piece;
+    piece.kind = MoveKind::Line;
+    piece.fraction = 1.0 / n;
+    piece.end = interpreter::point_at(m, static_cast<double>(i) / n);
+    bool covered = false;
+    const Position d = shift.shift_at(m, piece.end, covered);
+    for (std::size_t a = 0; a < 3; ++a) piece.end[a] += d[a];
+    const double size = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    summary.largest_shift_mm = std::max(summary.largest_shift_mm, size);
+    any = any || size > 0;
+    if (covered) covered_length += length / n;
+    pieces.push_back(piece);
+  }
+  if (!any) {
+    pieces.assign(1, whole);
+    return;
+  }
+  ++summary.moves_shifted;
+  summary.pieces += n;
+}
+
 }  // namespace
 
 LocalSummary shift_program(const machine::Model& model, const FirstPart& part, std::istream& program,
@@ -110,19 +150,10 @@ LocalSummary shift_program(const machine::Model& model, const FirstPart& part, s
   predistort::Writer writer(out, setup.machine_axes, options.tolerance_mm);
   LocalSummary summary;
   double covered_length = 0;
-  gcode::Block block;
-  interpreter::Effect effect;
   std::vector<std::vector<predistort::Piece>> pieces;
-  std::string raw;
   bool header_written = false;
-  for (int line = 1; std::getline(program, raw); ++line) {
-    if (!raw.empty() && raw.back() == '\r') raw.pop_back();
-    try {
-      gcode::parse_block(raw, block);
-    } catch (const gcode::SyntaxError& e) {
-      throw LoadError({setup.file, line, e.offset + 1}, e.what());
-    }
-    interpreter.execute(block, line, effect);
+  for_each_block(program, interpreter, setup.file, [&](const std::string& raw, const gcode::Block& block,
+                                                       const interpreter::Effect& effect, int) {
     if (!header_written && !block.percent) {
       writer.header(provenance);
       header_written = true;
@@ -130,50 +161,13 @@ LocalSummary shift_program(const machine::Model& model, const FirstPart& part, s
     ++summary.lines;
     if (!effect.translate) {
       writer.verbatim(raw, block, effect, interpreter);
-      continue;
+      return;
     }
     pieces.assign(effect.moves.size(), {});
-    for (std::size_t k = 0; k < effect.moves.size(); ++k) {
-      const Move& m = effect.moves[k];
-      std::vector<predistort::Piece>& out_pieces = pieces[k];
-      predistort::Piece whole;
-      whole.kind = m.kind;
-      whole.end = m.end;
-      whole.center_first = m.arc.center_first;
-      whole.center_second = m.arc.center_second;
-      whole.turns = m.arc.turns;
-      if (m.kind == MoveKind::Rapid || !m.spindle_on) {
-        out_pieces.push_back(whole);
-        continue;
-      }
-      const int n = piece_count(m, options.step_mm, options.tolerance_mm, 0.05);
-      const double length = path_length(m);
-      bool any = false;
-      for (int i = 1; i <= n; ++i) {
-        predistort::Piece piece;
-        piece.kind = MoveKind::Line;
-        piece.fraction = 1.0 / n;
-        const double s = static_cast<double>(i) / n;
-        bool covered = false;
-        piece.end = interpreter::point_at(m, s);
-        const Position d = shift.shift_at(m, piece.end, covered);
-        for (int a = 0; a < 3; ++a) piece.end[static_cast<std::size_t>(a)] += d[static_cast<std::size_t>(a)];
-        const double size = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        summary.largest_shift_mm = std::max(summary.largest_shift_mm, size);
-        any = any || size > 0;
-        if (covered) covered_length += length / n;
-        out_pieces.push_back(piece);
-      }
-      summary.cutting_length_mm += length;
-      if (!any) {
-        out_pieces.assign(1, whole);
-        continue;
-      }
-      ++summary.moves_shifted;
-      summary.pieces += n;
-    }
+    for (std::size_t k = 0; k < effect.moves.size(); ++k)
+      shifted_pieces(effect.moves[k], shift, options, summary, covered_length, pieces[k]);
     writer.translated(raw, block, effect, pieces);
-  }
+  });
   if (!header_written) writer.header(provenance);
   summary.covered_fraction = summary.cutting_length_mm > 0 ? covered_length / summary.cutting_length_mm : 0.0;
   return summary;

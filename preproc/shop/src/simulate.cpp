@@ -4,7 +4,7 @@
 #include <string_view>
 
 #include "move_sampling.hpp"
-#include "vc/gcode/parser.hpp"
+#include "program_blocks.hpp"
 #include "vc/machine/forward.hpp"
 #include "vc/shop/tool_path.hpp"
 #include "vc/tables/source_error.hpp"
@@ -117,20 +117,11 @@ void simulate(const machine::Model& machine, std::istream& program, const interp
                                                       ") are not the machine's (" + machine.coordinates() + ")");
   interpreter::Interpreter interpreter(setup);
   Simulator simulator(machine, setup, options);
-  gcode::Block block;
-  interpreter::Effect effect;
-  std::string raw;
   int moves = 0;
-  for (int line = 1; std::getline(program, raw); ++line) {
-    if (!raw.empty() && raw.back() == '\r') raw.pop_back();
-    try {
-      gcode::parse_block(raw, block);
-    } catch (const gcode::SyntaxError& e) {
-      throw LoadError({setup.file, line, e.offset + 1}, e.what());
-    }
-    interpreter.execute(block, line, effect);
-    for (const Move& m : effect.moves) simulator.run(m, ++moves, sink);
-  }
+  for_each_block(program, interpreter, setup.file,
+                 [&](const std::string&, const gcode::Block&, const interpreter::Effect& effect, int) {
+                   for (const Move& m : effect.moves) simulator.run(m, ++moves, sink);
+                 });
 }
 
 }  // namespace vc::shop
