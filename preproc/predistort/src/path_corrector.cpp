@@ -101,19 +101,45 @@ PathCorrector::Node PathCorrector::node_at(const Move& move, double s) {
       stats_.max_deflection_mm = std::max(stats_.max_deflection_mm, n.deflection_mm.norm());
     }
   }
-  // Seed: this point plus the correction of the last one (the correction changes little
-  // between neighbouring points, so Newton starts next to the answer).
-  const bool seeded = have_last_ && last_.corrected.size() == n.target.size() &&
-                      (last_.target - n.target).cwiseAbs().maxCoeff() < 1.0;
-  const machine::Correction c = seeded ? machine::correct(model_, n.target, L, n.target + (last_.corrected - last_.target))
-                                       : machine::correct(model_, n.target, L);
+  const Joints seed = seed_for(n.target, L);
+  const machine::Correction c = machine::correct(model_, n.target, L, seed);
   ++stats_.corrections;
   if (c.status != Status::Ok) fail(move, "the correction failed", c.status);
   n.corrected = c.joints;
+  solved(n.target, n.corrected, L);
   if (machine::outside_tables(model_, n.corrected)) ++stats_.out_of_table;
   n.world = machine::nominal_forward(model_, options_.world, n.corrected, L);
   n.program = program_of(move, n.world, p);
   return n;
+}
+
+// Seed: this point plus the correction of a recent one (the correction changes little
+// between neighbouring points, so Newton starts next to the answer), extrapolated along the
+// path when the last two points lie on a line with this one: the change of the correction
+// from one to the next is then mostly its slope times the step, which the seed takes along.
+Joints PathCorrector::seed_for(const Joints& target, double tool_length_mm) const {
+  if (recent_count_ == 0) return target;
+  const Solved& last = recent_[1];
+  if (last.tool_length_mm != tool_length_mm || last.target.size() != target.size() ||
+      (last.target - target).cwiseAbs().maxCoeff() >= 1.0)
+    return target;
+  Joints seed = target + last.offset;
+  const Solved& before = recent_[0];
+  if (recent_count_ < 2 || before.tool_length_mm != tool_length_mm) return seed;
+  const Joints step = last.target - before.target, ahead = target - last.target;
+  const double step2 = step.squaredNorm();
+  if (!(step2 > 0.0) || step2 >= 1.0) return seed;
+  // How far ahead along the last step, and how far off its line.
+  const double along = ahead.dot(step) / step2;
+  const Joints off = ahead - along * step;
+  if (along < -1.5 || along > 1.5 || off.squaredNorm() > 1e-4 * step2) return seed;
+  return seed + along * (last.offset - before.offset);
+}
+
+void PathCorrector::solved(const Joints& target, const Joints& corrected, double tool_length_mm) {
+  recent_[0] = std::move(recent_[1]);
+  recent_[1] = {target, corrected - target, tool_length_mm};
+  recent_count_ = std::min(recent_count_ + 1, 2);
 }
 
 Piece PathCorrector::piece_between(const Move& move, const Node& a, const Node& b) const {

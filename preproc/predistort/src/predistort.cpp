@@ -10,11 +10,12 @@
 namespace vc::predistort {
 namespace {
 
-// Two threads: the reader reads, parses and interprets lines (it owns the interpreter and
-// the input stream); the caller's thread corrects and writes them (it owns the corrector,
-// the writer and the output, and calls `progress`). Lines travel in order through a bounded
-// queue, so the output, the errors (the first failing line in file order) and the memory
-// bound are those of reading one line at a time.
+// Three threads, a pipeline: the reader reads, parses and interprets lines (it owns the
+// interpreter and the input stream), the corrector corrects their moves (it owns the
+// PathCorrector), and the caller's thread writes them (it owns the writer and the output,
+// and calls `progress`). Lines travel in order in batches through a bounded ring, so the
+// output, the error reported (the first failing line in file order) and the memory bound
+// are those of reading one line at a time.
 struct Line {
   int number = 0;
   long bytes = 0;  // read up to the end of this line
@@ -23,17 +24,19 @@ struct Line {
   interpreter::Effect effect;
   interpreter::Position position{};  // where the line leaves the program, if it moved as written
   interpreter::Frame frame;
+  std::vector<std::vector<Piece>> pieces;  // effect.translate: per move, its corrected pieces
 };
 using LineQueue = BatchQueue<Line>;
+enum Stage { kRead, kCorrect, kWrite, kStages };
 constexpr std::size_t kBatches = 8, kBatchLines = 128;  // at most 1024 lines in flight
 
 void read_lines(std::istream& in, const Job& job, LineQueue& queue) {
   interpreter::Interpreter interpreter(job.setup);
   long bytes = 0;
   int number = 0;
-  for (;;) {
-    LineQueue::Batch* batch = queue.begin_fill();
-    if (!batch) return;  // the consumer failed
+  for (bool last = false; !last;) {
+    LineQueue::Batch* batch = queue.begin(kRead);
+    if (!batch) return;  // a later stage failed
     try {
       while (batch->count < batch->items.size()) {
         Line& line = batch->items[batch->count];
@@ -61,25 +64,60 @@ void read_lines(std::istream& in, const Job& job, LineQueue& queue) {
       batch->error = std::current_exception();
       batch->last = true;
     }
-    const bool last = batch->last;
-    queue.end_fill();
-    if (last) return;
+    last = batch->last;
+    queue.end(kRead);
   }
 }
 
-// Joins the reader on every way out of predistort(), stopping it first if it still runs.
-class ReaderThread {
+void correct_lines(const Job& job, PathCorrector& corrector, LineQueue& queue) {
+  for (bool last = false; !last;) {
+    LineQueue::Batch* batch = queue.begin(kCorrect);
+    if (!batch) return;
+    std::size_t i = 0;
+    try {
+      for (; i < batch->count; ++i) {
+        Line& line = batch->items[i];
+        const interpreter::Effect& effect = line.effect;
+        if (effect.translate) {
+          line.pieces.resize(effect.moves.size());
+          try {
+            for (std::size_t m = 0; m < effect.moves.size(); ++m) corrector.correct(effect.moves[m], line.pieces[m]);
+          } catch (const std::runtime_error& e) {
+            throw LoadError({job.setup.file, line.number, 1}, e.what());
+          }
+        } else if (effect.moved_as_written) {
+          corrector.lost_position();
+        }
+      }
+    } catch (...) {  // this line is the first that fails: the writer stops before it
+      batch->count = i;
+      batch->error = std::current_exception();
+      batch->last = true;
+    }
+    last = batch->last;
+    queue.end(kCorrect);
+  }
+}
+
+// The reader and corrector threads, joined on every way out of predistort() (stopped first
+// if they still run).
+class Workers {
  public:
-  ReaderThread(std::istream& in, const Job& job, LineQueue& queue)
-      : queue_(queue), thread_([&in, &job, &queue] { read_lines(in, job, queue); }) {}
-  ~ReaderThread() {
+  Workers(std::istream& in, const Job& job, PathCorrector& corrector, LineQueue& queue)
+      : queue_(queue),
+        reader_([&in, &job, &queue] { read_lines(in, job, queue); }),
+        corrector_([&job, &corrector, &queue] { correct_lines(job, corrector, queue); }) {}
+  ~Workers() { join(); }
+  void join() {
+    if (!reader_.joinable()) return;
     queue_.cancel();
-    thread_.join();
+    reader_.join();
+    corrector_.join();
   }
 
  private:
   LineQueue& queue_;
-  std::thread thread_;
+  std::thread reader_, corrector_;
 };
 
 }  // namespace
@@ -98,13 +136,12 @@ Summary predistort(std::istream& in, std::ostream& out, const Job& job,
   PathCorrector corrector(*job.model, job.corrector, job.deflection);
   Writer writer(out, job.setup.machine_axes, job.corrector.tolerance_mm);
   Summary summary;
-  std::vector<std::vector<Piece>> pieces;
   long bytes = 0;
   bool header_written = false;
-  LineQueue queue(kBatches, kBatchLines);
-  const ReaderThread reader(in, job, queue);
+  LineQueue queue(kStages, kBatches, kBatchLines);
+  Workers workers(in, job, corrector, queue);
   for (bool last = false; !last;) {
-    LineQueue::Batch& batch = queue.begin_take();
+    LineQueue::Batch& batch = *queue.begin(kWrite);  // only the writer cancels
     for (std::size_t i = 0; i < batch.count; ++i) {
       const Line& line = batch.items[i];
       const interpreter::Effect& effect = line.effect;
@@ -115,28 +152,20 @@ Summary predistort(std::istream& in, std::ostream& out, const Job& job,
         header_written = true;
       }
       if (effect.translate) {
-        pieces.resize(effect.moves.size());
-        try {
-          for (std::size_t m = 0; m < effect.moves.size(); ++m) corrector.correct(effect.moves[m], pieces[m]);
-        } catch (const std::runtime_error& e) {
-          throw LoadError({job.setup.file, line.number, 1}, e.what());
-        }
-        writer.translated(line.raw, line.block, effect, pieces);
+        writer.translated(line.raw, line.block, effect, line.pieces);
         ++summary.translated_lines;
       } else {
         writer.verbatim(line.raw, line.block, effect, line.position, line.frame);
-        if (effect.moved_as_written) {
-          corrector.lost_position();
-          ++summary.written_as_is_moves;
-        }
+        if (effect.moved_as_written) ++summary.written_as_is_moves;
       }
       ++summary.lines;
       if (progress && (line.number & 4095) == 0) progress(bytes);
     }
     if (batch.error) std::rethrow_exception(batch.error);
     last = batch.last;
-    queue.end_take();
+    queue.end(kWrite);
   }
+  workers.join();  // the corrector's statistics are final
   if (!header_written) writer.header(job.provenance);
   if (progress) progress(bytes);
   summary.corrector = corrector.stats();

@@ -84,6 +84,8 @@ class PathCorrector {
   Piece piece_between(const Move& move, const Node& a, const Node& b) const;
   double slope_bound(const Move& move, const Node& a, const Node& b);
   const std::array<double, machine::kMaxAxes>& slopes_for(double tool_length_mm);
+  machine::Joints seed_for(const machine::Joints& target, double tool_length_mm) const;
+  void solved(const machine::Joints& target, const machine::Joints& corrected, double tool_length_mm);
 
   const machine::Model& model_;
   CorrectorOptions options_;
@@ -94,6 +96,14 @@ class PathCorrector {
   Node last_;                          // end of the previous corrected move
   double last_tool_length_ = 0.0;
   bool last_loaded_ = false;           // a cutting force acted at last_
+  // The last two corrections (any move, in the order made): the seed of the next one is
+  // extrapolated from them. Only the Newton iterations depend on it, never the answer.
+  struct Solved {
+    machine::Joints target, offset;  // offset = corrected - target
+    double tool_length_mm = 0.0;
+  };
+  Solved recent_[2];  // [1] the latest
+  int recent_count_ = 0;
   // Sampled slope bound of the correction, per tool length (tip mm per unit of each joint).
   std::vector<std::pair<double, std::array<double, machine::kMaxAxes>>> slopes_;
 };
