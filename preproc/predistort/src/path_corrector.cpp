@@ -101,19 +101,80 @@ PathCorrector::Node PathCorrector::node_at(const Move& move, double s) {
       stats_.max_deflection_mm = std::max(stats_.max_deflection_mm, n.deflection_mm.norm());
     }
   }
-  // Seed: this point plus the correction of the last one (the correction changes little
-  // between neighbouring points, so Newton starts next to the answer).
-  const bool seeded = have_last_ && last_.corrected.size() == n.target.size() &&
-                      (last_.target - n.target).cwiseAbs().maxCoeff() < 1.0;
-  const machine::Correction c = seeded ? machine::correct(model_, n.target, L, n.target + (last_.corrected - last_.target))
-                                       : machine::correct(model_, n.target, L);
+  const Joints seed = seed_for(n.target, L);
   ++stats_.corrections;
-  if (c.status != Status::Ok) fail(move, "the correction failed", c.status);
-  n.corrected = c.joints;
+  if (!correct_linear(n.target, L, seed, n.corrected)) {
+    const machine::Correction c = machine::correct(model_, n.target, L, seed);
+    if (c.status != Status::Ok) fail(move, "the correction failed", c.status);
+    n.corrected = c.joints;
+  }
+  solved(n.target, n.corrected, L);
   if (machine::outside_tables(model_, n.corrected)) ++stats_.out_of_table;
   n.world = machine::nominal_forward(model_, options_.world, n.corrected, L);
   n.program = program_of(move, n.world, p);
   return n;
+}
+
+// machine::correct for a machine of three linear axes, cheaper where Newton goes well: the
+// ideal tool tip is then affine in the joints, so the ideal Jacobian that correct() starts
+// Newton with is the same at every point and is factorized once per tool length, not at
+// every point. Same equations and stopping rule (tip residual <= the solver's position
+// tolerance); false (the caller then calls correct()) where a step gains less than two
+// digits or the steps run out, so that correct() with its exact Jacobian decides.
+bool PathCorrector::correct_linear(const Joints& target, double tool_length_mm, const Joints& seed,
+                                   Joints& corrected) {
+  if (model_.joint_count() != 3 || model_.rotary_count() != 0 || !target.allFinite() || !seed.allFinite())
+    return false;
+  if (!(linear_lu_length_ == tool_length_mm)) {
+    machine::PoseDerivatives d;
+    machine::tool_pose(model_, Machine::Ideal, target, tool_length_mm, d);
+    linear_lu_.compute(d.tip.leftCols<3>());
+    linear_lu_length_ = tool_length_mm;
+  }
+  if (!(std::abs(linear_lu_.determinant()) > 0.0)) return false;
+  const Eigen::Vector3d ideal = machine::tool_pose(model_, Machine::Ideal, target, tool_length_mm).tip_mm;
+  const machine::SolverOptions& opt = model_.solver;
+  corrected = seed;
+  double previous = std::numeric_limits<double>::infinity();
+  for (int step = 0; step <= 3; ++step) {
+    const Eigen::Vector3d residual = machine::tool_pose(model_, Machine::Real, corrected, tool_length_mm).tip_mm - ideal;
+    const double norm = residual.norm();
+    if (!std::isfinite(norm)) return false;
+    if (norm <= opt.position_tolerance_mm) return true;
+    if (step == 3 || norm > 1e-2 * previous) return false;
+    previous = norm;
+    corrected -= linear_lu_.solve(residual);
+  }
+  return false;
+}
+
+// Seed: this point plus the correction of a recent one (the correction changes little
+// between neighbouring points, so Newton starts next to the answer), extrapolated along the
+// path when the last two points lie on a line with this one: the change of the correction
+// from one to the next is then mostly its slope times the step, which the seed takes along.
+Joints PathCorrector::seed_for(const Joints& target, double tool_length_mm) const {
+  if (recent_count_ == 0) return target;
+  const Solved& last = recent_[1];
+  if (last.tool_length_mm != tool_length_mm || last.target.size() != target.size() ||
+      (last.target - target).cwiseAbs().maxCoeff() >= 1.0)
+    return target;
+  Joints seed = target + last.offset;
+  const Solved& before = recent_[0];
+  if (recent_count_ < 2 || before.tool_length_mm != tool_length_mm) return seed;
+  const Joints step = last.target - before.target, ahead = target - last.target;
+  const double step2 = step.squaredNorm();
+  if (!(step2 > 0.0) || step2 >= 1.0) return seed;
+  // How far ahead along the last step, and how far off its line.
+  const double along = ahead.dot(step) / step2;
+  const Joints off = ahead - along * step;
+  if (along < -1.5 || along > 1.5 || off.squaredNorm() > 1e-4 * step2) return seed;
+  return seed + along * (last.offset - before.offset);
+}
+
+void PathCorrector::solved(const Joints& target, const Joints& corrected, double tool_length_mm) {
+  recent_[0] = std::move(recent_[1]);
+  recent_[1] = {target, corrected - target, tool_length_mm};
+  recent_count_ = std::min(recent_count_ + 1, 2);
 }
 
 Piece PathCorrector::piece_between(const Move& move, const Node& a, const Node& b) const {

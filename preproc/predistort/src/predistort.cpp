@@ -1,11 +1,126 @@
 #include "vc/predistort/predistort.hpp"
 
 #include <string>
+#include <thread>
 
+#include "batch_queue.hpp"
 #include "vc/gcode/parser.hpp"
 #include "vc/tables/source_error.hpp"
 
 namespace vc::predistort {
+namespace {
+
+// Three threads, a pipeline: the reader reads, parses and interprets lines (it owns the
+// interpreter and the input stream), the corrector corrects their moves (it owns the
+// PathCorrector), and the caller's thread writes them (it owns the writer and the output,
+// and calls `progress`). Lines travel in order in batches through a bounded ring, so the
+// output, the error reported (the first failing line in file order) and the memory bound
+// are those of reading one line at a time.
+struct Line {
+  int number = 0;
+  long bytes = 0;  // read up to the end of this line
+  std::string raw;
+  gcode::Block block;
+  interpreter::Effect effect;
+  interpreter::Position position{};  // where the line leaves the program, if it moved as written
+  interpreter::Frame frame;
+  std::vector<std::vector<Piece>> pieces;  // effect.translate: per move, its corrected pieces
+};
+using LineQueue = BatchQueue<Line>;
+enum Stage { kRead, kCorrect, kWrite, kStages };
+constexpr std::size_t kBatches = 8, kBatchLines = 128;  // at most 1024 lines in flight
+
+void read_lines(std::istream& in, const Job& job, LineQueue& queue) {
+  interpreter::Interpreter interpreter(job.setup);
+  long bytes = 0;
+  int number = 0;
+  for (bool last = false; !last;) {
+    LineQueue::Batch* batch = queue.begin(kRead);
+    if (!batch) return;  // a later stage failed
+    try {
+      while (batch->count < batch->items.size()) {
+        Line& line = batch->items[batch->count];
+        if (!std::getline(in, line.raw)) {
+          batch->last = true;
+          break;
+        }
+        line.number = ++number;
+        bytes += static_cast<long>(line.raw.size()) + 1;
+        line.bytes = bytes;
+        if (!line.raw.empty() && line.raw.back() == '\r') line.raw.pop_back();  // DOS line ends
+        try {
+          gcode::parse_block(line.raw, line.block);
+        } catch (const gcode::SyntaxError& e) {
+          throw LoadError({job.setup.file, number, e.offset + 1}, e.what());
+        }
+        interpreter.execute(line.block, number, line.effect);
+        if (line.effect.moved_as_written) {
+          line.position = interpreter.position();
+          line.frame = interpreter.frame();
+        }
+        ++batch->count;
+      }
+    } catch (...) {
+      batch->error = std::current_exception();
+      batch->last = true;
+    }
+    last = batch->last;
+    queue.end(kRead);
+  }
+}
+
+void correct_lines(const Job& job, PathCorrector& corrector, LineQueue& queue) {
+  for (bool last = false; !last;) {
+    LineQueue::Batch* batch = queue.begin(kCorrect);
+    if (!batch) return;
+    std::size_t i = 0;
+    try {
+      for (; i < batch->count; ++i) {
+        Line& line = batch->items[i];
+        const interpreter::Effect& effect = line.effect;
+        if (effect.translate) {
+          line.pieces.resize(effect.moves.size());
+          try {
+            for (std::size_t m = 0; m < effect.moves.size(); ++m) corrector.correct(effect.moves[m], line.pieces[m]);
+          } catch (const std::runtime_error& e) {
+            throw LoadError({job.setup.file, line.number, 1}, e.what());
+          }
+        } else if (effect.moved_as_written) {
+          corrector.lost_position();
+        }
+      }
+    } catch (...) {  // this line is the first that fails: the writer stops before it
+      batch->count = i;
+      batch->error = std::current_exception();
+      batch->last = true;
+    }
+    last = batch->last;
+    queue.end(kCorrect);
+  }
+}
+
+// The reader and corrector threads, joined on every way out of predistort() (stopped first
+// if they still run).
+class Workers {
+ public:
+  Workers(std::istream& in, const Job& job, PathCorrector& corrector, LineQueue& queue)
+      : queue_(queue),
+        reader_([&in, &job, &queue] { read_lines(in, job, queue); }),
+        corrector_([&job, &corrector, &queue] { correct_lines(job, corrector, queue); }) {}
+  ~Workers() { join(); }
+  void join() {
+    if (!reader_.joinable()) return;
+    queue_.cancel();
+    reader_.join();
+    corrector_.join();
+  }
+
+ private:
+  LineQueue& queue_;
+  std::thread reader_, corrector_;
+};
+
+}  // namespace
 
 unsigned program_axes(const machine::Model& model) {
   unsigned axes = 0;
@@ -18,49 +133,39 @@ unsigned program_axes(const machine::Model& model) {
 
 Summary predistort(std::istream& in, std::ostream& out, const Job& job,
                    const std::function<void(long)>& progress) {
-  interpreter::Interpreter interpreter(job.setup);
   PathCorrector corrector(*job.model, job.corrector, job.deflection);
   Writer writer(out, job.setup.machine_axes, job.corrector.tolerance_mm);
   Summary summary;
-  gcode::Block block;
-  interpreter::Effect effect;
-  std::vector<std::vector<Piece>> pieces;
-  std::string raw;
   long bytes = 0;
   bool header_written = false;
-  for (int line = 1; std::getline(in, raw); ++line) {
-    bytes += static_cast<long>(raw.size()) + 1;
-    if (!raw.empty() && raw.back() == '\r') raw.pop_back();  // DOS line ends
-    try {
-      gcode::parse_block(raw, block);
-    } catch (const gcode::SyntaxError& e) {
-      throw LoadError({job.setup.file, line, e.offset + 1}, e.what());
-    }
-    interpreter.execute(block, line, effect);
-    // The header goes first, after a leading '%' (which must stay the first line).
-    if (!header_written && !block.percent) {
-      writer.header(job.provenance);
-      header_written = true;
-    }
-    if (effect.translate) {
-      pieces.resize(effect.moves.size());
-      try {
-        for (std::size_t m = 0; m < effect.moves.size(); ++m) corrector.correct(effect.moves[m], pieces[m]);
-      } catch (const std::runtime_error& e) {
-        throw LoadError({job.setup.file, line, 1}, e.what());
+  LineQueue queue(kStages, kBatches, kBatchLines);
+  Workers workers(in, job, corrector, queue);
+  for (bool last = false; !last;) {
+    LineQueue::Batch& batch = *queue.begin(kWrite);  // only the writer cancels
+    for (std::size_t i = 0; i < batch.count; ++i) {
+      const Line& line = batch.items[i];
+      const interpreter::Effect& effect = line.effect;
+      bytes = line.bytes;
+      // The header goes first, after a leading '%' (which must stay the first line).
+      if (!header_written && !line.block.percent) {
+        writer.header(job.provenance);
+        header_written = true;
       }
-      writer.translated(raw, block, effect, pieces);
-      ++summary.translated_lines;
-    } else {
-      writer.verbatim(raw, block, effect, interpreter);
-      if (effect.moved_as_written) {
-        corrector.lost_position();
-        ++summary.written_as_is_moves;
+      if (effect.translate) {
+        writer.translated(line.raw, line.block, effect, line.pieces);
+        ++summary.translated_lines;
+      } else {
+        writer.verbatim(line.raw, line.block, effect, line.position, line.frame);
+        if (effect.moved_as_written) ++summary.written_as_is_moves;
       }
+      ++summary.lines;
+      if (progress && (line.number & 4095) == 0) progress(bytes);
     }
-    ++summary.lines;
-    if (progress && (line & 4095) == 0) progress(bytes);
+    if (batch.error) std::rethrow_exception(batch.error);
+    last = batch.last;
+    queue.end(kWrite);
   }
+  workers.join();  // the corrector's statistics are final
   if (!header_written) writer.header(job.provenance);
   if (progress) progress(bytes);
   summary.corrector = corrector.stats();

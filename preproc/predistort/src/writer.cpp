@@ -124,14 +124,14 @@ void Writer::write_edited(std::string_view raw) {
 }
 
 void Writer::verbatim(std::string_view raw, const gcode::Block& block, const interpreter::Effect& effect,
-                      const interpreter::Interpreter& interpreter) {
+                      const interpreter::Position& position, const interpreter::Frame& frame) {
   edits_.clear();
   blending_edits(block, effect);
   write_edited(raw);
   motion_ = effect.modal_motion;
   if (effect.moved_as_written) {
-    at_ = interpreter.position();
-    frame_ = interpreter.frame();
+    at_ = position;
+    frame_ = frame;
   }
 }
 

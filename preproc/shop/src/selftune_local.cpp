@@ -160,7 +160,7 @@ LocalSummary shift_program(const machine::Model& model, const FirstPart& part, s
     }
     ++summary.lines;
     if (!effect.translate) {
-      writer.verbatim(raw, block, effect, interpreter);
+      writer.verbatim(raw, block, effect, interpreter.position(), interpreter.frame());
       return;
     }
     pieces.assign(effect.moves.size(), {});

@@ -11,6 +11,8 @@
 // the correction's slope keeps them inside the tolerance are accepted unchecked.
 #pragma once
 
+#include <Eigen/LU>
+#include <limits>
 #include <vector>
 
 #include "vc/interpreter/move.hpp"
@@ -84,6 +86,10 @@ class PathCorrector {
   Piece piece_between(const Move& move, const Node& a, const Node& b) const;
   double slope_bound(const Move& move, const Node& a, const Node& b);
   const std::array<double, machine::kMaxAxes>& slopes_for(double tool_length_mm);
+  bool correct_linear(const machine::Joints& target, double tool_length_mm, const machine::Joints& seed,
+                      machine::Joints& corrected);
+  machine::Joints seed_for(const machine::Joints& target, double tool_length_mm) const;
+  void solved(const machine::Joints& target, const machine::Joints& corrected, double tool_length_mm);
 
   const machine::Model& model_;
   CorrectorOptions options_;
@@ -94,6 +100,17 @@ class PathCorrector {
   Node last_;                          // end of the previous corrected move
   double last_tool_length_ = 0.0;
   bool last_loaded_ = false;           // a cutting force acted at last_
+  // The last two corrections (any move, in the order made): the seed of the next one is
+  // extrapolated from them. Only the Newton iterations depend on it, never the answer.
+  struct Solved {
+    machine::Joints target, offset;  // offset = corrected - target
+    double tool_length_mm = 0.0;
+  };
+  Solved recent_[2];  // [1] the latest
+  int recent_count_ = 0;
+  // Machines with three linear axes: the ideal Jacobian, factorized (per tool length).
+  Eigen::PartialPivLU<Eigen::Matrix3d> linear_lu_;
+  double linear_lu_length_ = std::numeric_limits<double>::quiet_NaN();
   // Sampled slope bound of the correction, per tool length (tip mm per unit of each joint).
   std::vector<std::pair<double, std::array<double, machine::kMaxAxes>>> slopes_;
 };

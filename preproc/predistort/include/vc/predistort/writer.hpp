@@ -31,8 +31,9 @@ class Writer {
 
   void header(const Provenance& provenance);
   // A line that does not move the machine in a way to correct: as it is, with G64 stated.
+  // `position` and `frame`: where the interpreter is after the line (used if it moved).
   void verbatim(std::string_view raw, const gcode::Block& block, const interpreter::Effect& effect,
-                const interpreter::Interpreter& interpreter);
+                const interpreter::Position& position, const interpreter::Frame& frame);
   // A line whose moves are replaced by `pieces` (one list per move of effect.moves).
   void translated(std::string_view raw, const gcode::Block& block, const interpreter::Effect& effect,
                   const std::vector<std::vector<Piece>>& pieces);
