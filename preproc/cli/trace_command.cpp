@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "format.hpp"
+#include "program_files.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/trace/session_trace.hpp"
 
@@ -14,9 +15,7 @@ namespace vc::cli {
 
 int run_trace(const TraceArgs& args, std::ostream& out) {
   const machine::Model model = machine::load_machine(args.machine);
-  if (args.world != "axes" && args.world != "tcp")
-    throw std::runtime_error("--world must be axes or tcp, not " + args.world);
-  const auto convention = args.world == "tcp" ? machine::WorldConvention::Tcp : machine::WorldConvention::Axes;
+  const machine::WorldConvention convention = world_convention(args.world);
   const trace::SessionTrace session = trace::read_session_trace(args.trace, model);
   const trace::TraceSummary summary = trace::check_trace(model, convention, session);
   if (summary.samples.empty()) throw std::runtime_error(args.trace + ": fewer than 4 usable samples");

@@ -1,3 +1,4 @@
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <map>
@@ -75,6 +76,11 @@ std::vector<CmmPoint> read_cmm_points(const std::string& path, bool report) {
     throw LoadError({path, header.line}, "a report needs deviation[um] (along the normal) or mx[mm],my[mm],mz[mm]");
   if (by_deviation && by_point)
     throw LoadError({path, header.line}, "give either deviation or mx,my,mz, not both");
+  using Column = std::pair<int, HeaderCell>;
+  std::optional<Column> deviation;
+  std::optional<std::array<Column, 3>> measured;
+  if (by_deviation) deviation = need("deviation", true);
+  if (by_point) measured = std::array<Column, 3>{need("mx", true), need("my", true), need("mz", true)};
 
   std::vector<CmmPoint> points;
   std::map<std::string, int> seen;
@@ -99,10 +105,10 @@ std::vector<CmmPoint> read_cmm_points(const std::string& path, bool report) {
       throw LoadError({path, row.line, row.cells[static_cast<std::size_t>(i.first)].column},
                       "the normal (i, j, k) is not a unit vector (length " + std::to_string(n.norm()) + ")");
     p.normal = n.normalized();
-    if (by_deviation) {
-      p.deviation_mm = value(need("deviation", true));
-    } else if (by_point) {
-      const Eigen::Vector3d m(value(need("mx", true)), value(need("my", true)), value(need("mz", true)));
+    if (deviation) {
+      p.deviation_mm = value(*deviation);
+    } else if (measured) {
+      const Eigen::Vector3d m(value((*measured)[0]), value((*measured)[1]), value((*measured)[2]));
       p.deviation_mm = p.normal.dot(m - p.nominal);
     }
     points.push_back(p);

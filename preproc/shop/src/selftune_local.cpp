@@ -3,12 +3,10 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <string>
-#include <string_view>
 
 #include "move_sampling.hpp"
 #include "program_blocks.hpp"
-#include "vc/machine/forward.hpp"
-#include "vc/tables/source_error.hpp"
+#include "program_points.hpp"
 
 namespace vc::shop {
 namespace {
@@ -39,17 +37,14 @@ std::vector<Anchor> anchors_of(const FirstPart& part) {
 
 class PathShift {
  public:
-  PathShift(const machine::Model& model, std::vector<Anchor> anchors, const LocalOptions& options)
-      : model_(model), anchors_(std::move(anchors)), options_(options) {
-    for (int j = 0; j < model.joint_count(); ++j)
-      axis_of_joint_[j] = static_cast<int>(std::string_view(interpreter::kAxisLetters)
-                                               .find(model.axes[static_cast<std::size_t>(j)].letter));
-  }
+  PathShift(const machine::Model& model, const std::string& file, std::vector<Anchor> anchors,
+            const LocalOptions& options)
+      : points_(model, options.world, file), anchors_(std::move(anchors)), options_(options) {}
 
   // Program-coordinate shift at a point of a move; `covered` tells whether any measured cut
   // was within the radius.
   Position shift_at(const Move& m, const Position& program, bool& covered) const {
-    const Eigen::Vector3d tip = ideal_tip(m, program);
+    const Eigen::Vector3d tip = points_.ideal_tip(m, program);
     const double sigma = options_.radius_mm / 2;
     Eigen::Matrix3d normal_matrix = Eigen::Matrix3d::Zero();
     Eigen::Vector3d right = Eigen::Vector3d::Zero();
@@ -73,31 +68,22 @@ class PathShift {
   }
 
  private:
-  Eigen::Vector3d ideal_tip(const Move& m, const Position& program) const {
-    const Position world = m.frame.world(program);
-    machine::Joints w(model_.joint_count()), q;
-    for (int j = 0; j < model_.joint_count(); ++j) w[j] = world[static_cast<std::size_t>(axis_of_joint_[j])];
-    if (machine::nominal_inverse(model_, options_.world, w, m.tool_length_mm, q) != machine::Status::Ok)
-      throw LoadError({"", m.line}, "no joint position reaches this point");
-    return machine::tool_pose(model_, machine::Machine::Ideal, q, m.tool_length_mm).tip_mm;
-  }
   // d tip / d program (x, y, z), by differences over 1 mm (the ideal machine is affine in
   // its linear axes).
   Eigen::Matrix3d tip_jacobian(const Move& m, const Position& program) const {
     Eigen::Matrix3d jacobian;
-    const Eigen::Vector3d at = ideal_tip(m, program);
+    const Eigen::Vector3d at = points_.ideal_tip(m, program);
     for (int i = 0; i < 3; ++i) {
       Position p = program;
       p[static_cast<std::size_t>(i)] += 1.0;
-      jacobian.col(i) = ideal_tip(m, p) - at;
+      jacobian.col(i) = points_.ideal_tip(m, p) - at;
     }
     return jacobian;
   }
 
-  const machine::Model& model_;
+  ProgramPoints points_;
   std::vector<Anchor> anchors_;
   const LocalOptions& options_;
-  int axis_of_joint_[machine::kMaxAxes];
 };
 
 // The pieces of one move: cutting moves cut into pieces whose ends are shifted; moves that
@@ -145,7 +131,7 @@ void shifted_pieces(const Move& m, const PathShift& shift, const LocalOptions& o
 LocalSummary shift_program(const machine::Model& model, const FirstPart& part, std::istream& program,
                            const interpreter::Setup& setup, const predistort::Provenance& provenance,
                            std::ostream& out, const LocalOptions& options) {
-  const PathShift shift(model, anchors_of(part), options);
+  const PathShift shift(model, setup.file, anchors_of(part), options);
   interpreter::Interpreter interpreter(setup);
   predistort::Writer writer(out, setup.machine_axes, options.tolerance_mm);
   LocalSummary summary;

@@ -64,11 +64,18 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
   struct Unknown {
     int probe, node, column;
   };
-  std::vector<Unknown> unknowns;
-  for (std::size_t p = 0; p < probes.size(); ++p)
+  std::vector<Unknown> unknowns;            // probe by probe, node by node, column by column
+  std::vector<Eigen::Index> first_unknown;  // of each probe
+  for (std::size_t p = 0; p < probes.size(); ++p) {
+    first_unknown.push_back(static_cast<Eigen::Index>(unknowns.size()));
     for (int node = 0; node < options.nodes; ++node)
       for (std::size_t c = 0; c < probes[p].columns.size(); ++c)
         unknowns.push_back({static_cast<int>(p), node, static_cast<int>(c)});
+  }
+  const auto index = [&](int probe, int node, int column) {
+    return first_unknown[static_cast<std::size_t>(probe)] +
+           node * static_cast<Eigen::Index>(probes[static_cast<std::size_t>(probe)].columns.size()) + column;
+  };
 
   // One equation per kept point: sensitivities by a small value at one node at a time.
   std::vector<const MatchedPoint*> kept;
@@ -116,13 +123,6 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
     if (normal(u, u) < 1e-12 * mean_diagonal) ++fit.unobservable;
   normal.diagonal().array() += options.regularisation * mean_diagonal;
   // Second differences of scaled values along each table column: x[i-1] - 2 x[i] + x[i+1].
-  const auto index = [&](int probe, int node, int column) {
-    for (Eigen::Index u = 0; u < cols; ++u) {
-      const Unknown& x = unknowns[static_cast<std::size_t>(u)];
-      if (x.probe == probe && x.node == node && x.column == column) return u;
-    }
-    return Eigen::Index(-1);
-  };
   for (std::size_t p = 0; p < probes.size(); ++p)
     for (std::size_t c = 0; c < probes[p].columns.size(); ++c)
       for (int node = 1; node + 1 < options.nodes; ++node) {

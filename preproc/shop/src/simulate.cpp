@@ -1,10 +1,10 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
-#include <string_view>
 
 #include "move_sampling.hpp"
 #include "program_blocks.hpp"
+#include "program_points.hpp"
 #include "vc/machine/forward.hpp"
 #include "vc/shop/tool_path.hpp"
 #include "vc/tables/source_error.hpp"
@@ -19,11 +19,7 @@ using interpreter::Position;
 class Simulator {
  public:
   Simulator(const machine::Model& machine, const interpreter::Setup& setup, const SimulationOptions& options)
-      : machine_(machine), setup_(setup), options_(options) {
-    for (int j = 0; j < machine.joint_count(); ++j)
-      axis_of_joint_[j] = static_cast<int>(std::string_view(interpreter::kAxisLetters)
-                                               .find(machine.axes[static_cast<std::size_t>(j)].letter));
-  }
+      : machine_(machine), setup_(setup), options_(options), points_(machine, options.world, setup.file) {}
 
   void run(const Move& m, int number, const std::function<void(const PathSample&)>& sink) {
     const int n = piece_count(m, options_.step_mm, options_.chord_tolerance_mm, options_.step_deg);
@@ -39,12 +35,12 @@ class Simulator {
     for (int k = 0; k <= n; ++k) {
       sample.s = static_cast<double>(k) / n;
       sample.program = interpreter::point_at(m, sample.s);
-      const machine::Joints nominal = nominal_joints(m, sample.program);
+      const machine::Joints world = points_.world(m, sample.program);
+      const machine::Joints nominal = points_.nominal(m, world);
       sample.joints = nominal;
       if (options_.compensation) {
-        const machine::Status status = machine::joints_from_world(*options_.compensation, options_.world,
-                                                                  world_of(m, sample.program), m.tool_length_mm,
-                                                                  sample.joints);
+        const machine::Status status =
+            machine::joints_from_world(*options_.compensation, options_.world, world, m.tool_length_mm, sample.joints);
         if (status != machine::Status::Ok)
           throw LoadError({setup_.file, m.line}, "the compensation does not converge at this move");
       }
@@ -66,30 +62,12 @@ class Simulator {
     return it == setup_.tools->end() ? 0.0 : it->second.diameter / 2;
   }
 
-  machine::Joints world_of(const Move& m, const Position& program) const {
-    const Position world = m.frame.world(program);
-    machine::Joints w(machine_.joint_count());
-    for (int j = 0; j < machine_.joint_count(); ++j) w[j] = world[static_cast<std::size_t>(axis_of_joint_[j])];
-    return w;
-  }
-
-  machine::Joints nominal_joints(const Move& m, const Position& program) const {
-    machine::Joints q;
-    if (machine::nominal_inverse(machine_, options_.world, world_of(m, program), m.tool_length_mm, q) !=
-        machine::Status::Ok)
-      throw LoadError({setup_.file, m.line}, "no joint position reaches this point of the move");
-    return q;
-  }
-
   // Deflection under the move's mean cutting force at fraction s (part frame, mm). The force
   // follows the ideal tip's direction of travel there.
   Eigen::Vector3d deflection(const Move& m, double s, const machine::Joints& nominal,
                              const machine::ToolPose& ideal) const {
     constexpr double ds = 1e-4;
-    auto ideal_tip = [&](double at) {
-      const Position p = interpreter::point_at(m, std::clamp(at, 0.0, 1.0));
-      return machine::tool_pose(machine_, machine::Machine::Ideal, nominal_joints(m, p), m.tool_length_mm).tip_mm;
-    };
+    auto ideal_tip = [&](double at) { return points_.ideal_tip(m, interpreter::point_at(m, std::clamp(at, 0.0, 1.0))); };
     const Eigen::Vector3d feed = ideal_tip(s + ds) - ideal_tip(s - ds);
     if (feed.norm() < 1e-12) return Eigen::Vector3d::Zero();
     double length = 0;
@@ -104,7 +82,7 @@ class Simulator {
   const machine::Model& machine_;
   const interpreter::Setup& setup_;
   const SimulationOptions& options_;
-  int axis_of_joint_[machine::kMaxAxes];
+  ProgramPoints points_;
 };
 
 }  // namespace

@@ -1,0 +1,49 @@
+// Points of a move in the machine: LinuxCNC's world coordinates in joint order, the joints
+// of the ideal machine there, and its tool tip (shared by the simulation and the path shift).
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "vc/interpreter/move.hpp"
+#include "vc/machine/forward.hpp"
+#include "vc/machine/kinematics.hpp"
+#include "vc/tables/source_error.hpp"
+
+namespace vc::shop {
+
+class ProgramPoints {
+ public:
+  // `file`: the program, for messages.
+  ProgramPoints(const machine::Model& model, machine::WorldConvention world, std::string file)
+      : model_(model), world_(world), file_(std::move(file)) {
+    for (int j = 0; j < model.joint_count(); ++j)
+      axis_of_joint_[j] = static_cast<int>(
+          std::string_view(interpreter::kAxisLetters).find(model.axes[static_cast<std::size_t>(j)].letter));
+  }
+
+  machine::Joints world(const interpreter::Move& m, const interpreter::Position& program) const {
+    const interpreter::Position w = m.frame.world(program);
+    machine::Joints q(model_.joint_count());
+    for (int j = 0; j < model_.joint_count(); ++j) q[j] = w[static_cast<std::size_t>(axis_of_joint_[j])];
+    return q;
+  }
+  // Throws vc::LoadError at the move's line if no joint position reaches the point.
+  machine::Joints nominal(const interpreter::Move& m, const machine::Joints& world) const {
+    machine::Joints q;
+    if (machine::nominal_inverse(model_, world_, world, m.tool_length_mm, q) != machine::Status::Ok)
+      throw LoadError({file_, m.line}, "no joint position reaches this point of the move");
+    return q;
+  }
+  Eigen::Vector3d ideal_tip(const interpreter::Move& m, const interpreter::Position& program) const {
+    return machine::tool_pose(model_, machine::Machine::Ideal, nominal(m, world(m, program)), m.tool_length_mm).tip_mm;
+  }
+
+ private:
+  const machine::Model& model_;
+  machine::WorldConvention world_;
+  std::string file_;
+  int axis_of_joint_[machine::kMaxAxes];
+};
+
+}  // namespace vc::shop
