@@ -14,7 +14,7 @@ using machine::Status;
 constexpr double kTwoPi = 2.0 * M_PI;
 constexpr double kCheckPoints[] = {0.25, 0.5, 0.75};
 constexpr double kAcceptShare = 0.7;     // of the tolerance, at the check points
-constexpr double kUncheckedShare = 0.25;  // of the tolerance, for the slope bound
+constexpr double kUncheckedShare = 0.25;  // of the tolerance, for the bounds
 
 [[noreturn]] void fail(const Move& move, const std::string& what, Status status) {
   throw std::runtime_error("line " + std::to_string(move.line) + ": " + what + " (" +
@@ -46,7 +46,7 @@ PieceCircle circle_of(const interpreter::Arc& arc, const Position& start, const 
 }  // namespace
 
 PathCorrector::PathCorrector(const machine::Model& model, CorrectorOptions options, const Deflection* deflection)
-    : model_(model), options_(options), deflection_(deflection) {
+    : model_(model), options_(options), deflection_(deflection), bounds_(model) {
   for (int j = 0; j < model.joint_count(); ++j) {
     const char letter = model.axes[static_cast<std::size_t>(j)].letter;
     joint_axis_[j] = static_cast<int>(std::string_view(interpreter::kAxisLetters).find(letter));
@@ -237,55 +237,19 @@ double PathCorrector::error_between(const Move& move, const Node& a, const Node&
   return (actual - machine::tool_pose(model_, Machine::Ideal, nominal, L).tip_mm).norm();
 }
 
-const std::array<double, machine::kMaxAxes>& PathCorrector::slopes_for(double tool_length_mm) {
-  for (const auto& [L, k] : slopes_)
-    if (L == tool_length_mm) return k;
-  // Largest tip-space slope of the correction along each joint, sampled over the travel
-  // (central differences of q_c - q_n mapped to the tip by the ideal Jacobian).
-  std::array<double, machine::kMaxAxes> k{};
-  const int n = model_.joint_count();
-  std::uint64_t state = 0x9E3779B97F4A7C15ull;
-  auto uniform = [&state]() {
-    state = state * 6364136223846793005ull + 1442695040888963407ull;
-    return static_cast<double>(state >> 11) / 9007199254740992.0;
-  };
-  const double h = 0.25;
-  for (int sample = 0; sample < 400; ++sample) {
-    Joints q(n);
-    for (int j = 0; j < n; ++j) {
-      const machine::Axis& axis = model_.axes[static_cast<std::size_t>(j)];
-      q[j] = axis.travel_min + uniform() * (axis.travel_max - axis.travel_min);
-    }
-    machine::PoseDerivatives d;
-    machine::tool_pose(model_, Machine::Ideal, q, tool_length_mm, d);
-    for (int j = 0; j < n; ++j) {
-      Joints up = q, down = q;
-      up[j] += h;
-      down[j] -= h;
-      const machine::Correction cu = machine::correct(model_, up, tool_length_mm);
-      const machine::Correction cd = machine::correct(model_, down, tool_length_mm);
-      if (cu.status != Status::Ok || cd.status != Status::Ok) continue;
-      const Joints rate = ((cu.joints - up) - (cd.joints - down)) / (2 * h);
-      const Eigen::Vector3d tip = d.tip.leftCols(n) * rate;
-      k[static_cast<std::size_t>(j)] = std::max(k[static_cast<std::size_t>(j)], tip.norm());
-    }
-  }
-  slopes_.emplace_back(tool_length_mm, k);
-  return slopes_.back().second;
-}
-
-double PathCorrector::slope_bound(const Move& move, const Node& a, const Node& b) {
-  const auto& k = slopes_for(move.tool_length_mm);
-  double bound = 0.0;
-  for (int j = 0; j < model_.joint_count(); ++j)
-    bound += k[static_cast<std::size_t>(j)] * std::abs(b.nominal[j] - a.nominal[j]);
-  return bound;
+// A straight piece that the bounds of the correction's slope or curvature keep well inside
+// the tolerance (correction_bounds.hpp); the curvature bound needs the nominal joints to run
+// straight between the ends (world = joints) and no cutting force.
+bool PathCorrector::within_bounds(const Move& move, const Node& a, const Node& b) {
+  if (move.kind != MoveKind::Line || deflection_) return false;
+  const double share = kUncheckedShare * options_.tolerance_mm, L = move.tool_length_mm;
+  if (bounds_.slope_bound(a.nominal, b.nominal, L) <= share) return true;
+  return options_.world == machine::WorldConvention::Axes && bounds_.curvature_bound(a.nominal, b.nominal, a.corrected, b.corrected, L) <= share;
 }
 
 void PathCorrector::refine(const Move& move, const Node& a, const Node& b, int depth, std::vector<Piece>& pieces) {
   const Piece piece = piece_between(move, a, b);
-  bool accept = move.kind == MoveKind::Line && !deflection_ &&
-                slope_bound(move, a, b) <= kUncheckedShare * options_.tolerance_mm;
+  bool accept = within_bounds(move, a, b);
   if (!accept) {
     double worst = 0.0;
     for (double t : kCheckPoints) worst = std::max(worst, error_between(move, a, b, piece, t));

@@ -7,8 +7,9 @@
 // the real machine at the joints LinuxCNC interpolates there, plus the cutting-force
 // deflection, against the ideal machine's tool tip at the corresponding nominal point.
 // Checked at 1/4, 1/2 and 3/4 of each piece against 0.7 x tolerance (a single kink of the
-// correction inside a piece is then caught); pieces short enough that a sampled bound on
-// the correction's slope keeps them inside the tolerance are accepted unchecked.
+// correction inside a piece is then caught); straight pieces short enough that a sampled
+// bound on the correction's slope, or (world = joints, no kink inside) on its curvature,
+// keeps them inside a quarter of the tolerance are accepted unchecked (correction_bounds.hpp).
 #pragma once
 
 #include <Eigen/LU>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "vc/interpreter/move.hpp"
+#include "vc/predistort/correction_bounds.hpp"
 #include "vc/machine/kinematics.hpp"
 #include "vc/predistort/deflection.hpp"
 
@@ -84,8 +86,7 @@ class PathCorrector {
   Eigen::Vector3d force_at(const Move& move, double s);
   void refine(const Move& move, const Node& a, const Node& b, int depth, std::vector<Piece>& pieces);
   Piece piece_between(const Move& move, const Node& a, const Node& b) const;
-  double slope_bound(const Move& move, const Node& a, const Node& b);
-  const std::array<double, machine::kMaxAxes>& slopes_for(double tool_length_mm);
+  bool within_bounds(const Move& move, const Node& a, const Node& b);
   bool correct_linear(const machine::Joints& target, double tool_length_mm, const machine::Joints& seed,
                       machine::Joints& corrected);
   machine::Joints seed_for(const machine::Joints& target, double tool_length_mm) const;
@@ -111,8 +112,7 @@ class PathCorrector {
   // Machines with three linear axes: the ideal Jacobian, factorized (per tool length).
   Eigen::PartialPivLU<Eigen::Matrix3d> linear_lu_;
   double linear_lu_length_ = std::numeric_limits<double>::quiet_NaN();
-  // Sampled slope bound of the correction, per tool length (tip mm per unit of each joint).
-  std::vector<std::pair<double, std::array<double, machine::kMaxAxes>>> slopes_;
+  CorrectionBounds bounds_;
 };
 
 }  // namespace vc::predistort

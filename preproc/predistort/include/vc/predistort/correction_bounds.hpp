@@ -1,0 +1,65 @@
+// How far LinuxCNC's straight interpolation between two corrected points can stray from the
+// exact correction, bounded without evaluating the correction in between, so that the path
+// corrector can accept short pieces unchecked.
+//
+// Between nominal joints a and b (world = joints), LinuxCNC runs the corrected joints
+// c(t) = C(a) + t (C(b) - C(a)); the exact correction is C(n(t)) = n(t) + d(n(t)). Their
+// difference is the error of interpolating the correction d linearly, mapped to the tool tip
+// by the Jacobian J. Two bounds of it:
+//   slope:     |J d'| <= k_j per unit of joint j          ->  sum_j k_j |b_j - a_j| / 2
+//   curvature: |J d_ij''| <= M_ij where d is smooth       ->  sum_ij M_ij |b_i - a_i| |b_j - a_j| / 8
+// d is smooth except where a table interpolated linearly changes cells, or where any table
+// meets its grid ends (it holds its end value outside). Tables are read at the corrected
+// joints, so these kinks lie where a corrected joint crosses a node: the curvature bound
+// holds only for pieces whose corrected joints stay clear of every node (by 1e-3 mm or deg,
+// far more than c(t) strays from the straight line between the corrected ends when the
+// bound passes), and is infinite otherwise. The slope bound holds across kinks. k and M are
+// the largest values found at 400 points spread over the travel (finite differences of the
+// core's correction; curvature stencils that come near a kink are left out), per tool
+// length, doubled for what the sampling may miss.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "vc/machine/model.hpp"
+
+namespace vc::predistort {
+
+class CorrectionBounds {
+ public:
+  explicit CorrectionBounds(const machine::Model& model);
+
+  // Tool-tip bounds (mm) of the interpolation error between nominal joints a and b.
+  double slope_bound(const machine::Joints& a, const machine::Joints& b, double tool_length_mm);
+  // Also given the corrected joints at a and b.
+  double curvature_bound(const machine::Joints& a, const machine::Joints& b, const machine::Joints& corrected_a,
+                         const machine::Joints& corrected_b, double tool_length_mm);
+
+  // True if a node of a table lies within the margin of the corrected joints' way from a to b.
+  bool crosses_kink(const machine::Joints& corrected_a, const machine::Joints& corrected_b) const;
+
+ private:
+  using PerJoint = Eigen::Matrix<double, machine::kMaxAxes, machine::kMaxAxes>;
+  struct Sampled {
+    double tool_length_mm;
+    std::array<double, machine::kMaxAxes> slope;  // k_j
+    PerJoint curvature;                            // M_ij
+  };
+  // Kinks along one joint from one grid variable: node positions (all nodes of a linear
+  // table, the ends of a cubic one), repeating every `period` deg on a periodic grid.
+  struct Kinks {
+    int joint;
+    double period;               // 0 if not periodic
+    std::vector<double> at;      // sorted
+  };
+  const Sampled& sampled(double tool_length_mm);
+  bool kink_near(int joint, double x0, double x1, double margin) const;
+
+  const machine::Model& model_;
+  std::vector<Kinks> kinks_;
+  std::vector<Sampled> sampled_;
+};
+
+}  // namespace vc::predistort

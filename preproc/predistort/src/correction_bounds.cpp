@@ -1,0 +1,168 @@
+#include "vc/predistort/correction_bounds.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "vc/machine/correct.hpp"
+
+namespace vc::predistort {
+namespace {
+
+using machine::Joints;
+
+constexpr int kSamples = 150;       // over the travel, and as many again in the pole fade band
+constexpr int kBandDraws = 40000;   // tries to find those
+constexpr double kStep = 0.25;             // finite differences, mm or deg
+constexpr double kMargin = 2.0;  // on the largest slope and curvature sampled
+constexpr double kKinkMargin = 1e-3;     // mm or deg, around a piece's corrected joints
+constexpr double kStencilMargin = 1e-2;  // around a stencil (the correction moves as it does)
+
+// The correction d(q) = C(q) - q at q, or false where the core cannot correct q. Newton
+// starts from q + `near` (a correction nearby), which changes its steps, not its answer.
+bool correction_at(const machine::Model& model, const Joints& q, double tool_length_mm, const Joints& near,
+                   Joints& d) {
+  const machine::Correction c = machine::correct(model, q, tool_length_mm, q + near);
+  if (c.status != machine::Status::Ok) return false;
+  d = c.joints - q;
+  return true;
+}
+
+}  // namespace
+
+CorrectionBounds::CorrectionBounds(const machine::Model& model) : model_(model) {
+  for (const machine::BoundTable& bound : model.tables) {
+    const auto& grid = bound.table.grid();
+    for (std::size_t v = 0; v < grid.size(); ++v) {
+      Kinks k{bound.joint[v], grid[v].periodic ? 360.0 : 0.0, {}};
+      if (bound.table.interpolation() == tables::Interpolation::Linear)
+        k.at = grid[v].nodes;
+      else if (!grid[v].periodic)
+        k.at = {grid[v].nodes.front(), grid[v].nodes.back()};
+      if (!k.at.empty()) kinks_.push_back(std::move(k));
+    }
+  }
+}
+
+bool CorrectionBounds::kink_near(int joint, double x0, double x1, double margin) const {
+  const double lo = std::min(x0, x1) - margin, hi = std::max(x0, x1) + margin;
+  for (const Kinks& k : kinks_) {
+    if (k.joint != joint) continue;
+    double from = lo, to = hi;
+    if (k.period > 0.0) {
+      if (hi - lo >= k.period) return true;
+      // Into the period that starts at the first node; the interval may run into the next.
+      const double shift = std::floor((lo - k.at.front()) / k.period) * k.period;
+      from -= shift;
+      to -= shift;
+      const auto first_after = std::upper_bound(k.at.begin(), k.at.end(), from);
+      if (first_after != k.at.end() && *first_after < to) return true;
+      if (to > k.at.front() + k.period && k.at.front() + k.period > from) return true;
+      continue;
+    }
+    const auto first_after = std::upper_bound(k.at.begin(), k.at.end(), from);
+    if (first_after != k.at.end() && *first_after < to) return true;
+  }
+  return false;
+}
+
+bool CorrectionBounds::crosses_kink(const Joints& corrected_a, const Joints& corrected_b) const {
+  for (int j = 0; j < model_.joint_count(); ++j)
+    if (kink_near(j, corrected_a[j], corrected_b[j], kKinkMargin)) return true;
+  return false;
+}
+
+double CorrectionBounds::slope_bound(const Joints& a, const Joints& b, double tool_length_mm) {
+  const Sampled& s = sampled(tool_length_mm);
+  double bound = 0.0;
+  for (int j = 0; j < model_.joint_count(); ++j) bound += s.slope[static_cast<std::size_t>(j)] * std::abs(b[j] - a[j]);
+  return 0.5 * bound;
+}
+
+double CorrectionBounds::curvature_bound(const Joints& a, const Joints& b, const Joints& corrected_a,
+                                         const Joints& corrected_b, double tool_length_mm) {
+  if (crosses_kink(corrected_a, corrected_b)) return std::numeric_limits<double>::infinity();
+  const Sampled& s = sampled(tool_length_mm);
+  const int n = model_.joint_count();
+  const Joints step = (b - a).cwiseAbs();
+  // The ends themselves are off by up to the solver's tolerance.
+  return step.dot(s.curvature.topLeftCorner(n, n) * step) / 8.0 + 2 * model_.solver.position_tolerance_mm;
+}
+
+const CorrectionBounds::Sampled& CorrectionBounds::sampled(double tool_length_mm) {
+  for (const Sampled& s : sampled_)
+    if (s.tool_length_mm == tool_length_mm) return s;
+  Sampled out{tool_length_mm, {}, PerJoint::Zero()};
+  const int n = model_.joint_count();
+  std::uint64_t state = 0x9E3779B97F4A7C15ull;
+  auto uniform = [&state]() {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  const double h = kStep;
+  auto draw = [&](Joints& q) {
+    for (int j = 0; j < n; ++j) {
+      const machine::Axis& axis = model_.axes[static_cast<std::size_t>(j)];
+      q[j] = axis.travel_min + uniform() * (axis.travel_max - axis.travel_min);
+    }
+  };
+  // Where the orientation correction fades in, the correction bends the most: that band,
+  // a thin shell of the travel, gets samples of its own.
+  auto in_fade_band = [&](const Joints& q) {
+    const double phi = machine::pole_angle(model_, q, tool_length_mm);
+    return phi >= model_.fade.start_rad && phi <= model_.fade.full_rad;
+  };
+  const bool has_band = model_.rotary_count() > 0 && model_.fade.full_rad > 0.0;
+  int band_draws = 0;
+  for (int sample = 0; sample < (has_band ? 2 : 1) * kSamples; ++sample) {
+    Joints q(n);
+    draw(q);
+    if (sample >= kSamples) {
+      while (!in_fade_band(q) && ++band_draws < kBandDraws) draw(q);
+      if (band_draws >= kBandDraws) break;
+    }
+    machine::PoseDerivatives derivatives;
+    machine::tool_pose(model_, machine::Machine::Ideal, q, tool_length_mm, derivatives);
+    const auto tip = [&](const Joints& joint_change) { return (derivatives.tip.leftCols(n) * joint_change).norm(); };
+    Joints centre;
+    if (!correction_at(model_, q, tool_length_mm, Joints::Zero(n), centre)) continue;
+    // d at q +- h e_i, and whether a kink lies within h of q along joint i.
+    std::array<Joints, machine::kMaxAxes> up, down;
+    std::array<bool, machine::kMaxAxes> ok{}, smooth{};
+    for (int i = 0; i < n; ++i) {
+      Joints qu = q, qd = q;
+      qu[i] += h;
+      qd[i] -= h;
+      const auto u = static_cast<std::size_t>(i);
+      ok[u] = correction_at(model_, qu, tool_length_mm, centre, up[u]) &&
+              correction_at(model_, qd, tool_length_mm, centre, down[u]);
+      smooth[u] = !kink_near(i, q[i] + centre[i] - h, q[i] + centre[i] + h, kStencilMargin);
+      if (!ok[u]) continue;
+      out.slope[u] = std::max(out.slope[u], tip((up[u] - down[u]) / (2 * h)));
+      if (smooth[u]) out.curvature(i, i) = std::max(out.curvature(i, i), tip((up[u] - 2 * centre + down[u]) / (h * h)));
+    }
+    for (int i = 0; i < n; ++i) {
+      for (int j = i + 1; j < n; ++j) {
+        if (!smooth[static_cast<std::size_t>(i)] || !smooth[static_cast<std::size_t>(j)]) continue;
+        Joints corner[4];
+        bool all = true;
+        for (int c = 0; c < 4 && all; ++c) {
+          Joints p = q;
+          p[i] += (c & 1) ? h : -h;
+          p[j] += (c & 2) ? h : -h;
+          all = correction_at(model_, p, tool_length_mm, centre, corner[c]);
+        }
+        if (!all) continue;
+        const double mixed = tip((corner[3] - corner[2] - corner[1] + corner[0]) / (4 * h * h));
+        out.curvature(i, j) = out.curvature(j, i) = std::max(out.curvature(i, j), mixed);
+      }
+    }
+  }
+  for (double& k : out.slope) k *= kMargin;
+  out.curvature *= kMargin;
+  sampled_.push_back(out);
+  return sampled_.back();
+}
+
+}  // namespace vc::predistort

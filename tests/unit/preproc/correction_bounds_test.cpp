@@ -1,0 +1,106 @@
+// The bounds that let the path corrector accept pieces unchecked: where the kinks of the
+// correction lie (table nodes, grid ends, the periodic wrap), and that the slope and
+// curvature bounds hold the tool-tip error LinuxCNC's straight interpolation between two
+// corrected points makes, computed exactly with the core's correction and forward model.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "test_support.hpp"
+#include "vc/machine/correct.hpp"
+#include "vc/machine/load_machine.hpp"
+#include "vc/predistort/correction_bounds.hpp"
+
+namespace vc::predistort {
+namespace {
+
+using machine::Joints;
+
+Joints joints(std::initializer_list<double> values) {
+  Joints q(static_cast<Eigen::Index>(values.size()));
+  Eigen::Index i = 0;
+  for (double v : values) q[i++] = v;
+  return q;
+}
+
+TEST(CorrectionBounds, KinksAreTheNodesOfLinearTablesAndThePeriodicWrap) {
+  const machine::Model model = machine::load_machine(test::machine_path("mc300"));
+  const CorrectionBounds bounds(model);
+  // MC-300 C table: 0:5:360 deg, linear, periodic; 1e-3 deg clear of a node.
+  const auto c_move = [&](double from, double to) {
+    return bounds.crosses_kink(joints({-301.3, -161.7, -201.9, -36.2, from}), joints({-301.3, -161.7, -201.9, -36.2, to}));
+  };
+  EXPECT_FALSE(c_move(1.0, 4.0));
+  EXPECT_TRUE(c_move(4.0, 6.0));
+  EXPECT_TRUE(c_move(6.0, 4.0));
+  EXPECT_TRUE(c_move(5.0, 9.0));
+  EXPECT_FALSE(c_move(5.002, 9.0));
+  EXPECT_TRUE(c_move(5.0005, 9.0));
+  EXPECT_TRUE(c_move(358.0, 361.0));  // 360 = 0
+  EXPECT_FALSE(c_move(361.0, 364.0));
+  EXPECT_FALSE(c_move(-359.0, -356.0));
+  EXPECT_TRUE(c_move(-1.0, 1.0));
+  EXPECT_TRUE(c_move(1.0, 400.0));
+}
+
+// Short straight pieces everywhere in the travel, every other one where the orientation
+// correction fades in (the correction bends most there): the exact tool-tip error at 1/4,
+// 1/2, 3/4 of LinuxCNC's interpolation between the corrected ends, against the bounds.
+void expect_bounds_hold(const std::string& machine_name) {
+  const machine::Model model = machine::load_machine(test::machine_path(machine_name));
+  CorrectionBounds bounds(model);
+  const double L = model.tool_length_mm;
+  const int n = model.joint_count();
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int smooth = 0, below_slope = 0, below_curvature = 0;
+  double worst_slope = 0.0, worst_curvature = 0.0;  // error / bound
+  for (int piece = 0; piece < 3000; ++piece) {
+    Joints a(n), b(n);
+    const double length = std::pow(10.0, -1.5 + 2.0 * unit(random));  // 0.03 .. 3 mm or deg
+    const bool in_band = model.rotary_count() > 0 && piece % 2 == 1;
+    for (int attempt = 0; attempt < 10000; ++attempt) {
+      for (int j = 0; j < n; ++j) {
+        const machine::Axis& axis = model.axes[static_cast<std::size_t>(j)];
+        a[j] = axis.travel_min + length + unit(random) * (axis.travel_max - axis.travel_min - 2 * length);
+        b[j] = a[j] + length * (2 * unit(random) - 1);
+      }
+      const double phi = machine::pole_angle(model, a, L);
+      if (!in_band || (phi > model.fade.start_rad && phi < model.fade.full_rad)) break;
+    }
+    const machine::Correction ca = machine::correct(model, a, L), cb = machine::correct(model, b, L);
+    ASSERT_EQ(ca.status, machine::Status::Ok);
+    ASSERT_EQ(cb.status, machine::Status::Ok);
+    double error = 0.0;
+    for (double t : {0.25, 0.5, 0.75}) {
+      const Joints commanded = ca.joints + t * (cb.joints - ca.joints);
+      const Eigen::Vector3d real = machine::tool_pose(model, machine::Machine::Real, commanded, L).tip_mm;
+      const Eigen::Vector3d ideal = machine::tool_pose(model, machine::Machine::Ideal, a + t * (b - a), L).tip_mm;
+      error = std::max(error, (real - ideal).norm());
+    }
+    const double slope = bounds.slope_bound(a, b, L);
+    const double curvature = bounds.curvature_bound(a, b, ca.joints, cb.joints, L);
+    EXPECT_LE(error, slope) << machine_name << " piece " << piece;
+    worst_slope = std::max(worst_slope, error / slope);
+    below_slope += slope <= 1.25e-4;
+    if (std::isinf(curvature)) continue;
+    ++smooth;
+    EXPECT_LE(error, curvature) << machine_name << " piece " << piece << " from " << a.transpose() << " to "
+                                << b.transpose();
+    worst_curvature = std::max(worst_curvature, error / curvature);
+    below_curvature += curvature <= 1.25e-4;
+  }
+  std::printf("%s: 3000 pieces, %d cross no kink; largest error / bound: slope %.3f, curvature %.3f; "
+              "within a quarter of 0.5 um: slope %d, curvature %d\n",
+              machine_name.c_str(), smooth, worst_slope, worst_curvature, below_slope, below_curvature);
+  EXPECT_GT(smooth, 300);  // the curvature bound is exercised
+}
+
+TEST(CorrectionBounds, HoldTheInterpolationErrorOnMc300) { expect_bounds_hold("mc300"); }
+TEST(CorrectionBounds, HoldTheInterpolationErrorOnAcTrunnion) { expect_bounds_hold("ac_trunnion"); }
+TEST(CorrectionBounds, HoldTheInterpolationErrorOnMill3) { expect_bounds_hold("mill3"); }
+
+}  // namespace
+}  // namespace vc::predistort
