@@ -46,23 +46,24 @@ void normalize(std::string_view line, Normalized& n, Block& block) {
       continue;
     }
     if (c == ')') throw SyntaxError(static_cast<int>(i), "')' without '('");
-    if (!std::isprint(static_cast<unsigned char>(c)))
+    if (c < ' ' || c > '~')  // isprint in the "C" locale
       throw SyntaxError(static_cast<int>(i), "unexpected " + describe(c) + " (not a printable character)");
-    n.text += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    n.text += c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c;
     n.raw.push_back(static_cast<int>(i));
   }
   n.raw.push_back(static_cast<int>(line.size()));
 }
 
 // Parses `rule` at text[pos...]; returns the end position. X3's expectation failures
-// become SyntaxErrors at the raw offset where the expected thing is missing.
-template <typename Rule, typename Attribute>
+// become SyntaxErrors at the raw offset where the expected thing is missing; `expected()`
+// says what was expected at pos (called only then).
+template <typename Rule, typename Attribute, typename Expected>
 std::size_t parse_at(const Normalized& n, std::size_t pos, const Rule& rule, Attribute& attribute,
-                     const char* expected) {
+                     const Expected& expected) {
   auto first = n.text.begin() + static_cast<std::ptrdiff_t>(pos);
   const auto last = n.text.end();
   try {
-    if (!x3::parse(first, last, rule, attribute)) throw SyntaxError(n.raw[pos], std::string("expected ") + expected);
+    if (!x3::parse(first, last, rule, attribute)) throw SyntaxError(n.raw[pos], "expected " + std::string(expected()));
   } catch (const x3::expectation_failure<std::string::const_iterator>& e) {
     const auto at = static_cast<std::size_t>(e.where() - n.text.begin());
     const std::string found = at < n.text.size() ? ", found " + describe(n.text[at]) : ", found the end of the line";
@@ -92,7 +93,7 @@ void parse_block(std::string_view line, Block& block) {
     ++pos;
   }
   if (pos < n.text.size() && n.text[pos] == 'n') {
-    pos = parse_at(n, pos + 1, parser::number, block.line_number, "a line number after 'N'");
+    pos = parse_at(n, pos + 1, parser::number, block.line_number, [] { return "a line number after 'N'"; });
     if (block.line_number < 0) throw SyntaxError(n.raw[pos - 1], "a line number cannot be negative");
     block.has_line_number = true;
   }
@@ -105,10 +106,10 @@ void parse_block(std::string_view line, Block& block) {
     if (c == '#') {
       Assignment a;
       a.begin = n.raw[pos];
-      pos = parse_at(n, pos, parser::parameter, a.target, "a parameter");
+      pos = parse_at(n, pos, parser::parameter, a.target, [] { return "a parameter"; });
       if (pos >= n.text.size() || n.text[pos] != '=')
         throw SyntaxError(n.raw[pos], "expected '=' after the parameter (a parameter alone is not a word)");
-      pos = parse_at(n, pos + 1, parser::value, a.value, "a value after '='");
+      pos = parse_at(n, pos + 1, parser::value, a.value, [] { return "a value after '='"; });
       a.end = n.raw[pos - 1] + 1;
       block.assignments.push_back(std::move(a));
       continue;
@@ -121,8 +122,8 @@ void parse_block(std::string_view line, Block& block) {
       throw SyntaxError(n.raw[pos], "expected a word (letter and value), found " + describe(c));
     }
     Word w{static_cast<char>(std::toupper(static_cast<unsigned char>(c))), ast::Expression(), n.raw[pos], 0};
-    const std::string expected = std::string("a number or [expression] after '") + w.letter + "'";
-    pos = parse_at(n, pos + 1, parser::value, w.value, expected.c_str());
+    pos = parse_at(n, pos + 1, parser::value, w.value,
+                   [&w] { return std::string("a number or [expression] after '") + w.letter + "'"; });
     w.end = n.raw[pos - 1] + 1;
     block.words.push_back(std::move(w));
   }

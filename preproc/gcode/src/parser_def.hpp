@@ -14,22 +14,48 @@
 #pragma once
 
 #include <boost/spirit/home/x3.hpp>
+#include <charconv>
 
 #include "ast_adapted.hpp"
 
 namespace vc::gcode::parser {
 namespace x3 = boost::spirit::x3;
 
-// Digits with an optional point anywhere ("1", "1.", ".5"), a sign, and nothing else.
-struct NgcRealPolicies : x3::real_policies<double> {
-  template <typename Iterator>
-  static bool parse_exp(Iterator&, Iterator const&) { return false; }
-  template <typename Iterator, typename Attribute>
-  static bool parse_nan(Iterator&, Iterator const&, Attribute&) { return false; }
-  template <typename Iterator, typename Attribute>
-  static bool parse_inf(Iterator&, Iterator const&, Attribute&) { return false; }
+// A sign, then digits with an optional point anywhere ("1", "1.", ".5"), and nothing else.
+// The value is the correctly rounded double (std::from_chars), as LinuxCNC's strtod gives.
+struct NgcNumber : x3::parser<NgcNumber> {
+  using attribute_type = double;
+  static const bool has_attribute = true;
+
+  template <typename Iterator, typename Context, typename RContext, typename Attribute>
+  bool parse(Iterator& first, const Iterator& last, const Context& context, const RContext&,
+             Attribute& attribute) const {
+    x3::skip_over(first, last, context);
+    Iterator it = first;
+    const bool negative = it != last && *it == '-';
+    if (it != last && (*it == '-' || *it == '+')) ++it;
+    const Iterator begin = it;
+    bool point = false;
+    int digits = 0;
+    for (; it != last; ++it) {
+      if (*it >= '0' && *it <= '9')
+        ++digits;
+      else if (*it == '.' && !point)
+        point = true;
+      else
+        break;
+    }
+    if (digits == 0) return false;
+    const char* text = &*begin;
+    double value = 0.0;
+    const auto [end, error] = std::from_chars(text, text + (it - begin), value);
+    if (error != std::errc() || end != text + (it - begin)) return false;
+    x3::traits::move_to(negative ? -value : value, attribute);
+    first = it;
+    return true;
+  }
 };
-const x3::real_parser<double, NgcRealPolicies> number{};
+const NgcNumber number{};
 
 struct FunctionSymbols : x3::symbols<ast::Function> {
   FunctionSymbols() {
