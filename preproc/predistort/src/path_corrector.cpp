@@ -46,7 +46,7 @@ PieceCircle circle_of(const interpreter::Arc& arc, const Position& start, const 
 }  // namespace
 
 PathCorrector::PathCorrector(const machine::Model& model, CorrectorOptions options, const Deflection* deflection)
-    : model_(model), options_(options), deflection_(deflection), bounds_(model) {
+    : model_(model), options_(options), deflection_(deflection), bounds_(model), linear_(model) {
   for (int j = 0; j < model.joint_count(); ++j) {
     const char letter = model.axes[static_cast<std::size_t>(j)].letter;
     joint_axis_[j] = static_cast<int>(std::string_view(interpreter::kAxisLetters).find(letter));
@@ -103,7 +103,7 @@ PathCorrector::Node PathCorrector::node_at(const Move& move, double s) {
   }
   const Joints seed = seed_for(n.target, L);
   ++stats_.corrections;
-  if (!correct_linear(n.target, L, seed, n.corrected)) {
+  if (!linear_.correct(n.target, L, seed, n.corrected)) {
     const machine::Correction c = machine::correct(model_, n.target, L, seed);
     if (c.status != Status::Ok) fail(move, "the correction failed", c.status);
     n.corrected = c.joints;
@@ -113,39 +113,6 @@ PathCorrector::Node PathCorrector::node_at(const Move& move, double s) {
   n.world = machine::nominal_forward(model_, options_.world, n.corrected, L);
   n.program = program_of(move, n.world, p);
   return n;
-}
-
-// machine::correct for a machine of three linear axes, cheaper where Newton goes well: the
-// ideal tool tip is then affine in the joints, so the ideal Jacobian that correct() starts
-// Newton with is the same at every point and is factorized once per tool length, not at
-// every point. Same equations and stopping rule (tip residual <= the solver's position
-// tolerance); false (the caller then calls correct()) where a step gains less than two
-// digits or the steps run out, so that correct() with its exact Jacobian decides.
-bool PathCorrector::correct_linear(const Joints& target, double tool_length_mm, const Joints& seed,
-                                   Joints& corrected) {
-  if (model_.joint_count() != 3 || model_.rotary_count() != 0 || !target.allFinite() || !seed.allFinite())
-    return false;
-  if (!(linear_lu_length_ == tool_length_mm)) {
-    machine::PoseDerivatives d;
-    machine::tool_pose(model_, Machine::Ideal, target, tool_length_mm, d);
-    linear_lu_.compute(d.tip.leftCols<3>());
-    linear_lu_length_ = tool_length_mm;
-  }
-  if (!(std::abs(linear_lu_.determinant()) > 0.0)) return false;
-  const Eigen::Vector3d ideal = machine::tool_pose(model_, Machine::Ideal, target, tool_length_mm).tip_mm;
-  const machine::SolverOptions& opt = model_.solver;
-  corrected = seed;
-  double previous = std::numeric_limits<double>::infinity();
-  for (int step = 0; step <= 3; ++step) {
-    const Eigen::Vector3d residual = machine::tool_pose(model_, Machine::Real, corrected, tool_length_mm).tip_mm - ideal;
-    const double norm = residual.norm();
-    if (!std::isfinite(norm)) return false;
-    if (norm <= opt.position_tolerance_mm) return true;
-    if (step == 3 || norm > 1e-2 * previous) return false;
-    previous = norm;
-    corrected -= linear_lu_.solve(residual);
-  }
-  return false;
 }
 
 // Seed: this point plus the correction of a recent one (the correction changes little

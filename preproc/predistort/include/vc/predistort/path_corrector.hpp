@@ -20,6 +20,7 @@
 #include "vc/predistort/correction_bounds.hpp"
 #include "vc/machine/kinematics.hpp"
 #include "vc/predistort/deflection.hpp"
+#include "vc/predistort/linear_correction.hpp"
 
 namespace vc::predistort {
 
@@ -87,8 +88,6 @@ class PathCorrector {
   void refine(const Move& move, const Node& a, const Node& b, int depth, std::vector<Piece>& pieces);
   Piece piece_between(const Move& move, const Node& a, const Node& b) const;
   bool within_bounds(const Move& move, const Node& a, const Node& b);
-  bool correct_linear(const machine::Joints& target, double tool_length_mm, const machine::Joints& seed,
-                      machine::Joints& corrected);
   machine::Joints seed_for(const machine::Joints& target, double tool_length_mm) const;
   void solved(const machine::Joints& target, const machine::Joints& corrected, double tool_length_mm);
 
@@ -109,10 +108,8 @@ class PathCorrector {
   };
   Solved recent_[2];  // [1] the latest
   int recent_count_ = 0;
-  // Machines with three linear axes: the ideal Jacobian, factorized (per tool length).
-  Eigen::PartialPivLU<Eigen::Matrix3d> linear_lu_;
-  double linear_lu_length_ = std::numeric_limits<double>::quiet_NaN();
   CorrectionBounds bounds_;
+  LinearCorrection linear_;  // machines of three linear axes
 };
 
 }  // namespace vc::predistort
