@@ -90,28 +90,35 @@ void Writer::blending_edits(const gcode::Block& block, const interpreter::Effect
   if (effect.g64_word < 0) return;
   if (effect.g64_q_word >= 0) {
     const gcode::Word& q = block.words[static_cast<std::size_t>(effect.g64_q_word)];
-    edits_.push_back({q.begin, q.end, "Q0"});
+    add_edit(q.begin, q.end, "Q0");
     return;
   }
   const gcode::Word& g64 = block.words[static_cast<std::size_t>(effect.g64_word)];
-  std::string text;
-  if (effect.g64_p_word < 0) append_number(text, 'P', tolerance_mm_, 6);
-  text += " Q0";
-  edits_.push_back({g64.end, g64.end, text.substr(1)});
+  const std::size_t start = edit_text_.size();
+  if (effect.g64_p_word < 0) append_number(edit_text_, 'P', tolerance_mm_, 6);
+  edit_text_ += " Q0";
+  edits_.push_back({g64.end, g64.end, start + 1, edit_text_.size()});  // without the leading space
+}
+
+void Writer::add_edit(int begin, int end, std::string_view text) {
+  const std::size_t start = edit_text_.size();
+  edit_text_ += text;
+  edits_.push_back({begin, end, start, edit_text_.size()});
 }
 
 void Writer::write_edited(std::string_view raw) {
-  std::sort(edits_.begin(), edits_.end(), [](const Edit& a, const Edit& b) { return a.begin < b.begin; });
+  const auto by_begin = [](const Edit& a, const Edit& b) { return a.begin < b.begin; };
+  if (!std::is_sorted(edits_.begin(), edits_.end(), by_begin)) std::sort(edits_.begin(), edits_.end(), by_begin);
   line_.clear();
   std::size_t from = 0;
   for (const Edit& e : edits_) {
     line_.append(raw.substr(from, static_cast<std::size_t>(e.begin) - from));
     const std::size_t next = static_cast<std::size_t>(e.end);
     const bool space_after = next >= raw.size() || raw[next] == ' ' || raw[next] == '\t';
-    if (!e.text.empty()) {
+    if (e.text_end > e.text_begin) {
       // One space between the text and the words on either side of it.
       if (!line_.empty() && line_.back() != ' ' && line_.back() != '\t') line_ += ' ';
-      line_ += e.text;
+      line_.append(edit_text_, e.text_begin, e.text_end - e.text_begin);
       if (!space_after) line_ += ' ';
     } else if (!line_.empty() && line_.back() == ' ' && space_after) {
       line_.pop_back();  // a removed word takes the space before it along
@@ -126,6 +133,7 @@ void Writer::write_edited(std::string_view raw) {
 void Writer::verbatim(std::string_view raw, const gcode::Block& block, const interpreter::Effect& effect,
                       const interpreter::Position& position, const interpreter::Frame& frame) {
   edits_.clear();
+  edit_text_.clear();
   blending_edits(block, effect);
   write_edited(raw);
   motion_ = effect.modal_motion;
@@ -193,27 +201,32 @@ void Writer::translated(std::string_view raw, const gcode::Block& block, const i
 
   // Words replaced by the pieces: motion code, axes and arc words; when split, also the
   // stop codes (they go after the last piece) and an inverse-time F (one per piece).
-  std::vector<int> removed(effect.motion_words);
+  std::vector<int>& removed = removed_;
+  removed.assign(effect.motion_words.begin(), effect.motion_words.end());
   if (effect.motion_code_word >= 0) removed.push_back(effect.motion_code_word);
   if (split) removed.insert(removed.end(), effect.stop_words.begin(), effect.stop_words.end());
   if (per_piece_feed && effect.f_word >= 0) removed.push_back(effect.f_word);
-  std::sort(removed.begin(), removed.end(), [&](int a, int b) {
+  const auto written_first = [&](int a, int b) {
     return block.words[static_cast<std::size_t>(a)].begin < block.words[static_cast<std::size_t>(b)].begin;
-  });
+  };
+  if (!std::is_sorted(removed.begin(), removed.end(), written_first))
+    std::sort(removed.begin(), removed.end(), written_first);
 
   // The original line, without the removed words, with the first piece where the first
   // removed word was.
   edits_.clear();
+  edit_text_.clear();
   blending_edits(block, effect);
   for (std::size_t i = 0; i < removed.size(); ++i) {
     const gcode::Word& w = block.words[static_cast<std::size_t>(removed[i])];
-    std::string text;
+    const std::size_t start = edit_text_.size();
     if (i == 0) {
-      append_piece(text, effect.moves.front(), pieces.front().front(), effect, effect.motion_code_word >= 0,
+      append_piece(edit_text_, effect.moves.front(), pieces.front().front(), effect, effect.motion_code_word >= 0,
                    per_piece_feed);
-      text.erase(0, 1);  // its leading space
+      edits_.push_back({w.begin, w.end, start + 1, edit_text_.size()});  // without the leading space
+    } else {
+      edits_.push_back({w.begin, w.end, start, start});
     }
-    edits_.push_back({w.begin, w.end, std::move(text)});
   }
   write_edited(raw);
 

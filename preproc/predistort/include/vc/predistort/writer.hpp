@@ -39,11 +39,12 @@ class Writer {
                   const std::vector<std::vector<Piece>>& pieces);
 
  private:
-  // A change to the raw line: [begin, end) replaced by text.
+  // A change to the raw line: [begin, end) replaced by edit_text_[text_begin, text_end).
   struct Edit {
     int begin, end;
-    std::string text;
+    std::size_t text_begin, text_end;
   };
+  void add_edit(int begin, int end, std::string_view text);
   void blending_edits(const gcode::Block& block, const interpreter::Effect& effect);
   void write_edited(std::string_view raw);
   void append_piece(std::string& line, const interpreter::Move& move, const Piece& piece,
@@ -58,6 +59,8 @@ class Writer {
   interpreter::Frame frame_;    // the frame `at_` is in
   std::string line_;            // reused buffers
   std::vector<Edit> edits_;
+  std::string edit_text_;       // the texts of edits_
+  std::vector<int> removed_;    // words a translated line loses
 };
 
 }  // namespace vc::predistort
