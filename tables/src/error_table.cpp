@@ -79,6 +79,16 @@ void ErrorTable::evaluate(const double* positions, Sample& out, bool with_slopes
 void ErrorTable::evaluate_linear(const double* positions, Sample& out, bool with_slopes) const noexcept {
   const int dims = static_cast<int>(grid_.size());
   const int ncol = static_cast<int>(columns_.size());
+  if (dims == 1) {  // the common table: one straight piece between two nodes
+    const Cell cell = locate(grid_.front(), positions[0]);
+    const double* v0 = &values_[static_cast<std::size_t>(cell.index * ncol)];
+    const double* v1 = v0 + ncol;
+    for (int c = 0; c < ncol; ++c) {
+      out.value[c] = (1.0 - cell.t) * v0[c] + cell.t * v1[c];
+      if (with_slopes) out.slope[c] = {(v1[c] - v0[c]) * cell.dt_dx, 0.0, 0.0};
+    }
+    return;
+  }
   std::array<Cell, kMaxVariables> cell{};
   std::array<int, kMaxVariables> stride{};
   int s = 1;
