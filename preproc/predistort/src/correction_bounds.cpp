@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 
+#include "travel_samples.hpp"
 #include "vc/machine/correct.hpp"
 
 namespace vc::predistort {
@@ -95,18 +95,8 @@ const CorrectionBounds::Sampled& CorrectionBounds::sampled(double tool_length_mm
     if (s.tool_length_mm == tool_length_mm) return s;
   Sampled out{tool_length_mm, {}, PerJoint::Zero()};
   const int n = model_.joint_count();
-  std::uint64_t state = 0x9E3779B97F4A7C15ull;
-  auto uniform = [&state]() {
-    state = state * 6364136223846793005ull + 1442695040888963407ull;
-    return static_cast<double>(state >> 11) / 9007199254740992.0;
-  };
+  TravelSamples samples(model_);
   const double h = kStep;
-  auto draw = [&](Joints& q) {
-    for (int j = 0; j < n; ++j) {
-      const machine::Axis& axis = model_.axes[static_cast<std::size_t>(j)];
-      q[j] = axis.travel_min + uniform() * (axis.travel_max - axis.travel_min);
-    }
-  };
   // Where the orientation correction fades in, the correction bends the most: that band,
   // a thin shell of the travel, gets samples of its own.
   auto in_fade_band = [&](const Joints& q) {
@@ -116,10 +106,9 @@ const CorrectionBounds::Sampled& CorrectionBounds::sampled(double tool_length_mm
   const bool has_band = model_.rotary_count() > 0 && model_.fade.full_rad > 0.0;
   int band_draws = 0;
   for (int sample = 0; sample < (has_band ? 2 : 1) * kSamples; ++sample) {
-    Joints q(n);
-    draw(q);
+    Joints q = samples.next();
     if (sample >= kSamples) {
-      while (!in_fade_band(q) && ++band_draws < kBandDraws) draw(q);
+      while (!in_fade_band(q) && ++band_draws < kBandDraws) q = samples.next();
       if (band_draws >= kBandDraws) break;
     }
     machine::PoseDerivatives derivatives;

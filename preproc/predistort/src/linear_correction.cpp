@@ -1,9 +1,9 @@
 #include "vc/predistort/linear_correction.hpp"
 
 #include <cmath>
-#include <cstdint>
 #include <limits>
 
+#include "travel_samples.hpp"
 #include "vc/machine/forward.hpp"
 
 namespace vc::predistort {
@@ -33,18 +33,10 @@ LinearCorrection::PerTool& LinearCorrection::for_tool(double tool_length_mm) {
   t.lu.compute(t.jacobian);
   const Eigen::Matrix3d inverse = t.lu.inverse();
   // kappa: the largest slope of the volumetric error seen through A^-1, over the travel.
-  std::uint64_t state = 0x9E3779B97F4A7C15ull;
-  auto uniform = [&state]() {
-    state = state * 6364136223846793005ull + 1442695040888963407ull;
-    return static_cast<double>(state >> 11) / 9007199254740992.0;
-  };
+  TravelSamples samples(model_);
   double kappa = 0.0;
   for (int sample = 0; sample < kSamples; ++sample) {
-    Joints q(3);
-    for (int j = 0; j < 3; ++j) {
-      const machine::Axis& axis = model_.axes[static_cast<std::size_t>(j)];
-      q[j] = axis.travel_min + uniform() * (axis.travel_max - axis.travel_min);
-    }
+    const Joints q = samples.next();
     machine::PoseDerivatives real;
     machine::tool_pose(model_, Machine::Real, q, tool_length_mm, real);
     kappa = std::max(kappa, ((real.tip.leftCols<3>() - t.jacobian) * inverse).norm());

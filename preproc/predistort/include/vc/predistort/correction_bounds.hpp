@@ -14,7 +14,8 @@
 // holds only for pieces whose corrected joints stay clear of every node (by 1e-3 mm or deg,
 // far more than c(t) strays from the straight line between the corrected ends when the
 // bound passes), and is infinite otherwise. The slope bound holds across kinks. k and M are
-// the largest values found at 400 points spread over the travel (finite differences of the
+// the largest values found at 150 points spread over the travel and 150 in the pole fade
+// band, where the orientation correction fades in (finite differences of the
 // core's correction; curvature stencils that come near a kink are left out), per tool
 // length, doubled for what the sampling may miss.
 #pragma once
