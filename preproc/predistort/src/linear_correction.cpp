@@ -21,9 +21,8 @@ LinearCorrection::LinearCorrection(const machine::Model& model)
     : model_(model), applies_(model.joint_count() == 3 && model.rotary_count() == 0) {}
 
 LinearCorrection::PerTool& LinearCorrection::for_tool(double tool_length_mm) {
-  if (last_ && last_->tool_length_mm == tool_length_mm) return *last_;
   for (PerTool& t : per_tool_)
-    if (t.tool_length_mm == tool_length_mm) return *(last_ = &t);
+    if (t.tool_length_mm == tool_length_mm) return t;
   PerTool t;
   t.tool_length_mm = tool_length_mm;
   const Joints zero = Joints::Zero(3);
@@ -43,8 +42,7 @@ LinearCorrection::PerTool& LinearCorrection::for_tool(double tool_length_mm) {
   }
   t.kappa = kMargin * kappa;
   per_tool_.push_back(t);
-  last_ = &per_tool_.back();  // (push_back may have moved the others)
-  return *last_;
+  return per_tool_.back();
 }
 
 bool LinearCorrection::correct(const Joints& target, double tool_length_mm, const Joints& seed, Joints& corrected) {

@@ -7,7 +7,7 @@
 // (mean value theorem); Jbar - A is the slope of the volumetric error. So
 // |F(q+)| <= kappa |F(q)| with kappa = sup |(J_real - A) A^-1| (Frobenius), sampled at 400
 // points over the travel and doubled for what the sampling may miss. A step whose bound
-// kappa |F(q)| is below `accepted_residual_mm` (1e-9 mm, a thousandth of the last digit
+// kappa |F(q)| is below kAcceptedResidualMm (1e-9 mm, a thousandth of the last digit
 // the pre-distorter writes) is taken without evaluating the real machine after it: most
 // points then cost one chain walk instead of three. Otherwise Newton goes on with the
 // core's stopping rule (tip residual <= the solver's position tolerance).
@@ -49,7 +49,6 @@ class LinearCorrection {
   const machine::Model& model_;
   bool applies_;
   std::vector<PerTool> per_tool_;
-  PerTool* last_ = nullptr;
 };
 
 }  // namespace vc::predistort

@@ -12,13 +12,11 @@
 // keeps them inside a quarter of the tolerance are accepted unchecked (correction_bounds.hpp).
 #pragma once
 
-#include <Eigen/LU>
-#include <limits>
 #include <vector>
 
 #include "vc/interpreter/move.hpp"
-#include "vc/predistort/correction_bounds.hpp"
 #include "vc/machine/kinematics.hpp"
+#include "vc/predistort/correction_bounds.hpp"
 #include "vc/predistort/deflection.hpp"
 #include "vc/predistort/linear_correction.hpp"
 
