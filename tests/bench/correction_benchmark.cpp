@@ -65,6 +65,21 @@ void BM_VolumetricError(benchmark::State& state, const std::string& machine) {
   });
 }
 
+// The pieces of a correction: one chain walk of the real machine, and of the ideal one with
+// the derivatives that give Newton its Jacobian.
+void BM_RealPose(benchmark::State& state, const std::string& machine) {
+  run(state, machine, [](const Fixture& f, std::size_t i) {
+    return tool_pose(f.model, Machine::Real, f.poses[i], f.model.tool_length_mm).tip_mm.x();
+  });
+}
+
+void BM_IdealPoseDerivatives(benchmark::State& state, const std::string& machine) {
+  run(state, machine, [](const Fixture& f, std::size_t i) {
+    PoseDerivatives d;
+    return tool_pose(f.model, Machine::Ideal, f.poses[i], f.model.tool_length_mm, d).tip_mm.x() + d.tip(0, 0);
+  });
+}
+
 void BM_Correct(benchmark::State& state, const std::string& machine) {
   run(state, machine, [](const Fixture& f, std::size_t i) {
     return correct(f.model, f.poses[i], f.model.tool_length_mm).joints[0];
@@ -85,6 +100,8 @@ void BM_Uncorrect(benchmark::State& state, const std::string& machine) {
 }
 
 BENCHMARK_CAPTURE(BM_VolumetricError, mc300, std::string("mc300"));
+BENCHMARK_CAPTURE(BM_RealPose, mc300, std::string("mc300"));
+BENCHMARK_CAPTURE(BM_IdealPoseDerivatives, mc300, std::string("mc300"));
 BENCHMARK_CAPTURE(BM_Correct, mc300, std::string("mc300"));
 BENCHMARK_CAPTURE(BM_CorrectSeeded, mc300, std::string("mc300"));
 BENCHMARK_CAPTURE(BM_Uncorrect, mc300, std::string("mc300"));

@@ -46,7 +46,7 @@ PieceCircle circle_of(const interpreter::Arc& arc, const Position& start, const 
 }  // namespace
 
 PathCorrector::PathCorrector(const machine::Model& model, CorrectorOptions options, const Deflection* deflection)
-    : model_(model), options_(options), deflection_(deflection), bounds_(model), linear_(model) {
+    : model_(model), options_(options), deflection_(deflection), bounds_(model), one_step_(model) {
   for (int j = 0; j < model.joint_count(); ++j) {
     const char letter = model.axes[static_cast<std::size_t>(j)].letter;
     joint_axis_[j] = static_cast<int>(std::string_view(interpreter::kAxisLetters).find(letter));
@@ -103,7 +103,7 @@ PathCorrector::Node PathCorrector::node_at(const Move& move, double s) {
   }
   const Joints seed = seed_for(n.target, L);
   ++stats_.corrections;
-  if (!linear_.correct(n.target, L, seed, n.corrected)) {
+  if (!one_step_.correct(n.target, L, seed, n.corrected)) {
     const machine::Correction c = machine::correct(model_, n.target, L, seed);
     if (c.status != Status::Ok) fail(move, "the correction failed", c.status);
     n.corrected = c.joints;

@@ -1,5 +1,5 @@
 // Points spread over a machine's travel, the same on every run (a fixed-seed generator), for
-// the bounds that are sampled once at load (correction_bounds.cpp, linear_correction.cpp).
+// the bounds that are sampled once at load (correction_bounds.cpp, one_step_correction.cpp).
 #pragma once
 
 #include <cstdint>

@@ -18,7 +18,7 @@
 #include "vc/machine/kinematics.hpp"
 #include "vc/predistort/correction_bounds.hpp"
 #include "vc/predistort/deflection.hpp"
-#include "vc/predistort/linear_correction.hpp"
+#include "vc/predistort/one_step_correction.hpp"
 
 namespace vc::predistort {
 
@@ -107,7 +107,7 @@ class PathCorrector {
   Solved recent_[2];  // [1] the latest
   int recent_count_ = 0;
   CorrectionBounds bounds_;
-  LinearCorrection linear_;  // machines of three linear axes
+  OneStepCorrection one_step_;
 };
 
 }  // namespace vc::predistort

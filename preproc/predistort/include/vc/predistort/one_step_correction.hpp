@@ -1,0 +1,68 @@
+// machine::correct, cheaper where it can be: seeded next to the answer (a point of a path,
+// seed extrapolated from the points before), one Newton step is accepted without evaluating
+// the real machine after it, on a bound of the residual it leaves.
+//
+// The equations F(q) = 0 (correction_equations.hpp, the full correction: every joint free,
+// 3 + rotary joints = joints) are solved by Newton with the ideal machine's Jacobian B at
+// the target q_n, the core's first matrix. One step q+ = q - B^-1 F(q) leaves
+// F(q+) = (B - Jbar) B^-1 F(q) exactly, Jbar the mean real Jacobian between q and q+ (mean
+// value theorem), so |W F(q+)| <= kappa |W F(q)| with kappa = sup |W (B - J_real) B^-1 W^-1|
+// (Frobenius; W weighs direction rows by kDirectionLeverMm), sampled at 400 points over the
+// travel (J_real at the core's corrected joints there) and doubled for what the sampling
+// may miss. A step whose bound kappa |W F(q)| is below kAcceptedResidualMm (1e-9 mm, a
+// thousandth of the last digit the pre-distorter writes; 1e-12 rad) is taken unverified:
+// most points then cost one real chain walk instead of two or three. Otherwise Newton goes
+// on with the core's stopping rule.
+//
+// Three linear axes: the ideal tip is affine, tip = A q + b (once per tool length), so B = A
+// and no ideal chain walk is needed. With rotary joints: one ideal walk with derivatives
+// per point (target, B, pole angle); near a pole (fade < 1) it declines.
+#pragma once
+
+#include <Eigen/LU>
+#include <vector>
+
+#include "vc/machine/correction_equations.hpp"
+
+namespace vc::predistort {
+
+class OneStepCorrection {
+ public:
+  static constexpr double kAcceptedResidualMm = 1e-9;
+
+  // applies() false (correct() declines) unless 3 + rotary joints = joints.
+  explicit OneStepCorrection(const machine::Model& model);
+  bool applies() const { return applies_; }
+
+  // Corrected joints for the nominal `target`, Newton from `seed`. False where it declines
+  // (near a pole), a step gains less than two digits or the steps run out: the caller then
+  // asks machine::correct().
+  bool correct(const machine::Joints& target, double tool_length_mm, const machine::Joints& seed,
+               machine::Joints& corrected);
+
+  // kappa for a tool length (tests).
+  double contraction(double tool_length_mm) { return for_tool(tool_length_mm).kappa; }
+
+ private:
+  struct PerTool {
+    double tool_length_mm;
+    Eigen::Matrix3d jacobian;     // A (three linear axes)
+    Eigen::Vector3d tip_at_zero;  // b
+    Eigen::PartialPivLU<machine::SquareMatrix> lu;  // of A
+    double kappa;
+  };
+  // The equations at `target` and the factorized B; false near a pole.
+  bool equations_at(const PerTool& tool, const machine::Joints& target, machine::CorrectionTarget& equations,
+                    Eigen::PartialPivLU<machine::SquareMatrix>& lu) const;
+  PerTool& for_tool(double tool_length_mm);
+  double weighted_norm(const machine::Joints& residual) const;
+
+  const machine::Model& model_;
+  bool applies_;
+  bool affine_;  // three linear axes
+  std::array<int, machine::kMaxAxes> all_joints_{};
+  std::vector<PerTool> per_tool_;
+  Eigen::PartialPivLU<machine::SquareMatrix> point_lu_;  // B at the current point (rotary joints)
+};
+
+}  // namespace vc::predistort
