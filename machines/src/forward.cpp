@@ -45,10 +45,26 @@ struct Frame {
   }
 };
 
+// The ideal machine without derivatives, the common case kept short: its axis lines are
+// placed by the pole alone, T(o), and carry no errors.
+Frame walk_ideal_chain(const Model& model, const std::vector<int>& chain, const Joints& q) noexcept {
+  Frame parent;
+  for (int i : chain) {
+    const Axis& axis = model.axes[i];
+    parent.origin += parent.rotation * axis.pole_mm;
+    if (axis.type == AxisType::Linear)
+      parent.origin += parent.rotation * (q[i] * axis.direction);
+    else
+      parent.rotation = parent.rotation * rotation_about(axis.direction, q[i] * tables::kDegToRad);
+  }
+  return parent;
+}
+
 // Walks one chain bed outward; returns bed_T_last and, if asked, the chain's motion.
 Frame walk_chain(const Model& model, Machine machine, const std::vector<int>& chain, const Joints& q,
                  ChainMotion* motion) noexcept {
   const bool real = machine == Machine::Real;
+  if (!real && !motion) return walk_ideal_chain(model, chain, q);
   Frame parent;
   AxisErrors err;
   for (int i : chain) {

@@ -159,13 +159,18 @@ TEST_P(EveryMachine, AnalyticJacobianMatchesCentralDifferences) {
   }
 }
 
-// model.md's chain written naively with 4x4 matrices, against the library's evaluation.
-Eigen::Matrix4d naive_chain(const Model& model, const std::vector<int>& chain, const Joints& q) {
+// model.md's chain written naively with 4x4 matrices, against the library's evaluation (the
+// ideal machine: no table and no location error).
+Eigen::Matrix4d naive_chain(const Model& model, Machine machine, const std::vector<int>& chain, const Joints& q) {
   Eigen::Matrix4d f = Eigen::Matrix4d::Identity();
   for (int i : chain) {
     const Axis& a = model.axes[i];
     AxisErrors e;
     axis_errors(model, i, q, e);
+    const bool real = machine == Machine::Real;
+    if (!real) e.delta_mm.setZero(), e.eps_rad.setZero();
+    const Eigen::Vector3d location_mm = real ? a.location_mm : Eigen::Vector3d::Zero();
+    const Eigen::Vector3d location_rad = real ? a.location_rad : Eigen::Vector3d::Zero();
     auto T = [](const Eigen::Vector3d& v) {
       Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
       m.block<3, 1>(0, 3) = v;
@@ -181,7 +186,7 @@ Eigen::Matrix4d naive_chain(const Model& model, const std::vector<int>& chain, c
                 Eigen::AngleAxisd(v[2], Eigen::Vector3d::UnitZ()))
                    .toRotationMatrix());
     };
-    const Eigen::Matrix4d base = T(a.pole_mm + a.location_mm) * Rxyz(a.location_rad);
+    const Eigen::Matrix4d base = T(a.pole_mm + location_mm) * Rxyz(location_rad);
     if (a.type == AxisType::Linear)
       f = f * base * T(q[i] * a.direction) * T(e.delta_mm) * Rxyz(e.eps_rad);
     else
@@ -194,15 +199,30 @@ Eigen::Matrix4d naive_chain(const Model& model, const std::vector<int>& chain, c
 TEST_P(EveryMachine, ChainEqualsNaiveMatrixProduct) {
   std::mt19937_64 rng(5);
   const double L = model_.tool_length_mm;
-  for (int k = 0; k < 1000; ++k) {
-    const Joints q = random_pose(model_, rng);
-    Eigen::Matrix4d tool_offset = Eigen::Matrix4d::Identity();
-    tool_offset(2, 3) = -L;
-    const Eigen::Matrix4d tool = naive_chain(model_, model_.tool_chain, q) * model_.spindle.real.matrix() * tool_offset;
-    const Eigen::Matrix4d part = naive_chain(model_, model_.workpiece_chain, q) * model_.fixture.matrix();
-    const Eigen::Matrix4d expected = part.inverse() * tool;
-    const Eigen::Matrix4d got = part_T_tool(model_, Machine::Real, q, L).matrix();
-    ASSERT_LT((expected - got).cwiseAbs().maxCoeff(), 1e-10) << text(q);
+  for (const Machine machine : {Machine::Real, Machine::Ideal}) {
+    const Eigen::Isometry3d& spindle = machine == Machine::Real ? model_.spindle.real : model_.spindle.ideal;
+    for (int k = 0; k < 1000; ++k) {
+      const Joints q = random_pose(model_, rng);
+      Eigen::Matrix4d tool_offset = Eigen::Matrix4d::Identity();
+      tool_offset(2, 3) = -L;
+      const Eigen::Matrix4d tool = naive_chain(model_, machine, model_.tool_chain, q) * spindle.matrix() * tool_offset;
+      const Eigen::Matrix4d part = naive_chain(model_, machine, model_.workpiece_chain, q) * model_.fixture.matrix();
+      const Eigen::Matrix4d expected = part.inverse() * tool;
+      const Eigen::Matrix4d got = part_T_tool(model_, machine, q, L).matrix();
+      ASSERT_LT((expected - got).cwiseAbs().maxCoeff(), 1e-10) << text(q);
+    }
+  }
+}
+
+// The small-angle sin and cos of the chain walk against the library's, to an ulp.
+TEST(SinCos, WithinAnUlpOfTheLibrary) {
+  std::mt19937_64 rng(9);
+  for (int k = 0; k < 100000; ++k) {
+    const double x = std::uniform_real_distribution<double>(-1.2e-3, 1.2e-3)(rng);
+    double s, c;
+    sin_cos(x, s, c);
+    ASSERT_LE(std::abs(s - std::sin(x)), std::abs(std::nextafter(std::sin(x), 1.0) - std::sin(x))) << x;
+    ASSERT_LE(std::abs(c - std::cos(x)), std::abs(std::nextafter(std::cos(x), 0.0) - std::cos(x))) << x;
   }
 }
 
