@@ -1,5 +1,6 @@
 #include "vc/predistort/one_step_correction.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -13,8 +14,13 @@ using machine::Joints;
 using machine::Machine;
 using machine::SquareMatrix;
 
-constexpr int kSamples = 400;
 constexpr double kMargin = 2.0;
+// Bands of the pole angle, from the angle of full correction (fade = 1) outward: B^-1, and
+// with it kappa, grows towards the pole. Each band is sampled until it has kBandSamples
+// points (or the draws run out: a band the travel hardly reaches takes the largest kappa
+// of all).
+constexpr double kBandEdges[] = {1.5, 2.0, 3.0};  // x the full-correction angle
+constexpr int kBandSamples = 100, kMaxDraws = 6000;
 constexpr int kMaxSteps = 3;
 
 }  // namespace
@@ -33,15 +39,25 @@ double OneStepCorrection::weighted_norm(const Joints& residual) const {
                    machine::kDirectionLeverMm * machine::kDirectionLeverMm * residual.tail(n - 3).squaredNorm());
 }
 
+int OneStepCorrection::band_of(double pole_angle_rad) const {
+  if (affine_) return 0;
+  int band = 0;
+  for (double edge : kBandEdges) band += pole_angle_rad >= edge * model_.fade.full_rad;
+  return band;
+}
+
 bool OneStepCorrection::equations_at(const PerTool& tool, const Joints& target, machine::CorrectionTarget& equations,
-                                     Eigen::PartialPivLU<SquareMatrix>& lu) const {
+                                     Eigen::PartialPivLU<SquareMatrix>& lu, int& band) const {
+  band = 0;
   if (affine_) {
     equations = machine::position_target({tool.jacobian * target.head<3>() + tool.tip_at_zero, Eigen::Vector3d::UnitZ()});
     return true;
   }
   machine::PoseDerivatives d;
   const machine::ToolPose ideal = machine::tool_pose(model_, Machine::Ideal, target, tool.tool_length_mm, d);
-  if (machine::fade_factor(model_.fade, machine::pole_angle_at(model_, ideal, d)) < 1.0) return false;
+  const double phi = machine::pole_angle_at(model_, ideal, d);
+  if (machine::fade_factor(model_.fade, phi) < 1.0) return false;
+  band = band_of(phi);
   equations = machine::full_target(model_, ideal, d);
   lu.compute(machine::correction_jacobian(equations, d, all_joints_, model_.joint_count()));
   return true;
@@ -65,12 +81,16 @@ OneStepCorrection::PerTool& OneStepCorrection::for_tool(double tool_length_mm) {
   Eigen::Matrix<double, Eigen::Dynamic, 1, 0, machine::kMaxAxes, 1> w = Eigen::VectorXd::Ones(n);
   w.tail(n - 3).setConstant(machine::kDirectionLeverMm);
   TravelSamples samples(model_);
-  double kappa = 0.0;
+  const int bands = affine_ ? 1 : kBands;
+  std::array<int, kBands> count{};
+  std::array<double, kBands> largest{};
   Eigen::PartialPivLU<SquareMatrix> lu;
-  for (int sample = 0; sample < kSamples; ++sample) {
+  for (int draw = 0; draw < kMaxDraws; ++draw) {
+    if (*std::min_element(count.begin(), count.begin() + bands) >= kBandSamples) break;
     const Joints q = samples.next();
     machine::CorrectionTarget equations;
-    if (!equations_at(t, q, equations, lu)) continue;
+    int band;
+    if (!equations_at(t, q, equations, lu, band) || count[band] >= kBandSamples) continue;
     const Eigen::PartialPivLU<SquareMatrix>& b = affine_ ? t.lu : lu;
     const machine::Correction core = machine::correct(model_, q, tool_length_mm);
     if (core.status != machine::Status::Ok) continue;
@@ -78,9 +98,12 @@ OneStepCorrection::PerTool& OneStepCorrection::for_tool(double tool_length_mm) {
     machine::tool_pose(model_, Machine::Real, core.joints, tool_length_mm, real);
     const SquareMatrix jacobian = machine::correction_jacobian(equations, real, all_joints_, n);
     const SquareMatrix contraction = (b.reconstructedMatrix() - jacobian) * b.inverse();
-    kappa = std::max(kappa, (w.asDiagonal() * contraction * w.cwiseInverse().asDiagonal()).norm());
+    largest[band] = std::max(largest[band], (w.asDiagonal() * contraction * w.cwiseInverse().asDiagonal()).norm());
+    ++count[band];
   }
-  t.kappa = kMargin * kappa;
+  const double overall = *std::max_element(largest.begin(), largest.end());
+  for (int band = 0; band < kBands; ++band)
+    t.kappa[band] = kMargin * (count[band] >= kBandSamples ? largest[band] : overall);
   per_tool_.push_back(t);
   return per_tool_.back();
 }
@@ -88,9 +111,11 @@ OneStepCorrection::PerTool& OneStepCorrection::for_tool(double tool_length_mm) {
 bool OneStepCorrection::correct(const Joints& target, double tool_length_mm, const Joints& seed, Joints& corrected) {
   if (!applies_ || !target.allFinite() || !seed.allFinite()) return false;
   const PerTool& t = for_tool(tool_length_mm);
-  if (!(t.kappa < 1e-2)) return false;
   machine::CorrectionTarget equations;
-  if (!equations_at(t, target, equations, point_lu_)) return false;
+  int band;
+  if (!equations_at(t, target, equations, point_lu_, band)) return false;
+  const double kappa = t.kappa[band];
+  if (!(kappa < 1e-2)) return false;
   const Eigen::PartialPivLU<SquareMatrix>& b = affine_ ? t.lu : point_lu_;
   if (!(std::abs(b.determinant()) > 0.0)) return false;
   const machine::SolverOptions& opt = model_.solver;
@@ -108,7 +133,7 @@ bool OneStepCorrection::correct(const Joints& target, double tool_length_mm, con
     if (step == kMaxSteps || norm > 1e-2 * previous) return false;
     previous = norm;
     corrected -= b.solve(residual);
-    if (t.kappa * norm <= kAcceptedResidualMm) return true;  // the residual is now below that
+    if (kappa * norm <= kAcceptedResidualMm) return true;  // the residual is now below that
   }
   return false;
 }

@@ -7,9 +7,11 @@
 // the target q_n, the core's first matrix. One step q+ = q - B^-1 F(q) leaves
 // F(q+) = (B - Jbar) B^-1 F(q) exactly, Jbar the mean real Jacobian between q and q+ (mean
 // value theorem), so |W F(q+)| <= kappa |W F(q)| with kappa = sup |W (B - J_real) B^-1 W^-1|
-// (Frobenius; W weighs direction rows by kDirectionLeverMm), sampled at 400 points over the
-// travel (J_real at the core's corrected joints there) and doubled for what the sampling
-// may miss. A step whose bound kappa |W F(q)| is below kAcceptedResidualMm (1e-9 mm, a
+// (Frobenius; W weighs direction rows by kDirectionLeverMm), sampled over the travel (J_real
+// at the core's corrected joints there) and doubled for what the sampling may miss. B^-1
+// grows towards a kinematic pole, so kappa is kept per band of the pole angle (full
+// correction angle x [1, 1.5), [1.5, 2), [2, 3), [3, ...), 100 samples each; one band on
+// three linear axes). A step whose bound kappa |W F(q)| is below kAcceptedResidualMm (1e-9 mm, a
 // thousandth of the last digit the pre-distorter writes; 1e-12 rad) is taken unverified:
 // most points then cost one real chain walk instead of two or three. Otherwise Newton goes
 // on with the core's stopping rule.
@@ -27,6 +29,8 @@
 namespace vc::predistort {
 
 class OneStepCorrection {
+  static constexpr int kBands = 4;
+
  public:
   static constexpr double kAcceptedResidualMm = 1e-9;
 
@@ -40,8 +44,10 @@ class OneStepCorrection {
   bool correct(const machine::Joints& target, double tool_length_mm, const machine::Joints& seed,
                machine::Joints& corrected);
 
-  // kappa for a tool length (tests).
-  double contraction(double tool_length_mm) { return for_tool(tool_length_mm).kappa; }
+  // kappa for a tool length where the pole angle is phi (tests).
+  double contraction(double tool_length_mm, double pole_angle_rad) {
+    return for_tool(tool_length_mm).kappa[band_of(pole_angle_rad)];
+  }
 
  private:
   struct PerTool {
@@ -49,11 +55,13 @@ class OneStepCorrection {
     Eigen::Matrix3d jacobian;     // A (three linear axes)
     Eigen::Vector3d tip_at_zero;  // b
     Eigen::PartialPivLU<machine::SquareMatrix> lu;  // of A
-    double kappa;
+    std::array<double, kBands> kappa;  // per band of the pole angle (band_of)
   };
-  // The equations at `target` and the factorized B; false near a pole.
+  int band_of(double pole_angle_rad) const;
+  // The equations at `target`, the factorized B and the band of the pole angle; false near
+  // a pole.
   bool equations_at(const PerTool& tool, const machine::Joints& target, machine::CorrectionTarget& equations,
-                    Eigen::PartialPivLU<machine::SquareMatrix>& lu) const;
+                    Eigen::PartialPivLU<machine::SquareMatrix>& lu, int& band) const;
   PerTool& for_tool(double tool_length_mm);
   double weighted_norm(const machine::Joints& residual) const;
 
