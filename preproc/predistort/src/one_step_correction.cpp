@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include "travel_samples.hpp"
 #include "vc/machine/correct.hpp"
@@ -18,7 +19,7 @@ constexpr double kMargin = 2.0;
 // Bands of the pole angle, from the angle of full correction (fade = 1) outward: B^-1, and
 // with it kappa, grows towards the pole. Each band is sampled until it has kBandSamples
 // points (or the draws run out: a band the travel hardly reaches takes the largest kappa
-// of all).
+// of all bands).
 constexpr double kBandEdges[] = {1.5, 2.0, 3.0};  // x the full-correction angle
 constexpr int kBandSamples = 100, kMaxDraws = 6000;
 constexpr int kMaxSteps = 3;
@@ -101,7 +102,11 @@ OneStepCorrection::PerTool& OneStepCorrection::for_tool(double tool_length_mm) {
     largest[band] = std::max(largest[band], (w.asDiagonal() * contraction * w.cwiseInverse().asDiagonal()).norm());
     ++count[band];
   }
-  const double overall = *std::max_element(largest.begin(), largest.end());
+  // Too few samples in all (the travel hardly reaches full correction): no bound, so no
+  // unverified step (correct() declines).
+  const int samples_taken = std::accumulate(count.begin(), count.end(), 0);
+  const double overall = samples_taken >= kBandSamples ? *std::max_element(largest.begin(), largest.end())
+                                                        : std::numeric_limits<double>::infinity();
   for (int band = 0; band < kBands; ++band)
     t.kappa[band] = kMargin * (count[band] >= kBandSamples ? largest[band] : overall);
   per_tool_.push_back(t);

@@ -22,6 +22,7 @@
 #pragma once
 
 #include <Eigen/LU>
+#include <array>
 #include <vector>
 
 #include "vc/machine/correction_equations.hpp"
