@@ -46,22 +46,13 @@ PieceCircle circle_of(const interpreter::Arc& arc, const Position& start, const 
 }  // namespace
 
 PathCorrector::PathCorrector(const machine::Model& model, CorrectorOptions options, const Deflection* deflection)
-    : model_(model), options_(options), deflection_(deflection), bounds_(model), one_step_(model) {
-  for (int j = 0; j < model.joint_count(); ++j) {
-    const char letter = model.axes[static_cast<std::size_t>(j)].letter;
-    joint_axis_[j] = static_cast<int>(std::string_view(interpreter::kAxisLetters).find(letter));
-  }
-}
+    : model_(model), options_(options), deflection_(deflection), axes_(model), bounds_(model), one_step_(model) {}
 
-Joints PathCorrector::joints_of(const Position& world) const {
-  Joints q(model_.joint_count());
-  for (int j = 0; j < model_.joint_count(); ++j) q[j] = world[static_cast<std::size_t>(joint_axis_[j])];
-  return q;
-}
+Joints PathCorrector::joints_of(const Position& world) const { return axes_.joints_of(world); }
 
 Position PathCorrector::program_of(const Move& move, const Joints& world_joints, const Position& like) const {
   Position world = move.frame.world(like);
-  for (int j = 0; j < model_.joint_count(); ++j) world[static_cast<std::size_t>(joint_axis_[j])] = world_joints[j];
+  axes_.set(world, world_joints);
   return move.frame.program(world);
 }
 

@@ -122,14 +122,7 @@ class Workers {
 
 }  // namespace
 
-unsigned program_axes(const machine::Model& model) {
-  unsigned axes = 0;
-  for (const machine::Axis& a : model.axes) {
-    const auto i = std::string_view(interpreter::kAxisLetters).find(a.letter);
-    if (i != std::string_view::npos) axes |= 1u << i;
-  }
-  return axes;
-}
+unsigned program_axes(const machine::Model& model) { return JointAxes(model).mask(); }
 
 Summary predistort(std::istream& in, std::ostream& out, const Job& job,
                    const std::function<void(long)>& progress) {

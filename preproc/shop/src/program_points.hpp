@@ -3,11 +3,11 @@
 #pragma once
 
 #include <string>
-#include <string_view>
 
 #include "vc/interpreter/move.hpp"
 #include "vc/machine/forward.hpp"
 #include "vc/machine/kinematics.hpp"
+#include "vc/predistort/joint_axes.hpp"
 #include "vc/tables/source_error.hpp"
 
 namespace vc::shop {
@@ -16,17 +16,10 @@ class ProgramPoints {
  public:
   // `file`: the program, for messages.
   ProgramPoints(const machine::Model& model, machine::WorldConvention world, std::string file)
-      : model_(model), world_(world), file_(std::move(file)) {
-    for (int j = 0; j < model.joint_count(); ++j)
-      axis_of_joint_[j] = static_cast<int>(
-          std::string_view(interpreter::kAxisLetters).find(model.axes[static_cast<std::size_t>(j)].letter));
-  }
+      : model_(model), world_(world), file_(std::move(file)), axes_(model) {}
 
   machine::Joints world(const interpreter::Move& m, const interpreter::Position& program) const {
-    const interpreter::Position w = m.frame.world(program);
-    machine::Joints q(model_.joint_count());
-    for (int j = 0; j < model_.joint_count(); ++j) q[j] = w[static_cast<std::size_t>(axis_of_joint_[j])];
-    return q;
+    return axes_.joints_of(m.frame.world(program));
   }
   // Throws vc::LoadError at the move's line if no joint position reaches the point.
   machine::Joints nominal(const interpreter::Move& m, const machine::Joints& world) const {
@@ -43,7 +36,7 @@ class ProgramPoints {
   const machine::Model& model_;
   machine::WorldConvention world_;
   std::string file_;
-  int axis_of_joint_[machine::kMaxAxes];
+  predistort::JointAxes axes_;
 };
 
 }  // namespace vc::shop

@@ -18,6 +18,7 @@
 #include "vc/machine/kinematics.hpp"
 #include "vc/predistort/correction_bounds.hpp"
 #include "vc/predistort/deflection.hpp"
+#include "vc/predistort/joint_axes.hpp"
 #include "vc/predistort/one_step_correction.hpp"
 
 namespace vc::predistort {
@@ -92,7 +93,7 @@ class PathCorrector {
   const machine::Model& model_;
   CorrectorOptions options_;
   const Deflection* deflection_;
-  int joint_axis_[machine::kMaxAxes];  // program axis of each joint
+  JointAxes axes_;
   CorrectorStats stats_;
   bool have_last_ = false;
   Node last_;                          // end of the previous corrected move
