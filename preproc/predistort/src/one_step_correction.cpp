@@ -30,6 +30,7 @@ OneStepCorrection::OneStepCorrection(const machine::Model& model)
     : model_(model),
       applies_(model.joint_count() == 3 + model.rotary_count()),
       affine_(model.joint_count() == 3 && model.rotary_count() == 0) {
+  if (applies_ && !affine_ && model.rotary_count() <= 2) blocks_.emplace(model);
   for (int j = 0; j < machine::kMaxAxes; ++j) all_joints_[j] = j;
 }
 
@@ -48,10 +49,11 @@ int OneStepCorrection::band_of(double pole_angle_rad) const {
 }
 
 bool OneStepCorrection::equations_at(const PerTool& tool, const Joints& target, machine::CorrectionTarget& equations,
-                                     Eigen::PartialPivLU<SquareMatrix>& lu, int& band) const {
+                                     SquareMatrix& b, int& band) const {
   band = 0;
   if (affine_) {
     equations = machine::position_target({tool.jacobian * target.head<3>() + tool.tip_at_zero, Eigen::Vector3d::UnitZ()});
+    b = tool.jacobian;
     return true;
   }
   machine::PoseDerivatives d;
@@ -60,7 +62,7 @@ bool OneStepCorrection::equations_at(const PerTool& tool, const Joints& target, 
   if (machine::fade_factor(model_.fade, phi) < 1.0) return false;
   band = band_of(phi);
   equations = machine::full_target(model_, ideal, d);
-  lu.compute(machine::correction_jacobian(equations, d, all_joints_, model_.joint_count()));
+  b = machine::correction_jacobian(equations, d, all_joints_, model_.joint_count());
   return true;
 }
 
@@ -85,20 +87,19 @@ OneStepCorrection::PerTool& OneStepCorrection::for_tool(double tool_length_mm) {
   const int bands = affine_ ? 1 : kBands;
   std::array<int, kBands> count{};
   std::array<double, kBands> largest{};
-  Eigen::PartialPivLU<SquareMatrix> lu;
   for (int draw = 0; draw < kMaxDraws; ++draw) {
     if (*std::min_element(count.begin(), count.begin() + bands) >= kBandSamples) break;
     const Joints q = samples.next();
     machine::CorrectionTarget equations;
+    SquareMatrix b;
     int band;
-    if (!equations_at(t, q, equations, lu, band) || count[band] >= kBandSamples) continue;
-    const Eigen::PartialPivLU<SquareMatrix>& b = affine_ ? t.lu : lu;
+    if (!equations_at(t, q, equations, b, band) || count[band] >= kBandSamples) continue;
     const machine::Correction core = machine::correct(model_, q, tool_length_mm);
     if (core.status != machine::Status::Ok) continue;
     machine::PoseDerivatives real;
     machine::tool_pose(model_, Machine::Real, core.joints, tool_length_mm, real);
     const SquareMatrix jacobian = machine::correction_jacobian(equations, real, all_joints_, n);
-    const SquareMatrix contraction = (b.reconstructedMatrix() - jacobian) * b.inverse();
+    const SquareMatrix contraction = (b - jacobian) * b.inverse();
     largest[band] = std::max(largest[band], (w.asDiagonal() * contraction * w.cwiseInverse().asDiagonal()).norm());
     ++count[band];
   }
@@ -113,16 +114,28 @@ OneStepCorrection::PerTool& OneStepCorrection::for_tool(double tool_length_mm) {
   return per_tool_.back();
 }
 
+bool OneStepCorrection::factorize(const PerTool& tool, const SquareMatrix& b) {
+  if (affine_) return std::abs(tool.lu.determinant()) > 0.0;
+  blocks_used_ = blocks_ && blocks_->factorize(b);
+  if (blocks_used_) return true;
+  point_lu_.compute(b);
+  return std::abs(point_lu_.determinant()) > 0.0;
+}
+
+Joints OneStepCorrection::solve(const PerTool& tool, const Joints& residual) const {
+  if (affine_) return tool.lu.solve(residual);
+  return blocks_used_ ? blocks_->solve(residual) : Joints(point_lu_.solve(residual));
+}
+
 bool OneStepCorrection::correct(const Joints& target, double tool_length_mm, const Joints& seed, Joints& corrected) {
   if (!applies_ || !target.allFinite() || !seed.allFinite()) return false;
   const PerTool& t = for_tool(tool_length_mm);
   machine::CorrectionTarget equations;
+  SquareMatrix b;
   int band;
-  if (!equations_at(t, target, equations, point_lu_, band)) return false;
+  if (!equations_at(t, target, equations, b, band)) return false;
   const double kappa = t.kappa[band];
-  if (!(kappa < 1e-2)) return false;
-  const Eigen::PartialPivLU<SquareMatrix>& b = affine_ ? t.lu : point_lu_;
-  if (!(std::abs(b.determinant()) > 0.0)) return false;
+  if (!(kappa < 1e-2) || !factorize(t, b)) return false;
   const machine::SolverOptions& opt = model_.solver;
   const int n = model_.joint_count();
   corrected = seed;
@@ -137,7 +150,7 @@ bool OneStepCorrection::correct(const Joints& target, double tool_length_mm, con
       return true;
     if (step == kMaxSteps || norm > 1e-2 * previous) return false;
     previous = norm;
-    corrected -= b.solve(residual);
+    corrected -= solve(t, residual);
     if (kappa * norm <= kAcceptedResidualMm) return true;  // the residual is now below that
   }
   return false;

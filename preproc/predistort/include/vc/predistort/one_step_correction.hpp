@@ -23,9 +23,11 @@
 
 #include <Eigen/LU>
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "vc/machine/correction_equations.hpp"
+#include "vc/predistort/ideal_jacobian_solver.hpp"
 
 namespace vc::predistort {
 
@@ -59,10 +61,13 @@ class OneStepCorrection {
     std::array<double, kBands> kappa;  // per band of the pole angle (band_of)
   };
   int band_of(double pole_angle_rad) const;
-  // The equations at `target`, the factorized B and the band of the pole angle; false near
+  // The equations at `target`, B and the band of the pole angle; false near
   // a pole.
   bool equations_at(const PerTool& tool, const machine::Joints& target, machine::CorrectionTarget& equations,
-                    Eigen::PartialPivLU<machine::SquareMatrix>& lu, int& band) const;
+                    machine::SquareMatrix& b, int& band) const;
+  // B at the current point, for solve(); false if singular.
+  bool factorize(const PerTool& tool, const machine::SquareMatrix& b);
+  machine::Joints solve(const PerTool& tool, const machine::Joints& residual) const;
   PerTool& for_tool(double tool_length_mm);
   double weighted_norm(const machine::Joints& residual) const;
 
@@ -71,7 +76,9 @@ class OneStepCorrection {
   bool affine_;  // three linear axes
   std::array<int, machine::kMaxAxes> all_joints_{};
   std::vector<PerTool> per_tool_;
-  Eigen::PartialPivLU<machine::SquareMatrix> point_lu_;  // B at the current point (rotary joints)
+  std::optional<IdealJacobianSolver> blocks_;  // rotary joints: B block triangular
+  bool blocks_used_ = false;                    // B at the current point in blocks_ (else point_lu_)
+  Eigen::PartialPivLU<machine::SquareMatrix> point_lu_;
 };
 
 }  // namespace vc::predistort
