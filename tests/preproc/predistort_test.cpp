@@ -468,6 +468,45 @@ TEST(PredistortCli, CannedCyclesAreRefusedWithTheReason) {
       << r.out;
 }
 
+TEST(PredistortCli, AMachineWithAUVOrWAxisIsRefusedAtStart) {
+  // LinuxCNC's W axis as the third linear axis: a valid machine file (the module can load
+  // it), but the pre-distorter writes X Y Z A B C only.
+  const fs::path dir = test::run_folder("predistort_uvw");
+  std::ofstream(dir / "xyw.toml") << R"([machine]
+name = "xyw"
+[spindle]
+gauge_point_mm = [0, 0, 0]
+tool_length_mm = 100.0
+[[tool_chain]]
+axis = "W"
+type = "linear"
+direction = [0, 0, 1]
+pole_mm = [0, 0, 0]
+travel_mm = [-300, 0]
+[[workpiece_chain]]
+axis = "Y"
+type = "linear"
+direction = [0, -1, 0]
+pole_mm = [0, 0, 0]
+travel_mm = [0, 400]
+[[workpiece_chain]]
+axis = "X"
+type = "linear"
+direction = [-1, 0, 0]
+pole_mm = [0, 0, 0]
+travel_mm = [0, 500]
+)";
+  std::ofstream(dir / "p.ngc") << "G21 G90\nG0 X0 Y0\nG1 X10 F100\n";
+  const fs::path out = dir / "out.ngc";
+  const auto r = test::run_volcomp("predistort " + (dir / "xyw.toml").string() + " " + (dir / "p.ngc").string() +
+                                   " -o " + out.string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.out.find("xyw.toml: error: axis W: the pre-distorter writes the program axes X Y Z A B C only"),
+            std::string::npos)
+      << r.out;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(PredistortCli, WorksAsAnAxisFilter) {
   // AXIS runs `filter PROGRAM`, reads the program from stdout and FILTER_PROGRESS=n from stderr.
   const std::string command = "AXIS_PROGRESS_BAR=1 " + std::string(VC_VOLCOMP) + " predistort " +

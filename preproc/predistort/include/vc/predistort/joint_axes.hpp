@@ -2,18 +2,27 @@
 // in joint order, and back.
 #pragma once
 
+#include <string>
 #include <string_view>
 
 #include "vc/interpreter/move.hpp"
 #include "vc/machine/model.hpp"
+#include "vc/tables/source_error.hpp"
 
 namespace vc::predistort {
 
 class JointAxes {
  public:
+  // Throws LoadError (naming the machine file) for a joint no program axis has: U, V, W.
   explicit JointAxes(const machine::Model& model) : count_(model.joint_count()) {
-    for (int j = 0; j < count_; ++j)
-      axis_[j] = std::string_view(interpreter::kAxisLetters).find(model.axes[static_cast<std::size_t>(j)].letter);
+    for (int j = 0; j < count_; ++j) {
+      const char letter = model.axes[static_cast<std::size_t>(j)].letter;
+      axis_[j] = std::string_view(interpreter::kAxisLetters).find(letter);
+      if (axis_[j] == std::string_view::npos)
+        throw LoadError({model.path}, std::string("axis ") + letter +
+                                          ": the pre-distorter writes the program axes X Y Z A B C only; a machine "
+                                          "with U, V or W axes is not supported");
+    }
   }
 
   // The world coordinates of the joints' axes, in joint order.
@@ -29,14 +38,13 @@ class JointAxes {
   // The program axes the machine has (bit i of XYZABC).
   unsigned mask() const {
     unsigned axes = 0;
-    for (int j = 0; j < count_; ++j)
-      if (axis_[j] != std::string_view::npos) axes |= 1u << axis_[j];
+    for (int j = 0; j < count_; ++j) axes |= 1u << axis_[j];
     return axes;
   }
 
  private:
   int count_;
-  std::size_t axis_[machine::kMaxAxes];  // npos: a joint letter no program axis has (U V W)
+  std::size_t axis_[machine::kMaxAxes];  // index in interpreter::kAxisLetters
 };
 
 }  // namespace vc::predistort
