@@ -1,5 +1,6 @@
 #include "vc/predistort/path_corrector.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -277,10 +278,27 @@ void PathCorrector::correct(const Move& move, std::vector<Piece>& pieces) {
     refine(move, a, b, 0, pieces);
   }
   stats_.pieces += static_cast<long>(pieces.size());
-  last_ = b;
+  ended(move, b);
+}
+
+void PathCorrector::ended(const Move& move, const Node& end) {
+  last_ = end;
   have_last_ = true;
   last_tool_length_ = move.tool_length_mm;
-  last_loaded_ = b.deflection_mm.squaredNorm() > 0;
+  last_loaded_ = end.deflection_mm.squaredNorm() > 0;
+}
+
+void PathCorrector::resume_after(const Move& move) { ended(move, node_at(move, 1.0)); }
+
+void CorrectorStats::add(const CorrectorStats& other) {
+  moves += other.moves;
+  pieces += other.pieces;
+  corrections += other.corrections;
+  checks += other.checks;
+  tolerance_misses += other.tolerance_misses;
+  out_of_table += other.out_of_table;
+  max_checked_error_mm = std::max(max_checked_error_mm, other.max_checked_error_mm);
+  max_deflection_mm = std::max(max_deflection_mm, other.max_deflection_mm);
 }
 
 }  // namespace vc::predistort

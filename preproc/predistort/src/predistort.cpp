@@ -1,5 +1,6 @@
 #include "vc/predistort/predistort.hpp"
 
+#include <deque>
 #include <string>
 #include <thread>
 
@@ -10,12 +11,12 @@
 namespace vc::predistort {
 namespace {
 
-// Three threads, a pipeline: the reader reads, parses and interprets lines (it owns the
-// interpreter and the input stream), the corrector corrects their moves (it owns the
-// PathCorrector), and the caller's thread writes them (it owns the writer and the output,
-// and calls `progress`). Lines travel in order in batches through a bounded ring, so the
-// output, the error reported (the first failing line in file order) and the memory bound
-// are those of reading one line at a time.
+// A pipeline of threads: the reader reads, parses and interprets lines (it owns the
+// interpreter and the input stream), the correctors correct their moves (each owns a
+// PathCorrector and takes every other batch where there are two), and the caller's thread
+// writes them (it owns the writer and the output, and calls `progress`). Lines travel in
+// order in batches through a bounded ring, so the output, the error reported (the first
+// failing line in file order) and the memory bound are those of reading one line at a time.
 struct Line {
   int number = 0;
   long bytes = 0;  // read up to the end of this line
@@ -26,17 +27,25 @@ struct Line {
   interpreter::Frame frame;
   std::vector<std::vector<Piece>> pieces;  // effect.translate: per move, its corrected pieces
 };
-using LineQueue = BatchQueue<Line>;
-enum Stage { kRead, kCorrect, kWrite, kStages };
+// Where the machine is when a batch starts, for a corrector that did not correct the batch
+// before: at the end of the corrected move `move`, or at an uncorrected position.
+struct Resume {
+  bool after_move = false;
+  interpreter::Move move;
+};
+using LineQueue = BatchQueue<Line, Resume>;
+enum Stage { kRead, kCorrect, kWrite };
 constexpr std::size_t kBatches = 8, kBatchLines = 128;  // at most 1024 lines in flight
 
 void read_lines(std::istream& in, const Job& job, LineQueue& queue) {
   interpreter::Interpreter interpreter(job.setup);
   long bytes = 0;
   int number = 0;
+  Resume resume;
   for (bool last = false; !last;) {
     LineQueue::Batch* batch = queue.begin(kRead);
     if (!batch) return;  // a later stage failed
+    batch->header = resume;
     try {
       while (batch->count < batch->items.size()) {
         Line& line = batch->items[batch->count];
@@ -57,7 +66,9 @@ void read_lines(std::istream& in, const Job& job, LineQueue& queue) {
         if (line.effect.moved_as_written) {
           line.position = interpreter.position();
           line.frame = interpreter.frame();
+          resume.after_move = false;
         }
+        if (line.effect.translate && !line.effect.moves.empty()) resume = {true, line.effect.moves.back()};
         ++batch->count;
       }
     } catch (...) {
@@ -69,12 +80,19 @@ void read_lines(std::istream& in, const Job& job, LineQueue& queue) {
   }
 }
 
-void correct_lines(const Job& job, PathCorrector& corrector, LineQueue& queue) {
+// Lane `lane` of `lanes` correctors: batches lane, lane + lanes, ...
+void correct_lines(const Job& job, PathCorrector& corrector, LineQueue& queue, int lane, int lanes) {
   for (bool last = false; !last;) {
-    LineQueue::Batch* batch = queue.begin(kCorrect);
+    LineQueue::Batch* batch = queue.begin(kCorrect, lane);
     if (!batch) return;
     std::size_t i = 0;
     try {
+      if (lanes > 1) {  // another lane corrected the batch before
+        if (batch->header.after_move)
+          corrector.resume_after(batch->header.move);
+        else
+          corrector.lost_position();
+      }
       for (; i < batch->count; ++i) {
         Line& line = batch->items[i];
         const interpreter::Effect& effect = line.effect;
@@ -95,7 +113,7 @@ void correct_lines(const Job& job, PathCorrector& corrector, LineQueue& queue) {
       batch->last = true;
     }
     last = batch->last;
-    queue.end(kCorrect);
+    queue.end(kCorrect, lane);
   }
 }
 
@@ -103,22 +121,33 @@ void correct_lines(const Job& job, PathCorrector& corrector, LineQueue& queue) {
 // if they still run).
 class Workers {
  public:
-  Workers(std::istream& in, const Job& job, PathCorrector& corrector, LineQueue& queue)
-      : queue_(queue),
-        reader_([&in, &job, &queue] { read_lines(in, job, queue); }),
-        corrector_([&job, &corrector, &queue] { correct_lines(job, corrector, queue); }) {}
+  Workers(std::istream& in, const Job& job, std::deque<PathCorrector>& correctors, LineQueue& queue)
+      : queue_(queue) {
+    threads_.emplace_back([&in, &job, &queue] { read_lines(in, job, queue); });
+    const int lanes = static_cast<int>(correctors.size());
+    for (int lane = 0; lane < lanes; ++lane)
+      threads_.emplace_back([&job, &correctors, &queue, lane, lanes] {
+        correct_lines(job, correctors[static_cast<std::size_t>(lane)], queue, lane, lanes);
+      });
+  }
   ~Workers() { join(); }
   void join() {
-    if (!reader_.joinable()) return;
+    if (threads_.empty()) return;
     queue_.cancel();
-    reader_.join();
-    corrector_.join();
+    for (std::thread& t : threads_) t.join();
+    threads_.clear();
   }
 
  private:
   LineQueue& queue_;
-  std::thread reader_, corrector_;
+  std::vector<std::thread> threads_;
 };
+
+// Correcting a point with rotary joints costs several times reading and writing its line:
+// there it gets two threads (if the machine has two cores).
+int corrector_lanes(const machine::Model& model) {
+  return model.rotary_count() > 0 && std::thread::hardware_concurrency() > 1 ? 2 : 1;
+}
 
 }  // namespace
 
@@ -126,13 +155,15 @@ unsigned program_axes(const machine::Model& model) { return JointAxes(model).mas
 
 Summary predistort(std::istream& in, std::ostream& out, const Job& job,
                    const std::function<void(long)>& progress) {
-  PathCorrector corrector(*job.model, job.corrector, job.deflection);
+  std::deque<PathCorrector> correctors;  // one per lane (not copied: the threads hold them)
+  const int lanes = corrector_lanes(*job.model);
+  for (int lane = 0; lane < lanes; ++lane) correctors.emplace_back(*job.model, job.corrector, job.deflection);
   Writer writer(out, job.setup.machine_axes, job.corrector.tolerance_mm);
   Summary summary;
   long bytes = 0;
   bool header_written = false;
-  LineQueue queue(kStages, kBatches, kBatchLines);
-  Workers workers(in, job, corrector, queue);
+  LineQueue queue({1, lanes, 1}, kBatches, kBatchLines);
+  Workers workers(in, job, correctors, queue);
   for (bool last = false; !last;) {
     LineQueue::Batch& batch = *queue.begin(kWrite);  // only the writer cancels
     for (std::size_t i = 0; i < batch.count; ++i) {
@@ -161,7 +192,7 @@ Summary predistort(std::istream& in, std::ostream& out, const Job& job,
   workers.join();  // the corrector's statistics are final
   if (!header_written) writer.header(job.provenance);
   if (progress) progress(bytes);
-  summary.corrector = corrector.stats();
+  for (const PathCorrector& corrector : correctors) summary.corrector.add(corrector.stats());
   return summary;
 }
 

@@ -50,6 +50,8 @@ struct CorrectorStats {
   long out_of_table = 0;          // corrected points outside a table's grid
   double max_checked_error_mm = 0.0;  // largest error at an accepted piece's check points
   double max_deflection_mm = 0.0;
+
+  void add(const CorrectorStats& other);  // of another corrector (a lane of the same program)
 };
 
 class PathCorrector {
@@ -62,6 +64,9 @@ class PathCorrector {
   void correct(const Move& move, std::vector<Piece>& pieces);
   // The machine is now at an uncorrected, or unknown, position (a move written as it is).
   void lost_position() { have_last_ = false; }
+  // The machine is now where the correction of `move` left it (another corrector corrected
+  // the move: this one takes over after it).
+  void resume_after(const Move& move);
 
   const CorrectorStats& stats() const { return stats_; }
 
@@ -87,6 +92,7 @@ class PathCorrector {
   void refine(const Move& move, const Node& a, const Node& b, int depth, std::vector<Piece>& pieces);
   Piece piece_between(const Move& move, const Node& a, const Node& b) const;
   bool within_bounds(const Move& move, const Node& a, const Node& b);
+  void ended(const Move& move, const Node& end);
   machine::Joints seed_for(const machine::Joints& target, double tool_length_mm) const;
   void solved(const machine::Joints& target, const machine::Joints& corrected, double tool_length_mm);
 
