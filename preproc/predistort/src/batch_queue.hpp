@@ -34,7 +34,7 @@ class BatchQueue {
 
   // lanes[s]: threads of stage s (lanes.front() and lanes.back() must be 1).
   BatchQueue(std::vector<int> lanes, std::size_t batches, std::size_t batch_size)
-      : ring_(batches), lanes_(std::move(lanes)), next_(lanes_.size()) {
+      : ring_(batches), lanes_(std::move(lanes)), next_(lanes_.size()), changed_(lanes_.size()) {
     for (Batch& b : ring_) b.items.resize(batch_size);
     for (std::size_t s = 0; s < lanes_.size(); ++s)
       for (int l = 0; l < lanes_[s]; ++l) next_[s].push_back(static_cast<std::size_t>(l));
@@ -48,7 +48,7 @@ class BatchQueue {
     const std::size_t sequence = next_[s][static_cast<std::size_t>(lane)];
     Batch& b = ring_[sequence % ring_.size()];
     std::unique_lock lock(mutex_);
-    changed_.wait(lock, [&] {
+    changed_[s].wait(lock, [&] {
       return cancelled_ || past_end(sequence) || (b.stage == stage && (stage == 0 || b.sequence == sequence));
     });
     if (cancelled_ || past_end(sequence)) return nullptr;
@@ -65,14 +65,15 @@ class BatchQueue {
   void end(int stage, int lane = 0) {
     const auto s = static_cast<std::size_t>(stage);
     std::size_t& sequence = next_[s][static_cast<std::size_t>(lane)];
+    const std::size_t next = s + 1 == lanes_.size() ? 0 : s + 1;
     {
       const std::lock_guard lock(mutex_);
       Batch& b = ring_[sequence % ring_.size()];
       if (s == 0 && b.last) end_ = sequence;
-      b.stage = s + 1 == lanes_.size() ? 0 : stage + 1;
+      b.stage = static_cast<int>(next);
     }
     sequence += static_cast<std::size_t>(lanes_[s]);
-    changed_.notify_all();
+    changed_[next].notify_all();  // only the next stage can go on
   }
 
   // Stops every stage at its next begin (a stage failed, or the pipeline is left early).
@@ -81,7 +82,7 @@ class BatchQueue {
       const std::lock_guard lock(mutex_);
       cancelled_ = true;
     }
-    changed_.notify_all();
+    for (std::condition_variable& c : changed_) c.notify_all();
   }
 
  private:
@@ -93,7 +94,7 @@ class BatchQueue {
   std::vector<std::vector<std::size_t>> next_;  // per stage and lane: its next batch
   std::size_t end_ = kOpen;                     // sequence of the last batch, once filled
   std::mutex mutex_;
-  std::condition_variable changed_;
+  std::vector<std::condition_variable> changed_;  // per stage: a batch may be ready for it
   bool cancelled_ = false;
 };
 

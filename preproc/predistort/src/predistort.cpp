@@ -35,7 +35,7 @@ struct Resume {
 };
 using LineQueue = BatchQueue<Line, Resume>;
 enum Stage { kRead, kCorrect, kWrite };
-constexpr std::size_t kBatches = 8, kBatchLines = 128;  // at most 1024 lines in flight
+constexpr std::size_t kBatches = 8, kBatchLines = 512;  // at most 4096 lines in flight
 
 void read_lines(std::istream& in, const Job& job, LineQueue& queue) {
   interpreter::Interpreter interpreter(job.setup);
