@@ -31,6 +31,11 @@ OneStepCorrection::OneStepCorrection(const machine::Model& model)
       applies_(model.joint_count() == 3 + model.rotary_count()),
       affine_(model.joint_count() == 3 && model.rotary_count() == 0) {
   if (applies_ && !affine_ && model.rotary_count() <= 2) blocks_.emplace(model);
+  for (int e = 0; e < kBands; ++e) {
+    const double edge = (e == 0 ? 1.0 : kBandEdges[e - 1]) * model.fade.full_rad;
+    edge_cos_[e] = std::cos(edge);
+    edge_sin_[e] = std::sin(edge);
+  }
   for (int j = 0; j < machine::kMaxAxes; ++j) all_joints_[j] = j;
 }
 
@@ -39,6 +44,21 @@ double OneStepCorrection::weighted_norm(const Joints& residual) const {
   const int n = static_cast<int>(residual.size());
   return std::sqrt(residual.head(3).squaredNorm() +
                    machine::kDirectionLeverMm * machine::kDirectionLeverMm * residual.tail(n - 3).squaredNorm());
+}
+
+// Without atan2: the angle between a rotary axis line l and the tool direction k is at least
+// theta (in [0, pi/2]) where |l x k| cos(theta) >= |l . k| sin(theta).
+int OneStepCorrection::pole_band(const machine::ToolPose& ideal, const machine::PoseDerivatives& d) const {
+  int band = kBands;  // the number of edges every line is beyond, less one
+  for (int j = 0; j < model_.joint_count(); ++j) {
+    if (model_.axes[static_cast<std::size_t>(j)].type != machine::AxisType::Rotary) continue;
+    const Eigen::Vector3d line = d.axis_line.col(j);
+    const double across = line.cross(ideal.direction).norm(), along = std::abs(line.dot(ideal.direction));
+    int beyond = 0;
+    while (beyond < kBands && across * edge_cos_[beyond] >= along * edge_sin_[beyond]) ++beyond;
+    band = std::min(band, beyond);
+  }
+  return band - 1;
 }
 
 int OneStepCorrection::band_of(double pole_angle_rad) const {
@@ -58,9 +78,8 @@ bool OneStepCorrection::equations_at(const PerTool& tool, const Joints& target, 
   }
   machine::PoseDerivatives d;
   const machine::ToolPose ideal = machine::tool_pose(model_, Machine::Ideal, target, tool.tool_length_mm, d);
-  const double phi = machine::pole_angle_at(model_, ideal, d);
-  if (machine::fade_factor(model_.fade, phi) < 1.0) return false;
-  band = band_of(phi);
+  band = pole_band(ideal, d);
+  if (band < 0) return false;
   equations = machine::full_target(model_, ideal, d);
   b = machine::correction_jacobian(equations, d, all_joints_, model_.joint_count());
   return true;

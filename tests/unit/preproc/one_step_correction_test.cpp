@@ -70,6 +70,12 @@ TEST_P(OneStepCorrectionTest, AgreesWithTheCoreAndItsContractionBoundHolds) {
       const machine::Correction core = machine::correct(model, target, L);
       ASSERT_EQ(core.status, machine::Status::Ok);
       ++tried;
+      if (!one_step.applies() || model.rotary_count() == 0) {
+      } else if (core.fade < 1.0) {
+        EXPECT_EQ(one_step.band_at(target, L), -1);
+      } else {
+        EXPECT_EQ(one_step.band_at(target, L), one_step.band_of(core.pole_angle_rad)) << core.pole_angle_rad;
+      }
       Joints corrected;
       if (!one_step.correct(target, L, seed, corrected)) {
         EXPECT_LT(core.fade, 1.0) << "declined away from the pole";

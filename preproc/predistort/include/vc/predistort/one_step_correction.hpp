@@ -51,6 +51,14 @@ class OneStepCorrection {
   double contraction(double tool_length_mm, double pole_angle_rad) {
     return for_tool(tool_length_mm).kappa[band_of(pole_angle_rad)];
   }
+  // The band of a pole angle (x [1, 1.5), [1.5, 2), [2, 3), [3, ...) the full-correction angle).
+  int band_of(double pole_angle_rad) const;
+  // The band of the pole angle at nominal joints, -1 below full correction (tests: as
+  // band_of(machine::pole_angle(...)), without atan2).
+  int band_at(const machine::Joints& target, double tool_length_mm) const {
+    machine::PoseDerivatives d;
+    return pole_band(machine::tool_pose(model_, machine::Machine::Ideal, target, tool_length_mm, d), d);
+  }
 
  private:
   struct PerTool {
@@ -60,7 +68,8 @@ class OneStepCorrection {
     Eigen::PartialPivLU<machine::SquareMatrix> lu;  // of A
     std::array<double, kBands> kappa;  // per band of the pole angle (band_of)
   };
-  int band_of(double pole_angle_rad) const;
+  // band_of(pole angle at the ideal pose), -1 below full correction (fade < 1).
+  int pole_band(const machine::ToolPose& ideal, const machine::PoseDerivatives& d) const;
   // The equations at `target`, B and the band of the pole angle; false near
   // a pole.
   bool equations_at(const PerTool& tool, const machine::Joints& target, machine::CorrectionTarget& equations,
@@ -76,6 +85,7 @@ class OneStepCorrection {
   bool affine_;  // three linear axes
   std::array<int, machine::kMaxAxes> all_joints_{};
   std::vector<PerTool> per_tool_;
+  std::array<double, kBands> edge_cos_{}, edge_sin_{};  // of the bands' lower edges
   std::optional<IdealJacobianSolver> blocks_;  // rotary joints: B block triangular
   bool blocks_used_ = false;                    // B at the current point in blocks_ (else point_lu_)
   Eigen::PartialPivLU<machine::SquareMatrix> point_lu_;
