@@ -145,8 +145,9 @@ class Workers {
 
 // Correcting a point with rotary joints costs several times reading and writing its line:
 // there it gets two threads (if the machine has two cores).
-int corrector_lanes(const machine::Model& model) {
-  return model.rotary_count() > 0 && std::thread::hardware_concurrency() > 1 ? 2 : 1;
+int corrector_lanes(const Job& job) {
+  if (job.correcting_threads > 0) return job.correcting_threads;
+  return job.model->rotary_count() > 0 && std::thread::hardware_concurrency() > 1 ? 2 : 1;
 }
 
 }  // namespace
@@ -156,7 +157,7 @@ unsigned program_axes(const machine::Model& model) { return JointAxes(model).mas
 Summary predistort(std::istream& in, std::ostream& out, const Job& job,
                    const std::function<void(long)>& progress) {
   std::deque<PathCorrector> correctors;  // one per lane (not copied: the threads hold them)
-  const int lanes = corrector_lanes(*job.model);
+  const int lanes = corrector_lanes(job);
   for (int lane = 0; lane < lanes; ++lane) correctors.emplace_back(*job.model, job.corrector, job.deflection);
   Writer writer(out, job.setup.machine_axes, job.corrector.tolerance_mm);
   Summary summary;

@@ -19,6 +19,9 @@ struct Job {
   CorrectorOptions corrector;
   const Deflection* deflection = nullptr;
   Provenance provenance;          // for the header comment
+  // Threads correcting moves, each taking every other batch of lines; 0: as the machine
+  // needs (two with rotary axes on two cores or more, else one).
+  int correcting_threads = 0;
 };
 
 struct Summary {
