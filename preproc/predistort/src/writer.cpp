@@ -62,26 +62,32 @@ void Writer::header(const Provenance& p) {
 }
 
 void Writer::append_number(std::string& line, char letter, double value, int decimals) const {
-  std::int64_t u = units(value, decimals);
-  line += ' ';
-  line += letter;
-  if (u < 0) {
-    line += '-';
-    u = -u;
+  append_units(line, letter, units(value, decimals), decimals);
+}
+
+void Writer::append_units(std::string& line, char letter, std::int64_t u, int decimals) const {
+  // Built backwards in a buffer, then appended at once: " L-123.456" without trailing zeros.
+  char text[32];
+  char* end = text + sizeof(text);
+  char* p = end;
+  const bool negative = u < 0;
+  if (negative) u = -u;
+  int written = 0;  // digits of the fraction kept so far (trailing zeros are dropped)
+  for (int i = 0; i < decimals; ++i, u /= 10) {
+    const char digit = static_cast<char>('0' + u % 10);
+    if (written == 0 && digit == '0') continue;
+    *--p = digit;
+    ++written;
   }
-  char digits[24];
-  int n = 0;
+  if (written > 0) *--p = '.';
   do {
-    digits[n++] = static_cast<char>('0' + u % 10);
+    *--p = static_cast<char>('0' + u % 10);
     u /= 10;
-  } while (u > 0 || n <= decimals);
-  int last = 0;  // drop trailing zeros of the fraction
-  while (last < decimals && digits[last] == '0') ++last;
-  for (int i = n - 1; i >= decimals; --i) line += digits[i];
-  if (last < decimals) {
-    line += '.';
-    for (int i = decimals - 1; i >= last; --i) line += digits[i];
-  }
+  } while (u > 0);
+  if (negative) *--p = '-';
+  *--p = letter;
+  *--p = ' ';
+  line.append(p, static_cast<std::size_t>(end - p));
 }
 
 void Writer::blending_edits(const gcode::Block& block, const interpreter::Effect& effect) {
@@ -163,14 +169,11 @@ void Writer::append_piece(std::string& line, const interpreter::Move& move, cons
     if (!(axes_ >> i & 1u)) continue;
     const double scale = interpreter::is_linear(i) && inches ? 1.0 / kInch : 1.0;
     const int d = decimals(i, inches);
-    if (effect.incremental && !move.machine_coordinates) {
-      // The increment between the written (rounded) positions, so that increments add up.
-      const double step = static_cast<double>(units(piece.end[i] * scale, d) - units(at_[i] * scale, d)) / kScale[d];
-      append_number(line, kAxisLetters[i], step, d);
-    } else {
-      append_number(line, kAxisLetters[i], piece.end[i] * scale, d);
-    }
-    at_[i] = static_cast<double>(units(piece.end[i] * scale, d)) / kScale[d] / scale;  // as written
+    const std::int64_t written = units(piece.end[i] * scale, d);
+    // Incremental: the increment between the written (rounded) positions, so that increments add up.
+    const bool incremental = effect.incremental && !move.machine_coordinates;
+    append_units(line, kAxisLetters[i], incremental ? written - units(at_[i] * scale, d) : written, d);
+    at_[i] = static_cast<double>(written) / kScale[d] / scale;  // as written
   }
   if (piece.kind == MoveKind::Arc) {
     const interpreter::Arc& arc = move.arc;

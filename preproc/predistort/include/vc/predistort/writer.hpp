@@ -4,6 +4,7 @@
 // cannot merge the fine corrections away.
 #pragma once
 
+#include <cstdint>
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -50,6 +51,8 @@ class Writer {
   void append_piece(std::string& line, const interpreter::Move& move, const Piece& piece,
                     const interpreter::Effect& effect, bool with_code, bool with_feed);
   void append_number(std::string& line, char letter, double value, int decimals) const;
+  // The number u / 10^decimals.
+  void append_units(std::string& line, char letter, std::int64_t u, int decimals) const;
 
   std::ostream& out_;
   unsigned axes_;
