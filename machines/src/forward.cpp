@@ -49,9 +49,9 @@ struct Frame {
   }
 };
 
-// The ideal machine, the common case kept short: its axis lines are placed by the pole
-// alone, T(o), and carry no errors, so each joint moves the chain about its own line only.
-// Bit-identical to walk_chain's general path (the same products in the same order).
+// The ideal machine: its axis lines are placed by the pole alone, T(o), and carry no errors,
+// so each joint moves the chain about its own line only. The products are those the real
+// walk below would make with zero errors and T(o) bases, in the same order (bit-identical).
 Frame walk_ideal_chain(const Model& model, const std::vector<int>& chain, const Joints& q,
                        ChainMotion* motion) noexcept {
   Frame parent;
@@ -77,13 +77,12 @@ Frame walk_ideal_chain(const Model& model, const std::vector<int>& chain, const 
 // Walks one chain bed outward; returns bed_T_last and, if asked, the chain's motion.
 Frame walk_chain(const Model& model, Machine machine, const std::vector<int>& chain, const Joints& q,
                  ChainMotion* motion) noexcept {
-  const bool real = machine == Machine::Real;
-  if (!real) return walk_ideal_chain(model, chain, q, motion);
+  if (machine == Machine::Ideal) return walk_ideal_chain(model, chain, q, motion);
   Frame parent;
   AxisErrors err;
   for (int i : chain) {
     const Axis& axis = model.axes[i];
-    const bool has_errors = real && !axis.tables.empty();
+    const bool has_errors = !axis.tables.empty();
     if (has_errors) axis_errors(model, i, q, err, motion != nullptr);
     const Vector3d delta = has_errors ? err.delta_mm : Vector3d::Zero();
     Matrix3d r_eps = Matrix3d::Identity(), eps_rate = Matrix3d::Zero();
@@ -95,7 +94,7 @@ Frame walk_chain(const Model& model, Machine machine, const std::vector<int>& ch
     const Matrix3d motion_rotation =
         linear ? r_eps : Matrix3d(r_eps * rotation_about(axis.direction, q[i] * tables::kDegToRad));
     // Frame after `base` (the fixed placement of the axis line), then the child frame.
-    const Frame base = parent.then(real ? axis.real_base : axis.ideal_base);
+    const Frame base = parent.then(axis.real_base);
     const Vector3d child_origin = base.origin + base.rotation * motion_origin;
     if (motion) {
       for (int j = 0; j < model.joint_count(); ++j) {

@@ -315,7 +315,6 @@ class MachineReader {
       axis.travel_max = travel[1];
       read_location(table(t, "location", false, ""), axis.letter, axis.location_mm, axis.location_rad);
       axis.real_base = line_placement(axis.pole_mm, axis.location_mm, axis.location_rad);
-      axis.ideal_base = line_placement(axis.pole_mm, Vector3d::Zero(), Vector3d::Zero());
       const toml::node* tl = t.get("tables");
       if (tl && !(tl->is_array() && tl->as_array()->is_array_of_tables()))
         throw LoadError(where(*tl), "'tables' must be a list: [[" + std::string(key) + ".tables]]");

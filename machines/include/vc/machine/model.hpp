@@ -40,7 +40,6 @@ struct Axis {
   Eigen::Vector3d location_mm;    // d0: position error of the axis line (EX0?, EY0?, EZ0?)
   Eigen::Vector3d location_rad;   // e0: orientation error of the axis line (EA0?, EB0?, EC0?)
   Eigen::Isometry3d real_base;    // T(o + d0) * R(e0)
-  Eigen::Isometry3d ideal_base;   // T(o)
   std::vector<int> tables;        // indices into Model::tables
   unsigned moved_by = 0;          // bit j set: joint j moves this axis's frame (itself, table variables)
 };
