@@ -20,7 +20,7 @@ template <typename Item, typename Header>
 class BatchQueue {
  public:
   struct Batch {
-    Header header;            // what stage 0 tells the later stages about the batch
+    Header header;            // what stage 0 tells the later stages about the batch (set by it)
     std::vector<Item> items;  // the first `count` are valid
     std::size_t count = 0;
     bool last = false;        // nothing follows this batch
@@ -42,7 +42,7 @@ class BatchQueue {
 
   // The next batch for `stage` (and its `lane`), once the stage before it is done with it
   // (stage 0: once the last stage is); null if the pipeline was cancelled, or if the stream
-  // ended before this lane's next batch. Stage 0 gets it emptied.
+  // ended before this lane's next batch. Stage 0 gets it emptied (all but the header).
   Batch* begin(int stage, int lane = 0) {
     const auto s = static_cast<std::size_t>(stage);
     const std::size_t sequence = next_[s][static_cast<std::size_t>(lane)];
@@ -57,7 +57,6 @@ class BatchQueue {
       b.count = 0;
       b.last = false;
       b.error = nullptr;
-      b.header = Header{};
     }
     return &b;
   }

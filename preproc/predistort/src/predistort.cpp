@@ -37,6 +37,22 @@ using LineQueue = BatchQueue<Line, Resume>;
 enum Stage { kRead, kCorrect, kWrite };
 constexpr std::size_t kBatches = 8, kBatchLines = 512;  // at most 4096 lines in flight
 
+// Where the machine is after `batch` (unchanged if no line of it moves the machine): after
+// its last corrected move, or lost after a move written as it is.
+void leaves(const LineQueue::Batch& batch, Resume& resume) {
+  for (std::size_t i = batch.count; i-- > 0;) {
+    const interpreter::Effect& effect = batch.items[i].effect;
+    if (effect.translate && !effect.moves.empty()) {
+      resume = {true, effect.moves.back()};
+      return;
+    }
+    if (effect.moved_as_written) {
+      resume.after_move = false;
+      return;
+    }
+  }
+}
+
 void read_lines(std::istream& in, const Job& job, LineQueue& queue) {
   interpreter::Interpreter interpreter(job.setup);
   long bytes = 0;
@@ -66,15 +82,14 @@ void read_lines(std::istream& in, const Job& job, LineQueue& queue) {
         if (line.effect.moved_as_written) {
           line.position = interpreter.position();
           line.frame = interpreter.frame();
-          resume.after_move = false;
         }
-        if (line.effect.translate && !line.effect.moves.empty()) resume = {true, line.effect.moves.back()};
         ++batch->count;
       }
     } catch (...) {
       batch->error = std::current_exception();
       batch->last = true;
     }
+    leaves(*batch, resume);
     last = batch->last;
     queue.end(kRead);
   }
