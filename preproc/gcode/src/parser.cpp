@@ -27,8 +27,12 @@ std::string describe(char c) {
 }
 
 void normalize(std::string_view line, Normalized& n, Block& block) {
-  n.text.clear();
-  n.raw.clear();
+  // Written through pointers into buffers sized for the whole line (this runs per character).
+  n.text.resize(line.size());
+  n.raw.resize(line.size() + 1);
+  char* text = n.text.data();
+  int* raw = n.raw.data();
+  std::size_t kept = 0;
   for (std::size_t i = 0; i < line.size(); ++i) {
     const char c = line[i];
     if (c == ' ' || c == '\t') continue;
@@ -48,10 +52,12 @@ void normalize(std::string_view line, Normalized& n, Block& block) {
     if (c == ')') throw SyntaxError(static_cast<int>(i), "')' without '('");
     if (c < ' ' || c > '~')  // isprint in the "C" locale
       throw SyntaxError(static_cast<int>(i), "unexpected " + describe(c) + " (not a printable character)");
-    n.text += c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c;
-    n.raw.push_back(static_cast<int>(i));
+    text[kept] = c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c;
+    raw[kept++] = static_cast<int>(i);
   }
-  n.raw.push_back(static_cast<int>(line.size()));
+  raw[kept] = static_cast<int>(line.size());
+  n.text.resize(kept);
+  n.raw.resize(kept + 1);
 }
 
 // Parses `rule` at text[pos...]; returns the end position. X3's expectation failures
@@ -81,7 +87,8 @@ bool is_word_letter(char c) {
 
 void parse_block(std::string_view line, Block& block) {
   block.clear();
-  thread_local Normalized n;
+  thread_local Normalized normalized;
+  Normalized& n = normalized;  // one thread-local lookup per line, not one per use
   normalize(line, n, block);
   std::size_t pos = 0;
   if (n.text == "%") {
@@ -121,11 +128,22 @@ void parse_block(std::string_view line, Block& block) {
                                           static_cast<char>(std::toupper(static_cast<unsigned char>(c))) + "'");
       throw SyntaxError(n.raw[pos], "expected a word (letter and value), found " + describe(c));
     }
-    Word w{static_cast<char>(std::toupper(static_cast<unsigned char>(c))), ast::Expression(), n.raw[pos], 0};
-    pos = parse_at(n, pos + 1, parser::value, w.value,
-                   [&w] { return std::string("a number or [expression] after '") + w.letter + "'"; });
+    Word& w = block.words.emplace_back();
+    w.letter = static_cast<char>(c - 'a' + 'A');
+    w.begin = n.raw[pos];
+    // Most words carry a plain number: read it directly (what the grammar's value rule,
+    // whose first alternative is the number, would read).
+    double number = 0.0;
+    const char* const value_text = n.text.data() + pos + 1;
+    const char* const number_end = parser::scan_number(value_text, n.text.data() + n.text.size(), number);
+    if (number_end != value_text) {
+      w.value = number;
+      pos = static_cast<std::size_t>(number_end - n.text.data());
+    } else {
+      pos = parse_at(n, pos + 1, parser::value, w.value,
+                     [&w] { return std::string("a number or [expression] after '") + w.letter + "'"; });
+    }
     w.end = n.raw[pos - 1] + 1;
-    block.words.push_back(std::move(w));
   }
 }
 

@@ -23,6 +23,29 @@ namespace x3 = boost::spirit::x3;
 
 // A sign, then digits with an optional point anywhere ("1", "1.", ".5"), and nothing else.
 // The value is the correctly rounded double (std::from_chars), as LinuxCNC's strtod gives.
+// Returns the end of the number, or `first` if there is none.
+inline const char* scan_number(const char* first, const char* last, double& value) {
+  const char* it = first;
+  const bool negative = it != last && *it == '-';
+  if (it != last && (*it == '-' || *it == '+')) ++it;
+  const char* const begin = it;
+  bool point = false;
+  int digits = 0;
+  for (; it != last; ++it) {
+    if (*it >= '0' && *it <= '9')
+      ++digits;
+    else if (*it == '.' && !point)
+      point = true;
+    else
+      break;
+  }
+  if (digits == 0) return first;
+  const auto [end, error] = std::from_chars(begin, it, value);
+  if (error != std::errc() || end != it) return first;
+  if (negative) value = -value;
+  return it;
+}
+
 struct NgcNumber : x3::parser<NgcNumber> {
   using attribute_type = double;
   static const bool has_attribute = true;
@@ -31,27 +54,13 @@ struct NgcNumber : x3::parser<NgcNumber> {
   bool parse(Iterator& first, const Iterator& last, const Context& context, const RContext&,
              Attribute& attribute) const {
     x3::skip_over(first, last, context);
-    Iterator it = first;
-    const bool negative = it != last && *it == '-';
-    if (it != last && (*it == '-' || *it == '+')) ++it;
-    const Iterator begin = it;
-    bool point = false;
-    int digits = 0;
-    for (; it != last; ++it) {
-      if (*it >= '0' && *it <= '9')
-        ++digits;
-      else if (*it == '.' && !point)
-        point = true;
-      else
-        break;
-    }
-    if (digits == 0) return false;
-    const char* text = &*begin;
+    if (first == last) return false;
+    const char* const text = &*first;
     double value = 0.0;
-    const auto [end, error] = std::from_chars(text, text + (it - begin), value);
-    if (error != std::errc() || end != text + (it - begin)) return false;
-    x3::traits::move_to(negative ? -value : value, attribute);
-    first = it;
+    const char* const end = scan_number(text, text + (last - first), value);
+    if (end == text) return false;
+    x3::traits::move_to(value, attribute);
+    first += end - text;
     return true;
   }
 };
