@@ -24,13 +24,18 @@ struct ChainMotion {
   }
 };
 
-// Rot(u, angle), Rodrigues' formula (u unit).
+// Rot(u, angle), Rodrigues' formula (u unit): I + s K + (1 - c) K^2, K = [u]x, with
+// K^2 = u u^T - I written out (no matrix product).
 Matrix3d rotation_about(const Vector3d& u, double angle) {
   double s, c;
   sin_cos(angle, s, c);
-  Matrix3d k;
-  k << 0.0, -u.z(), u.y(), u.z(), 0.0, -u.x(), -u.y(), u.x(), 0.0;
-  return Matrix3d::Identity() + s * k + (1.0 - c) * (k * k);
+  const double v = 1.0 - c;
+  const double x = u.x(), y = u.y(), z = u.z();
+  Matrix3d r;
+  r << 1.0 + v * (x * x - 1.0), -s * z + v * (x * y), s * y + v * (x * z),
+       s * z + v * (x * y), 1.0 + v * (y * y - 1.0), -s * x + v * (y * z),
+       -s * y + v * (x * z), s * x + v * (y * z), 1.0 + v * (z * z - 1.0);
+  return r;
 }
 
 // A placement in the bed frame: bed_T_frame as rotation and origin (cheaper than 4x4 products).
@@ -74,10 +79,34 @@ Frame walk_ideal_chain(const Model& model, const std::vector<int>& chain, const 
   return parent;
 }
 
+// The real machine's pose alone: the products of walk_chain below without the motion, in
+// the same order (bit-identical), with no rate of R(eps) and no slopes.
+Frame walk_real_pose(const Model& model, const std::vector<int>& chain, const Joints& q) noexcept {
+  Frame parent;
+  AxisErrors err;
+  for (int i : chain) {
+    const Axis& axis = model.axes[i];
+    const bool linear = axis.type == AxisType::Linear;
+    Vector3d motion_origin = linear ? Vector3d(q[i] * axis.direction) : Vector3d::Zero();
+    Matrix3d motion_rotation = linear ? Matrix3d::Identity() : rotation_about(axis.direction, q[i] * tables::kDegToRad);
+    if (!axis.tables.empty()) {
+      axis_errors(model, i, q, err, false);
+      motion_origin += err.delta_mm;
+      motion_rotation = rotation_xyz(err.eps_rad) * motion_rotation;
+    }
+    const Matrix3d base_rotation = parent.rotation * axis.real_base.linear();
+    parent.origin += parent.rotation * axis.real_base.translation();
+    parent.origin += base_rotation * motion_origin;
+    parent.rotation = base_rotation * motion_rotation;
+  }
+  return parent;
+}
+
 // Walks one chain bed outward; returns bed_T_last and, if asked, the chain's motion.
 Frame walk_chain(const Model& model, Machine machine, const std::vector<int>& chain, const Joints& q,
                  ChainMotion* motion) noexcept {
   if (machine == Machine::Ideal) return walk_ideal_chain(model, chain, q, motion);
+  if (!motion) return walk_real_pose(model, chain, q);
   Frame parent;
   AxisErrors err;
   for (int i : chain) {

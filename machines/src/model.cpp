@@ -45,12 +45,6 @@ bool outside_tables(const Model& model, const Joints& q) noexcept {
   return false;
 }
 
-Eigen::Matrix3d rotation_xyz(const Eigen::Vector3d& abc) noexcept {
-  Eigen::Matrix3d r, rate;
-  rotation_xyz(abc, r, rate);
-  return r;
-}
-
 Eigen::Isometry3d line_placement(const Eigen::Vector3d& origin_mm, const Eigen::Vector3d& location_mm,
                                  const Eigen::Vector3d& location_rad) {
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();

@@ -10,29 +10,32 @@ namespace {
 
 // Where a position falls on one grid variable: cell index, fraction in the cell and its rate.
 struct Cell {
-  int index;     // left node of the cell
-  double t;      // 0..1 within the cell
-  double dt_dx;  // d t / d position; 0 where the table holds its end value
-  double h;      // cell width
+  int index;      // left node of the cell
+  double t;       // 0..1 within the cell
+  double h;       // cell width
+  bool inside;    // false where the table holds its end value (t's rate is then 0)
+  double dt_dx() const { return inside ? 1.0 / h : 0.0; }  // d t / d position
 };
 
-Cell locate(const GridVariable& g, double x) noexcept {
+// Inline, and t's rate left to the callers that need it: this runs for every table of every
+// axis in every chain walk.
+inline Cell locate(const GridVariable& g, double x) noexcept {
   const std::vector<double>& n = g.nodes;
   const int last = static_cast<int>(n.size()) - 1;
   if (g.periodic) {
     x = n.front() + std::fmod(x - n.front(), 360.0);
     if (x < n.front()) x += 360.0;
   } else if (x < n.front()) {
-    return {0, 0.0, 0.0, n[1] - n[0]};
+    return {0, 0.0, n[1] - n[0], false};
   } else if (x > n.back()) {
-    return {last - 1, 1.0, 0.0, n[last] - n[last - 1]};
+    return {last - 1, 1.0, n[last] - n[last - 1], false};
   }
   int i = g.uniform_step > 0.0
               ? static_cast<int>((x - n.front()) / g.uniform_step)
               : static_cast<int>(std::upper_bound(n.begin(), n.end(), x) - n.begin()) - 1;
   i = std::clamp(i, 0, last - 1);
   const double h = n[i + 1] - n[i];
-  return {i, (x - n[i]) / h, 1.0 / h, h};
+  return {i, (x - n[i]) / h, h, true};
 }
 
 }  // namespace
@@ -83,10 +86,10 @@ void ErrorTable::evaluate_linear(const double* positions, Sample& out, bool with
     const Cell cell = locate(grid_.front(), positions[0]);
     const double* v0 = &values_[static_cast<std::size_t>(cell.index * ncol)];
     const double* v1 = v0 + ncol;
-    for (int c = 0; c < ncol; ++c) {
-      out.value[c] = (1.0 - cell.t) * v0[c] + cell.t * v1[c];
-      if (with_slopes) out.slope[c] = {(v1[c] - v0[c]) * cell.dt_dx, 0.0, 0.0};
-    }
+    for (int c = 0; c < ncol; ++c) out.value[c] = (1.0 - cell.t) * v0[c] + cell.t * v1[c];
+    if (!with_slopes) return;
+    const double dt_dx = cell.dt_dx();
+    for (int c = 0; c < ncol; ++c) out.slope[c] = {(v1[c] - v0[c]) * dt_dx, 0.0, 0.0};
     return;
   }
   std::array<Cell, kMaxVariables> cell{};
@@ -110,7 +113,7 @@ void ErrorTable::evaluate_linear(const double* positions, Sample& out, bool with
       const bool upper = (corner >> d) & 1;
       node += (cell[d].index + upper) * stride[d];
       const double w = upper ? cell[d].t : 1.0 - cell[d].t;
-      const double dw = upper ? cell[d].dt_dx : -cell[d].dt_dx;
+      const double dw = upper ? cell[d].dt_dx() : -cell[d].dt_dx();
       for (int e = 0; e < dims; ++e) dweight[e] *= (e == d) ? dw : w;
       weight *= w;
     }
@@ -126,7 +129,7 @@ void ErrorTable::evaluate_cubic(double position, Sample& out, bool with_slopes) 
   const Cell cell = locate(grid_.front(), position);
   const int ncol = static_cast<int>(columns_.size());
   const int i = cell.index;
-  const double h = cell.h, a = 1.0 - cell.t, b = cell.t;
+  const double h = cell.h, a = 1.0 - cell.t, b = cell.t, dt_dx = with_slopes ? cell.dt_dx() : 0.0;
   for (int c = 0; c < ncol; ++c) {
     const double y0 = values_[i * ncol + c], y1 = values_[(i + 1) * ncol + c];
     const double m0 = curvature_[i * ncol + c], m1 = curvature_[(i + 1) * ncol + c];
@@ -135,7 +138,7 @@ void ErrorTable::evaluate_cubic(double position, Sample& out, bool with_slopes) 
     if (!with_slopes) continue;
     const double dvalue_dt =
         y1 - y0 + ((1.0 - 3.0 * a * a) * m0 + (3.0 * b * b - 1.0) * m1) * h * h / 6.0;
-    out.slope[c] = {dvalue_dt * cell.dt_dx, 0.0, 0.0};
+    out.slope[c] = {dvalue_dt * dt_dx, 0.0, 0.0};
   }
 }
 

@@ -115,9 +115,6 @@ struct Model {
 // Real-time: no allocation.
 bool outside_tables(const Model& model, const Joints& q) noexcept;
 
-// R(a, b, c) = Rx(a) * Ry(b) * Rz(c) (model.md), exact trigonometry.
-Eigen::Matrix3d rotation_xyz(const Eigen::Vector3d& abc_rad) noexcept;
-
 // T(origin + location_mm) * R(location_rad): the real placement of an axis or spindle line.
 Eigen::Isometry3d line_placement(const Eigen::Vector3d& origin_mm, const Eigen::Vector3d& location_mm,
                                  const Eigen::Vector3d& location_rad);
@@ -140,6 +137,25 @@ inline void sin_cos(double x, double& s, double& c) noexcept {
   c = std::cos(x);
 }
 
+// R(a, b, c) = Rx(a) * Ry(b) * Rz(c) (model.md), exact trigonometry, from the sines and
+// cosines of a, b, c.
+inline void rotation_xyz(double sa, double ca, double sb, double cb, double sc, double cc, Eigen::Matrix3d& r) noexcept {
+  r << cb * cc, -cb * sc, sb,
+       ca * sc + sa * sb * cc, ca * cc - sa * sb * sc, -sa * cb,
+       sa * sc - ca * sb * cc, sa * cc + ca * sb * sc, ca * cb;
+}
+
+// R(a, b, c).
+inline Eigen::Matrix3d rotation_xyz(const Eigen::Vector3d& abc) noexcept {
+  double sa, ca, sb, cb, sc, cc;
+  sin_cos(abc[0], sa, ca);
+  sin_cos(abc[1], sb, cb);
+  sin_cos(abc[2], sc, cc);
+  Eigen::Matrix3d r;
+  rotation_xyz(sa, ca, sb, cb, sc, cc, r);
+  return r;
+}
+
 // R(a, b, c) and its angular velocity per unit change of (a, b, c), as matrix columns:
 // omega = a' e_x + b' Rx(a) e_y + c' Rx(a) Ry(b) e_z.
 inline void rotation_xyz(const Eigen::Vector3d& abc, Eigen::Matrix3d& r, Eigen::Matrix3d& rate) noexcept {
@@ -147,9 +163,7 @@ inline void rotation_xyz(const Eigen::Vector3d& abc, Eigen::Matrix3d& r, Eigen::
   sin_cos(abc[0], sa, ca);
   sin_cos(abc[1], sb, cb);
   sin_cos(abc[2], sc, cc);
-  r << cb * cc, -cb * sc, sb,
-       ca * sc + sa * sb * cc, ca * cc - sa * sb * sc, -sa * cb,
-       sa * sc - ca * sb * cc, sa * cc + ca * sb * sc, ca * cb;
+  rotation_xyz(sa, ca, sb, cb, sc, cc, r);
   rate << 1.0, 0.0, sb,
           0.0, ca, -sa * cb,
           0.0, sa, ca * cb;
