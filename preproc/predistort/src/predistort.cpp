@@ -207,6 +207,7 @@ Summary predistort(std::istream& in, std::ostream& out, const Job& job,
   }
   workers.join();  // the corrector's statistics are final
   if (!header_written) writer.header(job.provenance);
+  writer.flush();
   if (progress) progress(bytes);
   for (const PathCorrector& corrector : correctors) summary.corrector.add(corrector.stats());
   return summary;

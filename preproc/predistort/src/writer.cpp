@@ -38,27 +38,48 @@ std::string commented(std::string text) {
 }  // namespace
 
 Writer::Writer(std::ostream& out, unsigned axes, double tolerance_mm)
-    : out_(out), axes_(axes), tolerance_mm_(tolerance_mm) {}
+    : out_(out), axes_(axes), tolerance_mm_(tolerance_mm) {
+  pending_.reserve(kPendingBytes + 4096);
+}
+
+Writer::~Writer() {
+  try {
+    flush();
+  } catch (...) {  // a stream set to throw: the caller sees its state
+  }
+}
+
+void Writer::emit(std::string_view text) {
+  pending_ += text;
+  if (pending_.size() >= kPendingBytes) flush();
+}
+
+void Writer::flush() {
+  out_.write(pending_.data(), static_cast<std::streamsize>(pending_.size()));
+  pending_.clear();
+}
 
 void Writer::header(const Provenance& p) {
+  std::ostringstream h;
   if (p.title.empty())
-    out_ << "(volcomp predistort: this program is pre-distorted for an UNCOMPENSATED machine: run it with the "
-            "volkins correction disabled)\n";
+    h << "(volcomp predistort: this program is pre-distorted for an UNCOMPENSATED machine: run it with the "
+         "volkins correction disabled)\n";
   else
-    out_ << '(' << commented(p.title) << ")\n";
-  out_ << '(' << commented("machine: " + p.machine + ", " + p.machine_name) << ")\n";
-  for (const std::string& t : p.tables) out_ << '(' << commented("table: " + t) << ")\n";
+    h << '(' << commented(p.title) << ")\n";
+  h << '(' << commented("machine: " + p.machine + ", " + p.machine_name) << ")\n";
+  for (const std::string& t : p.tables) h << '(' << commented("table: " + t) << ")\n";
   std::ostringstream files;
   files << "tolerance: " << p.tolerance_mm << " mm; world: " << p.world << "; parameters: "
         << (p.parameters.empty() ? "none" : p.parameters) << "; tool table: "
         << (p.tool_table.empty() ? "none" : p.tool_table) << "; cutting process: "
         << (p.process.empty() ? "none" : p.process);
-  out_ << '(' << commented(files.str()) << ")\n";
+  h << '(' << commented(files.str()) << ")\n";
+  emit(h.str());
   line_.clear();
   line_ += "G21 G64";
   append_number(line_, 'P', tolerance_mm_, 6);
   line_ += " Q0 (millimetres as assumed; blending within the tolerance, no segment merging)\n";
-  out_ << line_;
+  emit(line_);
 }
 
 void Writer::append_number(std::string& line, char letter, double value, int decimals) const {
@@ -133,7 +154,7 @@ void Writer::write_edited(std::string_view raw) {
   }
   line_.append(raw.substr(std::min(from, raw.size())));
   line_ += '\n';
-  out_ << line_;
+  emit(line_);
 }
 
 void Writer::verbatim(std::string_view raw, const gcode::Block& block, const interpreter::Effect& effect,
@@ -245,7 +266,8 @@ void Writer::translated(std::string_view raw, const gcode::Block& block, const i
       line_.clear();
       if (move.machine_coordinates) line_ += " G53";
       append_piece(line_, move, piece, effect, move.machine_coordinates, per_piece_feed);
-      out_ << std::string_view(line_).substr(1) << '\n';
+      line_ += '\n';
+      emit(std::string_view(line_).substr(1));
     }
   }
   if (split && !effect.stop_words.empty()) {
@@ -255,7 +277,8 @@ void Writer::translated(std::string_view raw, const gcode::Block& block, const i
       if (!line_.empty()) line_ += ' ';
       line_.append(raw.substr(static_cast<std::size_t>(w.begin), static_cast<std::size_t>(w.end - w.begin)));
     }
-    out_ << line_ << '\n';
+    line_ += '\n';
+    emit(line_);
   }
 }
 

@@ -155,6 +155,7 @@ LocalSummary shift_program(const machine::Model& model, const FirstPart& part, s
     writer.translated(raw, block, effect, pieces);
   });
   if (!header_written) writer.header(provenance);
+  writer.flush();
   summary.covered_fraction = summary.cutting_length_mm > 0 ? covered_length / summary.cutting_length_mm : 0.0;
   return summary;
 }

@@ -29,6 +29,9 @@ class Writer {
  public:
   // `axes`: bit i set for each program axis (XYZABC) the machine has; all are written.
   Writer(std::ostream& out, unsigned axes, double tolerance_mm);
+  ~Writer();  // flushes
+  Writer(const Writer&) = delete;
+  Writer& operator=(const Writer&) = delete;
 
   void header(const Provenance& provenance);
   // A line that does not move the machine in a way to correct: as it is, with G64 stated.
@@ -38,6 +41,9 @@ class Writer {
   // A line whose moves are replaced by `pieces` (one list per move of effect.moves).
   void translated(std::string_view raw, const gcode::Block& block, const interpreter::Effect& effect,
                   const std::vector<std::vector<Piece>>& pieces);
+  // Hands what is written so far to the stream (lines are collected in blocks of about
+  // kPendingBytes: one stream write per block, not per line).
+  void flush();
 
  private:
   // A change to the raw line: [begin, end) replaced by edit_text_[text_begin, text_end).
@@ -45,6 +51,8 @@ class Writer {
     int begin, end;
     std::size_t text_begin, text_end;
   };
+  static constexpr std::size_t kPendingBytes = 64 * 1024;
+  void emit(std::string_view text);
   void add_edit(int begin, int end, std::string_view text);
   void blending_edits(const gcode::Block& block, const interpreter::Effect& effect);
   void write_edited(std::string_view raw);
@@ -60,6 +68,7 @@ class Writer {
   int motion_ = -1;            // motion mode LinuxCNC is in (G code x10), -1 unknown
   interpreter::Position at_{};  // where the written program leaves the machine, program coordinates
   interpreter::Frame frame_;    // the frame `at_` is in
+  std::string pending_;         // written, not yet handed to out_
   std::string line_;            // reused buffers
   std::vector<Edit> edits_;
   std::string edit_text_;       // the texts of edits_
