@@ -13,12 +13,11 @@ struct Cell {
   int index;      // left node of the cell
   double t;       // 0..1 within the cell
   double h;       // cell width
-  bool inside;    // false where the table holds its end value (t's rate is then 0)
-  double dt_dx() const { return inside ? 1.0 / h : 0.0; }  // d t / d position
+  double dt_dx;   // d t / d position; 0 where the table holds its end value
 };
 
-// Inline, and t's rate left to the callers that need it: this runs for every table of every
-// axis in every chain walk.
+// Inline and without division: this runs for every table of every axis in every chain walk.
+// (On a cell boundary the cell may be either neighbour: both give the node's value.)
 inline Cell locate(const GridVariable& g, double x) noexcept {
   const std::vector<double>& n = g.nodes;
   const int last = static_cast<int>(n.size()) - 1;
@@ -26,16 +25,16 @@ inline Cell locate(const GridVariable& g, double x) noexcept {
     x = n.front() + std::fmod(x - n.front(), 360.0);
     if (x < n.front()) x += 360.0;
   } else if (x < n.front()) {
-    return {0, 0.0, n[1] - n[0], false};
+    return {0, 0.0, n[1] - n[0], 0.0};
   } else if (x > n.back()) {
-    return {last - 1, 1.0, n[last] - n[last - 1], false};
+    return {last - 1, 1.0, n[last] - n[last - 1], 0.0};
   }
   int i = g.uniform_step > 0.0
-              ? static_cast<int>((x - n.front()) / g.uniform_step)
+              ? static_cast<int>((x - n.front()) * g.inverse_step)
               : static_cast<int>(std::upper_bound(n.begin(), n.end(), x) - n.begin()) - 1;
   i = std::clamp(i, 0, last - 1);
-  const double h = n[i + 1] - n[i];
-  return {i, (x - n[i]) / h, h, true};
+  const double inverse = g.inverse_width[static_cast<std::size_t>(i)];
+  return {i, (x - n[i]) * inverse, n[i + 1] - n[i], inverse};
 }
 
 }  // namespace
@@ -54,6 +53,9 @@ ErrorTable::ErrorTable(std::string path, std::vector<GridVariable> grid,
     for (std::size_t i = 0; i < g.nodes.size(); ++i)
       uniform &= std::abs(g.nodes[i] - (g.nodes.front() + step * static_cast<double>(i))) <= 1e-12 * step;
     g.uniform_step = uniform ? step : 0.0;
+    g.inverse_step = uniform ? 1.0 / step : 0.0;
+    g.inverse_width.resize(g.nodes.size() - 1);
+    for (std::size_t i = 0; i + 1 < g.nodes.size(); ++i) g.inverse_width[i] = 1.0 / (g.nodes[i + 1] - g.nodes[i]);
   }
   refresh();
 }
@@ -88,8 +90,7 @@ void ErrorTable::evaluate_linear(const double* positions, Sample& out, bool with
     const double* v1 = v0 + ncol;
     for (int c = 0; c < ncol; ++c) out.value[c] = (1.0 - cell.t) * v0[c] + cell.t * v1[c];
     if (!with_slopes) return;
-    const double dt_dx = cell.dt_dx();
-    for (int c = 0; c < ncol; ++c) out.slope[c] = {(v1[c] - v0[c]) * dt_dx, 0.0, 0.0};
+    for (int c = 0; c < ncol; ++c) out.slope[c] = {(v1[c] - v0[c]) * cell.dt_dx, 0.0, 0.0};
     return;
   }
   std::array<Cell, kMaxVariables> cell{};
@@ -113,7 +114,7 @@ void ErrorTable::evaluate_linear(const double* positions, Sample& out, bool with
       const bool upper = (corner >> d) & 1;
       node += (cell[d].index + upper) * stride[d];
       const double w = upper ? cell[d].t : 1.0 - cell[d].t;
-      const double dw = upper ? cell[d].dt_dx() : -cell[d].dt_dx();
+      const double dw = upper ? cell[d].dt_dx : -cell[d].dt_dx;
       for (int e = 0; e < dims; ++e) dweight[e] *= (e == d) ? dw : w;
       weight *= w;
     }
@@ -129,7 +130,7 @@ void ErrorTable::evaluate_cubic(double position, Sample& out, bool with_slopes) 
   const Cell cell = locate(grid_.front(), position);
   const int ncol = static_cast<int>(columns_.size());
   const int i = cell.index;
-  const double h = cell.h, a = 1.0 - cell.t, b = cell.t, dt_dx = with_slopes ? cell.dt_dx() : 0.0;
+  const double h = cell.h, a = 1.0 - cell.t, b = cell.t, dt_dx = cell.dt_dx;
   for (int c = 0; c < ncol; ++c) {
     const double y0 = values_[i * ncol + c], y1 = values_[(i + 1) * ncol + c];
     const double m0 = curvature_[i * ncol + c], m1 = curvature_[(i + 1) * ncol + c];

@@ -69,7 +69,11 @@ class TableReader {
           if (g.axis == axis) throw LoadError(where, "grid column '" + h.name + "' appears twice");
         if (grid_.size() == ErrorTable::kMaxVariables)
           throw LoadError(where, "more than 3 grid columns: a table depends on at most 3 axes");
-        grid_.push_back({axis, h.unit == "deg", false, {}, where});
+        GridVariable& g = grid_.emplace_back();
+        g.axis = axis;
+        g.rotary = h.unit == "deg";
+        g.periodic = false;
+        g.where = where;
         continue;
       }
       const auto symbol = parse_error_symbol(h.name);

@@ -45,6 +45,13 @@ CorrectionBounds::CorrectionBounds(const machine::Model& model) : model_(model) 
   }
 }
 
+std::size_t CorrectionBounds::Kinks::first_after(double x) const {
+  const std::size_t n = at.size();
+  if (hint <= n && (hint == 0 || at[hint - 1] <= x) && (hint == n || x < at[hint])) return hint;
+  hint = static_cast<std::size_t>(std::upper_bound(at.begin(), at.end(), x) - at.begin());
+  return hint;
+}
+
 bool CorrectionBounds::kink_near(int joint, double x0, double x1, double margin) const {
   const double lo = std::min(x0, x1) - margin, hi = std::max(x0, x1) + margin;
   for (const Kinks& k : kinks_) {
@@ -56,13 +63,13 @@ bool CorrectionBounds::kink_near(int joint, double x0, double x1, double margin)
       const double shift = std::floor((lo - k.at.front()) / k.period) * k.period;
       from -= shift;
       to -= shift;
-      const auto first_after = std::upper_bound(k.at.begin(), k.at.end(), from);
-      if (first_after != k.at.end() && *first_after < to) return true;
+      const std::size_t first_after = k.first_after(from);
+      if (first_after < k.at.size() && k.at[first_after] < to) return true;
       if (to > k.at.front() + k.period && k.at.front() + k.period > from) return true;
       continue;
     }
-    const auto first_after = std::upper_bound(k.at.begin(), k.at.end(), from);
-    if (first_after != k.at.end() && *first_after < to) return true;
+    const std::size_t first_after = k.first_after(from);
+    if (first_after < k.at.size() && k.at[first_after] < to) return true;
   }
   return false;
 }

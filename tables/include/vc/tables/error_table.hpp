@@ -29,6 +29,9 @@ struct GridVariable {
   std::vector<double> nodes;  // strictly increasing, size >= 2
   SourceLocation where;       // header cell
   double uniform_step = 0.0;  // > 0 if the nodes are equally spaced (lookup without search)
+  // 1 / uniform_step and 1 / (width of each cell): lookups multiply, they do not divide.
+  double inverse_step = 0.0;
+  std::vector<double> inverse_width;
 };
 
 struct Column {

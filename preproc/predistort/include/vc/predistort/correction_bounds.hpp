@@ -54,6 +54,10 @@ class CorrectionBounds {
     int joint;
     double period;               // 0 if not periodic
     std::vector<double> at;      // sorted
+    // The answer of the last search: the first node after the last interval asked about.
+    // Pieces come along a path, so the next search mostly ends there again.
+    mutable std::size_t hint = 0;
+    std::size_t first_after(double x) const;  // index of the first node > x (at.size() if none)
   };
   const Sampled& sampled(double tool_length_mm);
   bool kink_near(int joint, double x0, double x1, double margin) const;
