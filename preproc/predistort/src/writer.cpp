@@ -88,23 +88,25 @@ void Writer::append_number(std::string& line, char letter, double value, int dec
 
 void Writer::append_units(std::string& line, char letter, std::int64_t u, int decimals) const {
   // Built backwards in a buffer, then appended at once: " L-123.456" without trailing zeros.
+  // The fraction is split off first so that its digits come from 32-bit arithmetic.
   char text[32];
   char* end = text + sizeof(text);
   char* p = end;
   const bool negative = u < 0;
-  if (negative) u = -u;
-  int written = 0;  // digits of the fraction kept so far (trailing zeros are dropped)
-  for (int i = 0; i < decimals; ++i, u /= 10) {
-    const char digit = static_cast<char>('0' + u % 10);
-    if (written == 0 && digit == '0') continue;
-    *--p = digit;
-    ++written;
+  const std::uint64_t magnitude = negative ? 0 - static_cast<std::uint64_t>(u) : static_cast<std::uint64_t>(u);
+  const auto scale = static_cast<std::uint64_t>(kScale[decimals]);
+  std::uint64_t whole = magnitude / scale;
+  auto fraction = static_cast<std::uint32_t>(magnitude % scale);
+  if (fraction != 0) {
+    int digits = decimals;
+    for (; fraction % 10 == 0; fraction /= 10) --digits;  // trailing zeros dropped
+    for (; digits > 0; --digits, fraction /= 10) *--p = static_cast<char>('0' + fraction % 10);
+    *--p = '.';
   }
-  if (written > 0) *--p = '.';
   do {
-    *--p = static_cast<char>('0' + u % 10);
-    u /= 10;
-  } while (u > 0);
+    *--p = static_cast<char>('0' + whole % 10);
+    whole /= 10;
+  } while (whole > 0);
   if (negative) *--p = '-';
   *--p = letter;
   *--p = ' ';
