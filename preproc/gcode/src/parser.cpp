@@ -91,7 +91,7 @@ void parse_block(std::string_view line, Block& block) {
   Normalized& n = normalized;  // one thread-local lookup per line, not one per use
   normalize(line, n, block);
   std::size_t pos = 0;
-  if (n.text == "%") {
+  if (n.text.size() == 1 && n.text[0] == '%') {
     block.percent = true;
     return;
   }
