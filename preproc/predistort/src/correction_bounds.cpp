@@ -31,7 +31,7 @@ bool correction_at(const machine::Model& model, const Joints& q, double tool_len
 
 }  // namespace
 
-CorrectionBounds::CorrectionBounds(const machine::Model& model) : model_(model) {
+CorrectionBounds::CorrectionBounds(const machine::Model& model, Shared* shared) : model_(model), shared_(shared) {
   for (const machine::BoundTable& bound : model.tables) {
     const auto& grid = bound.table.grid();
     for (std::size_t v = 0; v < grid.size(); ++v) {
@@ -100,6 +100,53 @@ double CorrectionBounds::curvature_bound(const Joints& a, const Joints& b, const
 const CorrectionBounds::Sampled& CorrectionBounds::sampled(double tool_length_mm) {
   for (const Sampled& s : sampled_)
     if (s.tool_length_mm == tool_length_mm) return s;
+  Sampled out;
+  if (shared_) {
+    out = shared_->sampled(*this, tool_length_mm);
+  } else {
+    out = sample_part(tool_length_mm, 0);
+    for (int part = 1; part < kParts; ++part) merge(out, sample_part(tool_length_mm, part));
+  }
+  for (double& k : out.slope) k *= kMargin;
+  out.curvature *= kMargin;
+  sampled_.push_back(out);
+  return sampled_.back();
+}
+
+void CorrectionBounds::merge(Sampled& into, const Sampled& part) {
+  for (std::size_t j = 0; j < into.slope.size(); ++j) into.slope[j] = std::max(into.slope[j], part.slope[j]);
+  into.curvature = into.curvature.cwiseMax(part.curvature);
+}
+
+CorrectionBounds::Sampled CorrectionBounds::Shared::sampled(const CorrectionBounds& bounds, double tool_length_mm) {
+  std::unique_lock lock(mutex_);
+  auto it = std::find_if(entries_.begin(), entries_.end(),
+                         [&](const Entry& e) { return e.tool_length_mm == tool_length_mm; });
+  Entry& entry = it != entries_.end() ? *it : entries_.emplace_back(Entry{tool_length_mm});
+  while (entry.taken < kParts) {
+    const int part = entry.taken++;
+    lock.unlock();
+    Sampled result;
+    std::exception_ptr error;
+    try {
+      result = bounds.sample_part(tool_length_mm, part);
+    } catch (...) {
+      error = std::current_exception();
+    }
+    lock.lock();
+    if (error && !entry.error) entry.error = error;
+    if (entry.done == 0)
+      entry.result = result;
+    else
+      merge(entry.result, result);
+    if (++entry.done == kParts) finished_.notify_all();
+  }
+  finished_.wait(lock, [&] { return entry.done == kParts; });
+  if (entry.error) std::rethrow_exception(entry.error);
+  return entry.result;
+}
+
+CorrectionBounds::Sampled CorrectionBounds::sample_part(double tool_length_mm, int part) const {
   Sampled out{tool_length_mm, {}, PerJoint::Zero()};
   const int n = model_.joint_count();
   TravelSamples samples(model_);
@@ -113,11 +160,13 @@ const CorrectionBounds::Sampled& CorrectionBounds::sampled(double tool_length_mm
   const bool has_band = model_.rotary_count() > 0 && model_.fade.full_rad > 0.0;
   int band_draws = 0;
   for (int sample = 0; sample < (has_band ? 2 : 1) * kSamples; ++sample) {
+    // Every part draws every sample (the draws are cheap), and evaluates its own.
     Joints q = samples.next();
     if (sample >= kSamples) {
       while (!in_fade_band(q) && ++band_draws < kBandDraws) q = samples.next();
       if (band_draws >= kBandDraws) break;
     }
+    if (sample % kParts != part) continue;
     machine::PoseDerivatives derivatives;
     machine::tool_pose(model_, machine::Machine::Ideal, q, tool_length_mm, derivatives);
     const auto tip = [&](const Joints& joint_change) { return (derivatives.tip.leftCols(n) * joint_change).norm(); };
@@ -155,10 +204,7 @@ const CorrectionBounds::Sampled& CorrectionBounds::sampled(double tool_length_mm
       }
     }
   }
-  for (double& k : out.slope) k *= kMargin;
-  out.curvature *= kMargin;
-  sampled_.push_back(out);
-  return sampled_.back();
+  return out;
 }
 
 }  // namespace vc::predistort

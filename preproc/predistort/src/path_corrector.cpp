@@ -46,8 +46,9 @@ PieceCircle circle_of(const interpreter::Arc& arc, const Position& start, const 
 
 }  // namespace
 
-PathCorrector::PathCorrector(const machine::Model& model, CorrectorOptions options, const Deflection* deflection)
-    : model_(model), options_(options), deflection_(deflection), axes_(model), bounds_(model), one_step_(model) {}
+PathCorrector::PathCorrector(const machine::Model& model, CorrectorOptions options, const Deflection* deflection,
+                             CorrectionBounds::Shared* shared)
+    : model_(model), options_(options), deflection_(deflection), axes_(model), bounds_(model, shared), one_step_(model) {}
 
 Joints PathCorrector::joints_of(const Position& world) const { return axes_.joints_of(world); }
 

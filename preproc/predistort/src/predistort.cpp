@@ -171,9 +171,13 @@ unsigned program_axes(const machine::Model& model) { return JointAxes(model).mas
 
 Summary predistort(std::istream& in, std::ostream& out, const Job& job,
                    const std::function<void(long)>& progress) {
-  std::deque<PathCorrector> correctors;  // one per lane (not copied: the threads hold them)
+  // One corrector per lane (not copied: the threads hold them); lanes that start together
+  // share the sampling of the bounds at a tool length.
+  CorrectionBounds::Shared shared_bounds;
+  std::deque<PathCorrector> correctors;
   const int lanes = corrector_lanes(job);
-  for (int lane = 0; lane < lanes; ++lane) correctors.emplace_back(*job.model, job.corrector, job.deflection);
+  for (int lane = 0; lane < lanes; ++lane)
+    correctors.emplace_back(*job.model, job.corrector, job.deflection, lanes > 1 ? &shared_bounds : nullptr);
   Writer writer(out, job.setup.machine_axes, job.corrector.tolerance_mm);
   Summary summary;
   long bytes = 0;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <thread>
 
 #include "test_support.hpp"
 #include "vc/machine/correct.hpp"
@@ -96,6 +97,58 @@ void expect_bounds_hold(const std::string& machine_name) {
               "within a quarter of 0.5 um: slope %d, curvature %d\n",
               machine_name.c_str(), smooth, worst_slope, worst_curvature, below_slope, below_curvature);
   EXPECT_GT(smooth, 300);  // the curvature bound is exercised
+}
+
+// The last search's answer is kept as a hint for the next: answers along a path, back and
+// forth, across the wrap and far jumps must be those of a bounds object that never searched.
+TEST(CorrectionBounds, KinkSearchesFromTheLastAnswerAnswerAsFreshOnes) {
+  const machine::Model model = machine::load_machine(test::machine_path("mc300"));
+  const CorrectionBounds walked(model);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> jump(-400.0, 400.0), step(-3.0, 3.0), length(0.0, 8.0);
+  Joints a = joints({-300.0, -160.0, -200.0, -35.0, 0.0});
+  int crossings = 0;
+  for (int k = 0; k < 2000; ++k) {
+    for (int j = 0; j < 5; ++j) a[j] += k % 50 == 0 ? jump(rng) : step(rng);
+    Joints b = a;
+    for (int j = 0; j < 5; ++j) b[j] += (k % 2 ? 1 : -1) * length(rng);
+    const bool fresh = CorrectionBounds(model).crosses_kink(a, b);
+    ASSERT_EQ(walked.crosses_kink(a, b), fresh) << "query " << k << " from " << a.transpose() << " to " << b.transpose();
+    crossings += fresh;
+  }
+  EXPECT_GT(crossings, 200);
+  EXPECT_LT(crossings, 1800);
+}
+
+// Correctors on two threads share the sampling at a tool length (each samples a part): both
+// get exactly the bounds of a corrector that sampled alone, and so does one that asks later
+// or finds no other to share with.
+TEST(CorrectionBounds, SharedSamplingGivesTheBoundsOfOneSamplingAlone) {
+  const machine::Model model = machine::load_machine(test::machine_path("mc300"));
+  const double L = 100.0;
+  const Joints a = joints({-301.3, -161.7, -201.9, -36.2, 20.0}), b = joints({-300.9, -161.2, -201.5, -35.9, 20.4});
+  const Joints ca = machine::correct(model, a, L).joints, cb = machine::correct(model, b, L).joints;
+  const auto bounds_of = [&](CorrectionBounds& bounds) {
+    return std::array<double, 2>{bounds.slope_bound(a, b, L), bounds.curvature_bound(a, b, ca, cb, L)};
+  };
+  CorrectionBounds alone(model);
+  const std::array<double, 2> expected = bounds_of(alone);
+  ASSERT_GT(expected[0], 0.0);
+  ASSERT_TRUE(std::isfinite(expected[1]));
+
+  CorrectionBounds::Shared shared;
+  CorrectionBounds first(model, &shared), second(model, &shared), later(model, &shared);
+  std::array<double, 2> got_first{}, got_second{};
+  std::thread other([&] { got_second = bounds_of(second); });
+  got_first = bounds_of(first);
+  other.join();
+  EXPECT_EQ(got_first, expected);
+  EXPECT_EQ(got_second, expected);
+  EXPECT_EQ(bounds_of(later), expected);
+
+  CorrectionBounds::Shared unshared;
+  CorrectionBounds single(model, &unshared);
+  EXPECT_EQ(bounds_of(single), expected);
 }
 
 TEST(CorrectionBounds, HoldTheInterpolationErrorOnMc300) { expect_bounds_hold("mc300"); }

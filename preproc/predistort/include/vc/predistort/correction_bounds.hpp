@@ -22,6 +22,10 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <mutex>
 #include <vector>
 
 #include "vc/machine/model.hpp"
@@ -30,7 +34,12 @@ namespace vc::predistort {
 
 class CorrectionBounds {
  public:
-  explicit CorrectionBounds(const machine::Model& model);
+  // The sampling of a tool length shared by correctors that run at once (one per thread):
+  // the samples are split in parts, each sampled by a corrector that needs the result and
+  // finds the part not yet taken; all get the same result as one that sampled alone.
+  class Shared;
+
+  explicit CorrectionBounds(const machine::Model& model, Shared* shared = nullptr);
 
   // Tool-tip bounds (mm) of the interpolation error between nominal joints a and b.
   double slope_bound(const machine::Joints& a, const machine::Joints& b, double tool_length_mm);
@@ -59,12 +68,35 @@ class CorrectionBounds {
     mutable std::size_t hint = 0;
     std::size_t first_after(double x) const;  // index of the first node > x (at.size() if none)
   };
+  static constexpr int kParts = 2;
   const Sampled& sampled(double tool_length_mm);
+  // Largest slopes and curvatures (without the margin) at samples part, part + kParts, ...
+  Sampled sample_part(double tool_length_mm, int part) const;
+  static void merge(Sampled& into, const Sampled& part);
   bool kink_near(int joint, double x0, double x1, double margin) const;
 
   const machine::Model& model_;
+  Shared* shared_;
   std::vector<Kinks> kinks_;
   std::vector<Sampled> sampled_;
+};
+
+class CorrectionBounds::Shared {
+ private:
+  friend class CorrectionBounds;
+  // Takes parts of the tool length's sampling while some are left (sampled by `bounds`),
+  // then waits for the parts others took.
+  Sampled sampled(const CorrectionBounds& bounds, double tool_length_mm);
+
+  struct Entry {
+    double tool_length_mm;
+    int taken = 0, done = 0;
+    Sampled result{};
+    std::exception_ptr error{};
+  };
+  std::mutex mutex_;
+  std::condition_variable finished_;
+  std::deque<Entry> entries_;
 };
 
 }  // namespace vc::predistort

@@ -56,7 +56,9 @@ struct CorrectorStats {
 
 class PathCorrector {
  public:
-  PathCorrector(const machine::Model& model, CorrectorOptions options, const Deflection* deflection);
+  // `shared`: the sampling of the correction bounds shared with correctors on other threads.
+  PathCorrector(const machine::Model& model, CorrectorOptions options, const Deflection* deflection,
+                CorrectionBounds::Shared* shared = nullptr);
 
   // Appends the pieces of `move` to `pieces` (cleared first). The first piece starts where
   // the previous corrected move ended; if the machine is elsewhere (the previous move was
