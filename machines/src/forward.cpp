@@ -92,7 +92,8 @@ Frame walk_real_pose(const Model& model, const std::vector<int>& chain, const Jo
     if (!axis.tables.empty()) {
       axis_errors(model, i, q, err, false);
       motion_origin += err.delta_mm;
-      motion_rotation = rotation_xyz(err.eps_rad) * motion_rotation;
+      const Matrix3d r_eps = rotation_xyz(err.eps_rad);
+      motion_rotation = linear ? r_eps : Matrix3d(r_eps * motion_rotation);
     }
     const Matrix3d base_rotation = parent.rotation * axis.real_base.linear();
     parent.origin += parent.rotation * axis.real_base.translation();
