@@ -79,8 +79,8 @@ Frame walk_ideal_chain(const Model& model, const std::vector<int>& chain, const 
   return parent;
 }
 
-// The real machine's pose alone: the products of walk_chain below without the motion, in
-// the same order (bit-identical), with no rate of R(eps) and no slopes.
+// The real machine's pose alone: the products of walk_real_chain below without the motion,
+// in the same order (bit-identical), with no rate of R(eps) and no slopes.
 Frame walk_real_pose(const Model& model, const std::vector<int>& chain, const Joints& q) noexcept {
   Frame parent;
   AxisErrors err;
@@ -103,17 +103,15 @@ Frame walk_real_pose(const Model& model, const std::vector<int>& chain, const Jo
   return parent;
 }
 
-// Walks one chain bed outward; returns bed_T_last and, if asked, the chain's motion.
-Frame walk_chain(const Model& model, Machine machine, const std::vector<int>& chain, const Joints& q,
-                 ChainMotion* motion) noexcept {
-  if (machine == Machine::Ideal) return walk_ideal_chain(model, chain, q, motion);
-  if (!motion) return walk_real_pose(model, chain, q);
+// The real machine's pose and its motion (error slopes included).
+Frame walk_real_chain(const Model& model, const std::vector<int>& chain, const Joints& q,
+                      ChainMotion& motion) noexcept {
   Frame parent;
   AxisErrors err;
   for (int i : chain) {
     const Axis& axis = model.axes[i];
     const bool has_errors = !axis.tables.empty();
-    if (has_errors) axis_errors(model, i, q, err, motion != nullptr);
+    if (has_errors) axis_errors(model, i, q, err, true);
     const Vector3d delta = has_errors ? err.delta_mm : Vector3d::Zero();
     Matrix3d r_eps = Matrix3d::Identity(), eps_rate = Matrix3d::Zero();
     if (has_errors) rotation_xyz(err.eps_rad, r_eps, eps_rate);
@@ -126,29 +124,34 @@ Frame walk_chain(const Model& model, Machine machine, const std::vector<int>& ch
     // Frame after `base` (the fixed placement of the axis line), then the child frame.
     const Frame base = parent.then(axis.real_base);
     const Vector3d child_origin = base.origin + base.rotation * motion_origin;
-    if (motion) {
-      for (int j = 0; j < model.joint_count(); ++j) {
-        if (!((axis.moved_by >> j) & 1u)) continue;
-        Vector3d v = Vector3d::Zero(), w = Vector3d::Zero();
-        if (has_errors) {
-          v = err.slope.block<3, 1>(0, j);
-          w = eps_rate * err.slope.block<3, 1>(3, j);
-        }
-        if (j == i) {
-          if (linear)
-            v += axis.direction;
-          else
-            w += r_eps * axis.direction * tables::kDegToRad;
-        }
-        const Vector3d w_bed = base.rotation * w;
-        motion->linear.col(j) += base.rotation * v - w_bed.cross(child_origin);
-        motion->angular.col(j) += w_bed;
+    for (int j = 0; j < model.joint_count(); ++j) {
+      if (!((axis.moved_by >> j) & 1u)) continue;
+      Vector3d v = Vector3d::Zero(), w = Vector3d::Zero();
+      if (has_errors) {
+        v = err.slope.block<3, 1>(0, j);
+        w = eps_rate * err.slope.block<3, 1>(3, j);
       }
-      if (!linear) motion->axis_line.col(i) = base.rotation * r_eps * axis.direction;
+      if (j == i) {
+        if (linear)
+          v += axis.direction;
+        else
+          w += r_eps * axis.direction * tables::kDegToRad;
+      }
+      const Vector3d w_bed = base.rotation * w;
+      motion.linear.col(j) += base.rotation * v - w_bed.cross(child_origin);
+      motion.angular.col(j) += w_bed;
     }
+    if (!linear) motion.axis_line.col(i) = base.rotation * r_eps * axis.direction;
     parent = {base.rotation * motion_rotation, child_origin};
   }
   return parent;
+}
+
+// Walks one chain bed outward; returns bed_T_last and, if asked, the chain's motion.
+Frame walk_chain(const Model& model, Machine machine, const std::vector<int>& chain, const Joints& q,
+                 ChainMotion* motion) noexcept {
+  if (machine == Machine::Ideal) return walk_ideal_chain(model, chain, q, motion);
+  return motion ? walk_real_chain(model, chain, q, *motion) : walk_real_pose(model, chain, q);
 }
 
 Isometry3d tool_offset(double tool_length_mm) {
