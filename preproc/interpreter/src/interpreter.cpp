@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "vc/gcode/evaluate.hpp"
+#include "vc/gcode/parser.hpp"
 #include "vc/tables/source_error.hpp"
 
 namespace vc::interpreter {
@@ -95,6 +96,16 @@ Interpreter::Interpreter(Setup setup) : setup_(std::move(setup)) {
 
 void Interpreter::refuse(int line, int offset, const std::string& message) const {
   throw LoadError({setup_.file, line, offset + 1}, message);
+}
+
+void Interpreter::read(std::string& raw, int line, gcode::Block& block, Effect& effect) {
+  if (!raw.empty() && raw.back() == '\r') raw.pop_back();  // DOS line ends
+  try {
+    gcode::parse_block(raw, block);
+  } catch (const gcode::SyntaxError& e) {
+    throw LoadError({setup_.file, line, e.offset + 1}, e.what());
+  }
+  execute(block, line, effect);
 }
 
 Frame Interpreter::frame() const {

@@ -5,7 +5,6 @@
 #include <thread>
 
 #include "batch_queue.hpp"
-#include "vc/gcode/parser.hpp"
 #include "vc/tables/source_error.hpp"
 
 namespace vc::predistort {
@@ -72,13 +71,7 @@ void read_lines(std::istream& in, const Job& job, LineQueue& queue) {
         line.number = ++number;
         bytes += static_cast<long>(line.raw.size()) + 1;
         line.bytes = bytes;
-        if (!line.raw.empty() && line.raw.back() == '\r') line.raw.pop_back();  // DOS line ends
-        try {
-          gcode::parse_block(line.raw, line.block);
-        } catch (const gcode::SyntaxError& e) {
-          throw LoadError({job.setup.file, number, e.offset + 1}, e.what());
-        }
-        interpreter.execute(line.block, number, line.effect);
+        interpreter.read(line.raw, number, line.block, line.effect);
         if (line.effect.moved_as_written) {
           line.position = interpreter.position();
           line.frame = interpreter.frame();

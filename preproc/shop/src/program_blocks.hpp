@@ -6,25 +6,17 @@
 #include <istream>
 #include <string>
 
-#include "vc/gcode/parser.hpp"
 #include "vc/interpreter/interpreter.hpp"
-#include "vc/tables/source_error.hpp"
 
 namespace vc::shop {
 
 template <typename Visit>
-void for_each_block(std::istream& program, interpreter::Interpreter& interpreter, const std::string& file, Visit visit) {
+void for_each_block(std::istream& program, interpreter::Interpreter& interpreter, Visit visit) {
   gcode::Block block;
   interpreter::Effect effect;
   std::string raw;
   for (int line = 1; std::getline(program, raw); ++line) {
-    if (!raw.empty() && raw.back() == '\r') raw.pop_back();  // DOS line ends
-    try {
-      gcode::parse_block(raw, block);
-    } catch (const gcode::SyntaxError& e) {
-      throw LoadError({file, line, e.offset + 1}, e.what());
-    }
-    interpreter.execute(block, line, effect);
+    interpreter.read(raw, line, block, effect);
     visit(raw, block, effect, line);
   }
 }

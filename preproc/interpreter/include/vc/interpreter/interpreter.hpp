@@ -53,6 +53,10 @@ class Interpreter {
   // Interprets one block (line `line` of the file). Throws vc::LoadError on anything it
   // cannot translate faithfully.
   void execute(const gcode::Block& block, int line, Effect& effect);
+  // Reads line `line` of the file as LinuxCNC does (a DOS line end dropped from `raw`) into
+  // `block`, then interprets it. Throws vc::LoadError with file:line:column for what it
+  // cannot read or translate.
+  void read(std::string& raw, int line, gcode::Block& block, Effect& effect);
 
   const gcode::Parameters& parameters() const { return parameters_; }
   // Where the program is (program coordinates of the active frame) and that frame.
