@@ -15,6 +15,7 @@
 
 #include <boost/spirit/home/x3.hpp>
 #include <charconv>
+#include <cstdint>
 
 #include "ast_adapted.hpp"
 
@@ -22,26 +23,40 @@ namespace vc::gcode::parser {
 namespace x3 = boost::spirit::x3;
 
 // A sign, then digits with an optional point anywhere ("1", "1.", ".5"), and nothing else.
-// The value is the correctly rounded double (std::from_chars), as LinuxCNC's strtod gives.
+// The value is the correctly rounded double, as LinuxCNC's strtod gives: digits as an integer
+// m < 2^53 and at most 22 after the point are m / 10^k in one division of two exact doubles,
+// itself correctly rounded (Clinger's fast path: what CAM writes, in a fraction of
+// std::from_chars' time); anything longer goes to std::from_chars.
 // Returns the end of the number, or `first` if there is none.
 inline const char* scan_number(const char* first, const char* last, double& value) {
+  static constexpr double kPowersOfTen[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                            1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                            1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  constexpr std::uint64_t kExactInteger = std::uint64_t{1} << 53;
   const char* it = first;
   const bool negative = it != last && *it == '-';
   if (it != last && (*it == '-' || *it == '+')) ++it;
   const char* const begin = it;
-  bool point = false;
+  const char* point = nullptr;
   int digits = 0;
+  std::uint64_t mantissa = 0;  // of the first 19 digits (no overflow)
   for (; it != last; ++it) {
-    if (*it >= '0' && *it <= '9')
-      ++digits;
-    else if (*it == '.' && !point)
-      point = true;
-    else
+    if (*it >= '0' && *it <= '9') {
+      if (++digits <= 19) mantissa = 10 * mantissa + static_cast<std::uint64_t>(*it - '0');
+    } else if (*it == '.' && !point) {
+      point = it;
+    } else {
       break;
+    }
   }
   if (digits == 0) return first;
-  const auto [end, error] = std::from_chars(begin, it, value);
-  if (error != std::errc() || end != it) return first;
+  const long fraction_digits = point ? it - point - 1 : 0;
+  if (digits <= 19 && mantissa <= kExactInteger && fraction_digits <= 22) {
+    value = static_cast<double>(mantissa) / kPowersOfTen[fraction_digits];
+  } else {
+    const auto [end, error] = std::from_chars(begin, it, value);
+    if (error != std::errc() || end != it) return first;
+  }
   if (negative) value = -value;
   return it;
 }
