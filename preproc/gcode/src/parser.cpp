@@ -4,6 +4,7 @@
 // values and expressions by the X3 grammar (parser_def.hpp), the only file that includes it.
 #include "vc/gcode/parser.hpp"
 
+#include <array>
 #include <cctype>
 #include <string>
 #include <vector>
@@ -26,8 +27,24 @@ std::string describe(char c) {
   return "byte " + std::to_string(static_cast<unsigned char>(c));
 }
 
+// What normalize does with each byte: 0 skip it (space, tab), 1 look closer (comments, a
+// stray ')', bytes that are not printable), else keep this (the byte, lower-cased).
+constexpr std::array<unsigned char, 256> kNormalizeMap = [] {
+  std::array<unsigned char, 256> map{};
+  for (int c = 0; c < 256; ++c) {
+    if (c == ' ' || c == '\t')
+      map[c] = 0;
+    else if (c < ' ' || c > '~' || c == ';' || c == '(' || c == ')')  // isprint in the "C" locale
+      map[c] = 1;
+    else
+      map[c] = static_cast<unsigned char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
+  }
+  return map;
+}();
+
 void normalize(std::string_view line, Normalized& n, Block& block) {
-  // Written through pointers into buffers sized for the whole line (this runs per character).
+  // Written through pointers into buffers sized for the whole line, one table lookup per
+  // character (this runs per character).
   n.text.resize(line.size());
   n.raw.resize(line.size() + 1);
   char* text = n.text.data();
@@ -35,7 +52,13 @@ void normalize(std::string_view line, Normalized& n, Block& block) {
   std::size_t kept = 0;
   for (std::size_t i = 0; i < line.size(); ++i) {
     const char c = line[i];
-    if (c == ' ' || c == '\t') continue;
+    const unsigned char mapped = kNormalizeMap[static_cast<unsigned char>(c)];
+    if (mapped > 1) {
+      text[kept] = static_cast<char>(mapped);
+      raw[kept++] = static_cast<int>(i);
+      continue;
+    }
+    if (mapped == 0) continue;
     if (c == ';') {
       block.comments.push_back({std::string(line.substr(i + 1)), static_cast<int>(i), static_cast<int>(line.size())});
       break;
@@ -50,10 +73,7 @@ void normalize(std::string_view line, Normalized& n, Block& block) {
       continue;
     }
     if (c == ')') throw SyntaxError(static_cast<int>(i), "')' without '('");
-    if (c < ' ' || c > '~')  // isprint in the "C" locale
-      throw SyntaxError(static_cast<int>(i), "unexpected " + describe(c) + " (not a printable character)");
-    text[kept] = c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c;
-    raw[kept++] = static_cast<int>(i);
+    throw SyntaxError(static_cast<int>(i), "unexpected " + describe(c) + " (not a printable character)");
   }
   raw[kept] = static_cast<int>(line.size());
   n.text.resize(kept);
