@@ -37,20 +37,21 @@ inline const char* scan_number(const char* first, const char* last, double& valu
   const bool negative = it != last && *it == '-';
   if (it != last && (*it == '-' || *it == '+')) ++it;
   const char* const begin = it;
-  const char* point = nullptr;
-  int digits = 0;
-  std::uint64_t mantissa = 0;  // of the first 19 digits (no overflow)
-  for (; it != last; ++it) {
-    if (*it >= '0' && *it <= '9') {
-      if (++digits <= 19) mantissa = 10 * mantissa + static_cast<std::uint64_t>(*it - '0');
-    } else if (*it == '.' && !point) {
-      point = it;
-    } else {
-      break;
-    }
+  std::uint64_t mantissa = 0;  // of all the digits (wraps past 19 of them: then not used)
+  const auto digits_from = [&mantissa, last](const char* p) {
+    for (; p != last && *p >= '0' && *p <= '9'; ++p) mantissa = 10 * mantissa + static_cast<std::uint64_t>(*p - '0');
+    return p;
+  };
+  it = digits_from(it);
+  const long integer_digits = it - begin;
+  long fraction_digits = 0;
+  if (it != last && *it == '.') {
+    const char* const fraction = it + 1;
+    it = digits_from(fraction);
+    fraction_digits = it - fraction;
   }
+  const long digits = integer_digits + fraction_digits;
   if (digits == 0) return first;
-  const long fraction_digits = point ? it - point - 1 : 0;
   if (digits <= 19 && mantissa <= kExactInteger && fraction_digits <= 22) {
     value = static_cast<double>(mantissa) / kPowersOfTen[fraction_digits];
   } else {
