@@ -1,6 +1,5 @@
 #include "vc/machine/forward.hpp"
 
-#include <array>
 #include <cmath>
 
 #include "vc/tables/units.hpp"
@@ -205,7 +204,8 @@ ToolPose evaluate(const Model& model, Machine machine, const Joints& q, double t
 
 void axis_errors(const Model& model, int joint, const Joints& q, AxisErrors& out,
                  bool with_slopes) noexcept {
-  std::array<double, 6> sum{};  // components X Y Z A B C, in column order (as adding to out would)
+  out.delta_mm.setZero();
+  out.eps_rad.setZero();
   if (with_slopes) out.slope.setZero();
   tables::ErrorTable::Sample sample;
   for (int t : model.axes[joint].tables) {
@@ -215,14 +215,13 @@ void axis_errors(const Model& model, int joint, const Joints& q, AxisErrors& out
     for (std::size_t v = 0; v < grid.size(); ++v) at[v] = q[bound.joint[v]];
     bound.table.evaluate(at.data(), sample, with_slopes);
     const auto& columns = bound.table.columns();
-    for (std::size_t c = 0; c < columns.size(); ++c) sum[static_cast<std::size_t>(columns[c].symbol.component)] += sample.value[c];
-    if (!with_slopes) continue;
-    for (std::size_t c = 0; c < columns.size(); ++c)
-      for (std::size_t v = 0; v < grid.size(); ++v)
-        out.slope(columns[c].symbol.component, bound.joint[v]) += sample.slope[c][v];
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      const int k = columns[c].symbol.component;
+      (k < 3 ? out.delta_mm[k] : out.eps_rad[k - 3]) += sample.value[c];
+      if (with_slopes)
+        for (std::size_t v = 0; v < grid.size(); ++v) out.slope(k, bound.joint[v]) += sample.slope[c][v];
+    }
   }
-  out.delta_mm = {sum[0], sum[1], sum[2]};
-  out.eps_rad = {sum[3], sum[4], sum[5]};
 }
 
 ToolPose tool_pose(const Model& model, Machine machine, const Joints& q,
