@@ -38,6 +38,12 @@ Matrix3d rotation_about(const Vector3d& u, double angle) {
   return r;
 }
 
+// dst = src, column by column: a matrix a product has just written is read back the way
+// it was written (a plain copy reads across its columns' stores and waits for them).
+void copy_by_columns(const Matrix3d& src, Matrix3d& dst) noexcept {
+  for (int c = 0; c < 3; ++c) dst.col(c) = src.col(c);
+}
+
 // A placement in the bed frame: bed_T_frame as rotation and origin (cheaper than 4x4 products).
 struct Frame {
   Matrix3d rotation = Matrix3d::Identity();
@@ -73,7 +79,8 @@ Frame walk_ideal_chain(const Model& model, const std::vector<int>& chain, const 
         motion->angular.col(i) += w_bed;
         motion->axis_line.col(i) = parent.rotation * axis.direction;
       }
-      parent.rotation = parent.rotation * rotation_about(axis.direction, q[i] * tables::kDegToRad);
+      const Matrix3d turned = parent.rotation * rotation_about(axis.direction, q[i] * tables::kDegToRad);
+      copy_by_columns(turned, parent.rotation);
     }
   }
   return parent;
@@ -86,19 +93,29 @@ Frame walk_real_pose(const Model& model, const std::vector<int>& chain, const Jo
   AxisErrors err;
   for (int i : chain) {
     const Axis& axis = model.axes[i];
-    const bool linear = axis.type == AxisType::Linear;
+    const bool linear = axis.type == AxisType::Linear, has_errors = !axis.tables.empty();
+    if (has_errors) axis_errors(model, i, q, err, false);
     Vector3d motion_origin = linear ? Vector3d(q[i] * axis.direction) : Vector3d::Zero();
-    Matrix3d motion_rotation = linear ? Matrix3d::Identity() : rotation_about(axis.direction, q[i] * tables::kDegToRad);
-    if (!axis.tables.empty()) {
-      axis_errors(model, i, q, err, false);
-      motion_origin += err.delta_mm;
-      const Matrix3d r_eps = rotation_xyz(err.eps_rad);
-      motion_rotation = linear ? r_eps : Matrix3d(r_eps * motion_rotation);
-    }
+    if (has_errors) motion_origin += err.delta_mm;
     const Matrix3d base_rotation = parent.rotation * axis.real_base.linear();
     parent.origin += parent.rotation * axis.real_base.translation();
     parent.origin += base_rotation * motion_origin;
-    parent.rotation = base_rotation * motion_rotation;
+    // Products written straight into the frame (noalias: no temporary copied over, whose
+    // mixed scalar and packet stores the next product would wait for).
+    if (linear) {  // R(eps)
+      if (has_errors)
+        parent.rotation.noalias() = base_rotation * rotation_xyz(err.eps_rad);
+      else
+        parent.rotation = base_rotation;
+    } else {  // R(eps) Rot(u, q)
+      const Matrix3d turn = rotation_about(axis.direction, q[i] * tables::kDegToRad);
+      if (has_errors) {
+        const Matrix3d motion_rotation = rotation_xyz(err.eps_rad) * turn;
+        parent.rotation.noalias() = base_rotation * motion_rotation;
+      } else {
+        parent.rotation.noalias() = base_rotation * turn;
+      }
+    }
   }
   return parent;
 }
@@ -142,7 +159,8 @@ Frame walk_real_chain(const Model& model, const std::vector<int>& chain, const J
       motion.angular.col(j) += w_bed;
     }
     if (!linear) motion.axis_line.col(i) = base.rotation * r_eps * axis.direction;
-    parent = {base.rotation * motion_rotation, child_origin};
+    parent.rotation.noalias() = base.rotation * motion_rotation;
+    parent.origin = child_origin;
   }
   return parent;
 }
@@ -154,17 +172,13 @@ Frame walk_chain(const Model& model, Machine machine, const std::vector<int>& ch
   return motion ? walk_real_chain(model, chain, q, *motion) : walk_real_pose(model, chain, q);
 }
 
-Isometry3d tool_offset(double tool_length_mm) {
-  Isometry3d t = Isometry3d::Identity();
-  t.translation() = Vector3d(0.0, 0.0, -tool_length_mm);
-  return t;
-}
-
 // bed_T_tool (tip) and bed_T_part.
 Frame tool_frame(const Model& model, Machine machine, const Joints& q, double tool_length_mm,
                  ChainMotion* motion) noexcept {
   const Isometry3d& spindle = machine == Machine::Real ? model.spindle.real : model.spindle.ideal;
-  return walk_chain(model, machine, model.tool_chain, q, motion).then(spindle).then(tool_offset(tool_length_mm));
+  Frame tool = walk_chain(model, machine, model.tool_chain, q, motion).then(spindle);
+  tool.origin += tool.rotation.col(2) * -tool_length_mm;  // the tip, L down the spindle's z
+  return tool;
 }
 
 Frame part_frame(const Model& model, Machine machine, const Joints& q, ChainMotion* motion) noexcept {
@@ -173,8 +187,7 @@ Frame part_frame(const Model& model, Machine machine, const Joints& q, ChainMoti
 
 // The tool tip and direction (bed_T_tool's origin and z axis) seen in the part frame.
 ToolPose in_part_frame(const Frame& tool, const Frame& part) {
-  const Matrix3d part_R_bed = part.rotation.transpose();
-  return {part_R_bed * (tool.origin - part.origin), part_R_bed * tool.rotation.col(2)};
+  return {part.rotation.transpose() * (tool.origin - part.origin), part.rotation.transpose() * tool.rotation.col(2)};
 }
 
 ToolPose evaluate(const Model& model, Machine machine, const Joints& q, double tool_length_mm,
