@@ -187,7 +187,8 @@ Frame part_frame(const Model& model, Machine machine, const Joints& q, ChainMoti
 
 // The tool tip and direction (bed_T_tool's origin and z axis) seen in the part frame.
 ToolPose in_part_frame(const Frame& tool, const Frame& part) {
-  return {part.rotation.transpose() * (tool.origin - part.origin), part.rotation.transpose() * tool.rotation.col(2)};
+  const auto part_R_bed = part.rotation.transpose();  // an expression: read where the product wrote it
+  return {part_R_bed * (tool.origin - part.origin), part_R_bed * tool.rotation.col(2)};
 }
 
 ToolPose evaluate(const Model& model, Machine machine, const Joints& q, double tool_length_mm,
