@@ -6,6 +6,9 @@
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -43,18 +46,17 @@ Program interpreted(const std::string& machine, int lines) {
   setup.tools = &tools;
   setup.var_file = &var;
   interpreter::Interpreter interpreter(setup);
-  std::FILE* in = std::fopen(path.c_str(), "r");
-  char buffer[256];
-  gcode::Block block;
-  interpreter::Effect effect;
-  for (int number = 1; std::fgets(buffer, sizeof buffer, in); ++number) {
-    std::string raw(buffer);
-    if (!raw.empty() && raw.back() == '\n') raw.pop_back();
-    interpreter.read(raw, number, block, effect);
-    if (effect.translate && effect.moves.size() == 1 && effect.moves.front().kind == interpreter::MoveKind::Line)
-      p.moves.push_back(effect.moves.front());
+  {
+    std::ifstream in(path);
+    gcode::Block block;
+    interpreter::Effect effect;
+    std::string raw;
+    for (int number = 1; std::getline(in, raw); ++number) {
+      interpreter.read(raw, number, block, effect);
+      if (effect.translate && effect.moves.size() == 1 && effect.moves.front().kind == interpreter::MoveKind::Line)
+        p.moves.push_back(effect.moves.front());
+    }
   }
-  std::fclose(in);
   std::remove(path.c_str());
   return p;
 }
