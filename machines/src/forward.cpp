@@ -87,7 +87,8 @@ Frame walk_ideal_chain(const Model& model, const std::vector<int>& chain, const 
 }
 
 // The real machine's pose alone: the products of walk_real_chain below without the motion,
-// in the same order (bit-identical), with no rate of R(eps) and no slopes.
+// in the same order (bit-identical; a product with the identity, on a linear axis without
+// tables, left out), with no rate of R(eps) and no slopes.
 Frame walk_real_pose(const Model& model, const std::vector<int>& chain, const Joints& q) noexcept {
   Frame parent;
   AxisErrors err;
