@@ -33,6 +33,28 @@ struct Resume {
   interpreter::Move move;
 };
 using LineQueue = BatchQueue<Line, Resume>;
+
+// A line's data lies in buffers of its own (text, words, moves, pieces), last touched by
+// another thread, often on the other core: each stage asks for the buffers of the line
+// kAhead lines on while it works on this one, instead of waiting for each in turn.
+constexpr std::size_t kAhead = 4;
+template <typename T>
+void prefetch(const T* data, std::size_t count, bool for_writing = false) {
+  const char* begin = reinterpret_cast<const char*>(data);
+  for (std::size_t b = 0; b < count * sizeof(T); b += 64)
+    for_writing ? __builtin_prefetch(begin + b, 1) : __builtin_prefetch(begin + b);
+}
+void prefetch_for_reader(const Line& line) {  // the buffers it fills again
+  prefetch(line.raw.data(), line.raw.capacity(), true);
+  prefetch(line.block.words.data(), line.block.words.capacity(), true);
+}
+void prefetch_for_corrector(const Line& line) { prefetch(line.effect.moves.data(), line.effect.moves.size()); }
+void prefetch_for_writer(const Line& line) {
+  prefetch(line.raw.data(), line.raw.size());
+  prefetch(line.block.words.data(), line.block.words.size());
+  prefetch(line.effect.motion_words.data(), line.effect.motion_words.size());
+  for (const std::vector<Piece>& pieces : line.pieces) prefetch(pieces.data(), pieces.size());
+}
 enum Stage { kRead, kCorrect, kWrite };
 constexpr std::size_t kBatches = 8, kBatchLines = 512;  // at most 4096 lines in flight
 
@@ -63,6 +85,7 @@ void read_lines(std::istream& in, const Job& job, LineQueue& queue) {
     batch->header = resume;
     try {
       while (batch->count < batch->items.size()) {
+        if (batch->count + kAhead < batch->items.size()) prefetch_for_reader(batch->items[batch->count + kAhead]);
         Line& line = batch->items[batch->count];
         if (!std::getline(in, line.raw)) {
           batch->last = true;
@@ -102,6 +125,7 @@ void correct_lines(const Job& job, PathCorrector& corrector, LineQueue& queue, i
           corrector.lost_position();
       }
       for (; i < batch->count; ++i) {
+        if (i + kAhead < batch->count) prefetch_for_corrector(batch->items[i + kAhead]);
         Line& line = batch->items[i];
         const interpreter::Effect& effect = line.effect;
         if (effect.translate) {
@@ -180,6 +204,7 @@ Summary predistort(std::istream& in, std::ostream& out, const Job& job,
   for (bool last = false; !last;) {
     LineQueue::Batch& batch = *queue.begin(kWrite);  // only the writer cancels
     for (std::size_t i = 0; i < batch.count; ++i) {
+      if (i + kAhead < batch.count) prefetch_for_writer(batch.items[i + kAhead]);
       const Line& line = batch.items[i];
       const interpreter::Effect& effect = line.effect;
       bytes = line.bytes;
