@@ -100,13 +100,8 @@ double CorrectionBounds::curvature_bound(const Joints& a, const Joints& b, const
 const CorrectionBounds::Sampled& CorrectionBounds::sampled(double tool_length_mm) {
   for (const Sampled& s : sampled_)
     if (s.tool_length_mm == tool_length_mm) return s;
-  Sampled out;
-  if (shared_) {
-    out = shared_->sampled(*this, tool_length_mm);
-  } else {
-    out = sample_part(tool_length_mm, 0);
-    for (int part = 1; part < kParts; ++part) merge(out, sample_part(tool_length_mm, part));
-  }
+  Shared alone;  // no other corrector: this one takes every part
+  Sampled out = (shared_ ? *shared_ : alone).sampled(*this, tool_length_mm);
   for (double& k : out.slope) k *= kMargin;
   out.curvature *= kMargin;
   sampled_.push_back(out);
