@@ -61,9 +61,8 @@ Model keep_only(const Model& model, const std::vector<std::string>& keep) {
     const auto& columns = table.columns();
     for (std::size_t c = 0; c < columns.size(); ++c) {
       if (kept(columns[c].symbol.name())) continue;
-      for (int node = 0; node < table.node_count(); ++node) table.value(node, static_cast<int>(c)) = 0.0;
+      for (int node = 0; node < table.node_count(); ++node) table.set_value(node, static_cast<int>(c), 0.0);
     }
-    table.refresh();
   }
   return out;
 }

@@ -86,41 +86,6 @@ Frame walk_ideal_chain(const Model& model, const std::vector<int>& chain, const 
   return parent;
 }
 
-// The real machine's pose alone: the products of walk_real_chain below without the motion,
-// in the same order (bit-identical; a product with the identity, on a linear axis without
-// tables, left out), with no rate of R(eps) and no slopes.
-Frame walk_real_pose(const Model& model, const std::vector<int>& chain, const Joints& q) noexcept {
-  Frame parent;
-  AxisErrors err;
-  for (int i : chain) {
-    const Axis& axis = model.axes[i];
-    const bool linear = axis.type == AxisType::Linear, has_errors = !axis.tables.empty();
-    if (has_errors) axis_errors(model, i, q, err, false);
-    Vector3d motion_origin = linear ? Vector3d(q[i] * axis.direction) : Vector3d::Zero();
-    if (has_errors) motion_origin += err.delta_mm;
-    const Matrix3d base_rotation = parent.rotation * axis.real_base.linear();
-    parent.origin += parent.rotation * axis.real_base.translation();
-    parent.origin += base_rotation * motion_origin;
-    // Products written straight into the frame (noalias: no temporary copied over, whose
-    // mixed scalar and packet stores the next product would wait for).
-    if (linear) {  // R(eps)
-      if (has_errors)
-        parent.rotation.noalias() = base_rotation * rotation_xyz(err.eps_rad);
-      else
-        parent.rotation = base_rotation;
-    } else {  // R(eps) Rot(u, q)
-      const Matrix3d turn = rotation_about(axis.direction, q[i] * tables::kDegToRad);
-      if (has_errors) {
-        const Matrix3d motion_rotation = rotation_xyz(err.eps_rad) * turn;
-        parent.rotation.noalias() = base_rotation * motion_rotation;
-      } else {
-        parent.rotation.noalias() = base_rotation * turn;
-      }
-    }
-  }
-  return parent;
-}
-
 // The real machine's pose and its motion (error slopes included).
 Frame walk_real_chain(const Model& model, const std::vector<int>& chain, const Joints& q,
                       ChainMotion& motion) noexcept {
@@ -170,7 +135,9 @@ Frame walk_real_chain(const Model& model, const std::vector<int>& chain, const J
 Frame walk_chain(const Model& model, Machine machine, const std::vector<int>& chain, const Joints& q,
                  ChainMotion* motion) noexcept {
   if (machine == Machine::Ideal) return walk_ideal_chain(model, chain, q, motion);
-  return motion ? walk_real_chain(model, chain, q, *motion) : walk_real_pose(model, chain, q);
+  if (motion) return walk_real_chain(model, chain, q, *motion);
+  ChainMotion unused;  // the frames alone (part_T_tool): the pose goes through carried_pose()
+  return walk_real_chain(model, chain, q, unused);
 }
 
 // bed_T_tool (tip) and bed_T_part.
@@ -192,11 +159,84 @@ ToolPose in_part_frame(const Frame& tool, const Frame& part) {
   return {part_R_bed * (tool.origin - part.origin), part_R_bed * tool.rotation.col(2)};
 }
 
+// The pose alone, without the chains' frames: the tool chain carries the tip and the tool
+// direction from the spindle back to the bed (each placement applied to two vectors, not
+// multiplied onto a frame), the workpiece chain takes them from the bed out to the part
+// (inverse placements: transposed rotations). Per axis, four rotations of a vector instead of
+// three frame products.
+class CarriedPose {
+ public:
+  CarriedPose(const Vector3d& tip, const Vector3d& direction) : tip_(tip), direction_(direction) {}
+
+  // Through an axis's placement A = T(base) T(motion) R(motion) (base: its line), outward in
+  // (forward) or inward out (inverse).
+  void through(const Model& model, Machine machine, int i, const Joints& q, bool inverse) {
+    const Axis& axis = model.axes[i];
+    const bool real = machine == Machine::Real;
+    Vector3d motion_origin = axis.type == AxisType::Linear ? Vector3d(q[i] * axis.direction) : Vector3d::Zero();
+    Matrix3d motion_rotation;
+    bool turns = false;  // else the rotation is the identity
+    if (real && !axis.tables.empty()) {
+      AxisErrors err;
+      axis_errors(model, i, q, err, false);
+      motion_origin += err.delta_mm;
+      motion_rotation = rotation_xyz(err.eps_rad);
+      turns = true;
+    }
+    if (axis.type == AxisType::Rotary) {
+      const Matrix3d turn = rotation_about(axis.direction, q[i] * tables::kDegToRad);
+      if (turns)
+        motion_rotation = motion_rotation * turn;
+      else
+        motion_rotation = turn;
+      turns = true;
+    }
+    const Vector3d& base_origin = real ? axis.real_base.translation() : axis.pole_mm;
+    const bool base_turns = real && !axis.location_rad.isZero(0.0);  // R(e0), else the identity
+    if (inverse) {
+      to_child(base_origin, axis.real_base.linear(), base_turns);
+      to_child(motion_origin, motion_rotation, turns);
+    } else {
+      to_parent(motion_origin, motion_rotation, turns);
+      to_parent(base_origin, axis.real_base.linear(), base_turns);
+    }
+  }
+  // p -> origin + rotation p (the child's point in the parent frame)
+  void to_parent(const Vector3d& origin, const Matrix3d& rotation, bool turns) {
+    if (turns) {
+      tip_ = rotation * tip_;
+      direction_ = rotation * direction_;
+    }
+    tip_ += origin;
+  }
+  // p -> rotation^T (p - origin)
+  void to_child(const Vector3d& origin, const Matrix3d& rotation, bool turns) {
+    tip_ -= origin;
+    if (turns) {
+      tip_ = rotation.transpose() * tip_;
+      direction_ = rotation.transpose() * direction_;
+    }
+  }
+  ToolPose pose() const { return {tip_, direction_}; }
+
+ private:
+  Vector3d tip_, direction_;
+};
+
+ToolPose carried_pose(const Model& model, Machine machine, const Joints& q, double tool_length_mm) noexcept {
+  const Isometry3d& spindle = machine == Machine::Real ? model.spindle.real : model.spindle.ideal;
+  const Vector3d direction = spindle.linear().col(2);
+  CarriedPose carried(spindle.translation() - tool_length_mm * direction, direction);
+  for (auto i = model.tool_chain.rbegin(); i != model.tool_chain.rend(); ++i)
+    carried.through(model, machine, *i, q, false);
+  for (int i : model.workpiece_chain) carried.through(model, machine, i, q, true);
+  carried.to_child(model.fixture.translation(), model.fixture.linear(), true);
+  return carried.pose();
+}
+
 ToolPose evaluate(const Model& model, Machine machine, const Joints& q, double tool_length_mm,
                   PoseDerivatives* d) noexcept {
-  if (!d)  // no ChainMotion to fill: the common, cheaper case
-    return in_part_frame(tool_frame(model, machine, q, tool_length_mm, nullptr),
-                         part_frame(model, machine, q, nullptr));
+  if (!d) return carried_pose(model, machine, q, tool_length_mm);
   ChainMotion tool_motion, part_motion;
   const Frame tool = tool_frame(model, machine, q, tool_length_mm, &tool_motion);
   const Frame part = part_frame(model, machine, q, &part_motion);
@@ -219,22 +259,32 @@ ToolPose evaluate(const Model& model, Machine machine, const Joints& q, double t
 
 void axis_errors(const Model& model, int joint, const Joints& q, AxisErrors& out,
                  bool with_slopes) noexcept {
+  std::array<double, tables::ErrorTable::kMaxVariables> at{};
+  if (!with_slopes) {  // the pose alone: every table adds its values by component
+    std::array<double, tables::ErrorTable::kMaxColumns> sum{};
+    for (int t : model.axes[joint].tables) {
+      const BoundTable& bound = model.tables[t];
+      for (std::size_t v = 0; v < bound.table.grid().size(); ++v) at[v] = q[bound.joint[v]];
+      bound.table.add_components(at.data(), sum);
+    }
+    out.delta_mm = Eigen::Vector3d(sum[0], sum[1], sum[2]);
+    out.eps_rad = Eigen::Vector3d(sum[3], sum[4], sum[5]);
+    return;
+  }
   out.delta_mm.setZero();
   out.eps_rad.setZero();
-  if (with_slopes) out.slope.setZero();
+  out.slope.setZero();
   tables::ErrorTable::Sample sample;
   for (int t : model.axes[joint].tables) {
     const BoundTable& bound = model.tables[t];
     const auto& grid = bound.table.grid();
-    std::array<double, tables::ErrorTable::kMaxVariables> at{};
     for (std::size_t v = 0; v < grid.size(); ++v) at[v] = q[bound.joint[v]];
-    bound.table.evaluate(at.data(), sample, with_slopes);
+    bound.table.evaluate(at.data(), sample, true);
     const auto& columns = bound.table.columns();
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const int k = columns[c].symbol.component;
       (k < 3 ? out.delta_mm[k] : out.eps_rad[k - 3]) += sample.value[c];
-      if (with_slopes)
-        for (std::size_t v = 0; v < grid.size(); ++v) out.slope(k, bound.joint[v]) += sample.slope[c][v];
+      for (std::size_t v = 0; v < grid.size(); ++v) out.slope(k, bound.joint[v]) += sample.slope[c][v];
     }
   }
 }

@@ -464,7 +464,8 @@ class MachineReader {
         if (columns[c].symbol.component >= 3) eps[columns[c].symbol.component - 3] = table.value(node, c);
       const Vector3d shift = (rotation_xyz(eps) - Eigen::Matrix3d::Identity()) * offset;
       for (std::size_t c = 0; c < columns.size(); ++c)
-        if (columns[c].symbol.component < 3) table.value(node, c) -= shift[columns[c].symbol.component];
+        if (columns[c].symbol.component < 3)
+          table.set_value(node, static_cast<int>(c), table.value(node, c) - shift[columns[c].symbol.component]);
     }
     // Translation columns missing from the file get no correction: say so rather than guess.
     for (int k = 0; k < 3; ++k) {
@@ -474,7 +475,6 @@ class MachineReader {
         throw LoadError(at, "measured_at_mm moves " + tables::ErrorSymbol{k, axis.letter, false}.name() +
                                 ", which the table does not have: add the column (zeros if not measured)");
     }
-    table.refresh();
   }
 
   void warn_if_short(const BoundTable& bound) {

@@ -60,7 +60,22 @@ ErrorTable::ErrorTable(std::string path, std::vector<GridVariable> grid,
   refresh();
 }
 
+void ErrorTable::set_value(int node, int column, double value) {
+  values_[static_cast<std::size_t>(node) * columns_.size() + static_cast<std::size_t>(column)] = value;
+  if (!by_component_.empty())
+    by_component_[static_cast<std::size_t>(node * kMaxColumns + columns_[column].symbol.component)] = value;
+  if (interpolation_ == Interpolation::Cubic) refresh();  // the spline's curvatures depend on every node
+}
+
 void ErrorTable::refresh() {
+  if (interpolation_ == Interpolation::Linear && grid_.size() == 1) {
+    const int ncol = static_cast<int>(columns_.size());
+    by_component_.assign(static_cast<std::size_t>(node_count() * kMaxColumns), 0.0);
+    for (int node = 0; node < node_count(); ++node)
+      for (int c = 0; c < ncol; ++c)
+        by_component_[static_cast<std::size_t>(node * kMaxColumns + columns_[c].symbol.component)] =
+            values_[static_cast<std::size_t>(node * ncol + c)];
+  }
   if (interpolation_ != Interpolation::Cubic) return;
   const GridVariable& g = grid_.front();
   const int n = static_cast<int>(g.nodes.size());
@@ -124,6 +139,20 @@ void ErrorTable::evaluate_linear(const double* positions, Sample& out, bool with
       for (int c = 0; c < ncol; ++c)
         for (int d = 0; d < dims; ++d) out.slope[c][d] += dweight[d] * v[c];
   }
+}
+
+void ErrorTable::add_components(const double* positions,
+                                std::array<double, kMaxColumns>& components) const noexcept {
+  if (!by_component_.empty()) {  // as evaluate_linear's 1-D case, on every component at once
+    const Cell cell = locate(grid_.front(), positions[0]);
+    const double* v0 = &by_component_[static_cast<std::size_t>(cell.index * kMaxColumns)];
+    const double* v1 = v0 + kMaxColumns;
+    for (int k = 0; k < kMaxColumns; ++k) components[k] += (1.0 - cell.t) * v0[k] + cell.t * v1[k];
+    return;
+  }
+  Sample sample;
+  evaluate(positions, sample, false);
+  for (std::size_t c = 0; c < columns_.size(); ++c) components[columns_[c].symbol.component] += sample.value[c];
 }
 
 void ErrorTable::evaluate_cubic(double position, Sample& out, bool with_slopes) const noexcept {

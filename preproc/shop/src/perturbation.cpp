@@ -25,10 +25,9 @@ std::vector<ExtraTable> perturbation_tables(const machine::Model& model, double 
           const double x = first[static_cast<std::size_t>(node) / inner];
           const double t01 = (x - first.front()) / (first.back() - first.front());
           const double f = sign * (mid + swing * std::sin(M_PI * t01 + phase));
-          table.value(node, static_cast<int>(c)) = f * original.value(node, static_cast<int>(c));
+          table.set_value(node, static_cast<int>(c), f * original.value(node, static_cast<int>(c)));
         }
       }
-      table.refresh();
       extras.push_back({j, "perturbation_" + std::filesystem::path(original.path()).filename().string(), std::move(table)});
     }
   return extras;

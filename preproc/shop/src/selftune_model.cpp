@@ -96,9 +96,9 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
       tables::ErrorTable& t = tuned.tables[static_cast<std::size_t>(probes[static_cast<std::size_t>(x.probe)].table)].table;
       const double step = probes[static_cast<std::size_t>(x.probe)].columns[static_cast<std::size_t>(x.column)].quantity() ==
                                   tables::Quantity::Length ? 1e-3 : 1e-5;
-      t.value(x.node, x.column) = step;
+      t.set_value(x.node, x.column, step);
       const Eigen::Vector3d moved = machine::tool_pose(tuned, machine::Machine::Real, q, s0.tool_length_mm).tip_mm;
-      t.value(x.node, x.column) = 0.0;
+      t.set_value(x.node, x.column, 0.0);
       a(k, u) = m.point.normal.dot(moved - base) / step;
     }
     b[k] = m.filtered_mm - m.predicted_mm;
@@ -161,11 +161,11 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
         for (std::size_t c = 0; c < earlier->table.columns().size(); ++c)
           for (std::size_t d = 0; d < columns.size(); ++d)
             if (columns[d].component == earlier->table.columns()[c].symbol.component)
-              table.value(node, static_cast<int>(d)) += sample.value[c];
+              table.set_value(node, static_cast<int>(d), table.value(node, static_cast<int>(d)) + sample.value[c]);
       }
       for (std::size_t c = 0; c < probe.columns.size(); ++c) {
         const double change = x[index(static_cast<int>(p), node, static_cast<int>(c))];
-        table.value(node, static_cast<int>(c)) += change;
+        table.set_value(node, static_cast<int>(c), table.value(node, static_cast<int>(c)) + change);
         if (probe.columns[c].quantity() == tables::Quantity::Length)
           fit.largest_change_mm = std::max(fit.largest_change_mm, std::abs(change));
         else

@@ -9,6 +9,7 @@
 // - cubic (periodic ends): follows sin and cos of the angle and is smooth across 0/360.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <functional>
 #include <vector>
@@ -474,10 +475,46 @@ TEST(ErrorTable, SlopesCanBeSkipped) {
   EXPECT_EQ(s.slope[0][0], 42.0);  // untouched
 }
 
-TEST(ErrorTable, RefreshRecomputesTheSplineAfterValuesChange) {
+// add_components: each column's value, bit for bit, added at its component; components
+// without a column get nothing. Columns out of component order, 1-D (its own layout) and 2-D
+// (through evaluate), and after set_value.
+void expect_components_match(const ErrorTable& t, const double* p, const char* where) {
+  ErrorTable::Sample s;
+  t.evaluate(p, s, false);
+  std::array<double, ErrorTable::kMaxColumns> before{1.0, 2.0, 3.0, 4.0, 5.0, 6.0}, sum = before;
+  t.add_components(p, sum);
+  std::array<double, ErrorTable::kMaxColumns> expected = before;
+  for (std::size_t c = 0; c < t.columns().size(); ++c) expected[t.columns()[c].symbol.component] += s.value[c];
+  for (int k = 0; k < ErrorTable::kMaxColumns; ++k) EXPECT_EQ(sum[k], expected[k]) << where << " component " << k;
+}
+
+TEST(ErrorTable, AddComponentsAddsEachColumnAtItsComponent) {
+  const std::vector<double> xs{0, 10, 25, 40};
+  std::vector<double> values;
+  for (double x : xs) values.insert(values.end(), {1e-3 + 1e-5 * x, -2e-6 * x, 3e-4 - 1e-6 * x * x});
+  ErrorTable one("t.csv", {variable('X', xs)}, {column("ECX"), column("EYX"), column("EXX")}, values,
+                 Interpolation::Linear);
+  for (double x : {-5.0, 0.0, 3.3, 10.0, 31.7, 40.0, 55.0}) expect_components_match(one, &x, "1-D");
+  one.set_value(2, 1, 7e-3);  // EYX at x = 25
+  for (double x : {20.0, 25.0, 30.0}) expect_components_match(one, &x, "1-D after set_value");
+  const double y25 = 25.0;
+  std::array<double, ErrorTable::kMaxColumns> sum{};
+  one.add_components(&y25, sum);
+  EXPECT_EQ(sum[1], 7e-3);
+
+  const std::vector<double> zs{-100, 0}, ys{0, 50, 100};
+  std::vector<double> grid_values;
+  for (double z : zs)
+    for (double y : ys) grid_values.insert(grid_values.end(), {1e-6 * z, 2e-6 * y});
+  const ErrorTable two("t.csv", {variable('Z', zs), variable('Y', ys)}, {column("EBZ"), column("EZZ")}, grid_values,
+                       Interpolation::Linear);
+  const double p[2] = {-30.0, 70.0};
+  expect_components_match(two, p, "2-D");
+}
+
+TEST(ErrorTable, SetValueRecomputesTheSpline) {
   ErrorTable t = table_1d(kUnevenNodes, {[](double) { return 0.0; }}, Interpolation::Cubic);
-  for (int node = 0; node < t.node_count(); ++node) t.value(node, 0) = curve(kUnevenNodes[node]);
-  t.refresh();
+  for (int node = 0; node < t.node_count(); ++node) t.set_value(node, 0, curve(kUnevenNodes[node]));
   const ErrorTable fresh = table_1d(kUnevenNodes, {curve}, Interpolation::Cubic);
   for (double x = 0; x <= 100; x += 3.1) EXPECT_NEAR(value_at(t, x), value_at(fresh, x), 1e-15) << x;
 }

@@ -62,6 +62,11 @@ class ErrorTable {
   // O(log nodes) otherwise.
   void evaluate(const double* positions, Sample& out, bool with_slopes = true) const noexcept;
 
+  // The values alone, added to `components` by error component (X, Y, Z: mm; A, B, C: rad;
+  // a component without a column gets nothing): the lookup of the real machine's pose,
+  // without the mapping of columns to components. The same arithmetic as evaluate().
+  void add_components(const double* positions, std::array<double, kMaxColumns>& components) const noexcept;
+
   const std::string& path() const { return path_; }
   const std::vector<GridVariable>& grid() const { return grid_; }
   const std::vector<Column>& columns() const { return columns_; }
@@ -69,13 +74,13 @@ class ErrorTable {
   int node_count() const { return static_cast<int>(values_.size() / columns_.size()); }
   // Sample at a node, core units (for validation, re-referencing and reports).
   double value(int node, int column) const { return values_[node * columns_.size() + column]; }
-  double& value(int node, int column) { return values_[node * columns_.size() + column]; }
+  // Changes a sample (core units); what is derived from the samples follows.
+  void set_value(int node, int column, double value);
   // Cubic tables: second derivative of the spline at a node (per unit position squared).
   double curvature(int node, int column) const { return curvature_[node * columns_.size() + column]; }
-  // Recomputes derived data after values were changed through value().
-  void refresh();
 
  private:
+  void refresh();  // derived data from all samples
   void evaluate_linear(const double* positions, Sample& out, bool with_slopes) const noexcept;
   void evaluate_cubic(double position, Sample& out, bool with_slopes) const noexcept;
 
@@ -84,6 +89,7 @@ class ErrorTable {
   std::vector<Column> columns_;
   std::vector<double> values_;
   std::vector<double> curvature_;  // cubic: second derivative at each node, same layout
+  std::vector<double> by_component_;  // linear 1-D: the values, kMaxColumns per node by component
   Interpolation interpolation_;
 };
 
