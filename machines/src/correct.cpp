@@ -31,7 +31,7 @@ Status newton(const Model& model, const CorrectionTarget& target, double tool_le
     const Joints residual = correction_residual(target, pose, unknowns);
     if (!residual.allFinite()) return Status::NonFinite;
     const double position = residual.head(3).norm();
-    const double direction = residual.tail(unknowns - 3).norm();
+    const double direction = std::sqrt(direction_squared_norm(residual));
     if (position <= opt.position_tolerance_mm && direction <= opt.direction_tolerance_rad) return Status::Ok;
     if (step == opt.max_iterations) return Status::NotConverged;
     const double norm = position + kDirectionLeverMm * direction;

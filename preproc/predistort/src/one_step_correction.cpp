@@ -41,9 +41,8 @@ OneStepCorrection::OneStepCorrection(const machine::Model& model)
 
 // |W r|: direction rows weighed by the lever, so the bound is one number in mm.
 double OneStepCorrection::weighted_norm(const Joints& residual) const {
-  const int n = static_cast<int>(residual.size());
   return std::sqrt(residual.head(3).squaredNorm() +
-                   machine::kDirectionLeverMm * machine::kDirectionLeverMm * residual.tail(n - 3).squaredNorm());
+                   machine::kDirectionLeverMm * machine::kDirectionLeverMm * machine::direction_squared_norm(residual));
 }
 
 // Without atan2: the angle between a rotary axis line l and the tool direction k is at least
@@ -165,7 +164,7 @@ bool OneStepCorrection::correct(const Joints& target, double tool_length_mm, con
     const double norm = weighted_norm(residual);
     if (!std::isfinite(norm)) return false;
     if (residual.head(3).norm() <= opt.position_tolerance_mm &&
-        residual.tail(n - 3).norm() <= opt.direction_tolerance_rad)
+        std::sqrt(machine::direction_squared_norm(residual)) <= opt.direction_tolerance_rad)
       return true;
     if (step == kMaxSteps || norm > 1e-2 * previous) return false;
     previous = norm;

@@ -34,7 +34,7 @@ struct Equations {
     return machine::correction_residual(target, machine::tool_pose(model, Machine::Real, q, L), model.joint_count());
   }
   static double weighted(const Joints& r) {
-    return std::hypot(r.head(3).norm(), machine::kDirectionLeverMm * r.tail(r.size() - 3).norm());
+    return std::hypot(r.head(3).norm(), machine::kDirectionLeverMm * std::sqrt(machine::direction_squared_norm(r)));
   }
 };
 
@@ -61,8 +61,12 @@ TEST_P(OneStepCorrectionTest, AgreesWithTheCoreAndItsContractionBoundHolds) {
       // Seeded as along a path: the corrections 0.05 and 0.1 mm (or deg) back along a random
       // direction, extrapolated (PathCorrector::seed_for).
       Joints u(n);
-      for (int j = 0; j < n; ++j) u[j] = 2 * unit(random) - 1;
-      u *= 0.05 / u.norm();
+      double length2 = 0.0;
+      for (int j = 0; j < n; ++j) {
+        u[j] = 2 * unit(random) - 1;
+        length2 += u[j] * u[j];
+      }
+      u *= 0.05 / std::sqrt(length2);
       const Joints back1 = target - u, back2 = target - 2 * u;
       const Joints offset1 = machine::correct(model, back1, L).joints - back1;
       const Joints offset2 = machine::correct(model, back2, L).joints - back2;

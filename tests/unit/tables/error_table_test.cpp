@@ -475,7 +475,8 @@ TEST(ErrorTable, SlopesCanBeSkipped) {
   EXPECT_EQ(s.slope[0][0], 42.0);  // untouched
 }
 
-// add_components: each column's value, bit for bit, added at its component; components
+// add_components: each column's value (to rounding: an FMA may join a product and a sum in
+// one function and not the other) added at its component; components
 // without a column get nothing. Columns out of component order, 1-D (its own layout) and 2-D
 // (through evaluate), and after set_value.
 void expect_components_match(const ErrorTable& t, const double* p, const char* where) {
@@ -485,7 +486,7 @@ void expect_components_match(const ErrorTable& t, const double* p, const char* w
   t.add_components(p, sum);
   std::array<double, ErrorTable::kMaxColumns> expected = before;
   for (std::size_t c = 0; c < t.columns().size(); ++c) expected[t.columns()[c].symbol.component] += s.value[c];
-  for (int k = 0; k < ErrorTable::kMaxColumns; ++k) EXPECT_EQ(sum[k], expected[k]) << where << " component " << k;
+  for (int k = 0; k < ErrorTable::kMaxColumns; ++k) EXPECT_DOUBLE_EQ(sum[k], expected[k]) << where << " component " << k;
 }
 
 TEST(ErrorTable, AddComponentsAddsEachColumnAtItsComponent) {
@@ -500,7 +501,7 @@ TEST(ErrorTable, AddComponentsAddsEachColumnAtItsComponent) {
   const double y25 = 25.0;
   std::array<double, ErrorTable::kMaxColumns> sum{};
   one.add_components(&y25, sum);
-  EXPECT_EQ(sum[1], 7e-3);
+  EXPECT_DOUBLE_EQ(sum[1], 7e-3);
 
   const std::vector<double> zs{-100, 0}, ys{0, 50, 100};
   std::vector<double> grid_values;

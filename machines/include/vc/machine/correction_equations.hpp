@@ -34,6 +34,14 @@ CorrectionTarget full_target(const Model& model, const ToolPose& ideal, const Po
 // Residual: tip position (mm), then direction components (rad); `equations` rows.
 Joints correction_residual(const CorrectionTarget& target, const ToolPose& pose, int equations) noexcept;
 
+// Sum of squares of a residual's direction rows (rad^2): the rows after the first three. A
+// loop over at most three rows (Eigen's tail() here vectorizes into loads GCC cannot bound).
+inline double direction_squared_norm(const Joints& residual) noexcept {
+  double sum = 0.0;
+  for (Eigen::Index i = 3; i < residual.size(); ++i) sum += residual[i] * residual[i];
+  return sum;
+}
+
 // d residual / d q of the joints index[0..unknowns), from pose derivatives.
 SquareMatrix correction_jacobian(const CorrectionTarget& target, const PoseDerivatives& d,
                                  const std::array<int, kMaxAxes>& index, int unknowns) noexcept;
