@@ -1,5 +1,6 @@
 #include "vc/machine/forward.hpp"
 
+#include <array>
 #include <cmath>
 
 #include "vc/tables/units.hpp"
@@ -277,34 +278,27 @@ ToolPose evaluate(const Model& model, Machine machine, const Joints& q, double t
 
 void axis_errors(const Model& model, int joint, const Joints& q, AxisErrors& out,
                  bool with_slopes) noexcept {
-  std::array<double, tables::ErrorTable::kMaxVariables> at{};
-  if (!with_slopes) {  // the pose alone: every table adds its values by component
-    std::array<double, tables::ErrorTable::kMaxColumns> sum{};
-    for (int t : model.axes[joint].tables) {
-      const BoundTable& bound = model.tables[t];
-      for (std::size_t v = 0; v < bound.table.grid().size(); ++v) at[v] = q[bound.joint[v]];
-      bound.table.add_components(at.data(), sum);
-    }
-    out.delta_mm = Eigen::Vector3d(sum[0], sum[1], sum[2]);
-    out.eps_rad = Eigen::Vector3d(sum[3], sum[4], sum[5]);
-    return;
-  }
-  out.delta_mm.setZero();
-  out.eps_rad.setZero();
-  out.slope.setZero();
+  std::array<double, tables::ErrorTable::kMaxColumns> sum{};  // components X Y Z A B C
+  if (with_slopes) out.slope.setZero();
   tables::ErrorTable::Sample sample;
   for (int t : model.axes[joint].tables) {
     const BoundTable& bound = model.tables[t];
     const auto& grid = bound.table.grid();
+    std::array<double, tables::ErrorTable::kMaxVariables> at{};
     for (std::size_t v = 0; v < grid.size(); ++v) at[v] = q[bound.joint[v]];
+    if (!with_slopes) {  // the pose alone: the table adds its values by component
+      bound.table.add_components(at.data(), sum);
+      continue;
+    }
     bound.table.evaluate(at.data(), sample, true);
     const auto& columns = bound.table.columns();
-    for (std::size_t c = 0; c < columns.size(); ++c) {
-      const int k = columns[c].symbol.component;
-      (k < 3 ? out.delta_mm[k] : out.eps_rad[k - 3]) += sample.value[c];
-      for (std::size_t v = 0; v < grid.size(); ++v) out.slope(k, bound.joint[v]) += sample.slope[c][v];
-    }
+    for (std::size_t c = 0; c < columns.size(); ++c) sum[static_cast<std::size_t>(columns[c].symbol.component)] += sample.value[c];
+    for (std::size_t c = 0; c < columns.size(); ++c)
+      for (std::size_t v = 0; v < grid.size(); ++v)
+        out.slope(columns[c].symbol.component, bound.joint[v]) += sample.slope[c][v];
   }
+  out.delta_mm = {sum[0], sum[1], sum[2]};
+  out.eps_rad = {sum[3], sum[4], sum[5]};
 }
 
 ToolPose tool_pose(const Model& model, Machine machine, const Joints& q,
