@@ -247,23 +247,6 @@ ToolPose evaluate(const Model& model, Machine machine, const Joints& q, double t
   const Matrix3d part_R_bed = part.rotation.transpose();
   // Relative motion of the tool against the part, seen in the part frame.
   for (int j = 0; j < model.joint_count(); ++j) {
-    if (machine == Machine::Ideal) {  // a joint moves its own chain alone; a linear one does not turn it
-      const Axis& axis = model.axes[static_cast<std::size_t>(j)];
-      const bool tool_side = axis.chain == Chain::Tool;
-      const ChainMotion& own = tool_side ? tool_motion : part_motion;
-      if (axis.type == AxisType::Linear) {
-        const Vector3d v = own.linear.col(j);
-        d->tip.col(j) = part_R_bed * (tool_side ? v : Vector3d(-v));
-        d->direction.col(j).setZero();
-        d->axis_line.col(j).setZero();
-        continue;
-      }
-      const Vector3d v = own.linear.col(j) + own.angular.col(j).cross(tip_bed), w = own.angular.col(j);
-      d->tip.col(j) = part_R_bed * (tool_side ? v : Vector3d(-v));
-      d->direction.col(j) = part_R_bed * (tool_side ? w : Vector3d(-w)).cross(k_bed);
-      d->axis_line.col(j) = part_R_bed * own.axis_line.col(j);
-      continue;
-    }
     const Vector3d v_rel = (tool_motion.linear.col(j) + tool_motion.angular.col(j).cross(tip_bed)) -
                            (part_motion.linear.col(j) + part_motion.angular.col(j).cross(tip_bed));
     const Vector3d w_rel = tool_motion.angular.col(j) - part_motion.angular.col(j);
