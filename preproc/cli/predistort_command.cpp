@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <vector>
 #include <unistd.h>
 
 #include "atomic_output.hpp"
@@ -74,7 +75,12 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
                     args.tolerance_mm};
   for (const auto& t : model.tables) job.provenance.tables.push_back(t.table.path());
 
-  std::ifstream in(args.input, std::ios::binary);
+  // Read in 1 MiB pieces, not the stream's default 8 KiB: a million-line program is then
+  // ~50 reads instead of ~6,500 system calls.
+  std::vector<char> read_buffer(std::size_t{1} << 20);
+  std::ifstream in;
+  in.rdbuf()->pubsetbuf(read_buffer.data(), static_cast<std::streamsize>(read_buffer.size()));
+  in.open(args.input, std::ios::binary);
   if (!in) throw LoadError({args.input}, "cannot open the program");
   std::error_code size_error;
   const auto size = fs::file_size(args.input, size_error);
