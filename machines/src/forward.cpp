@@ -61,26 +61,16 @@ struct Frame {
   }
 };
 
-// The ideal machine: its axis lines are placed by the pole alone, T(o), and carry no errors,
-// so each joint moves the chain about its own line only. The products are those the real
-// walk below would make with zero errors and T(o) bases, in the same order (the same
-// rounding, unless the compiler fuses products and sums into FMAs differently).
-Frame walk_ideal_chain(const Model& model, const std::vector<int>& chain, const Joints& q,
-                       ChainMotion* motion) noexcept {
+// The ideal machine's frames: its axis lines are placed by the pole alone, T(o), and carry
+// no errors.
+Frame walk_ideal_chain(const Model& model, const std::vector<int>& chain, const Joints& q) noexcept {
   Frame parent;
   for (int i : chain) {
     const Axis& axis = model.axes[i];
     parent.origin += parent.rotation * axis.pole_mm;
     if (axis.type == AxisType::Linear) {
-      if (motion) motion->linear.col(i) += parent.rotation * axis.direction;
       parent.origin += parent.rotation * (q[i] * axis.direction);
     } else {
-      if (motion) {
-        const Vector3d w_bed = parent.rotation * (axis.direction * tables::kDegToRad);
-        motion->linear.col(i) -= w_bed.cross(parent.origin);
-        motion->angular.col(i) += w_bed;
-        motion->axis_line.col(i) = parent.rotation * axis.direction;
-      }
       const Matrix3d turned = parent.rotation * rotation_about(axis.direction, q[i] * tables::kDegToRad);
       copy_by_columns(turned, parent.rotation);
     }
@@ -136,7 +126,7 @@ Frame walk_real_chain(const Model& model, const std::vector<int>& chain, const J
 // Walks one chain bed outward; returns bed_T_last and, if asked, the chain's motion.
 Frame walk_chain(const Model& model, Machine machine, const std::vector<int>& chain, const Joints& q,
                  ChainMotion* motion) noexcept {
-  if (machine == Machine::Ideal) return walk_ideal_chain(model, chain, q, motion);
+  if (machine == Machine::Ideal) return walk_ideal_chain(model, chain, q);  // frames only
   if (motion) return walk_real_chain(model, chain, q, *motion);
   ChainMotion unused;  // the frames alone (part_T_tool): the pose goes through carried_pose()
   return walk_real_chain(model, chain, q, unused);
@@ -236,9 +226,101 @@ ToolPose carried_pose(const Model& model, Machine machine, const Joints& q, doub
   return carried.pose();
 }
 
+// The ideal machine's pose and its derivatives, carried as CarriedPose carries the pose: its
+// placements are the pole and the joint's own motion, T(o) T(q u) or T(o) Rot(u, q). Each
+// joint's rates (of the tip and the tool direction per mm or per deg, and a rotary joint's
+// line) are made where the joint acts, in its axis frame, and carried from there with the
+// tip out to the part frame: no frames, no motion screws.
+class CarriedIdealRates {
+  static constexpr int kNone = -1;
+
+ public:
+  CarriedIdealRates(const Vector3d& tip, const Vector3d& direction) {
+    v_.col(kTip) = tip;
+    v_.col(kDirection) = direction;
+    tip_rate_.fill(kNone);
+    direction_rate_.fill(kNone);
+    line_.fill(kNone);
+  }
+
+  // A tool-chain axis, child frame to parent (the tool moves with joint i).
+  void tool_axis(const Axis& axis, int i, double q) {
+    if (axis.type == AxisType::Linear) {
+      v_.col(kTip) += q * axis.direction;
+      tip_rate_[i] = add(axis.direction);
+    } else {
+      turn(rotation_about(axis.direction, q * tables::kDegToRad));
+      add_rotary_rates(axis, i, 1.0);
+    }
+    v_.col(kTip) += axis.pole_mm;
+  }
+  // A workpiece-chain axis, parent frame to child (the part moves with joint i: the tip and
+  // the direction move the other way in the part).
+  void workpiece_axis(const Axis& axis, int i, double q) {
+    v_.col(kTip) -= axis.pole_mm;
+    if (axis.type == AxisType::Linear) {
+      v_.col(kTip) -= q * axis.direction;
+      tip_rate_[i] = add(-axis.direction);
+    } else {
+      turn(rotation_about(axis.direction, q * tables::kDegToRad).transpose());
+      add_rotary_rates(axis, i, -1.0);
+    }
+  }
+  // The fixture, last workpiece-chain frame to the part.
+  void fixture(const Isometry3d& fixture) {
+    v_.col(kTip) -= fixture.translation();
+    if (!fixture.linear().isIdentity(0.0)) turn(fixture.linear().transpose());
+  }
+
+  ToolPose pose(int joints, PoseDerivatives& d) const {
+    for (int j = 0; j < joints; ++j) {
+      d.tip.col(j) = column(tip_rate_[j]);
+      d.direction.col(j) = column(direction_rate_[j]);
+      d.axis_line.col(j) = column(line_[j]);
+    }
+    return {v_.col(kTip), v_.col(kDirection)};
+  }
+
+ private:
+  static constexpr int kTip = 0, kDirection = 1;
+  // Rotary joint i about its line through this frame's origin: the tip turns by w x tip, the
+  // direction by w x direction, w the line per deg (sign -1: the part turns).
+  void add_rotary_rates(const Axis& axis, int i, double sign) {
+    const Vector3d w = (sign * tables::kDegToRad) * axis.direction;
+    tip_rate_[i] = add(w.cross(v_.col(kTip)));
+    direction_rate_[i] = add(w.cross(v_.col(kDirection)));
+    line_[i] = add(axis.direction);
+  }
+  int add(const Vector3d& v) {
+    v_.col(used_) = v;
+    return used_++;
+  }
+  void turn(const Matrix3d& rotation) {
+    for (int c = 0; c < used_; ++c) v_.col(c) = rotation * v_.col(c);
+  }
+  Vector3d column(int c) const { return c == kNone ? Vector3d::Zero() : Vector3d(v_.col(c)); }
+
+  // The tip, the direction, then the rates and lines in the order the joints add them.
+  Eigen::Matrix<double, 3, 2 + 3 * kMaxAxes> v_;
+  int used_ = 2;
+  std::array<int, kMaxAxes> tip_rate_, direction_rate_, line_;  // column of joint j, or kNone
+};
+
+ToolPose carried_ideal_rates(const Model& model, const Joints& q, double tool_length_mm,
+                             PoseDerivatives& d) noexcept {
+  const Vector3d direction = model.spindle.ideal.linear().col(2);
+  CarriedIdealRates carried(model.spindle.ideal.translation() - tool_length_mm * direction, direction);
+  for (auto i = model.tool_chain.rbegin(); i != model.tool_chain.rend(); ++i)
+    carried.tool_axis(model.axes[*i], *i, q[*i]);
+  for (int i : model.workpiece_chain) carried.workpiece_axis(model.axes[i], i, q[i]);
+  carried.fixture(model.fixture);
+  return carried.pose(model.joint_count(), d);
+}
+
 ToolPose evaluate(const Model& model, Machine machine, const Joints& q, double tool_length_mm,
                   PoseDerivatives* d) noexcept {
   if (!d) return carried_pose(model, machine, q, tool_length_mm);
+  if (machine == Machine::Ideal) return carried_ideal_rates(model, q, tool_length_mm, *d);
   ChainMotion tool_motion, part_motion;
   const Frame tool = tool_frame(model, machine, q, tool_length_mm, &tool_motion);
   const Frame part = part_frame(model, machine, q, &part_motion);

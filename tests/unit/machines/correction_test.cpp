@@ -1,17 +1,22 @@
-// Correction and kinematics on every shipped machine, over random poses in the travel:
+// Correction and kinematics on every shipped machine and on bc_head (tests only: a rotary
+// axis in the tool chain, tests/unit/machines/data), over random poses in the travel:
 // residuals below 1e-9 mm / 1e-9 rad, FK(IK(w)) = w in both world conventions, the analytic
 // Jacobian against central differences, the chain against a naive 4x4 product, and the pole
 // fade. Seeded; VC_RANDOM_POSES overrides the pose count.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "test_support.hpp"
 #include "vc/machine/kinematics.hpp"
 #include "vc/machine/load_machine.hpp"
+#include "vc/tables/units.hpp"
 
 namespace vc::machine {
 namespace {
@@ -35,9 +40,16 @@ std::string text(const Joints& q) {
   return s.str();
 }
 
+// The machines only the tests use.
+const std::vector<std::string> kTestMachines{"bc_head"};
+
 class EveryMachine : public ::testing::TestWithParam<std::string> {
  protected:
-  void SetUp() override { model_ = load_machine(test::machine_path(GetParam())); }
+  void SetUp() override {
+    const bool test_only = std::count(kTestMachines.begin(), kTestMachines.end(), GetParam()) > 0;
+    model_ = load_machine(test_only ? test::source_path("tests/unit/machines/data/" + GetParam() + ".toml")
+                                    : test::machine_path(GetParam()));
+  }
   Model model_;
 };
 
@@ -143,8 +155,20 @@ TEST_P(EveryMachine, AnalyticJacobianMatchesCentralDifferences) {
     const Joints q = random_pose(model_, rng);
     for (Machine m : {Machine::Real, Machine::Ideal}) {
       PoseDerivatives d;
-      tool_pose(model_, m, q, L, d);
+      const ToolPose pose = tool_pose(model_, m, q, L, d);
+      const ToolPose pose_alone = tool_pose(model_, m, q, L);
+      EXPECT_LT((pose.tip_mm - pose_alone.tip_mm).norm(), 1e-11) << text(q);
+      EXPECT_LT((pose.direction - pose_alone.direction).norm(), 1e-14) << text(q);
       for (int j = 0; j < model_.joint_count(); ++j) {
+        // A rotary joint of the ideal machine turns the tool direction about its line
+        // (the part turns it the other way).
+        const Axis& axis = model_.axes[static_cast<std::size_t>(j)];
+        if (m == Machine::Ideal && axis.type == AxisType::Rotary) {
+          const double sign = axis.chain == Chain::Tool ? 1.0 : -1.0;
+          const Eigen::Vector3d turn = sign * tables::kDegToRad * d.axis_line.col(j).cross(pose.direction);
+          EXPECT_NEAR(d.axis_line.col(j).norm(), 1.0, 1e-14);
+          EXPECT_LT((turn - d.direction.col(j)).norm(), 1e-15) << "joint " << j << " at " << text(q);
+        }
         const double h = 1e-5;
         Joints plus = q, minus = q;
         plus[j] += h;
@@ -227,6 +251,8 @@ TEST(SinCos, WithinAnUlpOfTheLibrary) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Shipped, EveryMachine, ::testing::ValuesIn(test::shipped_machines()),
+                         [](const auto& param_info) { return param_info.param; });
+INSTANTIATE_TEST_SUITE_P(TestsOnly, EveryMachine, ::testing::ValuesIn(kTestMachines),
                          [](const auto& param_info) { return param_info.param; });
 
 // Pole fade on the MC-300 (pole at B = 0): rotary joints stay nominal at the pole, the
