@@ -269,7 +269,7 @@ class CarriedIdealRates {
   // The fixture, last workpiece-chain frame to the part.
   void fixture(const Isometry3d& fixture) {
     v_.col(kTip) -= fixture.translation();
-    if (!fixture.linear().isIdentity(0.0)) turn(fixture.linear().transpose());
+    if (!(fixture.linear().array() == Matrix3d::Identity().array()).all()) turn(fixture.linear().transpose());
   }
 
   ToolPose pose(int joints, PoseDerivatives& d) const {

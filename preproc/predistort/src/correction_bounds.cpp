@@ -35,12 +35,12 @@ CorrectionBounds::CorrectionBounds(const machine::Model& model, Shared* shared) 
   for (const machine::BoundTable& bound : model.tables) {
     const auto& grid = bound.table.grid();
     for (std::size_t v = 0; v < grid.size(); ++v) {
-      Kinks k{bound.joint[v], grid[v].periodic ? 360.0 : 0.0, {}};
+      Kinks k{grid[v].periodic ? 360.0 : 0.0, {}};
       if (bound.table.interpolation() == tables::Interpolation::Linear)
         k.at = grid[v].nodes;
       else if (!grid[v].periodic)
         k.at = {grid[v].nodes.front(), grid[v].nodes.back()};
-      if (!k.at.empty()) kinks_.push_back(std::move(k));
+      if (!k.at.empty()) kinks_[static_cast<std::size_t>(bound.joint[v])].push_back(std::move(k));
     }
   }
 }
@@ -54,8 +54,7 @@ std::size_t CorrectionBounds::Kinks::first_after(double x) const {
 
 bool CorrectionBounds::kink_near(int joint, double x0, double x1, double margin) const {
   const double lo = std::min(x0, x1) - margin, hi = std::max(x0, x1) + margin;
-  for (const Kinks& k : kinks_) {
-    if (k.joint != joint) continue;
+  for (const Kinks& k : kinks_[static_cast<std::size_t>(joint)]) {
     double from = lo, to = hi;
     if (k.period > 0.0) {
       if (hi - lo >= k.period) return true;

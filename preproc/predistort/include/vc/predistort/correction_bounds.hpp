@@ -60,7 +60,6 @@ class CorrectionBounds {
   // Kinks along one joint from one grid variable: node positions (all nodes of a linear
   // table, the ends of a cubic one), repeating every `period` deg on a periodic grid.
   struct Kinks {
-    int joint;
     double period;               // 0 if not periodic
     std::vector<double> at;      // sorted
     // The answer of the last search: the first node after the last interval asked about.
@@ -77,7 +76,7 @@ class CorrectionBounds {
 
   const machine::Model& model_;
   Shared* shared_;
-  std::vector<Kinks> kinks_;
+  std::array<std::vector<Kinks>, machine::kMaxAxes> kinks_;  // per joint
   std::vector<Sampled> sampled_;
 };
 
