@@ -92,8 +92,16 @@ double CorrectionBounds::curvature_bound(const Joints& a, const Joints& b, const
   const Sampled& s = sampled(tool_length_mm);
   const int n = model_.joint_count();
   const Joints step = (b - a).cwiseAbs();
+  // step^T M step, written out: Eigen's product of the dynamic corner and step makes GCC
+  // warn falsely (maybe-uninitialized) when it optimises with a profile.
+  double form = 0.0;
+  for (int i = 0; i < n; ++i) {
+    double row = 0.0;
+    for (int j = 0; j < n; ++j) row += s.curvature(i, j) * step[j];
+    form += step[i] * row;
+  }
   // The ends themselves are off by up to the solver's tolerance.
-  return step.dot(s.curvature.topLeftCorner(n, n) * step) / 8.0 + 2 * model_.solver.position_tolerance_mm;
+  return form / 8.0 + 2 * model_.solver.position_tolerance_mm;
 }
 
 const CorrectionBounds::Sampled& CorrectionBounds::sampled(double tool_length_mm) {
