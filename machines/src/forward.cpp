@@ -123,7 +123,8 @@ Frame walk_real_chain(const Model& model, const std::vector<int>& chain, const J
   return parent;
 }
 
-// Walks one chain bed outward; returns bed_T_last and, if asked, the chain's motion.
+// Walks one chain bed outward; returns bed_T_last and, if asked, the chain's motion (the
+// real machine's: the ideal machine's derivatives come from carried_ideal_rates()).
 Frame walk_chain(const Model& model, Machine machine, const std::vector<int>& chain, const Joints& q,
                  ChainMotion* motion) noexcept {
   if (machine == Machine::Ideal) return walk_ideal_chain(model, chain, q);  // frames only
