@@ -63,7 +63,7 @@ ErrorTable::ErrorTable(std::string path, std::vector<GridVariable> grid,
 void ErrorTable::set_value(int node, int column, double value) {
   values_[static_cast<std::size_t>(node) * columns_.size() + static_cast<std::size_t>(column)] = value;
   if (!by_component_.empty())
-    by_component_[static_cast<std::size_t>(node * kMaxColumns + columns_[column].symbol.component)] = value;
+    by_component_[component_slot(node, column)] = value;
   if (interpolation_ == Interpolation::Cubic) refresh();  // the spline's curvatures depend on every node
 }
 
@@ -73,8 +73,7 @@ void ErrorTable::refresh() {
     by_component_.assign(static_cast<std::size_t>(node_count() * kMaxColumns), 0.0);
     for (int node = 0; node < node_count(); ++node)
       for (int c = 0; c < ncol; ++c)
-        by_component_[static_cast<std::size_t>(node * kMaxColumns + columns_[c].symbol.component)] =
-            values_[static_cast<std::size_t>(node * ncol + c)];
+        by_component_[component_slot(node, c)] = values_[static_cast<std::size_t>(node * ncol + c)];
   }
   if (interpolation_ != Interpolation::Cubic) return;
   const GridVariable& g = grid_.front();

@@ -81,6 +81,10 @@ class ErrorTable {
 
  private:
   void refresh();  // derived data from all samples
+  // Where a sample's copy lies in by_component_.
+  std::size_t component_slot(int node, int column) const {
+    return static_cast<std::size_t>(node * kMaxColumns + columns_[static_cast<std::size_t>(column)].symbol.component);
+  }
   void evaluate_linear(const double* positions, Sample& out, bool with_slopes) const noexcept;
   void evaluate_cubic(double position, Sample& out, bool with_slopes) const noexcept;
 
