@@ -5,6 +5,7 @@
 
 #include "vc/gcode/evaluate.hpp"
 #include "vc/gcode/parser.hpp"
+#include "vc/interpreter/line_text.hpp"
 #include "vc/tables/source_error.hpp"
 
 namespace vc::interpreter {
@@ -13,9 +14,14 @@ namespace {
 constexpr double kInch = 25.4;
 constexpr double kTwoPi = 2.0 * M_PI;
 
-// LinuxCNC's arc radius check (interp_arc.cc): start and end radius may differ by this much.
-constexpr double kArcRadiusTolerance_mm = 0.002;     // G21
-constexpr double kArcRadiusTolerance_inch = 0.0002;  // G20
+// LinuxCNC 2.9's arc checks (interp_internal.hh, interp_arc.cc), in program units: an R arc
+// may fall short of the end point by RADIUS_TOLERANCE; an IJK arc's start and end radius
+// (a spiral) may differ by CENTER_ARC_RADIUS_TOLERANCE if that is more than 0.1 % of the
+// radius, and never by 100 times it; a radius below RADIUS_TOLERANCE is a zero-radius arc.
+constexpr double kRadiusTolerance_inch = 0.00005;
+constexpr double kCenterArcRadiusTolerance_inch = 2 * 0.001 * M_SQRT2;
+constexpr double kCenterArcRadiusTolerance_mm = 2 * 0.01 * M_SQRT2;
+constexpr double kSpiralRelativeTolerance = 0.001;
 
 // Parameter numbers of a LinuxCNC .var file.
 constexpr int kG28Home = 5161, kG30Home = 5181;
@@ -37,6 +43,7 @@ void Effect::clear() {
   stop_words.clear();
   g64_word = g64_p_word = g64_q_word = f_word = motion_code_word = -1;
   moved_as_written = false;
+  after_tool_change_words.clear();
   modal_motion = 800;
   inches = incremental = arc_absolute = program_end = false;
 }
@@ -101,6 +108,7 @@ void Interpreter::refuse(int line, int offset, const std::string& message) const
 void Interpreter::read(std::string& raw, int line, gcode::Block& block, Effect& effect) {
   if (!raw.empty() && raw.back() == '\r') raw.pop_back();  // DOS line ends
   try {
+    pin_line_number(raw, line, parameters_);
     gcode::parse_block(raw, block);
   } catch (const gcode::SyntaxError& e) {
     throw LoadError({setup_.file, line, e.offset + 1}, e.what());
@@ -247,13 +255,23 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     for (int i = 0; i < kAxes; ++i) parameters_[base + i] = world[i];
   }
   if (const auto* motion = w.find_g({0, 10, 20, 30, 800})) motion_ = motion->code;
-  if (!w.find_g({280, 300, 100})) move(w, line, effect);
+  if (!w.find_g({280, 300, 100, 431})) move(w, line, effect);  // their axis words are not motion
   for (const Words::Code& c : w.m)
     if (c.code == 0 || c.code == 10 || c.code == 20 || c.code == 300 || c.code == 600) {
       effect.stop_words.push_back(c.index);
       if (c.code == 20 || c.code == 300) effect.program_end = true;
     }
   if (const auto* motion = w.find_g({0, 10, 20, 30})) effect.motion_code_word = motion->index;
+  const auto* length_code = w.find_g({430, 431, 490});
+  if (length_code && w.find_m({60, 610}) && effect.moves.empty() && !effect.moved_as_written) {
+    std::vector<int>& words = effect.after_tool_change_words;
+    words.push_back(length_code->index);
+    if (w.has('H')) words.push_back(w['H'].index);
+    if (length_code->code == 431)
+      for (int i = 0; i < kAxes; ++i)
+        if (w.has(kAxisLetters[i])) words.push_back(w[kAxisLetters[i]].index);
+    words.insert(words.end(), effect.stop_words.begin(), effect.stop_words.end());
+  }
   effect.modal_motion = motion_;
   effect.inches = inches_;
   effect.incremental = incremental_;
@@ -466,19 +484,21 @@ void Interpreter::arc_geometry(const Words& w, const Position& end, int line, Mo
     arc.turns = w.whole('P');
   }
   const double scale = inches_ ? kInch : 1.0;
-  const double tolerance = inches_ ? kArcRadiusTolerance_inch * kInch : kArcRadiusTolerance_mm;
+  const double radius_tolerance = kRadiusTolerance_inch * kInch;  // the same length in G20 and G21
+  const double spiral_tolerance = inches_ ? kCenterArcRadiusTolerance_inch * kInch : kCenterArcRadiusTolerance_mm;
   const double a0 = m.start[arc.first], b0 = m.start[arc.second];
   const double a1 = end[arc.first], b1 = end[arc.second];
   if (w.has('R')) {
     // Radius form: the center on the perpendicular bisector; R < 0 takes the long way.
-    const double r = w.get('R') * scale;
-    const double chord = std::hypot(a1 - a0, b1 - b0);
-    if (chord < 1e-12) refuse(line, w['R'].offset, "an R-form arc cannot be a full circle");
-    if (std::abs(r) * 2 < chord - tolerance)
-      refuse(line, w['R'].offset, "arc radius too small to reach the end point");
-    const double half = chord / 2, h = std::sqrt(std::max(0.0, r * r - half * half));
+    const double r = std::abs(w.get('R') * scale);
+    if (a1 == a0 && b1 == b0) refuse(line, w['R'].offset, "an R-form arc cannot end where it starts");
+    double half = std::hypot(a1 - a0, b1 - b0) / 2;
+    if (half - r > radius_tolerance) refuse(line, w['R'].offset, "arc radius too small to reach the end point");
+    if (half / r > 1 - 1e-12) half = r;  // LinuxCNC: a half circle within the tolerance
+    const double h = std::sqrt(r * r - half * half);
     // Center to the left of start->end for (CCW, short way) and (CW, long way).
-    const double sign = ((r > 0) != arc.clockwise) ? 1.0 : -1.0;
+    const double sign = ((w.get('R') > 0) != arc.clockwise) ? 1.0 : -1.0;
+    const double chord = std::hypot(a1 - a0, b1 - b0);
     const double ua = (a1 - a0) / chord, ub = (b1 - b0) / chord;
     arc.center_first = (a0 + a1) / 2 - sign * h * ub;
     arc.center_second = (b0 + b1) / 2 + sign * h * ua;
@@ -494,10 +514,12 @@ void Interpreter::arc_geometry(const Words& w, const Position& end, int line, Mo
     arc.center_second = arc_absolute_ ? dj : b0 + dj;
     const double r0 = std::hypot(a0 - arc.center_first, b0 - arc.center_second);
     const double r1 = std::hypot(a1 - arc.center_first, b1 - arc.center_second);
-    if (std::abs(r1 - r0) > tolerance)
-      refuse(line, offset, "radius to end of arc differs from radius to start by " +
-                               std::to_string(std::abs(r1 - r0)) + " mm");
-    if (r0 < 1e-9) refuse(line, offset, "arc of zero radius");
+    if (r0 < radius_tolerance || r1 < radius_tolerance) refuse(line, offset, "arc of zero radius");
+    const double difference = std::abs(r1 - r0);
+    if (difference > 100 * spiral_tolerance ||
+        (difference / std::max(r0, r1) > kSpiralRelativeTolerance && difference > spiral_tolerance))
+      refuse(line, offset, "radius to end of arc differs from radius to start by " + std::to_string(difference) +
+                               " mm (LinuxCNC allows " + std::to_string(spiral_tolerance) + " mm or 0.1 %)");
   }
   const double t0 = std::atan2(b0 - arc.center_second, a0 - arc.center_first);
   const double t1 = std::atan2(b1 - arc.center_second, a1 - arc.center_first);

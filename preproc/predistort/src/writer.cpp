@@ -164,7 +164,12 @@ void Writer::verbatim(std::string_view raw, const gcode::Block& block, const int
   edits_.clear();
   edit_text_.clear();
   blending_edits(block, effect);
+  for (int index : effect.after_tool_change_words) {
+    const gcode::Word& w = block.words[static_cast<std::size_t>(index)];
+    edits_.push_back({w.begin, w.end, 0, 0});
+  }
   write_edited(raw);
+  if (!effect.after_tool_change_words.empty()) write_words(raw, block, effect.after_tool_change_words);
   motion_ = effect.modal_motion;
   if (effect.moved_as_written) {
     at_ = position;
@@ -272,16 +277,18 @@ void Writer::translated(std::string_view raw, const gcode::Block& block, const i
       emit(std::string_view(line_).substr(1));
     }
   }
-  if (split && !effect.stop_words.empty()) {
-    line_.clear();
-    for (int index : effect.stop_words) {
-      const gcode::Word& w = block.words[static_cast<std::size_t>(index)];
-      if (!line_.empty()) line_ += ' ';
-      line_.append(raw.substr(static_cast<std::size_t>(w.begin), static_cast<std::size_t>(w.end - w.begin)));
-    }
-    line_ += '\n';
-    emit(line_);
+  if (split && !effect.stop_words.empty()) write_words(raw, block, effect.stop_words);
+}
+
+void Writer::write_words(std::string_view raw, const gcode::Block& block, const std::vector<int>& words) {
+  line_.clear();
+  for (int index : words) {
+    const gcode::Word& w = block.words[static_cast<std::size_t>(index)];
+    if (!line_.empty()) line_ += ' ';
+    line_.append(raw.substr(static_cast<std::size_t>(w.begin), static_cast<std::size_t>(w.end - w.begin)));
   }
+  line_ += '\n';
+  emit(line_);
 }
 
 }  // namespace vc::predistort

@@ -158,5 +158,43 @@ TEST(Interpreter, RefusesUnknownWorkOffsetsWithoutParameterFile) {
   }
 }
 
+// LinuxCNC 2.9's limits (interp_internal.hh): an R arc may fall 0.00127 mm short of the end
+// point; an IJK arc's radii may differ by 0.0283 mm, or by more if that is under 0.1 % of
+// the radius, never by 2.83 mm.
+TEST(Interpreter, ArcToleranceIsLinuxCncs) {
+  const std::string from = kStart + "G1 X0 Y0 F100\n";
+  EXPECT_EQ(refusal(from + "G2 X10 Y0 R4.99875\n"), "accepted");
+  EXPECT_NE(refusal(from + "G2 X10 Y0 R4.99870\n").find("radius too small"), std::string::npos);
+  EXPECT_EQ(refusal(from + "G2 X10 Y0 I5.014 J0\n"), "accepted");  // radii differ by 0.028 mm (0.56 %)
+  EXPECT_NE(refusal(from + "G2 X10 Y0 I5.0145 J0\n").find("differs"), std::string::npos);  // 0.029 mm
+  EXPECT_EQ(refusal(from + "G2 X100 Y0 I50.0162 J0\n"), "accepted");  // 0.0324 mm, 0.065 %
+  EXPECT_NE(refusal(from + "G2 X10000 Y0 I5001.5 J0\n").find("differs"), std::string::npos);  // 3 mm, 0.06 %
+  EXPECT_NE(refusal(from + "G2 X0.001 Y0 I0.0005 J0\n").find("zero radius"), std::string::npos);
+  EXPECT_EQ(refusal(from + "G20 G2 X1 Y0 I0.5014 J0\n"), "accepted");  // 0.0028 in (0.0283 in G21 would refuse)
+}
+
+// After a tool change, LinuxCNC keeps the machine still through a G43 on the same line (as on
+// the next): the tool length words go on a line of their own, where every interpreter agrees.
+TEST(Interpreter, ToolLengthOnAToolChangeLineIsMarkedForALineOfItsOwn) {
+  ToolTable tools{{1, {1, 15.875, 6.0}}};
+  gcode::Parameters var;
+  const Interpreted r = interpret(kStart + "G0 Z50\nT1 M6 G43 H1\nG0 X10 Y10\nT1 M6 G43 H1 G0 X0\n", &tools, &var);
+  const Effect& change = r.effects[3];
+  ASSERT_EQ(change.after_tool_change_words.size(), 2u);  // G43, H1
+  EXPECT_EQ(change.after_tool_change_words[0], 2);
+  EXPECT_EQ(change.after_tool_change_words[1], 3);
+  EXPECT_DOUBLE_EQ(r.moves[2].frame.world(r.moves[2].end)[2], 50.0);  // the machine stays at Z50
+  EXPECT_TRUE(r.effects[5].after_tool_change_words.empty());  // a move on the line: no ambiguity
+}
+
+// G43.1's axis words are the tool's length, not a move.
+TEST(Interpreter, DynamicToolLengthDoesNotMove) {
+  gcode::Parameters var;
+  const Interpreted r = interpret(kStart + "G43.1 Z10\nG0 X1\n", nullptr, &var);
+  ASSERT_EQ(r.moves.size(), 2u);
+  EXPECT_DOUBLE_EQ(r.moves[1].frame.world(r.moves[1].end)[2], 0.0);
+  EXPECT_DOUBLE_EQ(r.moves[1].tool_length_mm, 10.0);
+}
+
 }  // namespace
 }  // namespace vc::interpreter

@@ -43,6 +43,11 @@ struct Effect {
   bool program_end = false;          // M2 / M30
   bool moved_as_written = false;     // the block moves the machine but is written as it is (G28/G30, a
                                      // rapid to a partly known position)
+  // A tool change (M6, M61) and a tool length code (G43, G43.1, G49) on a line without motion:
+  // the tool length words and the stop codes, to be written on a line of their own after it.
+  // LinuxCNC keeps the machine still there, but the standalone interpreter (rs274, previews)
+  // re-reads its position after the tool change without the new length: on two lines both agree.
+  std::vector<int> after_tool_change_words;
   void clear();
 };
 
@@ -54,7 +59,8 @@ class Interpreter {
   // cannot translate faithfully.
   void execute(const gcode::Block& block, int line, Effect& effect);
   // Reads line `line` of the file as LinuxCNC does (a DOS line end dropped from `raw`) into
-  // `block`, then interprets it. Throws vc::LoadError with file:line:column for what it
+  // `block`, then interprets it. A line that reads #<_line> is rewritten in `raw` to say the
+  // same on another line (pin_line_number). Throws vc::LoadError with file:line:column for what it
   // cannot read or translate.
   void read(std::string& raw, int line, gcode::Block& block, Effect& effect);
 

@@ -1,0 +1,154 @@
+#include "vc/interpreter/line_text.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include "vc/gcode/syntax_error.hpp"
+
+namespace vc::interpreter {
+namespace {
+
+std::string lower_without_blanks(std::string_view text) {
+  std::string out;
+  for (char c : text)
+    if (!std::isspace(static_cast<unsigned char>(c))) out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+// After '#' at text[i]: a '<name>' (blanks skipped, lower-cased): its name and the index after
+// the '>', or nothing.
+std::optional<std::pair<std::string, std::size_t>> named_reference(std::string_view text, std::size_t i) {
+  std::size_t j = i + 1;
+  while (j < text.size() && std::isspace(static_cast<unsigned char>(text[j]))) ++j;
+  if (j >= text.size() || text[j] != '<') return std::nullopt;
+  const std::size_t close = text.find('>', j);
+  if (close == std::string_view::npos) return std::nullopt;
+  return std::make_pair(lower_without_blanks(text.substr(j + 1, close - j - 1)), close + 1);
+}
+
+// The message prefixes whose text LinuxCNC expands (convert_comment).
+std::optional<std::size_t> expanded_message_start(std::string_view comment) {
+  std::size_t start = 0;
+  while (start < comment.size() && std::isspace(static_cast<unsigned char>(comment[start]))) ++start;
+  for (const char* prefix : {"debug,", "print,", "log,"}) {
+    const std::size_t n = std::strlen(prefix);
+    if (comment.size() - start < n) continue;
+    bool same = true;
+    for (std::size_t k = 0; k < n && same; ++k)
+      same = std::tolower(static_cast<unsigned char>(comment[start + k])) == prefix[k];
+    if (same) return start + n;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::string expand_message(std::string_view text, const gcode::Parameters& parameters, int line) {
+  std::string out;
+  std::string format = "%f";
+  for (std::size_t i = 0; i < text.size();) {
+    const char c = text[i];
+    if (c == '%') {
+      ++i;
+      if (i < text.size() && text[i] == 'd') {
+        format = "%.0f";
+        ++i;
+      } else if (i < text.size() && text[i] == 'f') {
+        format = "%.4f";
+        ++i;
+      } else if (i < text.size() && text[i] == '.') {
+        ++i;
+        if (i + 1 < text.size() && std::isdigit(static_cast<unsigned char>(text[i])) && text[i + 1] == 'f') {
+          format = std::string("%.") + text[i] + "f";
+          i += 2;
+        } else {
+          out += '.';
+        }
+      } else {
+        out += '%';
+      }
+      continue;
+    }
+    if (c != '#') {
+      out += c;
+      ++i;
+      continue;
+    }
+    ++i;
+    std::optional<double> value;
+    if (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) {
+      long n = 0;
+      for (; i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])); ++i) n = std::min(n * 10 + (text[i] - '0'), 1000000L);
+      if (n < gcode::Parameters::kCount) value = parameters[static_cast<int>(n)];
+    } else if (i < text.size() && text[i] == '<') {
+      const std::size_t close = text.find('>', i);
+      if (close == std::string_view::npos) throw gcode::SyntaxError(0, "named parameter not terminated in the message");
+      const std::string name = lower_without_blanks(text.substr(i + 1, close - i - 1));
+      i = close + 1;
+      if (name == "_line") value = line;
+      else if (parameters.exists(name)) value = parameters.get(name, 0);
+    } else {
+      out += '#';
+      continue;
+    }
+    if (value) {
+      char buffer[64];
+      const double shown = std::abs(*value) < 0.0001 ? 0.0 : *value;  // LinuxCNC: avoid -0.0
+      const int n = std::snprintf(buffer, sizeof buffer, format.c_str(), shown);
+      out += n > 0 && n < static_cast<int>(sizeof buffer) ? buffer : "######";
+    } else {
+      out += "######";
+    }
+  }
+  return out;
+}
+
+bool pin_line_number(std::string& raw, int line, const gcode::Parameters& parameters) {
+  if (raw.find('#') == std::string::npos) return false;
+  std::string out;
+  bool pinned = false;
+  for (std::size_t i = 0; i < raw.size();) {
+    if (raw[i] == ';') {  // the rest is a comment LinuxCNC does not expand
+      out += raw.substr(i);
+      break;
+    }
+    if (raw[i] == '(') {
+      const std::size_t close = raw.find(')', i);
+      if (close == std::string::npos) break;  // the parser says what is wrong
+      const std::string_view comment = std::string_view(raw).substr(i + 1, close - i - 1);
+      const auto start = expanded_message_start(comment);
+      if (start && lower_without_blanks(comment).find("#<_line>") != std::string::npos) {
+        const std::string expanded = expand_message(comment.substr(*start), parameters, line);
+        if (expanded.find_first_of("#%()") != std::string::npos)
+          throw gcode::SyntaxError(static_cast<int>(i),
+                                   "this message reads #<_line> and also prints '#', '%' or '(': it cannot be "
+                                   "rewritten for the pre-distorted program's line numbers");
+        out += '(';
+        out += comment.substr(0, *start);
+        out += expanded;
+        out += ')';
+        pinned = true;
+      } else {
+        out += raw.substr(i, close + 1 - i);
+      }
+      i = close + 1;
+      continue;
+    }
+    if (raw[i] == '#') {
+      if (const auto named = named_reference(raw, i); named && named->first == "_line") {
+        out += std::to_string(line);
+        i = named->second;
+        pinned = true;
+        continue;
+      }
+    }
+    out += raw[i++];
+  }
+  if (!pinned) return false;
+  raw = std::move(out);
+  return true;
+}
+
+}  // namespace vc::interpreter
