@@ -37,6 +37,7 @@ struct PredistortArgs {
   std::string tool_table;          // LinuxCNC tool table: tool lengths (mm)
   std::string process;             // cutting conditions per tool: cutting-force deflection
   std::string world = "axes";      // world convention of the uncompensated kinematics
+  std::vector<std::string> subroutine_path;  // folders of NAME.ngc subroutine files
   double tolerance_mm = 0.0005;
   bool quiet = false;
 };

@@ -52,6 +52,12 @@ int main(int argc, char** argv) {
   predistort_cmd->add_option("--var", predistort.var_file,
                              "LinuxCNC parameter file (.var): work offsets G54..G59.3, G28/G30 homes");
   predistort_cmd->add_option("--tool-table", predistort.tool_table, "LinuxCNC tool table (.tbl): tool lengths, mm");
+  predistort_cmd
+      ->add_option("--subroutine-path", predistort.subroutine_path,
+                   "folders searched for NAME.ngc when o<name> call or M98 P<n> finds no definition in the program "
+                   "(the INI's [RS274NGC]SUBROUTINE_PATH and [DISPLAY]PROGRAM_PREFIX); ':'-separated or repeated")
+      ->delimiter(':')
+      ->check(CLI::ExistingDirectory);
   predistort_cmd->add_option("--process", predistort.process,
                              "cutting conditions per tool (.toml): adds the cutting-force deflection");
   predistort_cmd->add_option("--tolerance", predistort.tolerance_mm,

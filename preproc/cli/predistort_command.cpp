@@ -68,6 +68,7 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
   predistort::Job job;
   job.model = &model;
   job.setup = files.setup(args.input, model, world == machine::WorldConvention::Tcp);
+  job.setup.subroutine_path = args.subroutine_path;
   job.corrector.tolerance_mm = args.tolerance_mm;
   job.corrector.world = world;
   job.deflection = deflection ? &*deflection : nullptr;

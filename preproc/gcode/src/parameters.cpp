@@ -1,6 +1,9 @@
 #include "vc/gcode/parameters.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+#include <iterator>
 
 #include "vc/gcode/syntax_error.hpp"
 
@@ -18,7 +21,15 @@ std::size_t index_of(double n, int offset) {
 
 }  // namespace
 
-double Parameters::get(double n, int offset) const { return numbered_[index_of(n, offset)]; }
+double Parameters::get(double n, int offset) const {
+  const std::size_t i = index_of(n, offset);
+  // The controller's state at run time, which a program read offline cannot know.
+  if ((i >= 5061 && i <= 5070) || (i >= 5399 && i <= 5428) || i >= 5600)
+    throw SyntaxError(offset, "#" + std::to_string(i) +
+                                  " is the controller's state at run time (probe result, input, tool data or current "
+                                  "position): it is not known offline");
+  return numbered_[i];
+}
 
 void Parameters::set(double n, double value, int offset) { numbered_[index_of(n, offset)] = value; }
 
@@ -31,5 +42,28 @@ double Parameters::get(const std::string& name, int offset) const {
 bool Parameters::exists(const std::string& name) const { return named_.count(name) != 0; }
 
 void Parameters::set(const std::string& name, double value) { named_[name] = value; }
+
+void Parameters::enter_scope(Scope& caller, const std::array<double, kLocals>* arguments) {
+  caller.own_numbered = arguments != nullptr;
+  if (arguments) {
+    std::copy(numbered_.begin() + 1, numbered_.begin() + 1 + kLocals, caller.numbered.begin());
+    std::copy(arguments->begin(), arguments->end(), numbered_.begin() + 1);
+  }
+  caller.named.clear();
+  for (auto it = named_.begin(); it != named_.end();) {
+    if (is_global(it->first)) {
+      ++it;
+    } else {
+      caller.named.insert(*it);
+      it = named_.erase(it);
+    }
+  }
+}
+
+void Parameters::leave_scope(Scope& caller) {
+  if (caller.own_numbered) std::copy(caller.numbered.begin(), caller.numbered.end(), numbered_.begin() + 1);
+  for (auto it = named_.begin(); it != named_.end();) it = is_global(it->first) ? std::next(it) : named_.erase(it);
+  named_.insert(caller.named.begin(), caller.named.end());
+}
 
 }  // namespace vc::gcode

@@ -103,6 +103,61 @@ bool is_word_letter(char c) {
   return std::string_view("abcdfghijklmpqrstuvwxyz").find(c) != std::string_view::npos;
 }
 
+// "o<name> keyword [arg]..." or "o123 keyword ...": the rest of the (normalized) line.
+void parse_o_word(const Normalized& n, std::size_t pos, Block& block) {
+  using Kind = OWord::Kind;
+  OWord& o = block.o;
+  o.begin = block.o_word = n.raw[pos];
+  ++pos;
+  const std::string& text = n.text;
+  if (pos < text.size() && text[pos] == '<') {
+    const std::size_t close = text.find('>', pos);
+    if (close == std::string::npos) throw SyntaxError(n.raw[pos], "expected '>' to end the O-word name");
+    o.name = text.substr(pos + 1, close - pos - 1);
+    if (o.name.empty()) throw SyntaxError(n.raw[pos], "an empty O-word name");
+    pos = close + 1;
+  } else {
+    std::size_t digits = pos;
+    while (digits < text.size() && std::isdigit(static_cast<unsigned char>(text[digits]))) ++digits;
+    if (digits == pos) throw SyntaxError(n.raw[pos], "expected a number or <name> after 'O'");
+    const std::size_t first = text.find_first_not_of('0', pos);
+    o.name = first < digits ? text.substr(first, digits - first) : "0";  // o0100 is o100
+    pos = digits;
+  }
+  std::size_t letters = pos;
+  while (letters < text.size() && std::isalpha(static_cast<unsigned char>(text[letters]))) ++letters;
+  static constexpr std::pair<std::string_view, Kind> kKeywords[] = {
+      {"sub", Kind::Sub},         {"endsub", Kind::EndSub},     {"call", Kind::Call},
+      {"do", Kind::Do},           {"while", Kind::While},       {"endwhile", Kind::EndWhile},
+      {"if", Kind::If},           {"elseif", Kind::ElseIf},     {"else", Kind::Else},
+      {"endif", Kind::EndIf},     {"break", Kind::Break},       {"continue", Kind::Continue},
+      {"return", Kind::Return},   {"repeat", Kind::Repeat},     {"endrepeat", Kind::EndRepeat}};
+  const std::string_view keyword = std::string_view(text).substr(pos, letters - pos);
+  o.kind = Kind::None;
+  if (!keyword.empty()) {
+    bool known = false;
+    for (const auto& [name, kind] : kKeywords)
+      if (keyword == name) {
+        o.kind = kind;
+        known = true;
+      }
+    if (!known) throw SyntaxError(n.raw[pos], "unknown O-word keyword '" + std::string(keyword) + "'");
+  }
+  pos = letters;
+  while (pos < text.size()) {
+    if (text[pos] != '[') throw SyntaxError(n.raw[pos], "expected '[' (an O-word argument is an [expression])");
+    ast::Expression& e = o.args.emplace_back();
+    pos = parse_at(n, pos, parser::value, e, [] { return "an [expression]"; });
+  }
+  o.end = n.raw[pos > 0 ? pos - 1 : 0] + 1;
+  const bool one = o.kind == Kind::While || o.kind == Kind::If || o.kind == Kind::ElseIf || o.kind == Kind::Repeat;
+  const bool optional = o.kind == Kind::EndSub || o.kind == Kind::Return;
+  const bool any = o.kind == Kind::Call;
+  if ((one && o.args.size() != 1) || (optional && o.args.size() > 1) || (!one && !optional && !any && !o.args.empty()))
+    throw SyntaxError(o.begin, one ? "this O word needs one [expression]" : "too many [arguments] for this O word");
+  if (o.args.size() > 30) throw SyntaxError(o.begin, "a call passes at most 30 arguments (#1..#30)");
+}
+
 }  // namespace
 
 void parse_block(std::string_view line, Block& block) {
@@ -127,7 +182,9 @@ void parse_block(std::string_view line, Block& block) {
   while (pos < n.text.size()) {
     const char c = n.text[pos];
     if (c == 'o') {
-      block.o_word = n.raw[pos];  // O-word control flow: recorded, not read further
+      if (!block.words.empty() || !block.assignments.empty())
+        throw SyntaxError(n.raw[pos], "an O word must start the line (after an N number)");
+      parse_o_word(n, pos, block);
       return;
     }
     if (c == '#') {

@@ -1,10 +1,14 @@
 #include "vc/interpreter/line_text.hpp"
 
+#include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <vector>
 
+#include "vc/gcode/evaluate.hpp"
 #include "vc/gcode/syntax_error.hpp"
 
 namespace vc::interpreter {
@@ -41,6 +45,13 @@ std::optional<std::size_t> expanded_message_start(std::string_view comment) {
     if (same) return start + n;
   }
   return std::nullopt;
+}
+
+// The shortest fixed-point decimal that reads back as `value` (G-code has no exponents).
+std::string number_text(double value) {
+  char buffer[400];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed);
+  return std::string(buffer, result.ptr);
 }
 
 }  // namespace
@@ -149,6 +160,53 @@ bool pin_line_number(std::string& raw, int line, const gcode::Parameters& parame
   if (!pinned) return false;
   raw = std::move(out);
   return true;
+}
+
+std::string evaluated_line(std::string_view raw, const gcode::Block& block, const gcode::Parameters& parameters,
+                           int line, bool numbered_shared) {
+  struct Edit {
+    int begin, end;
+    std::string text;
+  };
+  std::vector<Edit> edits;
+  for (const gcode::Word& w : block.words) {
+    if (boost::get<double>(&w.value)) continue;  // a number as written
+    const double value = gcode::evaluate(w.value, parameters, w.begin);
+    if (!std::isfinite(value)) throw gcode::SyntaxError(w.begin, "the value is not a finite number");
+    edits.push_back({w.begin, w.end, std::string(1, w.letter) + number_text(value)});
+  }
+  for (const gcode::Assignment& a : block.assignments) {
+    const double value = gcode::evaluate(a.value, parameters, a.begin);
+    std::string text;
+    if (const auto* named = boost::get<gcode::ast::NamedParameter>(&a.target)) {
+      if (gcode::Parameters::is_global(named->name)) text = "#<" + named->name + ">=" + number_text(value);
+    } else {
+      const auto& numbered = boost::get<boost::spirit::x3::forward_ast<gcode::ast::NumberedParameter>>(a.target).get();
+      const double n = std::round(gcode::evaluate(numbered.index, parameters, a.begin));
+      if (n > gcode::Parameters::kLocals || numbered_shared) text = "#" + number_text(n) + "=" + number_text(value);
+    }
+    edits.push_back({a.begin, a.end, text});
+  }
+  for (const gcode::Comment& c : block.comments) {
+    if (raw[static_cast<std::size_t>(c.begin)] != '(') continue;  // ';' comments are not expanded
+    const auto start = expanded_message_start(c.text);
+    if (!start || c.text.find_first_of("#%", *start) == std::string::npos) continue;
+    const std::string expanded = expand_message(std::string_view(c.text).substr(*start), parameters, line);
+    if (expanded.find_first_of("#%()") != std::string::npos)
+      throw gcode::SyntaxError(c.begin, "this message, expanded, prints '#', '%' or '(': it cannot be written into "
+                                        "the flat program");
+    edits.push_back({c.begin, c.end, "(" + c.text.substr(0, *start) + expanded + ")"});
+  }
+  std::sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) { return a.begin < b.begin; });
+  std::string out;
+  std::size_t from = 0;
+  for (const Edit& e : edits) {
+    out.append(raw.substr(from, static_cast<std::size_t>(e.begin) - from));
+    out += e.text;
+    from = static_cast<std::size_t>(e.end);
+  }
+  out.append(raw.substr(std::min(from, raw.size())));
+  return out;
 }
 
 }  // namespace vc::interpreter

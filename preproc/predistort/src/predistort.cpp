@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "batch_queue.hpp"
+#include "vc/interpreter/program_reader.hpp"
 #include "vc/tables/source_error.hpp"
 
 namespace vc::predistort {
@@ -18,6 +19,7 @@ namespace {
 // failing line in file order) and the memory bound are those of reading one line at a time.
 struct Line {
   int number = 0;
+  const std::string* file = nullptr;  // the program, or the subroutine file the line is in
   long bytes = 0;  // read up to the end of this line
   std::string raw;
   gcode::Block block;
@@ -76,8 +78,8 @@ void leaves(const LineQueue::Batch& batch, Resume& resume) {
 
 void read_lines(std::istream& in, const Job& job, LineQueue& queue) {
   interpreter::Interpreter interpreter(job.setup);
-  long bytes = 0;
-  int number = 0;
+  interpreter::ProgramReader reader(in, job.setup.file, interpreter, job.setup.subroutine_path);
+  interpreter::Origin origin;
   Resume resume;
   for (bool last = false; !last;) {
     LineQueue::Batch* batch = queue.begin(kRead);
@@ -87,14 +89,13 @@ void read_lines(std::istream& in, const Job& job, LineQueue& queue) {
       while (batch->count < batch->items.size()) {
         if (batch->count + kAhead < batch->items.size()) prefetch_for_reader(batch->items[batch->count + kAhead]);
         Line& line = batch->items[batch->count];
-        if (!std::getline(in, line.raw)) {
+        if (!reader.next(line.raw, origin, line.block, line.effect)) {
           batch->last = true;
           break;
         }
-        line.number = ++number;
-        bytes += static_cast<long>(line.raw.size()) + 1;
-        line.bytes = bytes;
-        interpreter.read(line.raw, number, line.block, line.effect);
+        line.number = origin.line;
+        line.file = &reader.files()[static_cast<std::size_t>(origin.file)];
+        line.bytes = reader.program_bytes();
         if (line.effect.moved_as_written) {
           line.position = interpreter.position();
           line.frame = interpreter.frame();
@@ -112,7 +113,7 @@ void read_lines(std::istream& in, const Job& job, LineQueue& queue) {
 }
 
 // Lane `lane` of `lanes` correctors: batches lane, lane + lanes, ...
-void correct_lines(const Job& job, PathCorrector& corrector, LineQueue& queue, int lane, int lanes) {
+void correct_lines(PathCorrector& corrector, LineQueue& queue, int lane, int lanes) {
   for (bool last = false; !last;) {
     LineQueue::Batch* batch = queue.begin(kCorrect, lane);
     if (!batch) return;
@@ -133,7 +134,7 @@ void correct_lines(const Job& job, PathCorrector& corrector, LineQueue& queue, i
           try {
             for (std::size_t m = 0; m < effect.moves.size(); ++m) corrector.correct(effect.moves[m], line.pieces[m]);
           } catch (const std::runtime_error& e) {
-            throw LoadError({job.setup.file, line.number, 1}, e.what());
+            throw LoadError({*line.file, line.number, 1}, e.what());
           }
         } else if (effect.moved_as_written) {
           corrector.lost_position();
@@ -159,7 +160,7 @@ class Workers {
     const int lanes = static_cast<int>(correctors.size());
     for (int lane = 0; lane < lanes; ++lane)
       threads_.emplace_back([&job, &correctors, &queue, lane, lanes] {
-        correct_lines(job, correctors[static_cast<std::size_t>(lane)], queue, lane, lanes);
+        correct_lines(correctors[static_cast<std::size_t>(lane)], queue, lane, lanes);
       });
   }
   ~Workers() { join(); }

@@ -30,12 +30,25 @@ struct Comment {
   int begin, end;          // including '(' ')' or ';'
 };
 
+// An O word: control flow (LinuxCNC's subroutines, loops, conditions), or a Fanuc-style
+// program number "O1000" (kind None) that M98 calls.
+struct OWord {
+  enum class Kind { None, Sub, EndSub, Call, Do, While, EndWhile, If, ElseIf, Else, EndIf, Break, Continue,
+                    Return, Repeat, EndRepeat };
+  Kind kind = Kind::None;
+  std::string name;                     // "100" for o100 and o0100, "name" for o<Name> (lower case)
+  std::vector<ast::Expression> args;    // call: [arguments]; while, if, elseif, repeat: [condition or
+                                        // count]; endsub, return: [value], if any
+  int begin = -1, end = -1;             // the O word in the raw line; end: after its last argument
+};
+
 struct Block {
   bool percent = false;        // a '%' program delimiter line
   bool block_delete = false;   // starts with '/'
   bool has_line_number = false;
   double line_number = 0;      // N word (LinuxCNC allows N only at the start, after '/')
   int o_word = -1;             // offset of an O word (subroutines, loops): -1 if none
+  OWord o;                     // the O word, if o_word >= 0
   std::vector<Word> words;     // in the order written
   std::vector<Assignment> assignments;
   std::vector<Comment> comments;
@@ -45,6 +58,7 @@ struct Block {
     percent = block_delete = has_line_number = false;
     line_number = 0;
     o_word = -1;
+    if (!o.name.empty()) o = OWord{};
     words.clear();
     assignments.clear();
     comments.clear();

@@ -15,13 +15,30 @@ class Parameters {
  public:
   static constexpr int kCount = 5602;  // RS274NGC_MAX_PARAMETERS: #0 .. #5601
 
-  // Throws SyntaxError(offset) if n is not an integer in 1..5601.
+  // Throws SyntaxError(offset) if n is not an integer in 1..5601, or if it is one of the
+  // controller's run-time values (#5061-#5070 probe, #5399 input, #5400-#5413 tool data,
+  // #5420-#5428 current position, #5600-#5601 tool changer), unknown offline.
   double get(double n, int offset) const;
   void set(double n, double value, int offset);
   // Unset named parameters: get throws SyntaxError(offset), "unknown parameter #<name>".
   double get(const std::string& name, int offset) const;
   bool exists(const std::string& name) const;
   void set(const std::string& name, double value);
+
+  // A subroutine call's scope. LinuxCNC gives each O-word call its own #1..#30 (the call's
+  // arguments, 0 after them) and every call its own names without a leading '_'; an M98 call
+  // shares the caller's #1..#30. enter_scope keeps the caller's in `caller`, leave_scope puts
+  // them back.
+  static constexpr int kLocals = 30;
+  struct Scope {
+    std::array<double, kLocals> numbered{};
+    bool own_numbered = false;
+    std::unordered_map<std::string, double> named;
+  };
+  // `arguments`: the new #1..#30, or null to share the caller's.
+  void enter_scope(Scope& caller, const std::array<double, kLocals>* arguments);
+  void leave_scope(Scope& caller);
+  static bool is_global(std::string_view name) { return !name.empty() && name[0] == '_'; }
 
   // Direct access for the interpreter (work offsets, homes): no checks.
   double& operator[](int n) { return numbered_[static_cast<std::size_t>(n)]; }

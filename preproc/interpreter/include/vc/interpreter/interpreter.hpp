@@ -24,6 +24,9 @@ struct Setup {
   // still adds the tool length to world Z and the kinematics takes it off again, so the
   // tool length is not part of the frame (model.md, kins/README.md).
   bool tool_length_in_world = true;
+  // Folders searched for NAME.ngc when a subroutine or M98 subprogram is not defined in the
+  // program (LinuxCNC's [RS274NGC]SUBROUTINE_PATH, [DISPLAY]PROGRAM_PREFIX); see ProgramReader.
+  std::vector<std::string> subroutine_path;
 };
 
 // What one block does, for a writer that copies the block and replaces its motion.
@@ -65,6 +68,11 @@ class Interpreter {
   void read(std::string& raw, int line, gcode::Block& block, Effect& effect);
 
   const gcode::Parameters& parameters() const { return parameters_; }
+  gcode::Parameters& parameters() { return parameters_; }
+  // The file the next blocks come from, for messages (a subroutine's file).
+  void set_file(const std::string& file) {
+    if (file != setup_.file) setup_.file = file;
+  }
   // Where the program is (program coordinates of the active frame) and that frame.
   const Position& position() const { return position_; }
   Frame frame() const;

@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "vc/gcode/block.hpp"
 #include "vc/gcode/parameters.hpp"
 
 namespace vc::interpreter {
@@ -23,5 +24,15 @@ std::string expand_message(std::string_view text, const gcode::Parameters& param
 // throws gcode::SyntaxError(offset) for a message whose expansion cannot be written back
 // (it would contain '#' or '%', which LinuxCNC would expand again).
 bool pin_line_number(std::string& raw, int line, const gcode::Parameters& parameters);
+
+// The line `raw` (parsed into `block`, line `line` of its file) as it reads outside the
+// subroutine call it is executed in: each word whose value is an expression or a parameter
+// gets the value (with the parameters from before the line), assignments to the call's own
+// parameters (names without '_', and #1..#30 unless the call shares them: `numbered_shared`)
+// are dropped and the others get their values, and DEBUG/PRINT/LOG messages are expanded.
+// Numbers are written as the shortest decimals that read back as the same double. Throws
+// gcode::SyntaxError(offset) for what cannot be evaluated or written.
+std::string evaluated_line(std::string_view raw, const gcode::Block& block, const gcode::Parameters& parameters,
+                           int line, bool numbered_shared);
 
 }  // namespace vc::interpreter
