@@ -38,6 +38,7 @@ struct PredistortArgs {
   std::string process;             // cutting conditions per tool: cutting-force deflection
   std::string world = "axes";      // world convention of the uncompensated kinematics
   std::vector<std::string> subroutine_path;  // folders of NAME.ngc subroutine files
+  std::string start;               // where the machine starts: X,Y,Z[,A,B,C] or an INI (homes)
   double tolerance_mm = 0.0005;
   bool quiet = false;
 };

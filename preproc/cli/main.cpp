@@ -58,6 +58,11 @@ int main(int argc, char** argv) {
                    "(the INI's [RS274NGC]SUBROUTINE_PATH and [DISPLAY]PROGRAM_PREFIX); ':'-separated or repeated")
       ->delimiter(':')
       ->check(CLI::ExistingDirectory);
+  predistort_cmd->add_option(
+      "--start", predistort.start,
+      "where the machine is when the program starts, for a program that cuts before it has moved every axis: "
+      "X,Y,Z[,A,B,C] (machine coordinates, mm and deg) or the machine's LinuxCNC INI file (its [JOINT_n]HOME, "
+      "the position after homing). Without it such a program is refused");
   predistort_cmd->add_option("--process", predistort.process,
                              "cutting conditions per tool (.toml): adds the cutting-force deflection");
   predistort_cmd->add_option("--tolerance", predistort.tolerance_mm,

@@ -69,6 +69,7 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
   job.model = &model;
   job.setup = files.setup(args.input, model, world == machine::WorldConvention::Tcp);
   job.setup.subroutine_path = args.subroutine_path;
+  if (!args.start.empty()) job.setup.start_world = start_position(args.start);
   job.corrector.tolerance_mm = args.tolerance_mm;
   job.corrector.world = world;
   job.deflection = deflection ? &*deflection : nullptr;

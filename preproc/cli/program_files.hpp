@@ -22,6 +22,12 @@ struct ProgramFiles {
   std::optional<predistort::Deflection> deflection(const std::string& process, const machine::Model& model) const;
 };
 
+// Where the machine is when the program starts (world coordinates, mm and deg), from
+// `--start`: "X,Y,Z[,A,B,C]", or a LinuxCNC INI file whose [JOINT_n]HOME values the machine
+// has after homing (joint n is the n-th letter of [TRAJ]COORDINATES, as trivkins maps them).
+// Throws vc::LoadError (file:line) or std::runtime_error with what cannot be read.
+interpreter::Position start_position(const std::string& value);
+
 // "axes" or "tcp" (throws otherwise).
 machine::WorldConvention world_convention(const std::string& name);
 

@@ -26,6 +26,7 @@ constexpr double kSpiralRelativeTolerance = 0.001;
 // Parameter numbers of a LinuxCNC .var file.
 constexpr int kG28Home = 5161, kG30Home = 5181;
 constexpr int kCoordinateSystem = 5220;         // active system 1..9
+constexpr int kG92Applied = 5210, kG92 = 5211;  // G92 offsets on (1) and their values X..C
 int offset_parameter(int system, int axis) { return 5201 + 20 * system + axis; }  // 5221 = G54 X
 int rotation_parameter(int system) { return 5210 + 20 * system; }                  // 5230 = G54 R
 
@@ -98,6 +99,13 @@ Interpreter::Interpreter(Setup setup) : setup_(std::move(setup)) {
     const double system = parameters_[kCoordinateSystem];
     if (system >= 1 && system <= 9) coordinate_system_ = static_cast<int>(system);
     offsets_known_ = true;
+    // LinuxCNC restores the G92 offsets at start if they were on (rs274ngc_pre.cc, init).
+    if (parameters_[kG92Applied] != 0.0)
+      for (int i = 0; i < kAxes; ++i) g92_[i] = parameters_[kG92 + i];
+  }
+  if (setup_.start_world) {
+    set_world_position(*setup_.start_world);
+    known_ = kAllAxes;
   }
 }
 
@@ -120,6 +128,10 @@ Frame Interpreter::frame() const {
   Frame f;
   for (int i = 0; i < kAxes; ++i) f.offset[i] = parameters_[offset_parameter(coordinate_system_, i)];
   f.rotation_deg = parameters_[rotation_parameter(coordinate_system_)];
+  // G92/G52 offsets are added to program coordinates before the rotation (LinuxCNC's canon:
+  // world = rotate(program + G92) + G5x + tool length).
+  const Position g92 = Frame{{}, f.rotation_deg}.world(g92_);
+  for (int i = 0; i < kAxes; ++i) f.offset[i] += g92[i];
   if (setup_.tool_length_in_world) f.offset[2] += tool_length_;
   return f;
 }
@@ -174,8 +186,6 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
                "offset again by the controller; let the CAM system compute the tool path";
     else if ((g >= 810 && g <= 890 && g % 10 == 0) || g == 730 || g == 760)
       reason = "canned cycles are not translated: expand them into G0/G1 moves in the post-processor";
-    else if (g >= 920 && g <= 923)
-      reason = "G92 offsets are not supported: use G54..G59.3 work offsets (G10 L2/L20)";
     else if (g == 330 || g == 331 || (g >= 382 && g <= 385) || g == 50 || g == 51 || g == 52 || g == 70 ||
              g == 80 || g == 432 || g == 171 || g == 181 || g == 191)
       reason = "not supported by the pre-distorter (threading, probing, splines, lathe modes, G43.2, "
@@ -184,7 +194,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     static constexpr int kKnown[] = {0,   10,  20,  30,  40,  100, 170, 180, 190, 200, 210, 280,
                                      281, 300, 301, 400, 430, 431, 490, 530, 540, 550, 560, 570,
                                      580, 590, 591, 592, 593, 610, 611, 640, 800, 900, 901, 910,
-                                     911, 930, 940, 950, 960, 970, 980, 990};
+                                     911, 920, 921, 922, 923, 520, 930, 940, 950, 960, 970, 980, 990};
     if (std::find(std::begin(kKnown), std::end(kKnown), g) == std::end(kKnown))
       refuse(line, c.offset, "unknown G code " + g_name(g));
   }
@@ -248,6 +258,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
   if (w.find_g({901})) arc_absolute_ = true;
   if (w.find_g({911})) arc_absolute_ = false;
   if (w.find_g({100})) set_offsets(w, line);
+  if (const auto* g92 = w.find_g({520, 920, 921, 922, 923})) set_axis_offsets(w, g92->code, line);
   if (const auto* home = w.find_g({280, 300})) go_home(w, home->code, line, effect);
   if (const auto* store = w.find_g({281, 301})) {
     const Position world = world_position();
@@ -255,7 +266,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     for (int i = 0; i < kAxes; ++i) parameters_[base + i] = world[i];
   }
   if (const auto* motion = w.find_g({0, 10, 20, 30, 800})) motion_ = motion->code;
-  if (!w.find_g({280, 300, 100, 431})) move(w, line, effect);  // their axis words are not motion
+  if (!w.find_g({280, 300, 100, 431, 520, 920})) move(w, line, effect);  // their axis words are not motion
   for (const Words::Code& c : w.m)
     if (c.code == 0 || c.code == 10 || c.code == 20 || c.code == 300 || c.code == 600) {
       effect.stop_words.push_back(c.index);
@@ -335,6 +346,7 @@ void Interpreter::set_offsets(const Words& w, int line) {
       double tool = (i == 2 && setup_.tool_length_in_world) ? tool_length_ : 0.0;
       if (parameters_[rotation_parameter(system)] != 0.0 && i < 2)
         refuse(line, w[letter].offset, "G10 L20 on a rotated coordinate system is not supported");
+      if (g92_[i] != 0.0) refuse(line, w[letter].offset, "G10 L20 while G92 offsets are on is not supported");
       offset = world[i] - tool - value;
     }
   }
@@ -344,6 +356,40 @@ void Interpreter::set_offsets(const Words& w, int line) {
   }
   offsets_set_ |= 1u << system;
   if (system == coordinate_system_) set_world_position(world);
+}
+
+void Interpreter::set_axis_offsets(const Words& w, int code, int line) {
+  // LinuxCNC's convert_axis_offsets (interp_convert.cc): the machine stays where it is. G92:
+  // the current point gets the given coordinates; G52: the offset is the given values; G92.1
+  // and G92.2 take the offsets off (G92.1 also zeroes #5211..), G92.3 puts #5211.. back on.
+  const Position world = world_position();
+  const double scale = inches_ ? kInch : 1.0;
+  if (code == 920 || code == 520) {
+    bool any = false;
+    for (int i = 0; i < kAxes; ++i) {
+      const char letter = kAxisLetters[i];
+      if (!w.has(letter)) continue;
+      any = true;
+      if (!(setup_.machine_axes >> i & 1u))
+        refuse(line, w[letter].offset, std::string("this machine has no ") + letter + " axis");
+      if (code == 920 && !(known_ >> i & 1u))
+        refuse(line, w[letter].offset, std::string("G92: the current ") + letter + " is not known yet");
+      const double value = w.get(letter) * (is_linear(i) ? scale : 1.0);
+      g92_[i] = code == 920 ? position_[i] + g92_[i] - value : value;
+    }
+    if (!any) refuse(line, w.find_g({code})->offset, g_name(code) + " needs at least one axis word");
+    parameters_[kG92Applied] = 1.0;
+    for (int i = 0; i < kAxes; ++i) parameters_[kG92 + i] = g92_[i];
+  } else if (code == 921 || code == 922) {
+    g92_ = {};
+    parameters_[kG92Applied] = 0.0;
+    if (code == 921)
+      for (int i = 0; i < kAxes; ++i) parameters_[kG92 + i] = 0.0;
+  } else {  // G92.3
+    parameters_[kG92Applied] = 1.0;
+    for (int i = 0; i < kAxes; ++i) g92_[i] = parameters_[kG92 + i];
+  }
+  set_world_position(world);
 }
 
 void Interpreter::go_home(const Words& w, int code, int line, Effect& effect) {
@@ -458,7 +504,8 @@ void Interpreter::move(const Words& w, int line, Effect& effect) {
         if ((needed >> i & 1u) && !((m.known_start & known_) >> i & 1u)) missing += kAxisLetters[i];
       refuse(line, w.first_motion_offset(),
              "cannot correct a cutting move from an unknown position (" + missing +
-                 " not set yet): begin the program with a G0 or G53 move to every axis");
+                 " not set yet): begin the program with a G0 or G53 move to every axis, or give the start position "
+                 "(volcomp predistort --start)");
     }
     effect.moved_as_written = true;  // a rapid to a partly known position: written as it is, uncorrected
     return;

@@ -131,7 +131,7 @@ TEST(Interpreter, RefusesWhatItCannotTranslateWithLineAndColumn) {
   EXPECT_NE(refusal(kStart + "G41 D1 G1 X5\n").find("cutter radius compensation"), std::string::npos);
   EXPECT_NE(refusal(kStart + "G1 F10 G81 X1 Z-1 R1\n").find("test.ngc:3:8: error: G81: canned cycles"), std::string::npos);
   EXPECT_NE(refusal(kStart + "o100 sub\n").find("O-word"), std::string::npos);
-  EXPECT_NE(refusal(kStart + "G92 X0\n").find("G92"), std::string::npos);
+  EXPECT_NE(refusal(kStart + "G92\n").find("needs at least one axis word"), std::string::npos);
   EXPECT_NE(refusal(kStart + "G43 H7\n", nullptr).find("tool table"), std::string::npos);
   const ToolTable tools{{1, {1, 100.0, 10.0}}};
   EXPECT_NE(refusal(kStart + "G43 H7\n", &tools).find("test.ngc:3:5: error: tool 7 is not in the tool table"),
@@ -194,6 +194,57 @@ TEST(Interpreter, DynamicToolLengthDoesNotMove) {
   ASSERT_EQ(r.moves.size(), 2u);
   EXPECT_DOUBLE_EQ(r.moves[1].frame.world(r.moves[1].end)[2], 0.0);
   EXPECT_DOUBLE_EQ(r.moves[1].tool_length_mm, 10.0);
+}
+
+// G92, G52 and G92.1-G92.3 keep the machine still and shift later moves (LinuxCNC's
+// convert_axis_offsets); the offsets go before the rotation of the coordinate system.
+TEST(Interpreter, AxisOffsetsShiftTheProgramAndKeepTheMachineStill) {
+  gcode::Parameters var;
+  const Interpreted r = interpret(kStart +
+                                      "G0 X10 Y0\n"
+                                      "G92 X0\n"       // here becomes X0: offset 10
+                                      "G0 X5\n"        // world 15
+                                      "G52 X2\n"       // offset 2: program X 13 here
+                                      "G0 X5\n"        // world 7
+                                      "G92.2\n"        // off, #5211 kept
+                                      "G0 X5\n"        // world 5
+                                      "G92.3\n"        // back on: offset 2
+                                      "G0 X5\n"        // world 7
+                                      "G92.1\n"        // off and zeroed
+                                      "G0 X5\n",      // world 5
+                                  nullptr, &var);
+  ASSERT_EQ(r.moves.size(), 7u);
+  const double expected[] = {15, 7, 5, 7, 5};
+  for (int k = 0; k < 5; ++k)
+    EXPECT_DOUBLE_EQ(r.moves[static_cast<std::size_t>(k + 2)].frame.world(r.moves[static_cast<std::size_t>(k + 2)].end)[0],
+                     expected[k])
+        << k;
+  EXPECT_DOUBLE_EQ(r.moves[3].start[0], 13.0);  // after G52 X2, at world 15
+  gcode::Parameters rotated;
+  rotated[5230] = 90;  // G54 turned 90 deg: the G92 offset turns with it
+  const Interpreted q = interpret(kStart + "G0 X0 Y0\nG92 X-10\nG0 X0\n", nullptr, &rotated);
+  const Position world = q.moves[2].frame.world(q.moves[2].end);
+  EXPECT_NEAR(world[0], 0.0, 1e-12);
+  EXPECT_NEAR(world[1], 10.0, 1e-12);
+}
+
+// A documented start position lets a program cut before it has set every axis.
+TEST(Interpreter, StartPositionMakesTheFirstCutKnown) {
+  gcode::Parameters var;
+  var[5221] = 100;
+  interpreter::Setup setup;
+  setup.file = "test.ngc";
+  setup.machine_axes = 0b111;
+  setup.var_file = &var;
+  setup.start_world = Position{0, 0, 250, 0, 0, 0};
+  Interpreter interp(setup);
+  gcode::Block block;
+  Effect effect;
+  gcode::parse_block("G1 X110 F100", block);
+  interp.execute(block, 1, effect);
+  ASSERT_EQ(effect.moves.size(), 1u);
+  EXPECT_DOUBLE_EQ(effect.moves[0].start[0], -100.0);  // world 0 in G54 (X offset 100)
+  EXPECT_DOUBLE_EQ(effect.moves[0].start[2], 250.0);
 }
 
 }  // namespace

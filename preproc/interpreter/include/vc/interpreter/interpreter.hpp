@@ -5,6 +5,7 @@
 // file:line:column and a reason (vc::LoadError), never mistranslated.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,10 @@ struct Setup {
   // Folders searched for NAME.ngc when a subroutine or M98 subprogram is not defined in the
   // program (LinuxCNC's [RS274NGC]SUBROUTINE_PATH, [DISPLAY]PROGRAM_PREFIX); see ProgramReader.
   std::vector<std::string> subroutine_path;
+  // Where the machine is when the program starts (world coordinates, mm and deg), if known:
+  // the INI's home or a position the user gives. Unknown (the default): a cutting move before
+  // every axis is set is refused.
+  std::optional<Position> start_world;
 };
 
 // What one block does, for a writer that copies the block and replaces its motion.
@@ -83,6 +88,7 @@ class Interpreter {
   void set_tool_length(const Words& w, int line);
   void set_coordinate_system(int index);
   void set_offsets(const Words& w, int line);  // G10 L2 / L20
+  void set_axis_offsets(const Words& w, int code, int line);  // G92, G92.1-G92.3, G52
   void go_home(const Words& w, int code, int line, Effect& effect);
   void move(const Words& w, int line, Effect& effect);
   Position world_position() const;
@@ -108,6 +114,7 @@ class Interpreter {
   int coordinate_system_ = 1;  // 1..9: G54..G59.3
   bool offsets_known_ = false; // the active system's offsets came from the .var file or G10
   unsigned offsets_set_ = 0;   // bit n: system n set by G10 in this program
+  Position g92_{};             // G92/G52 offsets (mm, deg), added before the rotation
   Position position_{};        // current point, program coordinates (mm, deg)
   unsigned known_ = 0;         // axes whose current position is known
 };
