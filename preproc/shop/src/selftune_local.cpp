@@ -138,7 +138,7 @@ LocalSummary shift_program(const machine::Model& model, const FirstPart& part, s
   double covered_length = 0;
   std::vector<std::vector<predistort::Piece>> pieces;
   bool header_written = false;
-  for_each_block(program, interpreter, [&](const std::string& raw, const gcode::Block& block,
+  for_each_block(program, interpreter, setup, [&](const std::string& raw, const gcode::Block& block,
                                            const interpreter::Effect& effect, int) {
     if (!header_written && !block.percent) {
       writer.header(provenance);

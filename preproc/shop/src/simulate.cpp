@@ -96,7 +96,7 @@ void simulate(const machine::Model& machine, std::istream& program, const interp
   interpreter::Interpreter interpreter(setup);
   Simulator simulator(machine, setup, options);
   int moves = 0;
-  for_each_block(program, interpreter,
+  for_each_block(program, interpreter, setup,
                  [&](const std::string&, const gcode::Block&, const interpreter::Effect& effect, int) {
                    for (const Move& m : effect.moves) simulator.run(m, ++moves, sink);
                  });
