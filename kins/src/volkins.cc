@@ -37,7 +37,7 @@ constexpr double kDegPerRad = 57.295779513082320876798154814105;
 struct HalData {
   // Pins.
   hal_bit_t* enable;                          // in: correction wanted
-  hal_float_t* tool_length;                   // in: L (mm), net to motion.tooloffset.z
+  hal_float_t* tool_length;                   // in: tool length offset (mm), net to motion.tooloffset.z
   hal_float_t* gain;                          // out: fraction applied now (ramp, 0..1)
   hal_float_t* correction[vm::kMaxAxes];      // out: joint - nominal joint of the last inverse
   hal_s32_t* iterations;                      // out: Newton steps of the last inverse
@@ -122,12 +122,13 @@ int kinematicsInverse(const EmcPose* pose, double* joints, const KINEMATICS_INVE
                       KINEMATICS_FORWARD_FLAGS*) {
   const vm::Model& model = settings->model;
   const int n = model.joint_count();
-  const double L = *hal->tool_length;
+  const double offset = *hal->tool_length;       // LinuxCNC's tool length offset (G43)
+  const double L = model.correction_length(offset);  // the tool-length rule
   const Joints previous = Eigen::Map<const Joints>(joints, n);  // LinuxCNC's seed
   const vm::Applied applied{*hal->gain, &previous};
   Joints q;
   vm::Correction report;
-  const vm::Status s = vm::joints_from_world(model, settings->world, world_of(*pose, L), L, applied, q, &report);
+  const vm::Status s = vm::joints_from_world(model, settings->world, world_of(*pose, offset), L, applied, q, &report);
   *hal->iterations = report.iterations;
   if (s != vm::Status::Ok) return refuse();
   bool too_large = false;
@@ -149,15 +150,16 @@ int kinematicsForward(const double* joints, EmcPose* pose, const KINEMATICS_FORW
                       KINEMATICS_INVERSE_FLAGS*) {
   const vm::Model& model = settings->model;
   const Joints q = Eigen::Map<const Joints>(joints, model.joint_count());
-  const double L = *hal->tool_length;
-  const Joints seed = world_of(*pose, L);  // LinuxCNC passes the previous position (or home)
+  const double offset = *hal->tool_length;
+  const double L = model.correction_length(offset);
+  const Joints seed = world_of(*pose, offset);  // LinuxCNC passes the previous position (or home)
   Joints w;
   int iterations = 0;
   const vm::Status s =
       vm::world_from_joints(model, settings->world, q, L, vm::Applied{*hal->gain, &seed}, w, &iterations);
   *hal->forward_iterations = iterations;
   if (s != vm::Status::Ok) return refuse();
-  set_world(*pose, w, L);
+  set_world(*pose, w, offset);
   return 0;
 }
 
@@ -203,7 +205,8 @@ bool export_hal(const vm::Model& model) {
 
   // Defaults: correction on (after the ramp), the machine file's tool length and pole fade.
   *hal->enable = 1;
-  *hal->tool_length = model.tool_length_mm;
+  // Not netted: the typical tool's offset, so that L = the machine file's tool_length_mm.
+  *hal->tool_length = model.tool_length_mm - model.tool_length_reference_mm;
   *hal->gain = 0.0;
   hal->phase = 0.0;
   hal->ramp_time = 1.0;

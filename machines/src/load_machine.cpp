@@ -190,10 +190,11 @@ class MachineReader {
 
   void read_spindle(const toml::table& root) {
     const toml::table& s = *table(root, "spindle", true, "the machine file");
-    check_keys(s, "[spindle]", {"gauge_point_mm", "tool_length_mm", "location"});
+    check_keys(s, "[spindle]", {"gauge_point_mm", "tool_length_mm", "tool_length_reference_mm", "location"});
     Spindle& spindle = model_.spindle;
     spindle.gauge_point_mm = vec3(s, "gauge_point_mm", false, "[spindle]");
     model_.tool_length_mm = scalar(s, "tool_length_mm", 0.0, "[spindle]");
+    model_.tool_length_reference_mm = scalar(s, "tool_length_reference_mm", 0.0, "[spindle]");
     read_location(table(s, "location", false, ""), 'S', spindle.location_mm, spindle.location_rad);
     spindle.real = line_placement(spindle.gauge_point_mm, spindle.location_mm, spindle.location_rad);
     spindle.ideal = line_placement(spindle.gauge_point_mm, Vector3d::Zero(), Vector3d::Zero());

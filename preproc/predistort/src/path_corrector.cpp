@@ -64,7 +64,7 @@ Eigen::Vector3d PathCorrector::force_at(const Move& move, double s) {
   const double h = 1e-4;
   const double s0 = std::max(0.0, s - h), s1 = std::min(1.0, s + h);
   Joints q0, q1;
-  const double L = move.tool_length_mm;
+  const double L = model_.correction_length(move.tool_length_mm);  // the tool-length rule
   machine::nominal_inverse(model_, options_.world, joints_of(move.frame.world(interpreter::point_at(move, s0))), L, q0);
   machine::nominal_inverse(model_, options_.world, joints_of(move.frame.world(interpreter::point_at(move, s1))), L, q1);
   const machine::ToolPose p0 = machine::tool_pose(model_, Machine::Ideal, q0, L);
@@ -80,7 +80,7 @@ PathCorrector::Node PathCorrector::node_at(const Move& move, double s) {
   Node n;
   n.s = s;
   const Position p = interpreter::point_at(move, s);
-  const double L = move.tool_length_mm;
+  const double L = model_.correction_length(move.tool_length_mm);  // the tool-length rule
   n.input = joints_of(move.frame.world(p));
   Status status = machine::nominal_inverse(model_, options_.world, n.input, L, n.nominal);
   if (status != Status::Ok) fail(move, "no nominal joints for a point of the move", status);
@@ -185,7 +185,7 @@ Position PathCorrector::commanded_at(const Move& move, const Node& a, const Piec
 
 double PathCorrector::error_between(const Move& move, const Node& a, const Node& b, const Piece& piece, double t) {
   ++stats_.checks;
-  const double L = move.tool_length_mm;
+  const double L = model_.correction_length(move.tool_length_mm);  // the tool-length rule
   const double s = a.s + t * (b.s - a.s);
   Joints nominal, commanded;
   machine::nominal_inverse(model_, options_.world, joints_of(move.frame.world(interpreter::point_at(move, s))), L,

@@ -31,7 +31,8 @@ class Simulator {
     sample.radius_mm = radius_of(m.tool);
     sample.end = options_.ball_end_tools.count(m.tool) ? ToolEnd::Ball : ToolEnd::Flat;
     sample.cutting = cutting;
-    sample.tool_length_mm = m.tool_length_mm;
+    const double L = machine_.correction_length(m.tool_length_mm);  // the tool-length rule
+    sample.tool_length_mm = L;
     for (int k = 0; k <= n; ++k) {
       sample.s = static_cast<double>(k) / n;
       sample.program = interpreter::point_at(m, sample.s);
@@ -40,13 +41,14 @@ class Simulator {
       sample.joints = nominal;
       if (options_.compensation) {
         const machine::Status status =
-            machine::joints_from_world(*options_.compensation, options_.world, world, m.tool_length_mm, sample.joints);
+            machine::joints_from_world(*options_.compensation, options_.world, world,
+                                       options_.compensation->correction_length(m.tool_length_mm), sample.joints);
         if (status != machine::Status::Ok)
           throw LoadError({setup_.file, m.line}, "the compensation does not converge at this move");
       }
       const machine::ToolPose real =
-          machine::tool_pose(machine_, machine::Machine::Real, sample.joints, m.tool_length_mm);
-      const machine::ToolPose ideal = machine::tool_pose(machine_, machine::Machine::Ideal, nominal, m.tool_length_mm);
+          machine::tool_pose(machine_, machine::Machine::Real, sample.joints, L);
+      const machine::ToolPose ideal = machine::tool_pose(machine_, machine::Machine::Ideal, nominal, L);
       sample.tip = real.tip_mm;
       sample.axis = real.direction;
       if (cutting && options_.deflection) sample.tip += deflection(m, sample.s, nominal, ideal);
@@ -75,7 +77,7 @@ class Simulator {
     const Eigen::Vector3d force = options_.deflection->force(m, feed.normalized(), ideal.direction, std::sqrt(length));
     machine::Joints shift;
     Eigen::Vector3d delta;
-    options_.deflection->at(nominal, m.tool_length_mm, force, shift, delta);
+    options_.deflection->at(nominal, machine_.correction_length(m.tool_length_mm), force, shift, delta);
     return delta;
   }
 

@@ -73,8 +73,9 @@ TraceSummary check_trace(const machine::Model& model, machine::WorldConvention c
   std::vector<Joints> nominal(count), expected(count);
   std::vector<machine::Correction> corrections(count);
   for (std::size_t k = 0; k < count; ++k) {
-    const double L = trace.tool_length_mm[k == 0 ? 0 : k - 1];
-    const Joints world = core_world(model, convention, trace.world[k], L);
+    const double offset = trace.tool_length_mm[k == 0 ? 0 : k - 1];
+    const double L = model.correction_length(offset);  // the tool-length rule
+    const Joints world = core_world(model, convention, trace.world[k], offset);
     machine::nominal_inverse(model, convention, world, L, nominal[k]);
     machine::joints_from_world(model, convention, world, L, machine::Applied{trace.gain[k], nullptr}, expected[k],
                                &corrections[k]);
@@ -86,7 +87,7 @@ TraceSummary check_trace(const machine::Model& model, machine::WorldConvention c
       out.skipped += n >= 3;
       continue;
     }
-    const double L = trace.tool_length_mm[n - 1];
+    const double L = model.correction_length(trace.tool_length_mm[n - 1]);
     SampleCheck s;
     s.sample = n;
     const machine::ToolPose real = machine::tool_pose(model, Machine::Real, trace.joints[n], L);

@@ -97,7 +97,11 @@ struct Model {
   std::vector<int> workpiece_chain;    // joint indices, bed outward
   Spindle spindle;
   Eigen::Isometry3d fixture;           // T(t) * R(r) in the last workpiece-chain frame
-  double tool_length_mm = 0.0;         // default L: gauge length + tool length
+  double tool_length_mm = 0.0;         // L of a typical tool: gauge length + tool length (check, poses)
+  // The tool-length rule (every component: volkins, predistort, simulate, selftune): the
+  // correction is computed for L = tool_length_reference_mm + the active tool length offset
+  // (G43, LinuxCNC's motion.tooloffset.z). 0 where the tool table holds gauge lengths.
+  double tool_length_reference_mm = 0.0;
   PoleFade fade;
   SolverOptions solver;
   std::vector<BoundTable> tables;
@@ -105,6 +109,8 @@ struct Model {
   Warnings warnings;                   // found at load time, for `check` and loadrt
 
   int joint_count() const { return static_cast<int>(axes.size()); }
+  // L the correction is computed for while LinuxCNC's tool length offset is `offset_mm`.
+  double correction_length(double offset_mm) const { return tool_length_reference_mm + offset_mm; }
   int rotary_count() const;
   int joint_of(char letter) const;     // -1 if the machine has no such axis
   std::string coordinates() const;     // lower-case letters in joint order, e.g. "xyzbc"

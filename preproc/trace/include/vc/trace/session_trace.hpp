@@ -22,7 +22,7 @@ struct SessionTrace {
   std::vector<machine::Joints> world;   // axis.<letter>.pos-cmd (mm, deg), joint order
   std::vector<machine::Joints> joints;  // joint.<j>.motor-pos-cmd
   std::vector<double> gain;             // volkins.gain (0 if the session ran without volkins)
-  std::vector<double> tool_length_mm;   // motion.tooloffset.z
+  std::vector<double> tool_length_mm;   // motion.tooloffset.z: the offset (L by Model::correction_length)
   std::vector<double> controller_ticks; // motion-controller.time (CPU clock ticks)
   std::size_t size() const { return world.size(); }
 };
