@@ -202,7 +202,7 @@ double PathCorrector::error_between(const Move& move, const Node& a, const Node&
 // straight between the ends (world = joints) and no cutting force.
 bool PathCorrector::within_bounds(const Move& move, const Node& a, const Node& b) {
   if (move.kind != MoveKind::Line || deflection_) return false;
-  const double share = kUncheckedShare * options_.tolerance_mm, L = move.tool_length_mm;
+  const double share = kUncheckedShare * options_.tolerance_mm, L = model_.correction_length(move.tool_length_mm);
   if (bounds_.slope_bound(a.nominal, b.nominal, L) <= share) return true;
   return options_.world == machine::WorldConvention::Axes &&
          bounds_.curvature_bound(a.nominal, b.nominal, a.corrected, b.corrected, L) <= share;
