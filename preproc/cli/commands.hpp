@@ -39,6 +39,7 @@ struct PredistortArgs {
   std::string world = "axes";      // world convention of the uncompensated kinematics
   std::vector<std::string> subroutine_path;  // folders of NAME.ngc subroutine files
   std::string start;               // where the machine starts: X,Y,Z[,A,B,C] or an INI (homes)
+  std::string line_map;            // CSV: output line -> input file and line
   double tolerance_mm = 0.0005;
   bool quiet = false;
 };

@@ -58,6 +58,9 @@ int main(int argc, char** argv) {
                    "(the INI's [RS274NGC]SUBROUTINE_PATH and [DISPLAY]PROGRAM_PREFIX); ':'-separated or repeated")
       ->delimiter(':')
       ->check(CLI::ExistingDirectory);
+  predistort_cmd->add_option("--line-map", predistort.line_map,
+                             "write output_line,input_file,input_line for every line of the output (CSV): where "
+                             "each line of the flat program comes from");
   predistort_cmd->add_option(
       "--start", predistort.start,
       "where the machine is when the program starts, for a program that cuts before it has moved every axis: "

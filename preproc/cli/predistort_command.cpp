@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <sstream>
 #include <vector>
 #include <unistd.h>
 
@@ -88,6 +89,11 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
   const auto size = fs::file_size(args.input, size_error);
   Progress progress(size_error ? 1 : static_cast<long>(size));
 
+  std::ostringstream line_map;
+  if (!args.line_map.empty()) {
+    line_map << "output_line,input_file,input_line\n";
+    job.line_map = &line_map;
+  }
   predistort::Summary summary;
   if (args.output == "-") {
     summary = predistort::predistort(in, std::cout, job, std::ref(progress));
@@ -97,6 +103,8 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
     write_atomically(args.output, [&](std::ostream& out) { summary = predistort::predistort(in, out, job, std::ref(progress)); });
   }
 
+  if (!args.line_map.empty())
+    write_atomically(args.line_map, [&](std::ostream& out) { out << line_map.str(); });
   if (!args.quiet) {
     const auto& c = summary.corrector;
     report << "volcomp predistort: " << summary.lines << " lines, " << c.moves << " moves corrected into "

@@ -525,5 +525,38 @@ TEST(PredistortCli, WorksAsAnAxisFilter) {
   EXPECT_EQ(errors.find("error"), std::string::npos) << errors;
 }
 
+// A program that calls a subroutine file on the subroutine path: the output is flat (no O
+// word, no call), each executed line once per execution, and the line map says where each
+// output line comes from.
+TEST(PredistortCli, FlattensSubroutinesAndMapsOutputLinesToTheirSource) {
+  const fs::path dir = test::run_folder("predistort_flat");
+  fs::create_directories(dir / "subs");
+  std::ofstream(dir / "subs" / "slot.ngc") << "o<slot> sub\nG1 X#1 F300\nG1 X0\no<slot> endsub\n";
+  std::ofstream(dir / "p.ngc") << "G21 G90 G54\nG0 X0 Y0 Z5\no1 repeat [2]\no<slot> call [20]\no1 endrepeat\nM2\n";
+  const auto r = test::run_volcomp("predistort " + test::machine_path("mill3") + " " + (dir / "p.ngc").string() +
+                                   " -o " + (dir / "out.ngc").string() + " --var " + program("mill3.var") +
+                                   " --subroutine-path " + (dir / "subs").string() + " --line-map " +
+                                   (dir / "map.csv").string() + " -q");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  std::ifstream out(dir / "out.ngc"), map(dir / "map.csv");
+  std::vector<std::string> lines, rows;
+  for (std::string line; std::getline(out, line);) lines.push_back(line);
+  for (std::string row; std::getline(map, row);) rows.push_back(row);
+  ASSERT_EQ(rows.size(), lines.size() + 1);
+  EXPECT_EQ(rows[0], "output_line,input_file,input_line");
+  std::vector<std::string> program_rows(rows.end() - 7, rows.end());  // after the header
+  const std::string p = (dir / "p.ngc").string(), slot = (dir / "subs" / "slot.ngc").string();
+  auto row = [&](std::size_t from_end, const std::string& file, int line) {
+    return std::to_string(lines.size() - from_end) + "," + file + "," + std::to_string(line);
+  };
+  EXPECT_EQ(program_rows, (std::vector<std::string>{row(6, p, 1), row(5, p, 2), row(4, slot, 2), row(3, slot, 3),
+                                                    row(2, slot, 2), row(1, slot, 3), row(0, p, 6)}))
+      << r.out;
+  for (std::string line : lines) {
+    line = line.substr(0, line.find('('));  // the words, without comments
+    EXPECT_EQ(line.find_first_of("oO#"), std::string::npos) << line;
+  }
+}
+
 }  // namespace
 }  // namespace vc

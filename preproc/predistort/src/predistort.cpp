@@ -58,6 +58,14 @@ void prefetch_for_writer(const Line& line) {
   for (const std::vector<Piece>& pieces : line.pieces) prefetch(pieces.data(), pieces.size());
 }
 enum Stage { kRead, kCorrect, kWrite };
+
+// A file name as a CSV field (quoted if it holds a comma or a quote).
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
 constexpr std::size_t kBatches = 8, kBatchLines = 512;  // at most 4096 lines in flight
 
 // Where the machine is after `batch` (unchanged if no line of it moves the machine): after
@@ -76,9 +84,18 @@ void leaves(const LineQueue::Batch& batch, Resume& resume) {
   }
 }
 
-void read_lines(std::istream& in, const Job& job, LineQueue& queue) {
-  interpreter::Interpreter interpreter(job.setup);
-  interpreter::ProgramReader reader(in, job.setup.file, interpreter, job.setup.subroutine_path);
+// The interpreter and the reader of the program's lines (whose file names the lines point
+// to until the writer is done with them).
+struct Source {
+  interpreter::Interpreter interpreter;
+  interpreter::ProgramReader reader;
+  Source(std::istream& in, const interpreter::Setup& setup)
+      : interpreter(setup), reader(in, setup.file, interpreter, setup.subroutine_path) {}
+};
+
+void read_lines(Source& source, LineQueue& queue) {
+  interpreter::Interpreter& interpreter = source.interpreter;
+  interpreter::ProgramReader& reader = source.reader;
   interpreter::Origin origin;
   Resume resume;
   for (bool last = false; !last;) {
@@ -154,12 +171,12 @@ void correct_lines(PathCorrector& corrector, LineQueue& queue, int lane, int lan
 // if they still run).
 class Workers {
  public:
-  Workers(std::istream& in, const Job& job, std::deque<PathCorrector>& correctors, LineQueue& queue)
+  Workers(Source& source, std::deque<PathCorrector>& correctors, LineQueue& queue)
       : queue_(queue) {
-    threads_.emplace_back([&in, &job, &queue] { read_lines(in, job, queue); });
+    threads_.emplace_back([&source, &queue] { read_lines(source, queue); });
     const int lanes = static_cast<int>(correctors.size());
     for (int lane = 0; lane < lanes; ++lane)
-      threads_.emplace_back([&job, &correctors, &queue, lane, lanes] {
+      threads_.emplace_back([&correctors, &queue, lane, lanes] {
         correct_lines(correctors[static_cast<std::size_t>(lane)], queue, lane, lanes);
       });
   }
@@ -201,7 +218,8 @@ Summary predistort(std::istream& in, std::ostream& out, const Job& job,
   long bytes = 0;
   bool header_written = false;
   LineQueue queue({1, lanes, 1}, kBatches, kBatchLines);
-  Workers workers(in, job, correctors, queue);
+  Source source(in, job.setup);
+  Workers workers(source, correctors, queue);
   for (bool last = false; !last;) {
     LineQueue::Batch& batch = *queue.begin(kWrite);  // only the writer cancels
     for (std::size_t i = 0; i < batch.count; ++i) {
@@ -211,9 +229,13 @@ Summary predistort(std::istream& in, std::ostream& out, const Job& job,
       bytes = line.bytes;
       // The header goes first, after a leading '%' (which must stay the first line).
       if (!header_written && !line.block.percent) {
+        const long before = writer.lines();
         writer.header(job.provenance);
         header_written = true;
+        if (job.line_map)
+          for (long n = before + 1; n <= writer.lines(); ++n) *job.line_map << n << ",,0\n";
       }
+      const long written_before = writer.lines();
       if (effect.translate) {
         writer.translated(line.raw, line.block, effect, line.pieces);
         ++summary.translated_lines;
@@ -221,6 +243,9 @@ Summary predistort(std::istream& in, std::ostream& out, const Job& job,
         writer.verbatim(line.raw, line.block, effect, line.position, line.frame);
         if (effect.moved_as_written) ++summary.written_as_is_moves;
       }
+      if (job.line_map)
+        for (long n = written_before + 1; n <= writer.lines(); ++n)
+          *job.line_map << n << ',' << csv_field(*line.file) << ',' << line.number << '\n';
       ++summary.lines;
       if (progress && (line.number & 4095) == 0) progress(bytes);
     }
@@ -229,7 +254,12 @@ Summary predistort(std::istream& in, std::ostream& out, const Job& job,
     queue.end(kWrite);
   }
   workers.join();  // the corrector's statistics are final
-  if (!header_written) writer.header(job.provenance);
+  if (!header_written) {
+    const long before = writer.lines();
+    writer.header(job.provenance);
+    if (job.line_map)
+      for (long n = before + 1; n <= writer.lines(); ++n) *job.line_map << n << ",,0\n";
+  }
   writer.flush();
   if (progress) progress(bytes);
   for (const PathCorrector& corrector : correctors) summary.corrector.add(corrector.stats());

@@ -50,6 +50,7 @@ Writer::~Writer() {
 }
 
 void Writer::emit(std::string_view text) {
+  lines_ += std::count(text.begin(), text.end(), '\n');
   pending_ += text;
   if (pending_.size() >= kPendingBytes) flush();
 }

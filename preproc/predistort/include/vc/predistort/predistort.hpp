@@ -22,6 +22,9 @@ struct Job {
   // Threads correcting moves, each taking every other batch of lines; 0: as the machine
   // needs (two with rotary axes on two cores or more, else one).
   int correcting_threads = 0;
+  // If set: one row per written line, "output_line,input_file,input_line" (the header's lines
+  // and lines the pre-distorter adds to the program have the input line they come from, or 0).
+  std::ostream* line_map = nullptr;
 };
 
 struct Summary {

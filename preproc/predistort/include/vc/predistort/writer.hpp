@@ -44,6 +44,8 @@ class Writer {
   // Hands what is written so far to the stream (lines are collected in blocks of about
   // kPendingBytes: one stream write per block, not per line).
   void flush();
+  // Lines written so far (the header included).
+  long lines() const { return lines_; }
 
  private:
   // A change to the raw line: [begin, end) replaced by edit_text_[text_begin, text_end).
@@ -71,6 +73,7 @@ class Writer {
   interpreter::Position at_{};  // where the written program leaves the machine, program coordinates
   interpreter::Frame frame_;    // the frame `at_` is in
   std::string pending_;         // written, not yet handed to out_
+  long lines_ = 0;
   std::string line_;            // reused buffers
   std::vector<Edit> edits_;
   std::string edit_text_;       // the texts of edits_
