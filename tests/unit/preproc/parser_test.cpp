@@ -56,5 +56,26 @@ TEST(Parser, RandomNumbersReadAsStrtod) {
   }
 }
 
+TEST(Parser, OWordsWithTheirKeywordAndArguments) {
+  Block block;
+  parse_block("N10 O0100 call [1+1] [#2] (comment)", block);
+  EXPECT_EQ(block.o_word, 4);
+  EXPECT_EQ(block.o.name, "100");
+  EXPECT_EQ(block.o.kind, OWord::Kind::Call);
+  ASSERT_EQ(block.o.args.size(), 2u);
+  Parameters p;
+  p.set(2, 5.0, 0);
+  EXPECT_EQ(evaluate(block.o.args[1], p, 0), 5.0);
+  parse_block("o< My Sub > endsub", block);
+  EXPECT_EQ(block.o.name, "mysub");
+  EXPECT_EQ(block.o.kind, OWord::Kind::EndSub);
+  EXPECT_TRUE(block.o.args.empty());
+  parse_block("O1000", block);
+  EXPECT_EQ(block.o.kind, OWord::Kind::None);
+  for (const char* bad : {"o1 while", "o1 if [1] [2]", "o1 frobnicate", "o1 endif [1]", "G1 o1 if [1]", "o<x sub"}) {
+    EXPECT_THROW(parse_block(bad, block), SyntaxError) << bad;
+  }
+}
+
 }  // namespace
 }  // namespace vc::gcode
