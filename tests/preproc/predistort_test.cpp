@@ -558,5 +558,31 @@ TEST(PredistortCli, FlattensSubroutinesAndMapsOutputLinesToTheirSource) {
   }
 }
 
+// In G93 each piece's F is 1 / its time: the pieces of a move take the move's time, also when
+// the move begins with a short piece to its corrected start (after G28 here), which takes
+// its length's share and not the whole move's time.
+TEST(PredistortCli, InverseTimeMovesKeepTheirDuration) {
+  const fs::path dir = test::run_folder("predistort_g93");
+  std::ofstream(dir / "p.ngc") << "G21 G90 G54\nG0 X0 Y0 Z5\nG28\nG93 G1 X100 Y50 Z-5 F2\nG1 X200 F4\nG94\nM2\n";
+  const auto r = test::run_volcomp("predistort " + test::machine_path("mill3") + " " + (dir / "p.ngc").string() +
+                                   " -o " + (dir / "out.ngc").string() + " --var " + program("mill3.var") + " -q");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  std::ifstream out(dir / "out.ngc");
+  std::vector<double> minutes;  // per output move after the G93
+  bool inverse = false;
+  for (std::string line; std::getline(out, line);) {
+    if (line.find("G93") != std::string::npos) inverse = true;
+    if (line.find("G94") != std::string::npos) inverse = false;
+    const auto f = line.find('F');
+    if (inverse && f != std::string::npos && line[0] != '(') minutes.push_back(1.0 / std::stod(line.substr(f + 1)));
+  }
+  ASSERT_GT(minutes.size(), 4u);
+  // The first move (F2: 0.5 min) is its pieces up to where the second (F4: 0.25 min) begins.
+  double total = 0;
+  for (double m : minutes) total += m;
+  EXPECT_NEAR(total, 0.75, 0.75 * 1e-4);  // the lead adds its few micrometres' share only
+  EXPECT_LT(minutes.front(), 1e-3);       // the lead: not the move's 0.5 min
+}
+
 }  // namespace
 }  // namespace vc

@@ -253,7 +253,15 @@ void PathCorrector::correct(const Move& move, std::vector<Piece>& pieces) {
     Piece lead;
     lead.kind = MoveKind::Line;
     lead.end = a.program;
-    lead.fraction = 1.0;
+    // In G93 a piece takes fraction / F minutes: the lead its length's share of the move's
+    // (chord) length, not the whole move's time.
+    const Position from = have_last_ ? program_of(move, last_.world, move.start) : move.start;
+    double lead_length = 0, move_length = 0;
+    for (int i = 0; i < 3; ++i) {
+      lead_length += (a.program[i] - from[i]) * (a.program[i] - from[i]);
+      move_length += (move.end[i] - move.start[i]) * (move.end[i] - move.start[i]);
+    }
+    lead.fraction = move_length > 0 ? std::clamp(std::sqrt(lead_length / move_length), 1e-6, 1.0) : 1.0;
     pieces.push_back(lead);
   }
   const Node b = node_at(move, 1.0);
