@@ -41,6 +41,7 @@ struct PredistortArgs {
   std::string start;               // where the machine starts: X,Y,Z[,A,B,C] or an INI (homes)
   std::string line_map;            // CSV: output line -> input file and line
   double tolerance_mm = 0.0005;
+  double tolerance_rad = 2e-5;     // tool direction between written points (rotary axes)
   bool quiet = false;
 };
 

@@ -71,6 +71,10 @@ int main(int argc, char** argv) {
   predistort_cmd->add_option("--tolerance", predistort.tolerance_mm,
                              "largest path deviation from the exact correction, mm")
       ->capture_default_str();
+  predistort_cmd->add_option("--tolerance-rad", predistort.tolerance_rad,
+                             "largest tool direction deviation from the exact correction between the written points, "
+                             "rad (machines with rotary axes)")
+      ->capture_default_str();
   predistort_cmd->add_option("--world", predistort.world,
                              "world convention of the machine's kinematics: axes (trivkins) or tcp")
       ->capture_default_str();

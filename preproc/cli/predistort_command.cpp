@@ -61,6 +61,8 @@ class Progress {
 int run_predistort(const PredistortArgs& args, std::ostream& report) {
   if (!(args.tolerance_mm > 0.0 && args.tolerance_mm <= 0.1))
     throw std::runtime_error("--tolerance must be in (0, 0.1] mm");
+  if (!(args.tolerance_rad > 0.0 && args.tolerance_rad <= 0.01))
+    throw std::runtime_error("--tolerance-rad must be in (0, 0.01] rad");
   const machine::WorldConvention world = world_convention(args.world);
   const machine::Model model = machine::load_machine(args.machine);
   const ProgramFiles files(args.tool_table, args.var_file);
@@ -72,6 +74,7 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
   job.setup.subroutine_path = args.subroutine_path;
   if (!args.start.empty()) job.setup.start_world = start_position(args.start);
   job.corrector.tolerance_mm = args.tolerance_mm;
+  job.corrector.tolerance_rad = args.tolerance_rad;
   job.corrector.world = world;
   job.deflection = deflection ? &*deflection : nullptr;
   job.provenance = {{}, args.machine, model.info.name, {}, args.var_file, args.tool_table, args.process, args.world,
@@ -111,6 +114,9 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
            << c.pieces << " pieces (" << c.corrections << " corrections, " << c.checks << " checks), max error at "
            << "the check points " << format_fixed(c.max_checked_error_mm * 1e3, 3) << " um (tolerance "
            << format_number(args.tolerance_mm * 1e3) << " um)";
+    if (model.rotary_count() > 0)
+      report << ", tool direction " << format_fixed(c.max_checked_error_rad * 1e6, 2) << " urad (tolerance "
+             << format_number(args.tolerance_rad * 1e6) << " urad)";
     if (c.max_deflection_mm > 0) report << ", max deflection taken off " << format_fixed(c.max_deflection_mm * 1e3, 3) << " um";
     report << '\n';
     if (summary.written_as_is_moves)

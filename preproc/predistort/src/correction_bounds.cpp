@@ -79,29 +79,44 @@ bool CorrectionBounds::crosses_kink(const Joints& corrected_a, const Joints& cor
   return false;
 }
 
-double CorrectionBounds::slope_bound(const Joints& a, const Joints& b, double tool_length_mm) {
+CorrectionBounds::Bound CorrectionBounds::slope_bound(const Joints& a, const Joints& b, double tool_length_mm) {
   const Sampled& s = sampled(tool_length_mm);
-  double bound = 0.0;
-  for (int j = 0; j < model_.joint_count(); ++j) bound += s.slope[static_cast<std::size_t>(j)] * std::abs(b[j] - a[j]);
-  return 0.5 * bound;
+  Bound bound{0.0, 0.0};
+  for (int j = 0; j < model_.joint_count(); ++j) {
+    const auto u = static_cast<std::size_t>(j);
+    bound.mm += s.slope[u] * std::abs(b[j] - a[j]);
+    bound.rad += s.slope_rad[u] * std::abs(b[j] - a[j]);
+  }
+  return {0.5 * bound.mm, 0.5 * bound.rad};
 }
 
-double CorrectionBounds::curvature_bound(const Joints& a, const Joints& b, const Joints& corrected_a,
-                                         const Joints& corrected_b, double tool_length_mm) {
-  if (crosses_kink(corrected_a, corrected_b)) return std::numeric_limits<double>::infinity();
-  const Sampled& s = sampled(tool_length_mm);
-  const int n = model_.joint_count();
-  const Joints step = (b - a).cwiseAbs();
-  // step^T M step, written out: Eigen's product of the dynamic corner and step makes GCC
-  // warn falsely (maybe-uninitialized) when it optimises with a profile.
+namespace {
+
+// step^T M step, written out: Eigen's product of the dynamic corner and step makes GCC
+// warn falsely (maybe-uninitialized) when it optimises with a profile.
+template <typename Matrix>
+double quadratic_form(const Matrix& m, const Joints& step, int n) {
   double form = 0.0;
   for (int i = 0; i < n; ++i) {
     double row = 0.0;
-    for (int j = 0; j < n; ++j) row += s.curvature(i, j) * step[j];
+    for (int j = 0; j < n; ++j) row += m(i, j) * step[j];
     form += step[i] * row;
   }
+  return form;
+}
+
+}  // namespace
+
+CorrectionBounds::Bound CorrectionBounds::curvature_bound(const Joints& a, const Joints& b, const Joints& corrected_a,
+                                                          const Joints& corrected_b, double tool_length_mm) {
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  if (crosses_kink(corrected_a, corrected_b)) return {kInfinity, kInfinity};
+  const Sampled& s = sampled(tool_length_mm);
+  const int n = model_.joint_count();
+  const Joints step = (b - a).cwiseAbs();
   // The ends themselves are off by up to the solver's tolerance.
-  return form / 8.0 + 2 * model_.solver.position_tolerance_mm;
+  return {quadratic_form(s.curvature, step, n) / 8.0 + 2 * model_.solver.position_tolerance_mm,
+          quadratic_form(s.curvature_rad, step, n) / 8.0 + 2 * model_.solver.direction_tolerance_rad};
 }
 
 const CorrectionBounds::Sampled& CorrectionBounds::sampled(double tool_length_mm) {
@@ -110,14 +125,20 @@ const CorrectionBounds::Sampled& CorrectionBounds::sampled(double tool_length_mm
   Shared alone;  // no other corrector: this one takes every part
   Sampled out = (shared_ ? *shared_ : alone).sampled(*this, tool_length_mm);
   for (double& k : out.slope) k *= kMargin;
+  for (double& k : out.slope_rad) k *= kMargin;
   out.curvature *= kMargin;
+  out.curvature_rad *= kMargin;
   sampled_.push_back(out);
   return sampled_.back();
 }
 
 void CorrectionBounds::merge(Sampled& into, const Sampled& part) {
-  for (std::size_t j = 0; j < into.slope.size(); ++j) into.slope[j] = std::max(into.slope[j], part.slope[j]);
+  for (std::size_t j = 0; j < into.slope.size(); ++j) {
+    into.slope[j] = std::max(into.slope[j], part.slope[j]);
+    into.slope_rad[j] = std::max(into.slope_rad[j], part.slope_rad[j]);
+  }
   into.curvature = into.curvature.cwiseMax(part.curvature);
+  into.curvature_rad = into.curvature_rad.cwiseMax(part.curvature_rad);
 }
 
 CorrectionBounds::Sampled CorrectionBounds::Shared::sampled(const CorrectionBounds& bounds, double tool_length_mm) {
@@ -149,7 +170,7 @@ CorrectionBounds::Sampled CorrectionBounds::Shared::sampled(const CorrectionBoun
 }
 
 CorrectionBounds::Sampled CorrectionBounds::sample_part(double tool_length_mm, int part) const {
-  Sampled out{tool_length_mm, {}, PerJoint::Zero()};
+  Sampled out{tool_length_mm, {}, PerJoint::Zero(), {}, PerJoint::Zero()};
   const int n = model_.joint_count();
   TravelSamples samples(model_);
   const double h = kStep;
@@ -172,6 +193,9 @@ CorrectionBounds::Sampled CorrectionBounds::sample_part(double tool_length_mm, i
     machine::PoseDerivatives derivatives;
     machine::tool_pose(model_, machine::Machine::Ideal, q, tool_length_mm, derivatives);
     const auto tip = [&](const Joints& joint_change) { return (derivatives.tip.leftCols(n) * joint_change).norm(); };
+    const auto direction = [&](const Joints& joint_change) {
+      return (derivatives.direction.leftCols(n) * joint_change).norm();
+    };
     Joints centre;
     if (!correction_at(model_, q, tool_length_mm, Joints::Zero(n), centre)) continue;
     // d at q +- h e_i, and whether a kink lies within h of q along joint i.
@@ -187,7 +211,12 @@ CorrectionBounds::Sampled CorrectionBounds::sample_part(double tool_length_mm, i
       smooth[u] = !kink_near(i, q[i] + centre[i] - h, q[i] + centre[i] + h, kStencilMargin);
       if (!ok[u]) continue;
       out.slope[u] = std::max(out.slope[u], tip((up[u] - down[u]) / (2 * h)));
-      if (smooth[u]) out.curvature(i, i) = std::max(out.curvature(i, i), tip((up[u] - 2 * centre + down[u]) / (h * h)));
+      out.slope_rad[u] = std::max(out.slope_rad[u], direction((up[u] - down[u]) / (2 * h)));
+      if (smooth[u]) {
+        const Joints second = (up[u] - 2 * centre + down[u]) / (h * h);
+        out.curvature(i, i) = std::max(out.curvature(i, i), tip(second));
+        out.curvature_rad(i, i) = std::max(out.curvature_rad(i, i), direction(second));
+      }
     }
     for (int i = 0; i < n; ++i) {
       for (int j = i + 1; j < n; ++j) {
@@ -201,8 +230,9 @@ CorrectionBounds::Sampled CorrectionBounds::sample_part(double tool_length_mm, i
           all = correction_at(model_, p, tool_length_mm, centre, corner[c]);
         }
         if (!all) continue;
-        const double mixed = tip((corner[3] - corner[2] - corner[1] + corner[0]) / (4 * h * h));
-        out.curvature(i, j) = out.curvature(j, i) = std::max(out.curvature(i, j), mixed);
+        const Joints mixed = (corner[3] - corner[2] - corner[1] + corner[0]) / (4 * h * h);
+        out.curvature(i, j) = out.curvature(j, i) = std::max(out.curvature(i, j), tip(mixed));
+        out.curvature_rad(i, j) = out.curvature_rad(j, i) = std::max(out.curvature_rad(i, j), direction(mixed));
       }
     }
   }

@@ -48,7 +48,13 @@ PieceCircle circle_of(const interpreter::Arc& arc, const Position& start, const 
 
 PathCorrector::PathCorrector(const machine::Model& model, CorrectorOptions options, const Deflection* deflection,
                              CorrectionBounds::Shared* shared)
-    : model_(model), options_(options), deflection_(deflection), axes_(model), bounds_(model, shared), one_step_(model) {}
+    : model_(model),
+      options_(options),
+      deflection_(deflection),
+      checks_direction_(model.rotary_count() > 0 && options.tolerance_rad > 0),
+      axes_(model),
+      bounds_(model, shared),
+      one_step_(model) {}
 
 Joints PathCorrector::joints_of(const Position& world) const { return axes_.joints_of(world); }
 
@@ -103,6 +109,9 @@ PathCorrector::Node PathCorrector::node_at(const Move& move, double s) {
   }
   solved(n.target, n.corrected, L);
   if (machine::outside_tables(model_, n.corrected)) ++stats_.out_of_table;
+  if (checks_direction_)
+    n.direction_error = machine::tool_pose(model_, Machine::Real, n.corrected, L).direction -
+                        machine::tool_pose(model_, Machine::Ideal, n.nominal, L).direction;
   n.world = machine::nominal_forward(model_, options_.world, n.corrected, L);
   n.program = program_of(move, n.world, p);
   return n;
@@ -183,7 +192,8 @@ Position PathCorrector::commanded_at(const Move& move, const Node& a, const Piec
   return p;
 }
 
-double PathCorrector::error_between(const Move& move, const Node& a, const Node& b, const Piece& piece, double t) {
+PathCorrector::PieceError PathCorrector::error_between(const Move& move, const Node& a, const Node& b,
+                                                      const Piece& piece, double t) {
   ++stats_.checks;
   const double L = model_.correction_length(move.tool_length_mm);  // the tool-length rule
   const double s = a.s + t * (b.s - a.s);
@@ -193,8 +203,31 @@ double PathCorrector::error_between(const Move& move, const Node& a, const Node&
   machine::nominal_inverse(model_, options_.world, joints_of(move.frame.world(commanded_at(move, a, piece, t))), L,
                            commanded);
   const Eigen::Vector3d deflection = a.deflection_mm + t * (b.deflection_mm - a.deflection_mm);
-  const Eigen::Vector3d actual = machine::tool_pose(model_, Machine::Real, commanded, L).tip_mm + deflection;
-  return (actual - machine::tool_pose(model_, Machine::Ideal, nominal, L).tip_mm).norm();
+  const machine::ToolPose real = machine::tool_pose(model_, Machine::Real, commanded, L);
+  const machine::ToolPose ideal = machine::tool_pose(model_, Machine::Ideal, nominal, L);
+  PieceError e;
+  e.mm = (real.tip_mm + deflection - ideal.tip_mm).norm();
+  if (checks_direction_) {
+    const Eigen::Vector3d exact = a.direction_error + t * (b.direction_error - a.direction_error);
+    e.rad = (real.direction - ideal.direction - exact).norm();
+  }
+  return e;
+}
+
+bool PathCorrector::piece_within_tolerance(const Move& move, const Node& a, const Node& b, const Piece& piece) {
+  PieceError worst;
+  for (double t : kCheckPoints) {
+    const PieceError e = error_between(move, a, b, piece, t);
+    worst.mm = std::max(worst.mm, e.mm);
+    worst.rad = std::max(worst.rad, e.rad);
+  }
+  const bool within = worst.mm <= kAcceptShare * options_.tolerance_mm &&
+                      (!checks_direction_ || worst.rad <= kAcceptShare * options_.tolerance_rad);
+  if (within) {
+    stats_.max_checked_error_mm = std::max(stats_.max_checked_error_mm, worst.mm);
+    stats_.max_checked_error_rad = std::max(stats_.max_checked_error_rad, worst.rad);
+  }
+  return within;
 }
 
 // A straight piece that the bounds of the correction's slope or curvature keep well inside
@@ -203,20 +236,18 @@ double PathCorrector::error_between(const Move& move, const Node& a, const Node&
 bool PathCorrector::within_bounds(const Move& move, const Node& a, const Node& b) {
   if (move.kind != MoveKind::Line || deflection_) return false;
   const double share = kUncheckedShare * options_.tolerance_mm, L = model_.correction_length(move.tool_length_mm);
-  if (bounds_.slope_bound(a.nominal, b.nominal, L) <= share) return true;
-  return options_.world == machine::WorldConvention::Axes &&
-         bounds_.curvature_bound(a.nominal, b.nominal, a.corrected, b.corrected, L) <= share;
+  const double share_rad = checks_direction_ ? kUncheckedShare * options_.tolerance_rad : HUGE_VAL;
+  const CorrectionBounds::Bound slope = bounds_.slope_bound(a.nominal, b.nominal, L);
+  if (slope.mm <= share && slope.rad <= share_rad) return true;
+  if (options_.world != machine::WorldConvention::Axes) return false;
+  const CorrectionBounds::Bound curvature = bounds_.curvature_bound(a.nominal, b.nominal, a.corrected, b.corrected, L);
+  return curvature.mm <= share && curvature.rad <= share_rad;
 }
 
 void PathCorrector::refine(const Move& move, const Node& a, const Node& b, int depth, std::vector<Piece>& pieces) {
   const Piece piece = piece_between(move, a, b);
   bool accept = within_bounds(move, a, b);
-  if (!accept) {
-    double worst = 0.0;
-    for (double t : kCheckPoints) worst = std::max(worst, error_between(move, a, b, piece, t));
-    accept = worst <= kAcceptShare * options_.tolerance_mm;
-    if (accept) stats_.max_checked_error_mm = std::max(stats_.max_checked_error_mm, worst);
-  }
+  if (!accept) accept = piece_within_tolerance(move, a, b, piece);
   if (!accept && depth >= options_.max_depth) {
     ++stats_.tolerance_misses;
     accept = true;
@@ -270,9 +301,7 @@ void PathCorrector::correct(const Move& move, std::vector<Piece>& pieces) {
   } else if (move.kind == MoveKind::Arc && std::abs(move.arc.sweep_rad) > M_PI) {
     // Long arcs: whole if the tolerance allows, else in pieces of at most half a turn.
     const Piece whole = piece_between(move, a, b);
-    double worst = 0.0;
-    for (double t : kCheckPoints) worst = std::max(worst, error_between(move, a, b, whole, t));
-    if (worst <= kAcceptShare * options_.tolerance_mm) {
+    if (piece_within_tolerance(move, a, b, whole)) {
       pieces.push_back(whole);
     } else {
       const int n = static_cast<int>(std::ceil(std::abs(move.arc.sweep_rad) / M_PI));
@@ -307,6 +336,7 @@ void CorrectorStats::add(const CorrectorStats& other) {
   tolerance_misses += other.tolerance_misses;
   out_of_table += other.out_of_table;
   max_checked_error_mm = std::max(max_checked_error_mm, other.max_checked_error_mm);
+  max_checked_error_rad = std::max(max_checked_error_rad, other.max_checked_error_rad);
   max_deflection_mm = std::max(max_deflection_mm, other.max_deflection_mm);
 }
 

@@ -17,7 +17,8 @@
 // the largest values found at 150 points spread over the travel and 150 in the pole fade
 // band, where the orientation correction fades in (finite differences of the
 // core's correction; curvature stencils that come near a kink are left out), per tool
-// length, doubled for what the sampling may miss.
+// length, doubled for what the sampling may miss. The same bounds for the tool direction
+// (rad), with the direction's Jacobian in place of the tip's.
 #pragma once
 
 #include <Eigen/Core>
@@ -41,11 +42,15 @@ class CorrectionBounds {
 
   explicit CorrectionBounds(const machine::Model& model, Shared* shared = nullptr);
 
-  // Tool-tip bounds (mm) of the interpolation error between nominal joints a and b.
-  double slope_bound(const machine::Joints& a, const machine::Joints& b, double tool_length_mm);
+  // Bounds of the interpolation error between nominal joints a and b, at the tool tip (mm)
+  // and in the tool direction (rad).
+  struct Bound {
+    double mm, rad;
+  };
+  Bound slope_bound(const machine::Joints& a, const machine::Joints& b, double tool_length_mm);
   // Also given the corrected joints at a and b.
-  double curvature_bound(const machine::Joints& a, const machine::Joints& b, const machine::Joints& corrected_a,
-                         const machine::Joints& corrected_b, double tool_length_mm);
+  Bound curvature_bound(const machine::Joints& a, const machine::Joints& b, const machine::Joints& corrected_a,
+                        const machine::Joints& corrected_b, double tool_length_mm);
 
   // True if a node of a table lies within the margin of the corrected joints' way from a to b.
   bool crosses_kink(const machine::Joints& corrected_a, const machine::Joints& corrected_b) const;
@@ -56,6 +61,8 @@ class CorrectionBounds {
     double tool_length_mm;
     std::array<double, machine::kMaxAxes> slope;  // k_j
     PerJoint curvature;                            // M_ij
+    std::array<double, machine::kMaxAxes> slope_rad;  // the same for the tool direction
+    PerJoint curvature_rad;
   };
   // Kinks along one joint from one grid variable: node positions (all nodes of a linear
   // table, the ends of a cubic one), repeating every `period` deg on a periodic grid.

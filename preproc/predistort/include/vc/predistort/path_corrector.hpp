@@ -10,6 +10,11 @@
 // correction inside a piece is then caught); straight pieces short enough that a sampled
 // bound on the correction's slope, or (world = joints, no kink inside) on its curvature,
 // keeps them inside a quarter of the tolerance are accepted unchecked (correction_bounds.hpp).
+// On machines with rotary axes the tool direction is bounded the same way (tolerance_rad): at
+// the check points, the real machine's direction at the interpolated joints against the
+// direction the exact correction gives there (the ideal direction plus the exact correction's
+// own direction error, which the pole fade leaves, interpolated between the piece's ends);
+// such pieces are not accepted by the position bounds alone.
 #pragma once
 
 #include <vector>
@@ -29,6 +34,7 @@ using interpreter::Position;
 
 struct CorrectorOptions {
   double tolerance_mm = 0.0005;
+  double tolerance_rad = 2e-5;  // tool direction, machines with rotary axes (0: not bounded)
   machine::WorldConvention world = machine::WorldConvention::Axes;
   int max_depth = 24;  // halvings of one move (2^24 pieces) before giving up on the tolerance
 };
@@ -49,6 +55,7 @@ struct CorrectorStats {
   long tolerance_misses = 0;      // moves where max_depth was reached
   long out_of_table = 0;          // corrected points outside a table's grid
   double max_checked_error_mm = 0.0;  // largest error at an accepted piece's check points
+  double max_checked_error_rad = 0.0;  // largest tool direction error there
   double max_deflection_mm = 0.0;
 
   void add(const CorrectorStats& other);  // of another corrector (a lane of the same program)
@@ -82,13 +89,20 @@ class PathCorrector {
     machine::Joints world;      // corrected world coordinates (what LinuxCNC interpolates)
     Position program{};         // corrected point in program coordinates
     Eigen::Vector3d deflection_mm = Eigen::Vector3d::Zero();  // part frame
+    Eigen::Vector3d direction_error = Eigen::Vector3d::Zero();  // real - ideal tool direction of the
+                                                                 // exact correction (direction checked)
   };
 
  private:
   Node node_at(const Move& move, double s);
   machine::Joints joints_of(const Position& world) const;
   Position program_of(const Move& move, const machine::Joints& joints, const Position& like) const;
-  double error_between(const Move& move, const Node& a, const Node& b, const Piece& piece, double t);
+  struct PieceError {
+    double mm = 0.0, rad = 0.0;
+  };
+  PieceError error_between(const Move& move, const Node& a, const Node& b, const Piece& piece, double t);
+  // Worst error of a piece at its check points; true if within the tolerances' accept share.
+  bool piece_within_tolerance(const Move& move, const Node& a, const Node& b, const Piece& piece);
   Position commanded_at(const Move& move, const Node& a, const Piece& piece, double t) const;
   Eigen::Vector3d force_at(const Move& move, double s);
   void refine(const Move& move, const Node& a, const Node& b, int depth, std::vector<Piece>& pieces);
@@ -101,6 +115,7 @@ class PathCorrector {
   const machine::Model& model_;
   CorrectorOptions options_;
   const Deflection* deflection_;
+  bool checks_direction_;              // rotary axes and a direction tolerance
   JointAxes axes_;
   CorrectorStats stats_;
   bool have_last_ = false;
