@@ -1,0 +1,138 @@
+// Modal state that moves the program's frame and keeps the machine still: tool length
+// offsets (G43, G43.1, G49), work coordinate systems (G54..G59.3), G10 L2/L20, G92/G52, and
+// G28/G30 (rapids to positions stored in the parameters).
+#include "words.hpp"
+
+namespace vc::interpreter {
+
+void Interpreter::set_tool_length(const Words& w, int line) {
+  const Position world = world_position();
+  const auto* g = w.find_g({430, 431, 490});
+  if (g->code == 490) {
+    tool_length_ = 0.0;
+  } else if (g->code == 431) {
+    if (!w.has('Z')) refuse(line, g->offset, "G43.1 needs a Z word (tool length)");
+    tool_length_ = w.get('Z') * (inches_ ? kInch : 1.0);
+  } else {
+    int tool = tool_in_spindle_;
+    if (w.has('H')) tool = w.whole('H');
+    if (w.has('H') && tool < 0) refuse(line, w['H'].offset, "H must be a whole number >= 0");
+    else if (tool < 0)
+      refuse(line, g->offset, "G43 without H and no tool in the spindle yet (use G43 Hn, or M6 Tn first)");
+    if (!setup_.tools)
+      refuse(line, g->offset, "G43 needs the tool table: pass --tool-table FILE (LinuxCNC's .tbl)");
+    const auto it = setup_.tools->find(tool);
+    if (it == setup_.tools->end())
+      refuse(line, w.has('H') ? w['H'].offset : g->offset,
+             "tool " + std::to_string(tool) + " is not in the tool table");
+    tool_length_ = it->second.z_offset;  // machine units: mm
+  }
+  set_world_position(world);  // LinuxCNC keeps the machine still; the program position changes
+}
+
+void Interpreter::set_coordinate_system(int index) {
+  const Position world = world_position();
+  coordinate_system_ = index;
+  set_world_position(world);
+}
+
+void Interpreter::set_offsets(const Words& w, int line) {
+  const auto* g10 = w.find_g({100});
+  if (!w.has('L')) refuse(line, g10->offset, "G10 needs an L word");
+  const int l = w.whole('L');
+  if (l != 2 && l != 20)
+    refuse(line, w['L'].offset, "G10 L" + std::to_string(l) + " is not supported (G10 L2 and L20 are)");
+  if (!w.has('P')) refuse(line, g10->offset, "G10 L" + std::to_string(l) + " needs a P word (1..9, or 0)");
+  int system = w.whole('P');
+  if (system < 0 || system > 9) refuse(line, w['P'].offset, "G10 P must be 0..9");
+  if (system == 0) system = coordinate_system_;
+  const Position world = world_position();
+  const double scale = inches_ ? kInch : 1.0;
+  for (int i = 0; i < kAxes; ++i) {
+    const char letter = kAxisLetters[i];
+    if (!w.has(letter)) continue;
+    const double value = w.get(letter) * (is_linear(i) ? scale : 1.0);
+    double& offset = parameters_[offset_parameter(system, i)];
+    if (l == 2) {
+      offset = value;
+    } else {
+      // L20: the current position becomes `value` in that system.
+      if (!(known_ >> i & 1u))
+        refuse(line, w[letter].offset, std::string("G10 L20: the current ") + letter + " is not known yet");
+      double tool = (i == 2 && setup_.tool_length_in_world) ? tool_length_ : 0.0;
+      if (parameters_[rotation_parameter(system)] != 0.0 && i < 2)
+        refuse(line, w[letter].offset, "G10 L20 on a rotated coordinate system is not supported");
+      if (g92_[i] != 0.0) refuse(line, w[letter].offset, "G10 L20 while G92 offsets are on is not supported");
+      offset = world[i] - tool - value;
+    }
+  }
+  if (w.has('R')) {
+    if (l != 2) refuse(line, w['R'].offset, "R (rotation) only with G10 L2");
+    parameters_[rotation_parameter(system)] = w.get('R');
+  }
+  offsets_set_ |= 1u << system;
+  if (system == coordinate_system_) set_world_position(world);
+}
+
+void Interpreter::set_axis_offsets(const Words& w, int code, int line) {
+  // LinuxCNC's convert_axis_offsets (interp_convert.cc): the machine stays where it is. G92:
+  // the current point gets the given coordinates; G52: the offset is the given values; G92.1
+  // and G92.2 take the offsets off (G92.1 also zeroes #5211..), G92.3 puts #5211.. back on.
+  const Position world = world_position();
+  const double scale = inches_ ? kInch : 1.0;
+  if (code == 920 || code == 520) {
+    bool any = false;
+    for (int i = 0; i < kAxes; ++i) {
+      const char letter = kAxisLetters[i];
+      if (!w.has(letter)) continue;
+      any = true;
+      if (!(setup_.machine_axes >> i & 1u))
+        refuse(line, w[letter].offset, std::string("this machine has no ") + letter + " axis");
+      if (code == 920 && !(known_ >> i & 1u))
+        refuse(line, w[letter].offset, std::string("G92: the current ") + letter + " is not known yet");
+      const double value = w.get(letter) * (is_linear(i) ? scale : 1.0);
+      g92_[i] = code == 920 ? position_[i] + g92_[i] - value : value;
+    }
+    if (!any) refuse(line, w.find_g({code})->offset, g_name(code) + " needs at least one axis word");
+    parameters_[kG92Applied] = 1.0;
+    for (int i = 0; i < kAxes; ++i) parameters_[kG92 + i] = g92_[i];
+  } else if (code == 921 || code == 922) {
+    g92_ = {};
+    parameters_[kG92Applied] = 0.0;
+    if (code == 921)
+      for (int i = 0; i < kAxes; ++i) parameters_[kG92 + i] = 0.0;
+  } else {  // G92.3
+    parameters_[kG92Applied] = 1.0;
+    for (int i = 0; i < kAxes; ++i) g92_[i] = parameters_[kG92 + i];
+  }
+  set_world_position(world);
+}
+
+void Interpreter::go_home(const Words& w, int code, int line, Effect& effect) {
+  // G28/G30: rapid to the intermediate point (axis words), then to the stored home
+  // (machine coordinates) on those axes, or on all axes if none is given. The pre-distorter
+  // writes these lines as they are: rapids away from the part, to a position stored in the
+  // controller.
+  const int base = code == 280 ? kG28Home : kG30Home;
+  if (!setup_.var_file && !(offsets_set_ & 1u))
+    refuse(line, w.find_g({code})->offset,
+           g_name(code) + " goes to a position stored in the parameter file: pass --var FILE");
+  unsigned named = 0;
+  for (int i = 0; i < kAxes; ++i)
+    if (w.has(kAxisLetters[i])) named |= 1u << i;
+  if (named) {
+    const Position intermediate = end_point(w, line);
+    position_ = intermediate;
+    known_ |= named;
+  } else {
+    named = setup_.machine_axes;
+  }
+  Position world = world_position();
+  for (int i = 0; i < kAxes; ++i)
+    if (named >> i & 1u) world[i] = parameters_[base + i];
+  set_world_position(world);
+  known_ |= named;
+  effect.moved_as_written = true;
+}
+
+}  // namespace vc::interpreter
