@@ -269,7 +269,6 @@ void Interpreter::move(const Words& w, int line, Effect& effect) {
   if (g53) {
     if (m.kind == MoveKind::Arc) refuse(line, g53->offset, "G53 is only allowed with G0 or G1");
     if (incremental_) refuse(line, g53->offset, "G53 is only allowed in absolute mode (G90)");
-    if (m.frame.rotation_deg != 0.0) refuse(line, g53->offset, "G53 on a rotated coordinate system is not supported");
     // Machine coordinates: the given axes are world positions; the others stay where they are.
     Frame machine;
     if (!setup_.tool_length_in_world) machine.offset[2] = -tool_length_;
