@@ -25,6 +25,7 @@ void Effect::clear() {
 }
 
 Interpreter::Interpreter(Setup setup) : setup_(std::move(setup)) {
+  if (setup_.tools) tools_ = *setup_.tools;
   if (setup_.var_file) {
     parameters_ = *setup_.var_file;
     const double system = parameters_[kCoordinateSystem];

@@ -19,10 +19,10 @@ void Interpreter::set_tool_length(const Words& w, int line) {
     if (w.has('H') && tool < 0) refuse(line, w['H'].offset, "H must be a whole number >= 0");
     else if (tool < 0)
       refuse(line, g->offset, "G43 without H and no tool in the spindle yet (use G43 Hn, or M6 Tn first)");
-    if (!setup_.tools)
+    if (!tools_)
       refuse(line, g->offset, "G43 needs the tool table: pass --tool-table FILE (LinuxCNC's .tbl)");
-    const auto it = setup_.tools->find(tool);
-    if (it == setup_.tools->end())
+    const auto it = tools_->find(tool);
+    if (it == tools_->end())
       refuse(line, w.has('H') ? w['H'].offset : g->offset,
              "tool " + std::to_string(tool) + " is not in the tool table");
     tool_length_ = it->second.z_offset;  // machine units: mm
@@ -40,8 +40,9 @@ void Interpreter::set_offsets(const Words& w, int line) {
   const auto* g10 = w.find_g({100});
   if (!w.has('L')) refuse(line, g10->offset, "G10 needs an L word");
   const int l = w.whole('L');
+  if (l == 1) return set_tool_entry(w, line);
   if (l != 2 && l != 20)
-    refuse(line, w['L'].offset, "G10 L" + std::to_string(l) + " is not supported (G10 L2 and L20 are)");
+    refuse(line, w['L'].offset, "G10 L" + std::to_string(l) + " is not supported (G10 L1, L2 and L20 are)");
   if (!w.has('P')) refuse(line, g10->offset, "G10 L" + std::to_string(l) + " needs a P word (1..9, or 0)");
   int system = w.whole('P');
   if (system < 0 || system > 9) refuse(line, w['P'].offset, "G10 P must be 0..9");
@@ -72,6 +73,23 @@ void Interpreter::set_offsets(const Words& w, int line) {
   }
   offsets_set_ |= 1u << system;
   if (system == coordinate_system_) set_world_position(world);
+}
+
+void Interpreter::set_tool_entry(const Words& w, int line) {
+  // G10 L1 P<tool>: the tool table's Z (length) and R (radius) of a tool, in program units; a
+  // later G43 takes them (LinuxCNC's convert_setup_tool). Other columns do not matter here.
+  const auto* g10 = w.find_g({100});
+  if (!w.has('P')) refuse(line, g10->offset, "G10 L1 needs a P word (the tool number)");
+  const int tool = w.whole('P');
+  if (!tools_) refuse(line, g10->offset, "G10 L1 changes the tool table: pass --tool-table FILE (LinuxCNC's .tbl)");
+  const auto it = tools_->find(tool);
+  if (tool < 0 || it == tools_->end())
+    refuse(line, w['P'].offset, "tool " + std::to_string(tool) + " is not in the tool table");
+  for (char c : {'X', 'Y', 'A', 'B', 'C'})
+    if (w.has(c)) refuse(line, w[c].offset, std::string("G10 L1 ") + c + ": only Z (length) and R (radius) are supported");
+  const double scale = inches_ ? kInch : 1.0;
+  if (w.has('Z')) it->second.z_offset = w.get('Z') * scale;
+  if (w.has('R')) it->second.diameter = 2 * w.get('R') * scale;
 }
 
 void Interpreter::set_axis_offsets(const Words& w, int code, int line) {

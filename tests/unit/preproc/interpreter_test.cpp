@@ -247,5 +247,18 @@ TEST(Interpreter, StartPositionMakesTheFirstCutKnown) {
   EXPECT_DOUBLE_EQ(effect.moves[0].start[2], 250.0);
 }
 
+// G10 L1 changes a tool's length in the table; the next G43 takes it (checked against rs274).
+TEST(Interpreter, ToolTableChangesTakeEffectAtTheNextG43) {
+  ToolTable tools{{1, {1, 12.7, 6.35}}};
+  gcode::Parameters var;
+  const Interpreted r = interpret(kStart + "G43 H1\nG0 X1\nG10 L1 P1 Z20\nG0 X2\nG43 H1\nG0 X3\n", &tools, &var);
+  ASSERT_EQ(r.moves.size(), 4u);
+  EXPECT_DOUBLE_EQ(r.moves[1].tool_length_mm, 12.7);
+  EXPECT_DOUBLE_EQ(r.moves[2].tool_length_mm, 12.7);  // not before the G43
+  EXPECT_DOUBLE_EQ(r.moves[3].tool_length_mm, 20.0);
+  EXPECT_DOUBLE_EQ(tools.at(1).z_offset, 12.7);  // the caller's table is not changed
+  EXPECT_NE(refusal(kStart + "G10 L1 P7 Z1\n", &tools).find("tool 7 is not in the tool table"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace vc::interpreter

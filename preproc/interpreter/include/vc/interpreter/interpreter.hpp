@@ -88,6 +88,7 @@ class Interpreter {
   void set_tool_length(const Words& w, int line);
   void set_coordinate_system(int index);
   void set_offsets(const Words& w, int line);  // G10 L2 / L20
+  void set_tool_entry(const Words& w, int line);  // G10 L1
   void set_axis_offsets(const Words& w, int code, int line);  // G92, G92.1-G92.3, G52
   void go_home(const Words& w, int code, int line, Effect& effect);
   void move(const Words& w, int line, Effect& effect);
@@ -97,6 +98,7 @@ class Interpreter {
   void arc_geometry(const Words& w, const Position& end, int line, Move& move) const;
 
   Setup setup_;
+  std::optional<ToolTable> tools_;  // the tool table as G10 L1 leaves it (none: no table given)
   gcode::Parameters parameters_;
   // Modal state, LinuxCNC's defaults at program start.
   bool inches_ = false;
