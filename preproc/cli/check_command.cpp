@@ -142,7 +142,8 @@ int run_check(const CheckArgs& args, std::ostream& out) {
   out << "\n  file " << model.path << "\n  measured: " << (model.info.measured_on.empty() ? "date not given" : model.info.measured_on)
       << ", " << format_fixed(model.info.temperature_C, 1) << " C";
   if (!model.info.instrument.empty()) out << ", " << model.info.instrument;
-  out << "\n  tool length L = " << format_number(model.tool_length_mm) << " mm; pole fade "
+  out << "\n  tool length L = " << format_number(model.tool_length_mm) << " mm (checked here); in use L = "
+      << format_number(model.tool_length_reference_mm) << " mm + the G43 tool length offset; pole fade "
       << format_number(model.fade.start_rad * 180.0 / M_PI) << " .. "
       << format_number(model.fade.full_rad * 180.0 / M_PI) << " deg\n";
   print_axes(model, out);
