@@ -109,9 +109,6 @@ PathCorrector::Node PathCorrector::node_at(const Move& move, double s) {
   }
   solved(n.target, n.corrected, L);
   if (machine::outside_tables(model_, n.corrected)) ++stats_.out_of_table;
-  if (checks_direction_)
-    n.direction_error = machine::tool_pose(model_, Machine::Real, n.corrected, L).direction -
-                        machine::tool_pose(model_, Machine::Ideal, n.nominal, L).direction;
   n.world = machine::nominal_forward(model_, options_.world, n.corrected, L);
   n.program = program_of(move, n.world, p);
   return n;
@@ -193,7 +190,8 @@ Position PathCorrector::commanded_at(const Move& move, const Node& a, const Piec
 }
 
 PathCorrector::PieceError PathCorrector::error_between(const Move& move, const Node& a, const Node& b,
-                                                      const Piece& piece, double t) {
+                                                      const Piece& piece, double t,
+                                                      const DirectionErrors* exact_direction_errors) {
   ++stats_.checks;
   const double L = model_.correction_length(move.tool_length_mm);  // the tool-length rule
   const double s = a.s + t * (b.s - a.s);
@@ -207,17 +205,26 @@ PathCorrector::PieceError PathCorrector::error_between(const Move& move, const N
   const machine::ToolPose ideal = machine::tool_pose(model_, Machine::Ideal, nominal, L);
   PieceError e;
   e.mm = (real.tip_mm + deflection - ideal.tip_mm).norm();
-  if (checks_direction_) {
-    const Eigen::Vector3d exact = a.direction_error + t * (b.direction_error - a.direction_error);
-    e.rad = (real.direction - ideal.direction - exact).norm();
+  if (exact_direction_errors) {
+    const auto& [at_a, at_b] = *exact_direction_errors;
+    e.rad = (real.direction - ideal.direction - (at_a + t * (at_b - at_a))).norm();
   }
   return e;
 }
 
+Eigen::Vector3d PathCorrector::direction_error(const Move& move, const Node& n) const {
+  const double L = model_.correction_length(move.tool_length_mm);
+  return machine::tool_pose(model_, Machine::Real, n.corrected, L).direction -
+         machine::tool_pose(model_, Machine::Ideal, n.nominal, L).direction;
+}
+
 bool PathCorrector::piece_within_tolerance(const Move& move, const Node& a, const Node& b, const Piece& piece) {
   PieceError worst;
+  // The exact correction's own direction errors at the ends (the pole fade leaves them).
+  DirectionErrors exact;
+  if (checks_direction_) exact = {direction_error(move, a), direction_error(move, b)};
   for (double t : kCheckPoints) {
-    const PieceError e = error_between(move, a, b, piece, t);
+    const PieceError e = error_between(move, a, b, piece, t, checks_direction_ ? &exact : nullptr);
     worst.mm = std::max(worst.mm, e.mm);
     worst.rad = std::max(worst.rad, e.rad);
   }

@@ -17,6 +17,7 @@
 // such pieces are not accepted by the position bounds alone.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "vc/interpreter/move.hpp"
@@ -89,8 +90,6 @@ class PathCorrector {
     machine::Joints world;      // corrected world coordinates (what LinuxCNC interpolates)
     Position program{};         // corrected point in program coordinates
     Eigen::Vector3d deflection_mm = Eigen::Vector3d::Zero();  // part frame
-    Eigen::Vector3d direction_error = Eigen::Vector3d::Zero();  // real - ideal tool direction of the
-                                                                 // exact correction (direction checked)
   };
 
  private:
@@ -100,7 +99,13 @@ class PathCorrector {
   struct PieceError {
     double mm = 0.0, rad = 0.0;
   };
-  PieceError error_between(const Move& move, const Node& a, const Node& b, const Piece& piece, double t);
+  // The real minus the ideal tool direction of the exact correction at a node.
+  Eigen::Vector3d direction_error(const Move& move, const Node& n) const;
+  using DirectionErrors = std::pair<Eigen::Vector3d, Eigen::Vector3d>;  // at a piece's two ends
+  // Position error at t of a piece, and the direction error against the exact correction's
+  // (interpolated from `exact_direction_errors`, if given).
+  PieceError error_between(const Move& move, const Node& a, const Node& b, const Piece& piece, double t,
+                           const DirectionErrors* exact_direction_errors);
   // Worst error of a piece at its check points; true if within the tolerances' accept share.
   bool piece_within_tolerance(const Move& move, const Node& a, const Node& b, const Piece& piece);
   Position commanded_at(const Move& move, const Node& a, const Piece& piece, double t) const;
