@@ -41,7 +41,9 @@ const char* kind_name(Kind kind) {
   return "?";
 }
 
-std::string o_name(const std::string& name) {
+// As written: "o100" or "o<name>" (a label local to a subroutine is kept as "sub#label").
+std::string o_name(std::string name) {
+  name = name.substr(name.find('#') + 1);
   return std::isdigit(static_cast<unsigned char>(name[0])) ? "o" + name : "o<" + name + ">";
 }
 
@@ -185,24 +187,25 @@ double ProgramReader::argument(const gcode::OWord& o, const Origin& origin) cons
   }
 }
 
-ProgramReader::Label& ProgramReader::open_label(const gcode::OWord& o, const Origin& origin) {
-  const auto [it, added] = labels_.try_emplace(o.name, Label{o.kind, origin.file, line_start_, origin.line});
+ProgramReader::Label& ProgramReader::open_label(const gcode::OWord& o, const std::string& name,
+                                                const Origin& origin) {
+  const auto [it, added] = labels_.try_emplace(name, Label{o.kind, origin.file, line_start_, origin.line});
   if (!added && (it->second.line != origin.line || it->second.file != origin.file))
     refuse(origin, o.begin,
-           o_name(o.name) + " is already used on line " + std::to_string(it->second.line) + " of " +
+           o_name(name) + " is already used on line " + std::to_string(it->second.line) + " of " +
                file_names_[static_cast<std::size_t>(it->second.file)]);
   return it->second;
 }
 
-ProgramReader::Label& ProgramReader::label(const gcode::OWord& o, const Origin& origin,
+ProgramReader::Label& ProgramReader::label(const gcode::OWord& o, const std::string& name, const Origin& origin,
                                            std::initializer_list<Kind> kinds) {
-  const auto it = labels_.find(o.name);
+  const auto it = labels_.find(name);
   if (it == labels_.end())
     refuse(origin, o.begin, std::string(kind_name(o.kind)) + " without its " + kind_name(*kinds.begin()) + ": " +
-                                o_name(o.name) + " is not open");
+                                o_name(name) + " is not open");
   if (std::find(kinds.begin(), kinds.end(), it->second.kind) == kinds.end())
     refuse(origin, o.begin,
-           std::string(kind_name(o.kind)) + " does not match " + o_name(o.name) + " " + kind_name(it->second.kind) +
+           std::string(kind_name(o.kind)) + " does not match " + o_name(name) + " " + kind_name(it->second.kind) +
                " on line " + std::to_string(it->second.line));
   return it->second;
 }
@@ -240,8 +243,6 @@ void ProgramReader::call(const std::string& name, const std::array<double, gcode
   f.repeats_left = repeats - 1;
   gcode::Parameters& p = interpreter_.parameters();
   p.enter_scope(f.caller, arguments);
-  p.set("_value", 0.0);
-  p.set("_value_returned", 0.0);
 
   if (const auto it = labels_.find(name); it != labels_.end()) {
     if (it->second.kind != (m98 ? Kind::None : Kind::Sub))
@@ -293,8 +294,15 @@ bool ProgramReader::control(const gcode::Block& block, const Origin& origin) {
   if (block.o_word < 0 && m < 0) return !skipping_to_.empty();  // G-code: skipped or executed
   if (m >= 0 && !skipping_to_.empty()) return true;
   const gcode::OWord& o = block.o;
+  // LinuxCNC (interp_read.cc, read_o): sub, endsub, return and call name subroutines, global;
+  // the other O words name labels local to the subroutine they are in ("sub#label").
+  const bool global = o.kind == Kind::Sub || o.kind == Kind::None || o.kind == Kind::EndSub ||
+                      o.kind == Kind::Call || o.kind == Kind::Return;
+  const std::string name =
+      m >= 0 || global ? o.name
+                       : (!frames_.empty() ? frames_.back().name : defining_sub_ ? defining_name_ : "") + "#" + o.name;
   if (m < 0 && !skipping_to_.empty()) {
-    if (o.name != skipping_to_) return true;
+    if (name != skipping_to_) return true;
     if (skipping_to_sub_ && o.kind != Kind::Sub && o.kind != Kind::None) return true;
   }
   if (block.block_delete) refuse(origin, 0, "a block-delete ('/') line may not hold an O word, M98 or M99");
@@ -335,19 +343,25 @@ bool ProgramReader::control(const gcode::Block& block, const Origin& origin) {
   }
   for (const gcode::Word& w : block.words)
     refuse(origin, w.begin, "an O-word line holds no other words");
+  // Inside a definition only its end matters; a call is never made while skipping.
+  if (defining_sub_ && o.kind != Kind::Sub && o.kind != Kind::None && o.kind != Kind::EndSub &&
+      o.kind != Kind::Return)
+    return true;
+  if (o.kind == Kind::Call && !skipping_to_.empty()) return true;
 
   switch (o.kind) {
     case Kind::None:
     case Kind::Sub: {
-      if (!skipping_to_.empty()) open_label(o, origin);  // found by a call looking for it
+      if (!skipping_to_.empty()) open_label(o, name, origin);  // found by a call looking for it
       const bool called = skipping_to_sub_ || !frames_.empty();
       skipping_to_.clear();
       skipping_to_sub_ = false;
       if (o.kind == Kind::None || called) break;  // a Fanuc O number runs on; a call enters
       if (defining_sub_) refuse(origin, o.begin, "a subroutine cannot be defined inside another");
-      open_label(o, origin);
-      skipping_to_ = o.name;  // the definition: skipped up to its endsub
+      open_label(o, name, origin);
+      skipping_to_ = name;  // the definition: skipped up to its endsub
       defining_sub_ = true;
+      defining_name_ = name;
       break;
     }
     case Kind::EndSub:
@@ -361,14 +375,13 @@ bool ProgramReader::control(const gcode::Block& block, const Origin& origin) {
         break;
       }
       if (frames_.back().m98) refuse(origin, o.begin, "an M98 subprogram ends with M99");
-      if (!o.args.empty()) {
-        const double value = argument(o, origin);
+      {
+        // LinuxCNC sets the returned value when it reads the line: 0 (not returned) without one.
+        const double value = o.args.empty() ? 0.0 : argument(o, origin);
         gcode::Parameters& p = interpreter_.parameters();
         leave(origin);
         p.set("_value", value);
-        p.set("_value_returned", 1.0);
-      } else {
-        leave(origin);
+        p.set("_value_returned", o.args.empty() ? 0.0 : 1.0);
       }
       break;
     case Kind::Call: {
@@ -385,83 +398,83 @@ bool ProgramReader::control(const gcode::Block& block, const Origin& origin) {
     }
     case Kind::Do:
       skipping_to_.clear();
-      if (!labels_.count(o.name)) open_label(o, origin);
+      if (!labels_.count(name)) open_label(o, name, origin);
       break;
     case Kind::Repeat: {
-      Label& l = open_label(o, origin);
+      Label& l = open_label(o, name, origin);
       skipping_to_.clear();
       if (l.repeats_left == -1) l.repeats_left = std::lround(argument(o, origin));
       if (l.repeats_left > 0) {
         --l.repeats_left;
       } else {
-        skipping_to_ = o.name;
+        skipping_to_ = name;
         l.repeats_left = -1;
       }
       break;
     }
     case Kind::While: {
-      const auto known = labels_.find(o.name);
+      const auto known = labels_.find(name);
       const bool end_of_do = known != labels_.end() && known->second.kind == Kind::Do;
-      if (!end_of_do) open_label(o, origin);
+      if (!end_of_do) open_label(o, name, origin);
       skipping_to_.clear();
       const bool condition = argument(o, origin) != 0.0;
       if (end_of_do) {
         if (condition && !doing_break_) jump_back(known->second, origin);
         doing_break_ = false;
       } else if (!condition) {
-        skipping_to_ = o.name;
+        skipping_to_ = name;
       }
       break;
     }
     case Kind::If:
-      open_label(o, origin);
+      open_label(o, name, origin);
       if (argument(o, origin) != 0.0) {
         skipping_to_.clear();
         executed_if_ = true;
       } else {
-        skipping_to_ = o.name;
+        skipping_to_ = name;
         executed_if_ = false;
       }
       break;
     case Kind::ElseIf:
-      label(o, origin, {Kind::If});
+      label(o, name, origin, {Kind::If});
       if (executed_if_) {
-        skipping_to_ = o.name;
+        skipping_to_ = name;
       } else if (argument(o, origin) != 0.0) {
         skipping_to_.clear();
         executed_if_ = true;
       }
       break;
     case Kind::Else:
-      label(o, origin, {Kind::If});
+      label(o, name, origin, {Kind::If});
       if (executed_if_) {
-        skipping_to_ = o.name;
-      } else if (skipping_to_ == o.name) {
+        skipping_to_ = name;
+      } else if (skipping_to_ == name) {
         skipping_to_.clear();
         executed_if_ = true;
       }
       break;
     case Kind::EndIf:
-      label(o, origin, {Kind::If});
+      label(o, name, origin, {Kind::If});
       skipping_to_.clear();
       executed_if_ = true;
       break;
     case Kind::Break:
-      label(o, origin, {Kind::While, Kind::Do});
-      skipping_to_ = o.name;
+      label(o, name, origin, {Kind::While, Kind::Do});
+      skipping_to_ = name;
       doing_break_ = true;
       break;
     case Kind::Continue:
-      label(o, origin, {Kind::While, Kind::Do});
-      if (skipping_to_ != o.name) {
-        skipping_to_ = o.name;
+      label(o, name, origin, {Kind::While, Kind::Do});
+      if (skipping_to_ != name) {
+        skipping_to_ = name;
         doing_continue_ = true;
       }
       break;
     case Kind::EndWhile:
     case Kind::EndRepeat: {
-      Label& l = label(o, origin, {o.kind == Kind::EndWhile ? Kind::While : Kind::Repeat});
-      if (skipping_to_ == o.name) {
+      Label& l = label(o, name, origin, {o.kind == Kind::EndWhile ? Kind::While : Kind::Repeat});
+      if (skipping_to_ == name) {
         skipping_to_.clear();
         if (doing_continue_) {
           doing_continue_ = false;

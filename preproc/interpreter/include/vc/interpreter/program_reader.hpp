@@ -81,10 +81,11 @@ class ProgramReader {
   void jump_to(const Label& label, const Origin& origin);
   void jump_back(Label& label, const Origin& origin);  // a loop's next turn
   // The label of a block's closing or inner O word, which must be open with one of `kinds`.
-  Label& label(const gcode::OWord& o, const Origin& origin, std::initializer_list<gcode::OWord::Kind> kinds);
+  Label& label(const gcode::OWord& o, const std::string& name, const Origin& origin,
+               std::initializer_list<gcode::OWord::Kind> kinds);
   // The label an opening O word (sub, do, while, if, repeat) sets on this line; the same name
   // on another line is refused, as LinuxCNC does.
-  Label& open_label(const gcode::OWord& o, const Origin& origin);
+  Label& open_label(const gcode::OWord& o, const std::string& name, const Origin& origin);
   double argument(const gcode::OWord& o, const Origin& origin) const;
   bool needs_rewriting(const std::string& raw) const;
   void apply_original_assignments(const Origin& origin);  // of a rewritten line, after it ran
@@ -101,6 +102,7 @@ class ProgramReader {
   std::string skipping_to_;         // O name the lines are skipped up to (empty: none)
   bool skipping_to_sub_ = false;    // ... and it is a subroutine a call looks for
   bool defining_sub_ = false;       // between "sub" and "endsub" at the program's level
+  std::string defining_name_;       // ... of this subroutine
   bool executed_if_ = false, doing_break_ = false, doing_continue_ = false;
   bool ended_ = false;
   gcode::Block original_;           // a rewritten line as it was written
