@@ -24,6 +24,8 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 MACHINE = os.path.join(HERE, "xyz_perfect.toml")
+# A program that moves a rotary axis runs on a machine that has it (at most two rotary axes).
+ROTARY_MACHINES = {"A": "xyzac_perfect.toml", "B": "xyzbc_perfect.toml", "C": "xyzac_perfect.toml"}
 NCFILES = "/usr/share/linuxcnc/ncfiles"
 TOLERANCE_MM = 0.0011          # rs274 prints 4 decimals: 0.05 um rounding per number, plus ours
 TOLERANCE_INCH_MM = 0.0001 * 25.4 * 1.1
@@ -305,6 +307,10 @@ def check(program, volcomp, keep=None):
         for folder in subroutine_path(program):
             args += ["--subroutine-path", folder]
         code, _, err = run(args, work)
+        missing = re.search(r"this machine has no ([ABC]) axis", err)
+        if code != 0 and missing:
+            args[2] = os.path.join(HERE, ROTARY_MACHINES[missing.group(1)])
+            code, _, err = run(args, work)
         if code != 0:
             return "refused", err.strip().splitlines()[-1][:300] if err.strip() else f"exit {code}"
         output, text = rs274(work, out)
