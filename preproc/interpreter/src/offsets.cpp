@@ -19,13 +19,17 @@ void Interpreter::set_tool_length(const Words& w, int line) {
     if (w.has('H') && tool < 0) refuse(line, w['H'].offset, "H must be a whole number >= 0");
     else if (tool < 0)
       refuse(line, g->offset, "G43 without H and no tool in the spindle yet (use G43 Hn, or M6 Tn first)");
-    if (!tools_)
-      refuse(line, g->offset, "G43 needs the tool table: pass --tool-table FILE (LinuxCNC's .tbl)");
-    const auto it = tools_->find(tool);
-    if (it == tools_->end())
-      refuse(line, w.has('H') ? w['H'].offset : g->offset,
-             "tool " + std::to_string(tool) + " is not in the tool table");
-    tool_length_ = it->second.z_offset;  // machine units: mm
+    if (tool == 0 && !(tools_ && tools_->count(0))) {
+      tool_length_ = 0.0;  // tool 0: no tool, LinuxCNC's empty spindle with zero offsets
+    } else {
+      if (!tools_)
+        refuse(line, g->offset, "G43 needs the tool table: pass --tool-table FILE (LinuxCNC's .tbl)");
+      const auto it = tools_->find(tool);
+      if (it == tools_->end())
+        refuse(line, w.has('H') ? w['H'].offset : g->offset,
+               "tool " + std::to_string(tool) + " is not in the tool table");
+      tool_length_ = it->second.z_offset;  // machine units: mm
+    }
   }
   set_world_position(world);  // LinuxCNC keeps the machine still; the program position changes
 }
