@@ -460,12 +460,22 @@ TEST(PredistortCli, BadInputNamesLineAndColumnAndLeavesTheOutputAlone) {
   }
 }
 
-TEST(PredistortCli, CannedCyclesAreRefusedWithTheReason) {
+// A canned cycle is written out as the moves LinuxCNC makes of it (each point corrected), in
+// exact path mode as LinuxCNC runs them; one it does not translate is refused with the reason.
+// (That the moves are LinuxCNC's is checked against rs274 in tests/acceptance.)
+TEST(PredistortCli, CannedCyclesAreWrittenOutOrRefusedWithTheReason) {
   const auto r = test::run_volcomp("predistort " + test::machine_path("mill3") + " " + program("drilling_cycle.ngc") +
-                         " -o - --var " + program("mill3.var") + " --tool-table " + program("mill3.tbl"));
-  EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.out.find("drilling_cycle.ngc:6:1: error: G81: canned cycles are not translated"), std::string::npos)
-      << r.out;
+                                   " -o - -q --var " + program("mill3.var") + " --tool-table " + program("mill3.tbl"));
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_EQ(r.out.find("\nG81"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("G61 G0"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("G64 P0.0005 Q0\nG61 X20"), std::string::npos) << r.out;  // the mode again, the next hole
+  const fs::path dir = test::run_folder("predistort_g84");
+  std::ofstream(dir / "tap.ngc") << "G21 G90 G54\nG0 X0 Y0 Z50\nS500 M3\nG84 X10 Y10 Z-5 R2 F600\nM2\n";
+  const auto tap = test::run_volcomp("predistort " + test::machine_path("mill3") + " " + (dir / "tap.ngc").string() +
+                                     " -o - --var " + program("mill3.var"));
+  EXPECT_NE(tap.exit_code, 0);
+  EXPECT_NE(tap.out.find("tap.ngc:4:1: error: G84: this canned cycle is not translated"), std::string::npos) << tap.out;
 }
 
 TEST(PredistortCli, AMachineWithAUVOrWAxisIsRefusedAtStart) {

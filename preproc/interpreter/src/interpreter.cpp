@@ -20,6 +20,7 @@ void Effect::clear() {
   g64_word = g64_p_word = g64_q_word = f_word = motion_code_word = -1;
   moved_as_written = false;
   after_tool_change_words.clear();
+  exact_path = false;
   modal_motion = 800;
   inches = incremental = arc_absolute = program_end = false;
 }
@@ -116,8 +117,9 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     if (g == 410 || g == 411 || g == 420 || g == 421)
       reason = "cutter radius compensation (G41/G42) is not translated: the corrected path would be "
                "offset again by the controller; let the CAM system compute the tool path";
-    else if ((g >= 810 && g <= 890 && g % 10 == 0) || g == 730 || g == 760)
-      reason = "canned cycles are not translated: expand them into G0/G1 moves in the post-processor";
+    else if (g == 760 || g == 740 || g == 840 || g == 860 || g == 870 || g == 880)
+      reason = "this canned cycle is not translated (G73, G81, G82, G83, G85 and G89 are): expand it into G0/G1 "
+               "moves in the post-processor";
     else if (g == 330 || g == 331 || (g >= 382 && g <= 385) || g == 50 || g == 51 || g == 52 || g == 70 ||
              g == 80 || g == 432 || g == 171 || g == 181 || g == 191)
       reason = "not supported by the pre-distorter (threading, probing, splines, lathe modes, G43.2, "
@@ -126,7 +128,8 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     static constexpr int kKnown[] = {0,   10,  20,  30,  40,  100, 170, 180, 190, 200, 210, 280,
                                      281, 300, 301, 400, 430, 431, 490, 530, 540, 550, 560, 570,
                                      580, 590, 591, 592, 593, 610, 611, 640, 800, 900, 901, 910,
-                                     911, 920, 921, 922, 923, 520, 930, 940, 950, 960, 970, 980, 990};
+                                     911, 920, 921, 922, 923, 520, 930, 940, 950, 960, 970, 980, 990,
+                                     730, 810, 820, 830, 850, 890};
     if (std::find(std::begin(kKnown), std::end(kKnown), g) == std::end(kKnown))
       refuse(line, c.offset, "unknown G code " + g_name(g));
   }
@@ -180,6 +183,12 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
                                        std::begin(kSystems)) + 1;
     set_coordinate_system(index);
   }
+  if (const auto* mode = w.find_g({610, 611, 640})) {
+    path_mode_ = mode->code;
+    path_p_ = mode->code == 640 && w.has('P') ? w.get('P') * (inches_ ? kInch : 1.0) : -1.0;
+  }
+  if (w.find_g({980})) retract_to_r_ = false;
+  if (w.find_g({990})) retract_to_r_ = true;
   if (const auto* g64 = w.find_g({640})) {
     effect.g64_word = g64->index;
     effect.g64_p_word = w['P'].index;
@@ -197,8 +206,17 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     const int base = store->code == 281 ? kG28Home : kG30Home;
     for (int i = 0; i < kAxes; ++i) parameters_[base + i] = world[i];
   }
-  if (const auto* motion = w.find_g({0, 10, 20, 30, 800})) motion_ = motion->code;
-  if (!w.find_g({280, 300, 100, 431, 520, 920})) move(w, line, effect);  // their axis words are not motion
+  const auto* motion = w.find_g({0, 10, 20, 30, 800, 730, 810, 820, 830, 850, 890});
+  const int previous_motion = motion_;
+  if (motion) motion_ = motion->code;
+  if (w.find_g({280, 300, 100, 431, 520, 920})) {
+    // their axis words are not motion
+  } else if (is_cycle(motion_)) {
+    cycle(w, previous_motion, motion != nullptr, line, effect);
+  } else {
+    move(w, line, effect);
+    if (!effect.moves.empty() || effect.moved_as_written) cycle_start_z_known_ = false;  // LinuxCNC's cycle_il_flag
+  }
   for (const Words::Code& c : w.m)
     if (c.code == 0 || c.code == 10 || c.code == 20 || c.code == 300 || c.code == 600) {
       effect.stop_words.push_back(c.index);

@@ -253,6 +253,7 @@ void Writer::translated(std::string_view raw, const gcode::Block& block, const i
     const gcode::Word& w = block.words[static_cast<std::size_t>(removed[i])];
     const std::size_t start = edit_text_.size();
     if (i == 0) {
+      if (effect.exact_path) edit_text_ += " G61";  // a canned cycle's moves: LinuxCNC runs them so
       append_piece(edit_text_, effect.moves.front(), pieces.front().front(), effect, effect.motion_code_word >= 0,
                    per_piece_feed);
       edits_.push_back({w.begin, w.end, start + 1, edit_text_.size()});  // without the leading space
@@ -277,6 +278,23 @@ void Writer::translated(std::string_view raw, const gcode::Block& block, const i
       line_ += '\n';
       emit(std::string_view(line_).substr(1));
     }
+    if (move.dwell_after_s > 0) {
+      line_.clear();
+      append_number(line_, 'P', move.dwell_after_s, 6);
+      emit("G4" + line_ + "\n");
+    }
+  }
+  if (effect.exact_path) {  // the program's path control mode again
+    line_.clear();
+    if (effect.restore_path_mode == 611) {
+      line_ = "G61.1";
+    } else if (effect.restore_path_mode == 640) {
+      const double p = effect.restore_path_p_mm >= 0 ? effect.restore_path_p_mm : tolerance_mm_;
+      line_ = "G64";
+      append_number(line_, 'P', effect.inches ? p / kInch : p, effect.inches ? 7 : 6);
+      line_ += " Q0";
+    }
+    if (!line_.empty()) emit(line_ + "\n");
   }
   if (split && !effect.stop_words.empty()) write_words(raw, block, effect.stop_words);
 }

@@ -129,7 +129,9 @@ TEST(Interpreter, ParametersAndExpressions) {
 TEST(Interpreter, RefusesWhatItCannotTranslateWithLineAndColumn) {
   EXPECT_EQ(refusal(kStart + "G41 D1 G1 X5\n").substr(0, 14), "test.ngc:3:1: ");
   EXPECT_NE(refusal(kStart + "G41 D1 G1 X5\n").find("cutter radius compensation"), std::string::npos);
-  EXPECT_NE(refusal(kStart + "G1 F10 G81 X1 Z-1 R1\n").find("test.ngc:3:8: error: G81: canned cycles"), std::string::npos);
+  EXPECT_NE(refusal(kStart + "G1 F10 G84 X1 Z-1 R1\n").find("test.ngc:3:8: error: G84: this canned cycle"), std::string::npos);
+  EXPECT_NE(refusal(kStart + "G18 F10 G81 X1 Z-1 R1\n").find("XY plane (G17) only"), std::string::npos);
+  EXPECT_NE(refusal(kStart + "F10 G81 X1 Z-1\n").find("R (the retract plane) is missing"), std::string::npos);
   EXPECT_NE(refusal(kStart + "o100 sub\n").find("O-word"), std::string::npos);
   EXPECT_NE(refusal(kStart + "G92\n").find("needs at least one axis word"), std::string::npos);
   EXPECT_NE(refusal(kStart + "G43 H7\n", nullptr).find("tool table"), std::string::npos);

@@ -49,6 +49,12 @@ struct Effect {
   bool incremental = false;          // G91
   bool arc_absolute = false;         // G90.1
   bool program_end = false;          // M2 / M30
+  // A canned cycle: its moves run in exact path mode (LinuxCNC's cycles switch to it and back):
+  // the writer states G61 before them and the program's mode after (G61.1, or G64 with this P
+  // in mm, < 0: none).
+  bool exact_path = false;
+  int restore_path_mode = 640;
+  double restore_path_p_mm = -1.0;
   bool moved_as_written = false;     // the block moves the machine but is written as it is (G28/G30, a
                                      // rapid to a partly known position)
   // A tool change (M6, M61) and a tool length code (G43, G43.1, G49) on a line without motion:
@@ -92,6 +98,9 @@ class Interpreter {
   void set_axis_offsets(const Words& w, int code, int line);  // G92, G92.1-G92.3, G52
   void go_home(const Words& w, int code, int line, Effect& effect);
   void move(const Words& w, int line, Effect& effect);
+  static bool is_cycle(int motion) { return motion == 730 || (motion >= 810 && motion <= 890); }
+  // A canned cycle block (canned_cycles.cpp); `code_on_line`: the cycle's G code is written here.
+  void cycle(const Words& w, int previous_motion, bool code_on_line, int line, Effect& effect);
   Position world_position() const;
   void set_world_position(const Position& world);  // after a frame change, as LinuxCNC does
   Position end_point(const Words& w, int line) const;
@@ -106,6 +115,14 @@ class Interpreter {
   bool arc_absolute_ = false;
   int plane_ = 170;            // G17 x10
   int motion_ = 800;           // G80 x10: none yet
+  int path_mode_ = 640;        // G61, G61.1, G64 (x10), and G64's P (mm; < 0: none)
+  double path_p_ = -1.0;
+  // Canned cycles: retract to R (G99, rs274's start) or to the start Z (G98); the words that
+  // stay from block to block (R, Z, P, Q, in mm and s) and the Z the cycles started from.
+  bool retract_to_r_ = true;
+  double cycle_r_ = 0.0, cycle_z_ = 0.0, cycle_p_ = 0.0, cycle_q_ = 0.0;
+  double cycle_start_z_ = 0.0;
+  bool cycle_start_z_known_ = false;
   bool inverse_time_ = false;
   double feed_ = 0.0;          // program units per minute, or 1/min in G93
   double spindle_rpm_ = 0.0;

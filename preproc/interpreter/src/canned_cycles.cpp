@@ -1,0 +1,164 @@
+// Canned cycles (G73, G81, G82, G83, G85, G89) in the XY plane, as LinuxCNC 2.9 makes them
+// (interp_cycles.cc: convert_cycle, convert_cycle_xy, CYCLE_MACRO in interp_internal.hh, and
+// the cycle functions): the moves and dwells written out, so each point can be corrected.
+//
+// Per block: R (sticky), Z (sticky), P (dwell, sticky), Q (peck, sticky), L repeats. The Z the
+// cycles started from (cycle_il) is kept until a motion that is not a cycle. In G91, X Y are
+// increments applied on each repeat, R is relative to that start Z and Z relative to R. Below
+// R, the first move is straight up to R. Each hole: rapid across at the current height (the
+// first) or the clear height, down to R if above it, then the cycle, then up to the clear
+// height: R (G99) or the start Z (G98, if above R).
+#include "words.hpp"
+
+namespace vc::interpreter {
+namespace {
+
+constexpr double kPeckClearance_inch = 0.010;  // G83_RAPID_DELTA (interp_internal.hh), in program units
+
+}  // namespace
+
+void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, int line, Effect& effect) {
+  unsigned named = 0;
+  for (int i = 0; i < kAxes; ++i)
+    if (w.has(kAxisLetters[i])) named |= 1u << i;
+  if (!named && !code_on_line) return;  // no motion on this line
+  const int code = motion_;
+  const auto* word = w.find_g({code});
+  const int at = word ? word->offset : w.first_motion_offset();
+  auto fail = [&](const std::string& why) { refuse(line, at, g_name(code) + ": " + why); };
+  if (plane_ != 170) fail("canned cycles are translated in the XY plane (G17) only");
+  if (inverse_time_) fail("LinuxCNC refuses inverse time feed (G93) with canned cycles");
+  if (feed_ == 0.0) fail("LinuxCNC refuses a canned cycle with zero feed rate");
+  for (char c : {'A', 'B', 'C'})
+    if (w.has(c)) refuse(line, w[c].offset, "the rotary axes may not move in a canned cycle");
+  if ((known_ & 0b111u) != 0b111u)
+    fail("a canned cycle from an unknown position: begin the program with a G0 to every axis, or --start");
+  const double scale = inches_ ? kInch : 1.0;
+  // The words that stay: a cycle block without R, Z, P or Q takes them from the last block in
+  // the same mode (LinuxCNC: an error if the mode was not already this cycle).
+  const bool same_mode = previous_motion == code;
+  auto sticky = [&](char letter, double& value, const char* what) {
+    if (w.has(letter)) {
+      value = w.get(letter) * (letter == 'P' ? 1.0 : scale);
+    } else if (!same_mode) {
+      fail(std::string(what) + " is missing (the first block of a canned cycle needs it)");
+    }
+  };
+  sticky('R', cycle_r_, "R (the retract plane)");
+  sticky('Z', cycle_z_, "Z (the bottom)");
+  if (code == 820 || code == 890) sticky('P', cycle_p_, "P (the dwell)");
+  if (code == 730 || code == 830) {
+    sticky('Q', cycle_q_, "Q (the peck)");
+    if (cycle_q_ <= 0) refuse(line, w.has('Q') ? w['Q'].offset : at, "LinuxCNC refuses a Q that is not positive");
+  }
+  int repeats = 1;
+  if (w.has('L')) {
+    repeats = w.whole('L');
+    if (repeats < 1) refuse(line, w['L'].offset, "L (repeats) must be a whole number >= 1");
+  }
+  if (!offsets_known_ && !(offsets_set_ >> coordinate_system_ & 1u))
+    fail("the work offset is not known: pass --var FILE (LinuxCNC's parameter file) or set it with G10 L2");
+
+  if (!cycle_start_z_known_) {
+    cycle_start_z_ = position_[2];
+    cycle_start_z_known_ = true;
+  }
+  double old_z = cycle_start_z_, current_z = position_[2];
+  double x = position_[0], y = position_[1], dx = 0, dy = 0, r, bottom;
+  if (incremental_) {
+    if (w.has('X')) dx = w.get('X') * scale;
+    if (w.has('Y')) dy = w.get('Y') * scale;
+    r = cycle_r_ + old_z;
+    bottom = r + cycle_z_;
+  } else {
+    r = cycle_r_;
+    bottom = cycle_z_;
+    if (w.has('X')) x = w.get('X') * scale;
+    if (w.has('Y')) y = w.get('Y') * scale;
+  }
+  if (r < bottom) fail("LinuxCNC refuses R below Z");
+
+  const Frame f = frame();
+  auto add = [&](MoveKind kind, double to_x, double to_y, double to_z) {
+    Move m;
+    m.kind = kind;
+    m.line = line;
+    m.start = position_;
+    m.known_start = known_;
+    m.frame = f;
+    m.tool_length_mm = tool_length_;
+    m.tool = tool_in_spindle_;
+    m.feed = feed_;
+    m.spindle_on = spindle_on_;
+    m.spindle_rpm = spindle_rpm_;
+    m.end = position_;
+    m.end[0] = to_x;
+    m.end[1] = to_y;
+    m.end[2] = to_z;
+    effect.moves.push_back(m);
+    position_ = m.end;
+  };
+  auto dwell = [&](double seconds) { effect.moves.back().dwell_after_s = seconds; };
+
+  if (old_z < r) {  // below the R plane: straight up to it first
+    add(MoveKind::Rapid, position_[0], position_[1], r);
+    old_z = r;
+    current_z = r;
+  }
+  const double clear = retract_to_r_ ? r : old_z;
+  const double peck_clearance = kPeckClearance_inch * kInch;  // the same in G20 and G21
+  for (int k = repeats; k > 0; --k) {
+    x += dx;
+    y += dy;
+    if (k == repeats && current_z > r) {
+      add(MoveKind::Rapid, x, y, current_z);
+      add(MoveKind::Rapid, x, y, r);
+    } else {
+      add(MoveKind::Rapid, x, y, clear);
+      if (clear > r) add(MoveKind::Rapid, x, y, r);
+    }
+    switch (code) {
+      case 810:
+        add(MoveKind::Line, x, y, bottom);
+        add(MoveKind::Rapid, x, y, clear);
+        break;
+      case 820:
+        add(MoveKind::Line, x, y, bottom);
+        dwell(cycle_p_);
+        add(MoveKind::Rapid, x, y, clear);
+        break;
+      case 730:
+      case 830:
+        for (double depth = r - cycle_q_; depth > bottom; depth -= cycle_q_) {
+          add(MoveKind::Line, x, y, depth);
+          if (code == 830) add(MoveKind::Rapid, x, y, r);
+          add(MoveKind::Rapid, x, y, depth + peck_clearance);
+        }
+        add(MoveKind::Line, x, y, bottom);
+        add(MoveKind::Rapid, x, y, clear);
+        break;
+      case 850:
+        add(MoveKind::Line, x, y, bottom);
+        add(MoveKind::Line, x, y, r);
+        add(MoveKind::Rapid, x, y, clear);
+        break;
+      case 890:
+        add(MoveKind::Line, x, y, bottom);
+        dwell(cycle_p_);
+        add(MoveKind::Line, x, y, clear);
+        break;
+    }
+  }
+  known_ |= 0b111u;
+
+  // Written as plain moves in exact path mode, then the mode the program was in.
+  effect.translate = true;
+  effect.exact_path = path_mode_ != 610;
+  effect.restore_path_mode = path_mode_;
+  effect.restore_path_p_mm = path_p_;
+  for (char c : {'X', 'Y', 'Z', 'R', 'P', 'Q', 'L'})
+    if (w.has(c)) effect.motion_words.push_back(w[c].index);
+  if (word) effect.motion_code_word = word->index;
+}
+
+}  // namespace vc::interpreter
