@@ -594,5 +594,17 @@ TEST(PredistortCli, InverseTimeMovesKeepTheirDuration) {
   EXPECT_LT(minutes.front(), 1e-3);       // the lead: not the move's 0.5 min
 }
 
+// A G64 without P gets the tolerance as P in the program's units: 0.0005 mm in a G20 program is
+// P0.0000197 (inches), not P0.0005 (12.7 um).
+TEST(PredistortCli, PathBlendingToleranceIsWrittenInTheProgramsUnits) {
+  const fs::path dir = test::run_folder("predistort_g64_inch");
+  std::ofstream(dir / "p.ngc") << "G20 G90 G54\nG64\nG0 X0 Y0 Z1\nG21\nG64\nM2\n";
+  const auto r = test::run_volcomp("predistort " + test::machine_path("mill3") + " " + (dir / "p.ngc").string() +
+                                   " -o - -q --var " + program("mill3.var"));
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("\nG64 P0.0000197 Q0\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\nG64 P0.0005 Q0\n"), std::string::npos) << r.out;
+}
+
 }  // namespace
 }  // namespace vc

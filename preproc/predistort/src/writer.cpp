@@ -125,7 +125,8 @@ void Writer::blending_edits(const gcode::Block& block, const interpreter::Effect
   }
   const gcode::Word& g64 = block.words[static_cast<std::size_t>(effect.g64_word)];
   const std::size_t start = edit_text_.size();
-  if (effect.g64_p_word < 0) append_number(edit_text_, 'P', tolerance_mm_, 6);
+  if (effect.g64_p_word < 0)  // the tolerance in the program's units (G20: inches)
+    append_number(edit_text_, 'P', effect.inches ? tolerance_mm_ / kInch : tolerance_mm_, effect.inches ? 7 : 6);
   edit_text_ += " Q0";
   edits_.push_back({g64.end, g64.end, start + 1, edit_text_.size()});  // without the leading space
 }
