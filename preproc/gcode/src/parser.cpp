@@ -100,7 +100,8 @@ std::size_t parse_at(const Normalized& n, std::size_t pos, const Rule& rule, Att
 
 bool is_word_letter(char c) {
   // RS274/NGC word letters LinuxCNC knows (E and O are not words; N only at the start).
-  return std::string_view("abcdfghijklmpqrstuvwxyz").find(c) != std::string_view::npos;
+  // '@' and '^': polar coordinates (distance, angle in degrees) in the XY plane.
+  return std::string_view("abcdfghijklmpqrstuvwxyz@^").find(c) != std::string_view::npos;
 }
 
 // "o<name> keyword [arg]..." or "o123 keyword ...": the rest of the (normalized) line.
@@ -206,7 +207,7 @@ void parse_block(std::string_view line, Block& block) {
       throw SyntaxError(n.raw[pos], "expected a word (letter and value), found " + describe(c));
     }
     Word& w = block.words.emplace_back();
-    w.letter = static_cast<char>(c - 'a' + 'A');
+    w.letter = c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c;
     w.begin = n.raw[pos];
     // Most words carry a plain number: read it directly (what the grammar's value rule,
     // whose first alternative is the number, would read).

@@ -21,6 +21,7 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
   unsigned named = 0;
   for (int i = 0; i < kAxes; ++i)
     if (w.has(kAxisLetters[i])) named |= 1u << i;
+  if (w.polar()) named |= 0b11u;
   if (!named && !code_on_line) return;  // no motion on this line
   const int code = motion_;
   const auto* word = w.find_g({code});
@@ -64,10 +65,13 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
     cycle_start_z_known_ = true;
   }
   double old_z = cycle_start_z_, current_z = position_[2];
-  double x = position_[0], y = position_[1], dx = 0, dy = 0, r, bottom;
+  double x = position_[0], y = position_[1], dx = 0, dy = 0, dr = 0, dt = 0, r, bottom;
+  if (w.polar() && (w.has('X') || w.has('Y'))) fail("X or Y words with polar coordinates");
   if (incremental_) {
     if (w.has('X')) dx = w.get('X') * scale;
     if (w.has('Y')) dy = w.get('Y') * scale;
+    if (w.has('@')) dr = w.get('@') * scale;  // polar increments, about the origin, per repeat
+    if (w.has('^')) dt = w.get('^') * M_PI / 180.0;
     r = cycle_r_ + old_z;
     bottom = r + cycle_z_;
   } else {
@@ -75,6 +79,7 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
     bottom = cycle_z_;
     if (w.has('X')) x = w.get('X') * scale;
     if (w.has('Y')) y = w.get('Y') * scale;
+    if (w.polar()) polar_end_point(w, line, x, y);
   }
   if (r < bottom) fail("LinuxCNC refuses R below Z");
 
@@ -110,6 +115,12 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
   for (int k = repeats; k > 0; --k) {
     x += dx;
     y += dy;
+    if ((dr != 0 || dt != 0) && x == 0 && y == 0) fail("LinuxCNC refuses G91 polar coordinates at the origin");
+    if (dr != 0 || dt != 0) {
+      const double radius = std::hypot(x, y) + dr, angle = std::atan2(y, x) + dt;
+      x = radius * std::cos(angle);
+      y = radius * std::sin(angle);
+    }
     if (k == repeats && current_z > r) {
       add(MoveKind::Rapid, x, y, current_z);
       add(MoveKind::Rapid, x, y, r);
@@ -156,7 +167,7 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
   effect.exact_path = path_mode_ != 610;
   effect.restore_path_mode = path_mode_;
   effect.restore_path_p_mm = path_p_;
-  for (char c : {'X', 'Y', 'Z', 'R', 'P', 'Q', 'L'})
+  for (char c : {'X', 'Y', 'Z', 'R', 'P', 'Q', 'L', '@', '^'})
     if (w.has(c)) effect.motion_words.push_back(w[c].index);
   if (word) effect.motion_code_word = word->index;
 }

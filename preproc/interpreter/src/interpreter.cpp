@@ -99,7 +99,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
       (word.letter == 'G' ? w.g : w.m).push_back({static_cast<int>(rounded), i, word.begin});
       continue;
     }
-    Words::Value& v = w.letters[static_cast<std::size_t>(word.letter - 'A')];
+    Words::Value& v = w.letters[Words::slot(word.letter)];
     if (v.has) refuse(line, word.begin, std::string("word ") + word.letter + " appears twice on the line");
     v = {true, value, i, word.begin};
   }
@@ -148,7 +148,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
   if (block.block_delete) {
     // Whether LinuxCNC runs this line depends on the block-delete switch: the path after it
     // would be unknown if the line moved or changed the modal state.
-    for (char c : {'X', 'Y', 'Z', 'A', 'B', 'C', 'I', 'J', 'K', 'R'})
+    for (char c : {'X', 'Y', 'Z', 'A', 'B', 'C', 'I', 'J', 'K', 'R', '@', '^'})
       if (w.has(c)) refuse(line, 0, "a block-delete ('/') line may not move the machine");
     if (!w.g.empty()) refuse(line, 0, "a block-delete ('/') line may not change G modes");
   }
@@ -250,14 +250,38 @@ Position Interpreter::end_point(const Words& w, int line) const {
     const double value = w.get(letter) * (is_linear(i) ? scale : 1.0);
     end[i] = incremental_ ? end[i] + value : value;
   }
+  if (w.polar()) polar_end_point(w, line, end[0], end[1]);
   return end;
+}
+
+void Interpreter::polar_end_point(const Words& w, int line, double& x, double& y) const {
+  // LinuxCNC's find_ends: '@' distance and '^' angle (deg) about the origin of the XY plane;
+  // the one not given is the current point's; in G91 both are increments of the current point's.
+  const int at = w.has('@') ? w['@'].offset : w['^'].offset;
+  if (w.has('X') || w.has('Y')) refuse(line, at, "X or Y words with polar coordinates");
+  if (plane_ != 170) refuse(line, at, "polar coordinates are translated in the XY plane (G17) only");
+  const double px = position_[0], py = position_[1];
+  const double r0 = std::hypot(px, py), t0 = std::atan2(py, px);
+  const double scale = inches_ ? kInch : 1.0;
+  double r = w.has('@') ? w.get('@') * scale : r0, t = w.has('^') ? w.get('^') * M_PI / 180.0 : t0;
+  if (incremental_) {
+    if (px == 0 && py == 0) refuse(line, at, "LinuxCNC refuses G91 polar coordinates at the origin");
+    r = r0 + (w.has('@') ? w.get('@') * scale : 0.0);
+    t = t0 + (w.has('^') ? w.get('^') * M_PI / 180.0 : 0.0);
+  } else if (!w.has('^') && px == 0 && py == 0) {
+    refuse(line, at, "LinuxCNC needs the angle (^) of a polar point at the origin");
+  }
+  x = r * std::cos(t);
+  y = r * std::sin(t);
 }
 
 void Interpreter::move(const Words& w, int line, Effect& effect) {
   unsigned named = 0;
   for (int i = 0; i < kAxes; ++i)
     if (w.has(kAxisLetters[i])) named |= 1u << i;
+  if (w.polar()) named |= 0b11u;
   const auto* g53 = w.find_g({530});
+  if (g53 && w.polar()) refuse(line, g53->offset, "LinuxCNC refuses polar coordinates with G53");
   const bool arc_words = w.has('I') || w.has('J') || w.has('K') || w.has('R');
   if (!named && !arc_words) {
     if (g53) refuse(line, g53->offset, "G53 without axis words");
@@ -331,7 +355,7 @@ void Interpreter::move(const Words& w, int line, Effect& effect) {
   }
   effect.translate = true;
   effect.moves.push_back(m);
-  for (char c : {'X', 'Y', 'Z', 'A', 'B', 'C', 'I', 'J', 'K', 'R'})
+  for (char c : {'X', 'Y', 'Z', 'A', 'B', 'C', 'I', 'J', 'K', 'R', '@', '^'})
     if (w.has(c)) effect.motion_words.push_back(w[c].index);
   if (m.kind == MoveKind::Arc && w.has('P')) effect.motion_words.push_back(w['P'].index);
 }

@@ -42,10 +42,12 @@ struct Interpreter::Words {
     int index;
     int offset;
   };
-  std::array<Value, 26> letters{};
+  std::array<Value, 28> letters{};  // A..Z, then '@' and '^' (polar distance and angle)
+  static std::size_t slot(char c) { return c == '@' ? 26 : c == '^' ? 27 : static_cast<std::size_t>(c - 'A'); }
   std::vector<Code> g, m;
 
-  const Value& operator[](char c) const { return letters[static_cast<std::size_t>(c - 'A')]; }
+  const Value& operator[](char c) const { return letters[slot(c)]; }
+  bool polar() const { return has('@') || has('^'); }
   // A word that must hold a whole number (tool, turns, L, P): its value, or -1 if it does not.
   int whole(char c) const {
     const double v = get(c);
@@ -55,7 +57,7 @@ struct Interpreter::Words {
   // Where the first axis or arc word is written (for messages about the motion).
   int first_motion_offset() const {
     int first = -1;
-    for (char c : {'X', 'Y', 'Z', 'A', 'B', 'C', 'I', 'J', 'K', 'R'})
+    for (char c : {'X', 'Y', 'Z', 'A', 'B', 'C', 'I', 'J', 'K', 'R', '@', '^'})
       if (has(c) && (first < 0 || (*this)[c].offset < first)) first = (*this)[c].offset;
     return std::max(first, 0);
   }

@@ -104,6 +104,7 @@ class Interpreter {
   Position world_position() const;
   void set_world_position(const Position& world);  // after a frame change, as LinuxCNC does
   Position end_point(const Words& w, int line) const;
+  void polar_end_point(const Words& w, int line, double& x, double& y) const;  // '@' '^' 
   void arc_geometry(const Words& w, const Position& end, int line, Move& move) const;
 
   Setup setup_;
