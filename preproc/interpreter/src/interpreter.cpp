@@ -206,7 +206,9 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     const int base = store->code == 281 ? kG28Home : kG30Home;
     for (int i = 0; i < kAxes; ++i) parameters_[base + i] = world[i];
   }
-  const auto* motion = w.find_g({0, 10, 20, 30, 800, 730, 810, 820, 830, 850, 890});
+  // G80 with a motion code on the same line: the motion code is the mode (rs274 reads it so).
+  const Words::Code* motion = w.find_g({0, 10, 20, 30, 730, 810, 820, 830, 850, 890});
+  if (!motion) motion = w.find_g({800});
   const int previous_motion = motion_;
   if (motion) motion_ = motion->code;
   if (w.find_g({280, 300, 100, 431, 520, 920})) {
