@@ -444,7 +444,8 @@ TEST(PredistortCli, BadInputNamesLineAndColumnAndLeavesTheOutputAlone) {
       {"G21 G90\nG0 X0 Y0 Z0\nG1 X1 E5\n", "bad.ngc:3:7: error: unknown word letter 'E'"},
       {"G21\nG0 X0 Y0 Z0\nG43 H9\n", "bad.ngc:3:5: error: tool 9 is not in the tool table"},
       {"G21\nG0 X0 Y0 Z0\nG1 X1 (unclosed\n", "bad.ngc:3:7"},
-      {"G21\nG0 X0 Y0 Z0\nG41 G1 X1 F100\n", "bad.ngc:3:1: error: G41: cutter radius compensation"},
+      {"G21\nG0 X0 Y0 Z0\nG41 D1 G1 X4 F100\n",  // tool 1: 10 mm
+       "bad.ngc:3:11: error: length of cutter compensation entry move is not greater than the tool radius"},
   };
   for (const auto& [text, expected] : cases) {
     std::ofstream(dir / "bad.ngc") << text;

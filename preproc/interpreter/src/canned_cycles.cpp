@@ -88,7 +88,7 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
     Move m;
     m.kind = kind;
     m.line = line;
-    m.start = position_;
+    m.start = effect.moves.empty() ? take_move_start() : position_;
     m.known_start = known_;
     m.frame = f;
     m.tool_length_mm = tool_length_;

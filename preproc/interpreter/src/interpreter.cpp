@@ -20,6 +20,7 @@ void Effect::clear() {
   g64_word = g64_p_word = g64_q_word = f_word = motion_code_word = -1;
   moved_as_written = false;
   after_tool_change_words.clear();
+  compensation_words.clear();
   exact_path = false;
   modal_motion = 800;
   inches = incremental = arc_absolute = program_end = false;
@@ -75,6 +76,8 @@ void Interpreter::set_world_position(const Position& world) { position_ = frame(
 
 void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
   effect.clear();
+  ++sequence_;
+  released_.clear();
   if (block.percent) return;
   if (block.o_word >= 0)
     refuse(line, block.o_word,
@@ -114,10 +117,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
   for (const Words::Code& c : w.g) {
     const int g = c.code;
     const char* reason = nullptr;
-    if (g == 410 || g == 411 || g == 420 || g == 421)
-      reason = "cutter radius compensation (G41/G42) is not translated: the corrected path would be "
-               "offset again by the controller; let the CAM system compute the tool path";
-    else if (g == 760 || g == 740 || g == 840 || g == 860 || g == 870 || g == 880)
+    if (g == 760 || g == 740 || g == 840 || g == 860 || g == 870 || g == 880)
       reason = "this canned cycle is not translated (G73, G81, G82, G83, G85 and G89 are): expand it into G0/G1 "
                "moves in the post-processor";
     else if (g == 330 || g == 331 || (g >= 382 && g <= 385) || g == 50 || g == 51 || g == 52 || g == 70 ||
@@ -127,7 +127,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     if (reason) refuse(line, c.offset, g_name(g) + ": " + reason);
     static constexpr int kKnown[] = {0,   10,  20,  30,  40,  100, 170, 180, 190, 200, 210, 280,
                                      281, 300, 301, 400, 430, 431, 490, 530, 540, 550, 560, 570,
-                                     580, 590, 591, 592, 593, 610, 611, 640, 800, 900, 901, 910,
+                                     580, 590, 591, 592, 593, 610, 611, 640, 800, 900, 901, 910, 400, 410, 411, 420, 421,
                                      911, 920, 921, 922, 923, 520, 930, 940, 950, 960, 970, 980, 990,
                                      730, 810, 820, 830, 850, 890};
     if (std::find(std::begin(kKnown), std::end(kKnown), g) == std::end(kKnown))
@@ -153,6 +153,8 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     if (!w.g.empty()) refuse(line, 0, "a block-delete ('/') line may not change G modes");
   }
 
+  compensation_rules(block, w, line);
+
   // LinuxCNC's order of execution (RS274/NGC 3.8, LinuxCNC docs "Order of Execution").
   if (w.find_g({930})) inverse_time_ = true;
   if (w.find_g({940, 950})) inverse_time_ = false;
@@ -176,6 +178,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
   if (w.find_g({190})) plane_ = 190;
   if (w.find_g({200})) inches_ = true;
   if (w.find_g({210})) inches_ = false;
+  set_compensation(w, line, effect);
   if (w.find_g({430, 431, 490})) set_tool_length(w, line);
   if (const auto* c = w.find_g({540, 550, 560, 570, 580, 590, 591, 592, 593})) {
     static constexpr int kSystems[] = {540, 550, 560, 570, 580, 590, 591, 592, 593};
@@ -217,14 +220,19 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     cycle(w, previous_motion, motion != nullptr, line, effect);
   } else {
     move(w, line, effect);
-    if (!effect.moves.empty() || effect.moved_as_written) cycle_start_z_known_ = false;  // LinuxCNC's cycle_il_flag
+    if (effect.translate || effect.moved_as_written) cycle_start_z_known_ = false;  // LinuxCNC's cycle_il_flag
   }
   for (const Words::Code& c : w.m)
     if (c.code == 0 || c.code == 10 || c.code == 20 || c.code == 300 || c.code == 600) {
       effect.stop_words.push_back(c.index);
       if (c.code == 20 || c.code == 300) effect.program_end = true;
     }
-  if (const auto* motion = w.find_g({0, 10, 20, 30})) effect.motion_code_word = motion->index;
+  if (!effect.stop_words.empty()) {  // LinuxCNC's convert_stop: the held moves end where they are
+    if (effect.program_end) compensation_.stop(own_);
+    else compensation_.flush(own_);
+    take_released(own_, effect);
+  }
+  if (const auto* code = w.find_g({0, 10, 20, 30})) effect.motion_code_word = code->index;
   const auto* length_code = w.find_g({430, 431, 490});
   if (length_code && w.find_m({60, 610}) && effect.moves.empty() && !effect.moved_as_written) {
     std::vector<int>& words = effect.after_tool_change_words;
@@ -235,6 +243,8 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
         if (w.has(kAxisLetters[i])) words.push_back(w[kAxisLetters[i]].index);
     words.insert(words.end(), effect.stop_words.begin(), effect.stop_words.end());
   }
+  if (tool_after_compensation_ && w.find_m({60, 610}))  // LinuxCNC reads its position back after a tool change
+    position_ = take_move_start();
   effect.modal_motion = motion_;
   effect.inches = inches_;
   effect.incremental = incremental_;
@@ -331,6 +341,8 @@ void Interpreter::move(const Words& w, int line, Effect& effect) {
     position_ = frame().program(world_end);
   } else {
     m.end = end_point(w, line);
+    if (m.kind == MoveKind::Arc && arc_not_allowed_)
+      refuse(line, w.first_motion_offset(), "the move just after exiting cutter compensation mode must be straight, not an arc");
     if (m.kind == MoveKind::Arc) arc_geometry(w, m.end, line, m);
     else if (arc_words)
       refuse(line, w[w.has('I') ? 'I' : w.has('J') ? 'J' : w.has('K') ? 'K' : 'R'].offset,
@@ -339,9 +351,26 @@ void Interpreter::move(const Words& w, int line, Effect& effect) {
   }
   known_ |= named;
 
+  arc_not_allowed_ = false;
   const unsigned needed = setup_.machine_axes;
   const bool start_known = (m.known_start & needed) == needed;
   const bool end_known = (known_ & needed) == needed;
+  if (compensation_.offsets() && !g53) {
+    if (!start_known || !end_known)
+      refuse(line, w.first_motion_offset(),
+             "cannot compensate the cutter radius from an unknown position: move every axis first, or give the start "
+             "position (volcomp predistort --start)");
+    const Position programmed_start = m.start;
+    position_ = programmed_start;  // the compensation starts from the programmed point
+    compensated_move(w, m, line, effect);
+    position_ = m.end;
+    motion_words(w, m, effect);
+    return;
+  }
+  if (tool_after_compensation_) {  // the first move after G40 starts where the tool is
+    m.start = m.frame.program(*tool_after_compensation_);
+    tool_after_compensation_.reset();
+  }
   if (!end_known || (m.kind != MoveKind::Rapid && !start_known)) {
     if (m.kind != MoveKind::Rapid) {
       std::string missing;
@@ -355,8 +384,12 @@ void Interpreter::move(const Words& w, int line, Effect& effect) {
     effect.moved_as_written = true;  // a rapid to a partly known position: written as it is, uncorrected
     return;
   }
-  effect.translate = true;
   effect.moves.push_back(m);
+  motion_words(w, m, effect);
+}
+
+void Interpreter::motion_words(const Words& w, const Move& m, Effect& effect) const {
+  effect.translate = true;
   for (char c : {'X', 'Y', 'Z', 'A', 'B', 'C', 'I', 'J', 'K', 'R', '@', '^'})
     if (w.has(c)) effect.motion_words.push_back(w[c].index);
   if (m.kind == MoveKind::Arc && w.has('P')) effect.motion_words.push_back(w['P'].index);

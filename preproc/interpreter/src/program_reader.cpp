@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 
 #include "vc/gcode/evaluate.hpp"
 #include "vc/gcode/parser.hpp"
@@ -98,6 +99,35 @@ bool ProgramReader::read_line(std::string& raw, Origin& origin) {
 }
 
 bool ProgramReader::next(std::string& raw, Origin& origin, gcode::Block& block, Effect& effect) {
+  // Lines run while cutter compensation holds a move back wait here until it is final.
+  while (true) {
+    if (!held_.empty() && !interpreter_.holding_moves()) {
+      Held& h = held_.front();
+      raw = std::move(h.raw);
+      origin = h.origin;
+      block = std::move(h.block);
+      effect = std::move(h.effect);
+      held_.pop_front();
+      return true;
+    }
+    if (!execute_next(raw, origin, block, effect)) {
+      if (!held_.empty())
+        refuse(held_.front().origin, 0,
+               "the program ends while cutter compensation holds this line's move back (no G40, M2 or M30 after it)");
+      return false;
+    }
+    for (ReleasedMove& r : interpreter_.released_moves()) {
+      const auto h = std::find_if(held_.begin(), held_.end(), [&](const Held& x) { return x.sequence == r.sequence; });
+      if (h == held_.end()) throw std::logic_error("cutter compensation released a move of a line not held");
+      h->effect.moves.push_back(std::move(r.move));
+    }
+    interpreter_.released_moves().clear();
+    if (held_.empty() && !interpreter_.holding_moves()) return true;
+    held_.push_back({std::move(raw), origin, std::move(block), std::move(effect), interpreter_.sequence()});
+  }
+}
+
+bool ProgramReader::execute_next(std::string& raw, Origin& origin, gcode::Block& block, Effect& effect) {
   if (ended_) return trailing_percent(raw, origin, block, effect);
   while (true) {
     if (!read_line(raw, origin)) {

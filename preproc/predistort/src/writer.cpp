@@ -166,10 +166,8 @@ void Writer::verbatim(std::string_view raw, const gcode::Block& block, const int
   edits_.clear();
   edit_text_.clear();
   blending_edits(block, effect);
-  for (int index : effect.after_tool_change_words) {
-    const gcode::Word& w = block.words[static_cast<std::size_t>(index)];
-    edits_.push_back({w.begin, w.end, 0, 0});
-  }
+  remove_words(block, effect.after_tool_change_words);
+  remove_words(block, effect.compensation_words);
   write_edited(raw);
   if (!effect.after_tool_change_words.empty()) write_words(raw, block, effect.after_tool_change_words);
   motion_ = effect.modal_motion;
@@ -250,10 +248,11 @@ void Writer::translated(std::string_view raw, const gcode::Block& block, const i
   edits_.clear();
   edit_text_.clear();
   blending_edits(block, effect);
+  remove_words(block, effect.compensation_words);
   for (std::size_t i = 0; i < removed.size(); ++i) {
     const gcode::Word& w = block.words[static_cast<std::size_t>(removed[i])];
     const std::size_t start = edit_text_.size();
-    if (i == 0) {
+    if (i == 0 && count > 0) {  // (no moves: a line whose move cutter compensation dropped)
       if (effect.exact_path) edit_text_ += " G61";  // a canned cycle's moves: LinuxCNC runs them so
       append_piece(edit_text_, effect.moves.front(), pieces.front().front(), effect, effect.motion_code_word >= 0,
                    per_piece_feed);
@@ -298,6 +297,13 @@ void Writer::translated(std::string_view raw, const gcode::Block& block, const i
     if (!line_.empty()) emit(line_ + "\n");
   }
   if (split && !effect.stop_words.empty()) write_words(raw, block, effect.stop_words);
+}
+
+void Writer::remove_words(const gcode::Block& block, const std::vector<int>& words) {
+  for (int index : words) {
+    const gcode::Word& w = block.words[static_cast<std::size_t>(index)];
+    edits_.push_back({w.begin, w.end, 0, 0});
+  }
 }
 
 void Writer::write_words(std::string_view raw, const gcode::Block& block, const std::vector<int>& words) {

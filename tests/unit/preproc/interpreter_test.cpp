@@ -128,7 +128,12 @@ TEST(Interpreter, ParametersAndExpressions) {
 
 TEST(Interpreter, RefusesWhatItCannotTranslateWithLineAndColumn) {
   EXPECT_EQ(refusal(kStart + "G41 D1 G1 X5\n").substr(0, 14), "test.ngc:3:1: ");
-  EXPECT_NE(refusal(kStart + "G41 D1 G1 X5\n").find("cutter radius compensation"), std::string::npos);
+  EXPECT_NE(refusal(kStart + "G41 D1 G1 X5\n").find("pass --tool-table"), std::string::npos);
+  EXPECT_NE(refusal(kStart + "G42 G1 X5\n").find("has not loaded one"), std::string::npos);
+  EXPECT_NE(refusal(kStart + "G19 G41.1 D1\n").find("XY (G17) or XZ (G18) plane"), std::string::npos);
+  EXPECT_NE(refusal(kStart + "G41.1 D1 F1 G1 X5\nG92 X0\n").find("test.ngc:4:1: error: cannot use G92 with cutter"),
+            std::string::npos);
+  EXPECT_NE(refusal(kStart + "G1 F1 D1 X5\n").find("D word without G41"), std::string::npos);
   EXPECT_NE(refusal(kStart + "G1 F10 G84 X1 Z-1 R1\n").find("test.ngc:3:8: error: G84: this canned cycle"), std::string::npos);
   EXPECT_NE(refusal(kStart + "G18 F10 G81 X1 Z-1 R1\n").find("XY plane (G17) only"), std::string::npos);
   EXPECT_NE(refusal(kStart + "F10 G81 X1 Z-1\n").find("R (the retract plane) is missing"), std::string::npos);

@@ -1,8 +1,11 @@
-// RS274/NGC as LinuxCNC interprets it, for the subset that a pre-distorter can translate
-// faithfully: modal state (units, distance modes, plane, work offsets, tool length, feed
-// mode), and for each block the moves it makes. What it cannot translate (cutter
-// compensation, canned cycles, O-word control flow, G92 offsets, ...) is refused with
-// file:line:column and a reason (vc::LoadError), never mistranslated.
+// RS274/NGC as LinuxCNC interprets it, for what a pre-distorter can translate faithfully:
+// modal state (units, distance modes, plane, work offsets, tool length, feed mode), and for
+// each block the moves it makes. What it cannot translate is refused with file:line:column
+// and a reason (vc::LoadError), never mistranslated. O-word control flow is ProgramReader's.
+//
+// Cutter compensation (G41/G42) holds a line's moves back until the next move shows the
+// corner, as LinuxCNC does: such a line's effect has translate set and its moves arrive later,
+// in released_moves() after a later line (ProgramReader puts them back where they belong).
 #pragma once
 
 #include <optional>
@@ -11,6 +14,7 @@
 
 #include "vc/gcode/block.hpp"
 #include "vc/gcode/parameters.hpp"
+#include "vc/interpreter/cutter_compensation.hpp"
 #include "vc/interpreter/linuxcnc_files.hpp"
 #include "vc/interpreter/move.hpp"
 
@@ -62,6 +66,8 @@ struct Effect {
   // LinuxCNC keeps the machine still there, but the standalone interpreter (rs274, previews)
   // re-reads its position after the tool change without the new length: on two lines both agree.
   std::vector<int> after_tool_change_words;
+  // G41/G42 (.1) and their D and L words: the moves are written offset, with compensation off.
+  std::vector<int> compensation_words;
   void clear();
 };
 
@@ -77,6 +83,13 @@ class Interpreter {
   // same on another line (pin_line_number). Throws vc::LoadError with file:line:column for what it
   // cannot read or translate.
   void read(std::string& raw, int line, gcode::Block& block, Effect& effect);
+
+  // Each execute() numbers its line: moves released later name the line by this number.
+  long sequence() const { return sequence_; }
+  // Cutter compensation holds moves back (lines executed since then are not final yet).
+  bool holding_moves() const { return compensation_.holding(); }
+  // Moves of earlier lines (by sequence()) that the last execute() made final, in order.
+  std::vector<ReleasedMove>& released_moves() { return released_; }
 
   const gcode::Parameters& parameters() const { return parameters_; }
   gcode::Parameters& parameters() { return parameters_; }
@@ -98,6 +111,15 @@ class Interpreter {
   void set_axis_offsets(const Words& w, int code, int line);  // G92, G92.1-G92.3, G52
   void go_home(const Words& w, int code, int line, Effect& effect);
   void move(const Words& w, int line, Effect& effect);
+  void motion_words(const Words& w, const Move& m, Effect& effect) const;  // replaced by the corrected moves
+  // Cutter compensation (cutter_compensation_modes.cpp): G40/G41/G42 and what LinuxCNC refuses
+  // while it is on; a compensated move; the moves it releases, sorted into this line's and others.
+  void compensation_rules(const gcode::Block& block, const Words& w, int line) const;
+  void set_compensation(const Words& w, int line, Effect& effect);
+  void compensated_move(const Words& w, Move& m, int line, Effect& effect);
+  void take_released(std::vector<ReleasedMove>& out, Effect& effect);
+  // Where the next move starts: the current point, or after G40 where the tool was left.
+  Position take_move_start();
   static bool is_cycle(int motion) { return motion == 730 || (motion >= 810 && motion <= 890); }
   // A canned cycle block (canned_cycles.cpp); `code_on_line`: the cycle's G code is written here.
   void cycle(const Words& w, int previous_motion, bool code_on_line, int line, Effect& effect);
@@ -135,7 +157,13 @@ class Interpreter {
   bool offsets_known_ = false; // the active system's offsets came from the .var file or G10
   unsigned offsets_set_ = 0;   // bit n: system n set by G10 in this program
   Position g92_{};             // G92/G52 offsets (mm, deg), added before the rotation
-  Position position_{};        // current point, program coordinates (mm, deg)
+  Position position_{};        // current point, program coordinates (mm, deg); with cutter
+                               // compensation the programmed point, not the tool's
+  CutterCompensation compensation_;
+  std::optional<Position> tool_after_compensation_;  // after G40: the tool is here (world), not at position_
+  bool arc_not_allowed_ = false;  // LinuxCNC: the move after G40 must be straight
+  long sequence_ = 0;
+  std::vector<ReleasedMove> released_, own_;
   unsigned known_ = 0;         // axes whose current position is known
 };
 

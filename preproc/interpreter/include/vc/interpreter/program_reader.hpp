@@ -2,6 +2,7 @@
 // program or in NAME.ngc files on the subroutine path) with their arguments, scopes and return
 // values, M98/M99 subprograms, do/while, while/endwhile, repeat, if/elseif/else,
 // break/continue, with LinuxCNC 2.9's rules (interp_o_word.cc), each line then interpreted.
+// A line whose moves cutter compensation holds back is handed out when they are final.
 //
 // The result is a flat program: O-word lines are executed, not returned, and a line executed
 // inside a call is rewritten to say the same outside it (its words' expressions evaluated, its
@@ -71,6 +72,15 @@ class ProgramReader {
     long repeats_left = 0;          // M98 L: calls still to make after this one
   };
 
+  struct Held {                     // a line whose moves cutter compensation still holds back
+    std::string raw;
+    Origin origin;
+    gcode::Block block;
+    Effect effect;
+    long sequence;                  // Interpreter::sequence() of the line
+  };
+
+  bool execute_next(std::string& raw, Origin& origin, gcode::Block& block, Effect& effect);
   bool read_line(std::string& raw, Origin& origin);
   bool trailing_percent(std::string& raw, Origin& origin, gcode::Block& block, Effect& effect);
   // Acts on an O word or M98/M99; false if the line is to be executed as G-code.
@@ -106,6 +116,7 @@ class ProgramReader {
   bool executed_if_ = false, doing_break_ = false, doing_continue_ = false;
   bool ended_ = false;
   gcode::Block original_;           // a rewritten line as it was written
+  std::deque<Held> held_;
 };
 
 }  // namespace vc::interpreter

@@ -58,6 +58,7 @@ class Writer {
   void add_edit(int begin, int end, std::string_view text);
   void blending_edits(const gcode::Block& block, const interpreter::Effect& effect);
   void write_edited(std::string_view raw);
+  void remove_words(const gcode::Block& block, const std::vector<int>& words);
   // The words `words` (indices into block.words) of the line, as written, on a line of their own.
   void write_words(std::string_view raw, const gcode::Block& block, const std::vector<int>& words);
   void append_piece(std::string& line, const interpreter::Move& move, const Piece& piece,

@@ -1,0 +1,141 @@
+// Cutter compensation in the interpreter: G40, G41/G42 (radius from the tool table's diameter)
+// and G41.1/G42.1 (diameter in D), LinuxCNC's convert_cutter_compensation_on/off; what LinuxCNC
+// refuses while compensation is on; and the compensated moves, whose geometry is
+// CutterCompensation's (cutter_compensation.cpp).
+#include <cctype>
+#include <cmath>
+
+#include "words.hpp"
+
+namespace vc::interpreter {
+namespace {
+
+// (MSG,...), (DEBUG,...), (PRINT,...): LinuxCNC shows them at once, not in its move queue.
+bool is_message(const std::string& text) {
+  std::string head;
+  for (char c : text) {
+    if (head.empty() && std::isspace(static_cast<unsigned char>(c))) continue;
+    head += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (head.size() == 6) break;
+  }
+  return head.rfind("msg,", 0) == 0 || head.rfind("debug,", 0) == 0 || head.rfind("print,", 0) == 0;
+}
+
+}  // namespace
+
+void Interpreter::compensation_rules(const gcode::Block& block, const Words& w, int line) const {
+  const auto is_frame_or_cycle = [](int g) {
+    return g == 100 || g == 280 || g == 300 || g == 281 || g == 301 || g == 520 || (g >= 920 && g <= 923) ||
+           (g >= 540 && g <= 593) || g == 430 || g == 431 || g == 490 || g == 530 || is_cycle(g);
+  };
+  if (!compensation_.on()) return;
+  for (const Words::Code& c : w.g) {
+    const int g = c.code;
+    std::string what;
+    if (g == 410 || g == 411 || g == 420 || g == 421) what = "turn cutter radius compensation on when it is on";
+    else if (is_frame_or_cycle(g)) what = "use " + g_name(g);
+    else if ((g == 170 || g == 180 || g == 190) && g != plane_) what = "change the plane";
+    else if ((g == 200 && !inches_) || (g == 210 && inches_)) what = "change units";
+    else if (g == 930) what = "use inverse time feed (G93)";
+    if (!what.empty()) refuse(line, c.offset, "cannot " + what + " with cutter radius compensation on (turn it off with G40)");
+  }
+  if (const auto* m = w.find_m({60, 610}))
+    refuse(line, m->offset, "cannot change tools with cutter radius compensation on (turn it off with G40)");
+  if (!compensation_.holding()) return;
+  // LinuxCNC runs a T word and shows a message before the move it holds back: written after
+  // that move, they would come later.
+  if (w.has('T'))
+    refuse(line, w['T'].offset, "a T word while cutter compensation holds a move back: LinuxCNC selects the tool "
+                                "before that move; select it before G41/G42 or after G40");
+  for (const gcode::Comment& c : block.comments)
+    if (is_message(c.text))
+      refuse(line, c.begin, "a message while cutter compensation holds a move back: LinuxCNC shows it before that "
+                            "move; show it before G41/G42 or after G40");
+}
+
+Position Interpreter::take_move_start() {
+  if (!tool_after_compensation_) return position_;
+  const Position start = frame().program(*tool_after_compensation_);
+  tool_after_compensation_.reset();
+  return start;
+}
+
+void Interpreter::take_released(std::vector<ReleasedMove>& out, Effect& effect) {
+  for (ReleasedMove& r : out) {
+    if (r.sequence == sequence_) effect.moves.push_back(r.move);
+    else released_.push_back(r);
+  }
+  out.clear();
+}
+
+void Interpreter::set_compensation(const Words& w, int line, Effect& effect) {
+  const Words::Code* c = w.find_g({400, 410, 411, 420, 421});
+  if (!c) {
+    if (w.has('D')) refuse(line, w['D'].offset, "D word without G41, G42, G41.1 or G42.1");
+    return;
+  }
+  for (char letter : {'D', 'L'})
+    if (w.has(letter)) effect.compensation_words.push_back(w[letter].index);
+  if (c->code != 400) effect.compensation_words.push_back(c->index);  // the output is offset already
+  if (c->code == 400) {
+    const bool moved = compensation_.offsets() && !compensation_.first_move();
+    compensation_.stop(own_);
+    take_released(own_, effect);
+    if (moved) {
+      // LinuxCNC takes the programmed point as its position again; the tool stays at the offset one.
+      tool_after_compensation_ = frame().world(compensation_.tool());
+      arc_not_allowed_ = true;
+    }
+    return;
+  }
+  if (plane_ != 170 && plane_ != 180)
+    refuse(line, c->offset, "cutter radius compensation is only possible in the XY (G17) or XZ (G18) plane");
+  const auto side = c->code == 410 || c->code == 411 ? CutterCompensation::kLeft : CutterCompensation::kRight;
+  double radius = 0.0;
+  int orientation = 0;
+  if (c->code == 411 || c->code == 421) {  // the diameter in D, in program units
+    if (!w.has('D')) refuse(line, c->offset, g_name(c->code) + " needs D (the tool diameter)");
+    radius = w.get('D') * (inches_ ? kInch : 1.0) / 2;
+    if (w.has('L')) {
+      if (plane_ != 180) refuse(line, w['L'].offset, g_name(c->code) + " with L (lathe tool orientation) needs G18");
+      orientation = w.whole('L');
+      if (orientation < 0 || orientation > 9) refuse(line, w['L'].offset, "L (tool orientation) must be 0..9");
+    }
+  } else {  // the radius from the tool table: tool D, or the tool in the spindle
+    int tool = tool_in_spindle_;
+    if (w.has('D')) {
+      const double d = w.get('D');
+      tool = static_cast<int>(d + 0.5);
+      if (std::abs(tool - d) >= 0.0001) refuse(line, w['D'].offset, g_name(c->code) + " requires D word to be a whole number");
+      if (tool < 0) refuse(line, w['D'].offset, "negative D word (tool) with " + g_name(c->code));
+    } else if (tool < 0) {
+      refuse(line, c->offset, g_name(c->code) + " without D takes the radius of the tool in the spindle, and the program "
+                                               "has not loaded one (M6 or M61): give D (the tool number)");
+    }
+    if (tool > 0) {
+      if (!tools_)
+        refuse(line, c->offset, g_name(c->code) + " takes the tool's diameter from the tool table: pass --tool-table FILE");
+      const auto entry = tools_->find(tool);
+      if (entry == tools_->end())
+        refuse(line, w.has('D') ? w['D'].offset : c->offset, "tool " + std::to_string(tool) + " is not in the tool table");
+      radius = entry->second.diameter / 2;  // machine units: mm
+    }
+  }
+  compensation_.start(side, radius, plane_, orientation, inches_);
+}
+
+void Interpreter::compensated_move(const Words& w, Move& m, int line, Effect& effect) {
+  if (inverse_time_)
+    refuse(line, w.first_motion_offset(), "inverse time feed (G93) with cutter radius compensation is not translated");
+  const Position tool_at = take_move_start();
+  try {
+    if (m.kind == MoveKind::Arc) compensation_.arc(m, position_, tool_at, sequence_, own_);
+    else compensation_.straight(m, position_, tool_at, sequence_, own_);
+  } catch (const CompensationError& e) {
+    own_.clear();
+    refuse(line, w.first_motion_offset(), std::string(e.what()) + " (LinuxCNC refuses it too)");
+  }
+  take_released(own_, effect);
+}
+
+}  // namespace vc::interpreter
