@@ -58,10 +58,16 @@ def write_files(work, program):
     with open(os.path.join(work, "tools_inch.tbl"), "w") as f:  # rs274's machine units are inches
         for n in TOOLS:
             f.write(f"T{n} P{n} Z{(10 + n) / 25.4!r} D{(1 + n / 10) / 25.4!r}\n")
-    with open(os.path.join(work, "zero.var"), "w") as f:
-        f.write("5220\t1.000000\n")
+    zero_var(work)
     with open(os.path.join(work, "rs274.ini"), "w") as f:
         f.write("[RS274NGC]\nSUBROUTINE_PATH = " + ":".join(subroutine_path(program)) + "\n")
+
+
+def zero_var(work):
+    """Zero offsets, G54. rs274 writes the file back on exit (G92 offsets persist): every run
+    starts from a fresh one."""
+    with open(os.path.join(work, "zero.var"), "w") as f:
+        f.write("5220\t1.000000\n")
 
 
 def run(args, cwd, timeout=60):
@@ -101,6 +107,7 @@ def normalized(program, work):
 
 
 def rs274(work, program):
+    zero_var(work)
     code, out, err = run(["rs274", "-i", "rs274.ini", "-t", "tools_inch.tbl", "-v", "zero.var", "-g", program], work)
     text = out + err
     bad = code != 0 or re.search(r"^\s*(error|Error|Unknown|Unable|Cannot|.*failed)", err, re.M)
@@ -306,6 +313,7 @@ def check(program, volcomp, keep=None):
                 "tools_mm.tbl", "-q", "--start", "0,0,0"]
         for folder in subroutine_path(program):
             args += ["--subroutine-path", folder]
+        zero_var(work)
         code, _, err = run(args, work)
         missing = re.search(r"this machine has no ([ABC]) axis", err)
         if code != 0 and missing:

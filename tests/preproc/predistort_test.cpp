@@ -472,11 +472,24 @@ TEST(PredistortCli, CannedCyclesAreWrittenOutOrRefusedWithTheReason) {
   EXPECT_NE(r.out.find("G61 G0"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("G64 P0.0005 Q0\nG61 X20"), std::string::npos) << r.out;  // the mode again, the next hole
   const fs::path dir = test::run_folder("predistort_g84");
-  std::ofstream(dir / "tap.ngc") << "G21 G90 G54\nG0 X0 Y0 Z50\nS500 M3\nG84 X10 Y10 Z-5 R2 F600\nM2\n";
-  const auto tap = test::run_volcomp("predistort " + test::machine_path("mill3") + " " + (dir / "tap.ngc").string() +
-                                     " -o - --var " + program("mill3.var"));
-  EXPECT_NE(tap.exit_code, 0);
-  EXPECT_NE(tap.out.find("tap.ngc:4:1: error: G84: this canned cycle is not translated"), std::string::npos) << tap.out;
+  const auto run = [&](const std::string& text) {
+    std::ofstream(dir / "tap.ngc") << text;
+    return test::run_volcomp("predistort " + test::machine_path("mill3") + " " + (dir / "tap.ngc").string() +
+                             " -o - -q --var " + program("mill3.var"));
+  };
+  // Tapping: overrides off, feed in, spindle reversed, dwell, feed out, spindle forward, overrides on.
+  const auto tap = run("G21 G90 G54\nG0 X0 Y0 Z50\nS500 M3\nG84 X10 Y10 Z-5 R2 F600 P0.2\nM2\n");
+  ASSERT_EQ(tap.exit_code, 0) << tap.out;
+  const std::size_t in = tap.out.find("M50 P0\nM51 P0\nG1 ");
+  const std::size_t reverse = tap.out.find("M5\nM4\nG4 P0.2\n");
+  const std::size_t forward = tap.out.find("M5\nM3\nM50 P1\nM51 P1\n");
+  EXPECT_TRUE(in != std::string::npos && reverse > in && forward != std::string::npos && forward > reverse) << tap.out;
+  const auto stopped = run("G21 G90 G54\nG0 X0 Y0 Z50\nG84 X10 Y10 Z-5 R2 F600\nM2\n");
+  EXPECT_NE(stopped.out.find("tap.ngc:3:1: error: G84: LinuxCNC refuses a tapping cycle with the spindle not turning"),
+            std::string::npos) << stopped.out;
+  const auto back_bore = run("G21 G90 G54\nG0 X0 Y0 Z50\nS500 M3\nG87 X10 Y10 Z-5 R2 I1 J1 K-2 F600\nM2\n");
+  EXPECT_NE(back_bore.out.find("tap.ngc:4:1: error: G87: the back boring cycle G87 is not translated"), std::string::npos)
+      << back_bore.out;
 }
 
 TEST(PredistortCli, AMachineWithAUVOrWAxisIsRefusedAtStart) {

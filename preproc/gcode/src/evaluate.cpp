@@ -23,7 +23,12 @@ class Evaluator {
   }
   double operator()(const ast::Unary& u) const {
     using F = ast::Function;
-    if (u.function == F::Exists) return parameters_.exists(boost::get<ast::NamedParameter>(u.operand).name) ? 1 : 0;
+    if (u.function == F::Exists) {  // a numbered parameter exists if its number is in range (LinuxCNC)
+      if (const auto* named = boost::get<ast::NamedParameter>(&u.operand)) return parameters_.exists(named->name) ? 1 : 0;
+      const auto& numbered = boost::get<boost::spirit::x3::forward_ast<ast::NumberedParameter>>(u.operand).get();
+      const double n = boost::apply_visitor(*this, numbered.index);
+      return std::round(n) >= 1 && std::round(n) < Parameters::kCount ? 1 : 0;
+    }
     const double v = boost::apply_visitor(*this, u.operand);
     switch (u.function) {
       case F::Minus: return -v;

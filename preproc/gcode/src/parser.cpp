@@ -117,10 +117,14 @@ void parse_o_word(const Normalized& n, std::size_t pos, Block& block) {
     o.name = text.substr(pos + 1, close - pos - 1);
     if (o.name.empty()) throw SyntaxError(n.raw[pos], "an empty O-word name");
     pos = close + 1;
+  } else if (pos < text.size() && (text[pos] == '[' || text[pos] == '#')) {
+    // o[expression] and o#n (LinuxCNC's read_o): the O number is computed when the line runs.
+    o.computed_name = true;
+    pos = parse_at(n, pos, parser::value, o.name_expression, [] { return "an O number"; });
   } else {
     std::size_t digits = pos;
     while (digits < text.size() && std::isdigit(static_cast<unsigned char>(text[digits]))) ++digits;
-    if (digits == pos) throw SyntaxError(n.raw[pos], "expected a number or <name> after 'O'");
+    if (digits == pos) throw SyntaxError(n.raw[pos], "expected a number, <name>, [expression] or #parameter after 'O'");
     const std::size_t first = text.find_first_not_of('0', pos);
     o.name = first < digits ? text.substr(first, digits - first) : "0";  // o0100 is o100
     pos = digits;

@@ -141,7 +141,7 @@ const x3::rule<numbered_class, ast::NumberedParameter> numbered = "a parameter n
 const x3::rule<named_class, ast::NamedParameter> named = "<name>";
 const x3::rule<function_class, ast::Unary> function = "a function";
 const x3::rule<atan_class, ast::Atan2> atan2 = "atan[y]/[x]";
-const x3::rule<exists_class, ast::Unary> exists = "exists[#<name>]";
+const x3::rule<exists_class, ast::Unary> exists = "exists[#parameter]";
 const x3::rule<signed_class, ast::Unary> signed_value = "a signed value";
 
 // ---- grammar ---------------------------------------------------------------------------
@@ -167,7 +167,7 @@ const auto named_def = '<' > name_text > '>';
 const auto numbered_def = value;
 const auto function_def = functions > '[' > expression > ']';
 const auto atan2_def = x3::lit("atan") > '[' > expression > ']' > '/' > '[' > expression > ']';
-const auto exists_def = x3::lit("exists") > x3::attr(ast::Function::Exists) > '[' > '#' > named > ']';
+const auto exists_def = x3::lit("exists") > x3::attr(ast::Function::Exists) > '[' > parameter > ']';
 const auto signed_value_def = signs > value;
 
 BOOST_SPIRIT_DEFINE(value, expression, compare, sum, product, power, bracketed, parameter, numbered, named,

@@ -1,14 +1,18 @@
-// Canned cycles (G73, G81, G82, G83, G85, G89) in the XY plane, as LinuxCNC 2.9 makes them
-// (interp_cycles.cc: convert_cycle, convert_cycle_xy, CYCLE_MACRO in interp_internal.hh, and
-// the cycle functions): the moves and dwells written out, so each point can be corrected.
+// Canned cycles (G73, G74, G81-G86, G88, G89) as LinuxCNC 2.9 makes them (interp_cycles.cc:
+// convert_cycle, convert_cycle_xy/zx/yz, CYCLE_MACRO in interp_internal.hh, and the cycle
+// functions): the moves written out, so each point can be corrected, with the dwells, spindle
+// reversals, override switches and stops the cycles make between them.
 //
-// Per block: R (sticky), Z (sticky), P (dwell, sticky), Q (peck, sticky), L repeats. The Z the
-// cycles started from (cycle_il) is kept until a motion that is not a cycle. In G91, X Y are
-// increments applied on each repeat, R is relative to that start Z and Z relative to R. Below
-// R, the first move is straight up to R. Each hole: rapid across at the current height (the
-// first) or the clear height, down to R if above it, then the cycle, then up to the clear
-// height: R (G99) or the start Z (G98, if above R).
+// The hole axis is the plane's normal: Z in G17 (holes at X Y), Y in G18 (at Z X), X in G19
+// (at Y Z); "height" below is along it. Per block: R (sticky), the hole axis word (the bottom,
+// sticky), P (dwell, sticky), Q (peck, sticky), L repeats. The height the cycles started from
+// (cycle_il) is kept until a motion that is not a cycle. In G91, the position words are
+// increments applied on each repeat, R is relative to that start height and the bottom
+// relative to R. Below R, the first move is straight up to R. Each hole: rapid across at the
+// current height (the first) or the clear height, down to R if above it, then the cycle, then
+// up to the clear height: R (G99) or the start height (G98, if above R).
 #include "words.hpp"
+#include "vc/interpreter/line_text.hpp"
 
 namespace vc::interpreter {
 namespace {
@@ -27,12 +31,17 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
   const auto* word = w.find_g({code});
   const int at = word ? word->offset : w.first_motion_offset();
   auto fail = [&](const std::string& why) { refuse(line, at, g_name(code) + ": " + why); };
-  if (plane_ != 170) fail("canned cycles are translated in the XY plane (G17) only");
+  // The plane's axes (a, b: the hole's position) and the hole axis n, with their letters.
+  const int a = plane_ == 170 ? 0 : plane_ == 180 ? 2 : 1;
+  const int b = plane_ == 170 ? 1 : plane_ == 180 ? 0 : 2;
+  const int n = 3 - a - b;
+  const char la = kAxisLetters[a], lb = kAxisLetters[b], ln = kAxisLetters[n];
+  if (w.polar() && plane_ != 170) fail("polar coordinates in a canned cycle are translated in the XY plane (G17) only");
   if (inverse_time_) fail("LinuxCNC refuses inverse time feed (G93) with canned cycles");
   if (feed_ == 0.0) fail("LinuxCNC refuses a canned cycle with zero feed rate");
   for (char c : {'A', 'B', 'C'})
     if (w.has(c)) refuse(line, w[c].offset, "the rotary axes may not move in a canned cycle");
-  if ((known_ & 0b111u) != 0b111u)
+  if ((known_ & 0b111u) != 0b111u)  // (the three linear axes, in any plane)
     fail("a canned cycle from an unknown position: begin the program with a G0 to every axis, or --start");
   const double scale = inches_ ? kInch : 1.0;
   // The words that stay: a cycle block without R, Z, P or Q takes them from the last block in
@@ -46,8 +55,14 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
     }
   };
   sticky('R', cycle_r_, "R (the retract plane)");
-  sticky('Z', cycle_z_, "Z (the bottom)");
-  if (code == 820 || code == 890) sticky('P', cycle_p_, "P (the dwell)");
+  sticky(ln, cycle_z_, ln == 'Z' ? "Z (the bottom)" : ln == 'Y' ? "Y (the bottom)" : "X (the bottom)");
+  if (code == 820 || code == 890 || code == 860 || code == 880) sticky('P', cycle_p_, "P (the dwell)");
+  if ((code == 740 || code == 840) && w.has('P')) cycle_p_ = w.get('P');  // optional, sticky
+  if (code == 740 || code == 840) {  // LinuxCNC's check_g74_g84_spindle
+    if (!spindle_on_) fail("LinuxCNC refuses a tapping cycle with the spindle not turning");
+    if (spindle_clockwise_ != (code == 840)) fail(code == 840 ? "spindle turning counterclockwise in G84" : "spindle turning clockwise in G74");
+  }
+  if ((code == 860 || code == 880) && !spindle_on_) fail("LinuxCNC refuses this cycle with the spindle not turning");
   if (code == 730 || code == 830) {
     sticky('Q', cycle_q_, "Q (the peck)");
     if (cycle_q_ <= 0) refuse(line, w.has('Q') ? w['Q'].offset : at, "LinuxCNC refuses a Q that is not positive");
@@ -61,15 +76,15 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
     fail("the work offset is not known: pass --var FILE (LinuxCNC's parameter file) or set it with G10 L2");
 
   if (!cycle_start_z_known_) {
-    cycle_start_z_ = position_[2];
+    cycle_start_z_ = position_[n];
     cycle_start_z_known_ = true;
   }
-  double old_z = cycle_start_z_, current_z = position_[2];
-  double x = position_[0], y = position_[1], dx = 0, dy = 0, dr = 0, dt = 0, r, bottom;
+  double old_z = cycle_start_z_, current_z = position_[n];
+  double x = position_[a], y = position_[b], dx = 0, dy = 0, dr = 0, dt = 0, r, bottom;
   if (w.polar() && (w.has('X') || w.has('Y'))) fail("X or Y words with polar coordinates");
   if (incremental_) {
-    if (w.has('X')) dx = w.get('X') * scale;
-    if (w.has('Y')) dy = w.get('Y') * scale;
+    if (w.has(la)) dx = w.get(la) * scale;
+    if (w.has(lb)) dy = w.get(lb) * scale;
     if (w.has('@')) dr = w.get('@') * scale;  // polar increments, about the origin, per repeat
     if (w.has('^')) dt = w.get('^') * M_PI / 180.0;
     r = cycle_r_ + old_z;
@@ -77,18 +92,22 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
   } else {
     r = cycle_r_;
     bottom = cycle_z_;
-    if (w.has('X')) x = w.get('X') * scale;
-    if (w.has('Y')) y = w.get('Y') * scale;
+    if (w.has(la)) x = w.get(la) * scale;
+    if (w.has(lb)) y = w.get(lb) * scale;
     if (w.polar()) polar_end_point(w, line, x, y);
   }
   if (r < bottom) fail("LinuxCNC refuses R below Z");
 
   const Frame f = frame();
-  auto add = [&](MoveKind kind, double to_x, double to_y, double to_z) {
+  Position tool = take_move_start();  // where the tool is
+  // A move to (to_x, to_y) in the plane, at height to_z; `swapped`: to where LinuxCNC 2.9's
+  // G74/G84 sends it outside G17 (convert_cycle_g74_g84 passes the plane's coordinates to
+  // cycle_feed in another order), while LinuxCNC's own position stays the intended one.
+  auto add = [&](MoveKind kind, double to_x, double to_y, double to_z, bool swapped = false) {
     Move m;
     m.kind = kind;
     m.line = line;
-    m.start = effect.moves.empty() ? take_move_start() : position_;
+    m.start = tool;
     m.known_start = known_;
     m.frame = f;
     m.tool_length_mm = tool_length_;
@@ -97,16 +116,30 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
     m.spindle_on = spindle_on_;
     m.spindle_rpm = spindle_rpm_;
     m.end = position_;
-    m.end[0] = to_x;
-    m.end[1] = to_y;
-    m.end[2] = to_z;
-    effect.moves.push_back(m);
+    m.end[a] = to_x;
+    m.end[b] = to_y;
+    m.end[n] = to_z;
     position_ = m.end;
+    if (swapped && plane_ == 180) {
+      m.end[0] = to_z;
+      m.end[1] = to_x;
+      m.end[2] = to_y;
+    } else if (swapped && plane_ == 190) {
+      m.end[0] = to_y;
+      m.end[1] = to_z;
+      m.end[2] = to_x;
+    }
+    effect.moves.push_back(m);
+    tool = m.end;
   };
-  auto dwell = [&](double seconds) { effect.moves.back().dwell_after_s = seconds; };
+  // What the cycle does between two moves, as G-code written after the last move.
+  auto then = [&](std::string codes) { effect.after_moves.push_back({effect.moves.size() - 1, std::move(codes)}); };
+  auto dwell = [&](double seconds) { then("G4 P" + number_text(seconds) + "\n"); };
+  const char* spindle_on = spindle_clockwise_ ? "M3\n" : "M4\n";
+  const char* spindle_reversed = spindle_clockwise_ ? "M4\n" : "M3\n";
 
   if (old_z < r) {  // below the R plane: straight up to it first
-    add(MoveKind::Rapid, position_[0], position_[1], r);
+    add(MoveKind::Rapid, position_[a], position_[b], r);
     old_z = r;
     current_z = r;
   }
@@ -158,9 +191,31 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
         dwell(cycle_p_);
         add(MoveKind::Line, x, y, clear);
         break;
+      case 740:
+      case 840:  // tapping: overrides off, in, reverse, dwell, out, forward, overrides back
+        then("M50 P0\nM51 P0\n");
+        add(MoveKind::Line, x, y, bottom, true);
+        then(std::string("M5\n") + spindle_reversed);
+        dwell(cycle_p_);
+        add(MoveKind::Line, x, y, clear, true);
+        then(std::string("M5\n") + spindle_on + (feed_override_ ? "M50 P1\n" : "") + (spindle_override_ ? "M51 P1\n" : ""));
+        break;
+      case 860:  // boring: in, dwell, spindle stop, rapid out, spindle on
+        add(MoveKind::Line, x, y, bottom);
+        dwell(cycle_p_);
+        then("M5\n");
+        add(MoveKind::Rapid, x, y, clear);
+        then(spindle_on);
+        break;
+      case 880:  // boring, manual retract: in, dwell, spindle stop, program stop, spindle on
+        add(MoveKind::Line, x, y, bottom);
+        dwell(cycle_p_);
+        then(std::string("M5\nM0\n") + spindle_on);
+        break;
     }
   }
-  known_ |= 0b111u;
+  known_ |= 1u << a | 1u << b | 1u << n;
+  if (tool != position_) tool_elsewhere_ = f.world(tool);
 
   // Written as plain moves in exact path mode, then the mode the program was in.
   effect.translate = true;

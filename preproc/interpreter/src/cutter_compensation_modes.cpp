@@ -54,9 +54,9 @@ void Interpreter::compensation_rules(const gcode::Block& block, const Words& w, 
 }
 
 Position Interpreter::take_move_start() {
-  if (!tool_after_compensation_) return position_;
-  const Position start = frame().program(*tool_after_compensation_);
-  tool_after_compensation_.reset();
+  if (!tool_elsewhere_) return position_;
+  const Position start = frame().program(*tool_elsewhere_);
+  tool_elsewhere_.reset();
   return start;
 }
 
@@ -83,7 +83,7 @@ void Interpreter::set_compensation(const Words& w, int line, Effect& effect) {
     take_released(own_, effect);
     if (moved) {
       // LinuxCNC takes the programmed point as its position again; the tool stays at the offset one.
-      tool_after_compensation_ = frame().world(compensation_.tool());
+      tool_elsewhere_ = frame().world(compensation_.tool());
       arc_not_allowed_ = true;
     }
     return;

@@ -21,6 +21,7 @@ void Effect::clear() {
   moved_as_written = false;
   after_tool_change_words.clear();
   compensation_words.clear();
+  after_moves.clear();
   exact_path = false;
   modal_motion = 800;
   inches = incremental = arc_absolute = program_end = false;
@@ -117,8 +118,10 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
   for (const Words::Code& c : w.g) {
     const int g = c.code;
     const char* reason = nullptr;
-    if (g == 760 || g == 740 || g == 840 || g == 860 || g == 870 || g == 880)
-      reason = "this canned cycle is not translated (G73, G81, G82, G83, G85 and G89 are): expand it into G0/G1 "
+    if (g == 760)
+      reason = "G76 is spindle-synchronised threading: it cannot be pre-distorted honestly";
+    else if (g == 870)
+      reason = "the back boring cycle G87 is not translated (the other canned cycles are): expand it into G0/G1 "
                "moves in the post-processor";
     else if (g == 330 || g == 331 || (g >= 382 && g <= 385) || g == 50 || g == 51 || g == 52 || g == 70 ||
              g == 80 || g == 432 || g == 171 || g == 181 || g == 191)
@@ -129,7 +132,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
                                      281, 300, 301, 400, 430, 431, 490, 530, 540, 550, 560, 570,
                                      580, 590, 591, 592, 593, 610, 611, 640, 800, 900, 901, 910, 400, 410, 411, 420, 421,
                                      911, 920, 921, 922, 923, 520, 930, 940, 950, 960, 970, 980, 990,
-                                     730, 810, 820, 830, 850, 890};
+                                     730, 740, 810, 820, 830, 840, 850, 860, 880, 890};
     if (std::find(std::begin(kKnown), std::end(kKnown), g) == std::end(kKnown))
       refuse(line, c.offset, "unknown G code " + g_name(g));
   }
@@ -140,7 +143,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
       refuse(line, c.offset, "M98/M99 subprograms are not translated: expand them in the post-processor");
     if (m >= 70 && m <= 73)
       refuse(line, c.offset, "M70-M73 (save/restore modal state) are not supported");
-    const bool known = m <= 9 || m == 30 || (m >= 48 && m <= 53) || (m >= 60 && m <= 68) || (m >= 100 && m <= 199);
+    const bool known = m <= 9 || m == 19 || m == 30 || (m >= 48 && m <= 53) || (m >= 60 && m <= 68) || (m >= 100 && m <= 199);
     if (!known) refuse(line, c.offset, "unknown M code M" + std::to_string(m));
   }
   for (char c : {'U', 'V', 'W'})
@@ -171,7 +174,14 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     tool_in_spindle_ = w.whole('Q');
     if (tool_in_spindle_ < 0) refuse(line, w['Q'].offset, "M61 Q must be a whole number >= 0");
   }
-  if (w.find_m({30, 40})) spindle_on_ = true;
+  if (w.find_m({30, 40})) {
+    spindle_on_ = true;
+    spindle_clockwise_ = w.find_m({30}) != nullptr;
+  }
+  if (w.find_m({480})) feed_override_ = spindle_override_ = true;
+  if (w.find_m({490})) feed_override_ = spindle_override_ = false;
+  if (w.find_m({500})) feed_override_ = !w.has('P') || w.get('P') != 0;
+  if (w.find_m({510})) spindle_override_ = !w.has('P') || w.get('P') != 0;
   if (w.find_m({50})) spindle_on_ = false;
   if (w.find_g({170})) plane_ = 170;
   if (w.find_g({180})) plane_ = 180;
@@ -210,7 +220,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     for (int i = 0; i < kAxes; ++i) parameters_[base + i] = world[i];
   }
   // G80 with a motion code on the same line: the motion code is the mode (rs274 reads it so).
-  const Words::Code* motion = w.find_g({0, 10, 20, 30, 730, 810, 820, 830, 850, 890});
+  const Words::Code* motion = w.find_g({0, 10, 20, 30, 730, 740, 810, 820, 830, 840, 850, 860, 880, 890});
   if (!motion) motion = w.find_g({800});
   const int previous_motion = motion_;
   if (motion) motion_ = motion->code;
@@ -243,7 +253,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
         if (w.has(kAxisLetters[i])) words.push_back(w[kAxisLetters[i]].index);
     words.insert(words.end(), effect.stop_words.begin(), effect.stop_words.end());
   }
-  if (tool_after_compensation_ && w.find_m({60, 610}))  // LinuxCNC reads its position back after a tool change
+  if (tool_elsewhere_ && w.find_m({60, 610}))  // LinuxCNC reads its position back after a tool change
     position_ = take_move_start();
   effect.modal_motion = motion_;
   effect.inches = inches_;
@@ -294,7 +304,7 @@ void Interpreter::move(const Words& w, int line, Effect& effect) {
   if (w.polar()) named |= 0b11u;
   const auto* g53 = w.find_g({530});
   if (g53 && w.polar()) refuse(line, g53->offset, "LinuxCNC refuses polar coordinates with G53");
-  const bool arc_words = w.has('I') || w.has('J') || w.has('K') || w.has('R');
+  const bool arc_words = w.has('I') || w.has('J') || w.has('K') || (w.has('R') && !w.find_m({190}));  // M19 R: an angle
   if (!named && !arc_words) {
     if (g53) refuse(line, g53->offset, "G53 without axis words");
     return;
@@ -367,9 +377,9 @@ void Interpreter::move(const Words& w, int line, Effect& effect) {
     motion_words(w, m, effect);
     return;
   }
-  if (tool_after_compensation_) {  // the first move after G40 starts where the tool is
-    m.start = m.frame.program(*tool_after_compensation_);
-    tool_after_compensation_.reset();
+  if (tool_elsewhere_) {  // the first move after G40 starts where the tool is
+    m.start = m.frame.program(*tool_elsewhere_);
+    tool_elsewhere_.reset();
   }
   if (!end_known || (m.kind != MoveKind::Rapid && !start_known)) {
     if (m.kind != MoveKind::Rapid) {

@@ -47,14 +47,13 @@ std::optional<std::size_t> expanded_message_start(std::string_view comment) {
   return std::nullopt;
 }
 
-// The shortest fixed-point decimal that reads back as `value` (G-code has no exponents).
+}  // namespace
+
 std::string number_text(double value) {
   char buffer[400];
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed);
   return std::string(buffer, result.ptr);
 }
-
-}  // namespace
 
 std::string expand_message(std::string_view text, const gcode::Parameters& parameters, int line) {
   std::string out;

@@ -324,13 +324,22 @@ bool ProgramReader::control(const gcode::Block& block, const Origin& origin) {
   if (block.o_word < 0 && m < 0) return !skipping_to_.empty();  // G-code: skipped or executed
   if (m >= 0 && !skipping_to_.empty()) return true;
   const gcode::OWord& o = block.o;
+  std::string o_number = o.name;
+  if (o.computed_name) {  // o[expression], o#n: the integer value names it (skipped lines: unknown)
+    try {
+      o_number = std::to_string(static_cast<long>(std::lround(gcode::evaluate(o.name_expression, interpreter_.parameters(), o.begin))));
+    } catch (const gcode::SyntaxError& e) {
+      if (!skipping_to_.empty()) return true;
+      refuse(origin, e.offset, e.what());
+    }
+  }
   // LinuxCNC (interp_read.cc, read_o): sub, endsub, return and call name subroutines, global;
   // the other O words name labels local to the subroutine they are in ("sub#label").
   const bool global = o.kind == Kind::Sub || o.kind == Kind::None || o.kind == Kind::EndSub ||
                       o.kind == Kind::Call || o.kind == Kind::Return;
   const std::string name =
-      m >= 0 || global ? o.name
-                       : (!frames_.empty() ? frames_.back().name : defining_sub_ ? defining_name_ : "") + "#" + o.name;
+      m >= 0 || global ? o_number
+                       : (!frames_.empty() ? frames_.back().name : defining_sub_ ? defining_name_ : "") + "#" + o_number;
   if (m < 0 && !skipping_to_.empty()) {
     if (name != skipping_to_) return true;
     if (skipping_to_sub_ && o.kind != Kind::Sub && o.kind != Kind::None) return true;
@@ -423,7 +432,7 @@ bool ProgramReader::control(const gcode::Block& block, const Origin& origin) {
           refuse(origin, e.offset, e.what());
         }
       }
-      call(o.name, &arguments, false, 1, origin, o.begin);
+      call(o_number, &arguments, false, 1, origin, o.begin);
       break;
     }
     case Kind::Do:

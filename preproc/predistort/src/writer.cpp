@@ -278,11 +278,8 @@ void Writer::translated(std::string_view raw, const gcode::Block& block, const i
       line_ += '\n';
       emit(std::string_view(line_).substr(1));
     }
-    if (move.dwell_after_s > 0) {
-      line_.clear();
-      append_number(line_, 'P', move.dwell_after_s, 6);
-      emit("G4" + line_ + "\n");
-    }
+    for (const interpreter::Effect::AfterMove& after : effect.after_moves)
+      if (after.move == m) emit(after.codes);
   }
   if (effect.exact_path) {  // the program's path control mode again
     line_.clear();

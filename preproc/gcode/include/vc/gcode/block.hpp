@@ -37,6 +37,8 @@ struct OWord {
                     Return, Repeat, EndRepeat };
   Kind kind = Kind::None;
   std::string name;                     // "100" for o100 and o0100, "name" for o<Name> (lower case)
+  bool computed_name = false;           // o[expression] or o#n: the number is name_expression's value
+  ast::Expression name_expression;
   std::vector<ast::Expression> args;    // call: [arguments]; while, if, elseif, repeat: [condition or
                                         // count]; endsub, return: [value], if any
   int begin = -1, end = -1;             // the O word in the raw line; end: after its last argument
@@ -58,7 +60,7 @@ struct Block {
     percent = block_delete = has_line_number = false;
     line_number = 0;
     o_word = -1;
-    if (!o.name.empty()) o = OWord{};
+    if (!o.name.empty() || o.computed_name) o = OWord{};
     words.clear();
     assignments.clear();
     comments.clear();

@@ -68,6 +68,13 @@ struct Effect {
   std::vector<int> after_tool_change_words;
   // G41/G42 (.1) and their D and L words: the moves are written offset, with compensation off.
   std::vector<int> compensation_words;
+  // A canned cycle's dwells, spindle reversals, override switches and stops: G-code lines
+  // (each ending in a newline) that LinuxCNC runs after moves[move].
+  struct AfterMove {
+    std::size_t move;
+    std::string codes;
+  };
+  std::vector<AfterMove> after_moves;
   void clear();
 };
 
@@ -118,9 +125,9 @@ class Interpreter {
   void set_compensation(const Words& w, int line, Effect& effect);
   void compensated_move(const Words& w, Move& m, int line, Effect& effect);
   void take_released(std::vector<ReleasedMove>& out, Effect& effect);
-  // Where the next move starts: the current point, or after G40 where the tool was left.
+  // Where the next move starts: the current point, or where the tool was left (tool_elsewhere_).
   Position take_move_start();
-  static bool is_cycle(int motion) { return motion == 730 || (motion >= 810 && motion <= 890); }
+  static bool is_cycle(int motion) { return motion == 730 || motion == 740 || (motion >= 810 && motion <= 890); }
   // A canned cycle block (canned_cycles.cpp); `code_on_line`: the cycle's G code is written here.
   void cycle(const Words& w, int previous_motion, bool code_on_line, int line, Effect& effect);
   Position world_position() const;
@@ -150,6 +157,8 @@ class Interpreter {
   double feed_ = 0.0;          // program units per minute, or 1/min in G93
   double spindle_rpm_ = 0.0;
   bool spindle_on_ = false;
+  bool spindle_clockwise_ = true;  // M3 (M4: false)
+  bool feed_override_ = true, spindle_override_ = true;  // M48-M51: LinuxCNC starts with both on
   int selected_tool_ = -1;     // T word
   int tool_in_spindle_ = -1;   // after M6 / M61
   double tool_length_ = 0.0;   // mm, G43
@@ -160,7 +169,9 @@ class Interpreter {
   Position position_{};        // current point, program coordinates (mm, deg); with cutter
                                // compensation the programmed point, not the tool's
   CutterCompensation compensation_;
-  std::optional<Position> tool_after_compensation_;  // after G40: the tool is here (world), not at position_
+  // Where the tool is (world) when LinuxCNC's position is not where it left the tool: after G40
+  // (the programmed point again), after a G74/G84 outside G17 (LinuxCNC 2.9 swaps its axes).
+  std::optional<Position> tool_elsewhere_;
   bool arc_not_allowed_ = false;  // LinuxCNC: the move after G40 must be straight
   long sequence_ = 0;
   std::vector<ReleasedMove> released_, own_;

@@ -35,4 +35,7 @@ bool pin_line_number(std::string& raw, int line, const gcode::Parameters& parame
 std::string evaluated_line(std::string_view raw, const gcode::Block& block, const gcode::Parameters& parameters,
                            int line, bool numbered_shared);
 
+// The shortest fixed-point decimal that reads back as `value` (G-code has no exponents).
+std::string number_text(double value);
+
 }  // namespace vc::interpreter

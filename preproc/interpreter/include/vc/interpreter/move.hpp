@@ -75,7 +75,6 @@ struct Move {
   bool spindle_on = false;
   double spindle_rpm = 0.0;
   int line = 0;                 // 1-based line in the source file
-  double dwell_after_s = 0.0;   // G4 after the move (a canned cycle's P)
 };
 
 // Point at fraction s in [0, 1] of a move's nominal path in program coordinates: straight
