@@ -23,6 +23,8 @@ std::size_t index_of(double n, int offset) {
 
 double Parameters::get(double n, int offset) const {
   const std::size_t i = index_of(n, offset);
+  if (state_ && (i == 5400 || (i >= 5420 && i <= 5428)))
+    if (const auto value = state_->numbered(static_cast<int>(i))) return *value;
   // The controller's state at run time, which a program read offline cannot know.
   if ((i >= 5061 && i <= 5070) || (i >= 5399 && i <= 5428) || i >= 5600)
     throw SyntaxError(offset, "#" + std::to_string(i) +
@@ -34,12 +36,16 @@ double Parameters::get(double n, int offset) const {
 void Parameters::set(double n, double value, int offset) { numbered_[index_of(n, offset)] = value; }
 
 double Parameters::get(const std::string& name, int offset) const {
+  if (state_ && is_global(name))
+    if (const auto value = state_->named(name)) return *value;
   const auto it = named_.find(name);
   if (it == named_.end()) throw SyntaxError(offset, "parameter #<" + name + "> is not set");
   return it->second;
 }
 
-bool Parameters::exists(const std::string& name) const { return named_.count(name) != 0; }
+bool Parameters::exists(const std::string& name) const {
+  return named_.count(name) != 0 || (state_ && is_global(name) && state_->named(name));
+}
 
 void Parameters::set(const std::string& name, double value) { named_[name] = value; }
 

@@ -38,6 +38,7 @@ Interpreter::Interpreter(Setup setup) : setup_(std::move(setup)) {
     if (parameters_[kG92Applied] != 0.0)
       for (int i = 0; i < kAxes; ++i) g92_[i] = parameters_[kG92 + i];
   }
+  parameters_.set_state(&state_view_);
   if (setup_.start_world) {
     set_world_position(*setup_.start_world);
     known_ = kAllAxes;
@@ -178,10 +179,17 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     spindle_on_ = true;
     spindle_clockwise_ = w.find_m({30}) != nullptr;
   }
+  if (w.find_m({70})) mist_ = true;
+  if (w.find_m({80})) flood_ = true;
+  if (w.find_m({90})) mist_ = flood_ = false;
   if (w.find_m({480})) feed_override_ = spindle_override_ = true;
   if (w.find_m({490})) feed_override_ = spindle_override_ = false;
   if (w.find_m({500})) feed_override_ = !w.has('P') || w.get('P') != 0;
   if (w.find_m({510})) spindle_override_ = !w.has('P') || w.get('P') != 0;
+  if (w.find_m({520})) adaptive_feed_ = !w.has('P') || w.get('P') != 0;
+  if (w.find_m({530})) feed_hold_ = !w.has('P') || w.get('P') != 0;
+  if (w.find_g({960})) constant_surface_speed_ = true;
+  if (w.find_g({970})) constant_surface_speed_ = false;
   if (w.find_m({50})) spindle_on_ = false;
   if (w.find_g({170})) plane_ = 170;
   if (w.find_g({180})) plane_ = 180;

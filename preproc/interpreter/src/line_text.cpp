@@ -91,7 +91,7 @@ std::string expand_message(std::string_view text, const gcode::Parameters& param
     if (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) {
       long n = 0;
       for (; i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])); ++i) n = std::min(n * 10 + (text[i] - '0'), 1000000L);
-      if (n < gcode::Parameters::kCount) value = parameters[static_cast<int>(n)];
+      if (n >= 1 && n < gcode::Parameters::kCount) value = parameters.get(static_cast<double>(n), 0);  // run-time ones: refused
     } else if (i < text.size() && text[i] == '<') {
       const std::size_t close = text.find('>', i);
       if (close == std::string_view::npos) throw gcode::SyntaxError(0, "named parameter not terminated in the message");

@@ -201,12 +201,14 @@ void ProgramReader::apply_original_assignments(const Origin& origin) {
 
 bool ProgramReader::needs_rewriting(const std::string& raw) const {
   // Main-program lines keep their text, except those that read what a call leaves
-  // (#<_value>, #<_value_returned>) or the call level: the flat program makes no call.
-  if (raw.find('#') == std::string::npos || raw.find('_') == std::string::npos) return false;
+  // (#<_value>, #<_value_returned>), the call level (the flat program makes no call) or the
+  // interpreter's state (#<_x>, #<_feed>, #5420...: the pre-distorted program's differs; its
+  // position by the correction, its motion mode where canned cycles are written out).
+  if (raw.find('#') == std::string::npos) return false;
   std::string lower;
   for (char c : raw)
     if (c != ' ' && c != '\t') lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return lower.find("#<_value") != std::string::npos || lower.find("#<_call_level>") != std::string::npos;
+  return lower.find("#<_") != std::string::npos || lower.find("#54") != std::string::npos;
 }
 
 double ProgramReader::argument(const gcode::OWord& o, const Origin& origin) const {

@@ -1,6 +1,8 @@
 // The interpreter's meaning of blocks: positions, frames, arcs, and what it refuses.
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include <sstream>
 
 #include "vc/gcode/parser.hpp"
@@ -15,6 +17,7 @@ constexpr unsigned kXyzbc = 0b110111;
 struct Interpreted {
   std::vector<Move> moves;
   std::vector<Effect> effects;
+  std::array<double, 10> locals{};  // #1..#10 at the end
 };
 
 Interpreted interpret(const std::string& program, const ToolTable* tools = nullptr,
@@ -36,6 +39,7 @@ Interpreted interpret(const std::string& program, const ToolTable* tools = nullp
     run.moves.insert(run.moves.end(), effect.moves.begin(), effect.moves.end());
     run.effects.push_back(effect);
   }
+  for (int i = 1; i <= 10; ++i) run.locals[static_cast<std::size_t>(i - 1)] = interp.parameters()[i];
   return run;
 }
 
@@ -124,6 +128,26 @@ TEST(Interpreter, ParametersAndExpressions) {
   ASSERT_EQ(r.moves.size(), 2u);
   EXPECT_DOUBLE_EQ(r.moves[1].end[0], 6.0);
   EXPECT_DOUBLE_EQ(r.moves[1].end[1], 4.0);
+}
+
+// LinuxCNC's read-only parameters, in program units (values as rs274 -g prints them; the
+// acceptance corpus compares whole programs that print them, tests/acceptance).
+TEST(Interpreter, StateParametersAsLinuxCncShowsThem) {
+  gcode::Parameters var;
+  const Interpreted r = interpret(kStart + "G20 G55 G91 G0 X1 Y2\n"
+                                           "#1 = #<_x>\n#2 = #5421\n#3 = #<_coord_system>\n#4 = #<_imperial>\n"
+                                           "#5 = #<_incremental>\n#6 = #<_motion_mode>\n#7 = EXISTS[#<_metric>]\n"
+                                           "G1 X#1 F10\n",
+                                  nullptr, &var);
+  ASSERT_EQ(r.moves.size(), 3u);
+  EXPECT_NEAR(r.locals[0], 1.0, 1e-12);  // inches
+  EXPECT_NEAR(r.locals[1], 2.0, 1e-12);
+  EXPECT_EQ(r.locals[2], 550);
+  EXPECT_EQ(r.locals[3], 1);
+  EXPECT_EQ(r.locals[4], 1);
+  EXPECT_EQ(r.locals[5], 0);  // G0
+  EXPECT_EQ(r.locals[6], 1);
+  EXPECT_NEAR(r.moves[2].end[0], 2 * 25.4, 1e-9);  // G91: X1 more
 }
 
 TEST(Interpreter, RefusesWhatItCannotTranslateWithLineAndColumn) {

@@ -11,6 +11,18 @@
 
 namespace vc::gcode {
 
+// Values the interpreter works out when a program reads them (LinuxCNC's read-only
+// parameters): the tool number #5400, the position #5420-#5428, and named ones such as
+// #<_x>, #<_metric>, #<_feed>. nullopt: not one of them, or not known offline.
+class StateParameters {
+ public:
+  virtual std::optional<double> numbered(int n) const = 0;
+  virtual std::optional<double> named(const std::string& name) const = 0;
+
+ protected:
+  ~StateParameters() = default;
+};
+
 class Parameters {
  public:
   static constexpr int kCount = 5602;  // RS274NGC_MAX_PARAMETERS: #0 .. #5601
@@ -24,6 +36,8 @@ class Parameters {
   double get(const std::string& name, int offset) const;
   bool exists(const std::string& name) const;
   void set(const std::string& name, double value);
+  // Where the read-only values come from (null: nowhere).
+  void set_state(const StateParameters* state) { state_ = state; }
 
   // A subroutine call's scope. LinuxCNC gives each O-word call its own #1..#30 (the call's
   // arguments, 0 after them) and every call its own names without a leading '_'; an M98 call
@@ -47,6 +61,7 @@ class Parameters {
  private:
   std::array<double, kCount> numbered_{};
   std::unordered_map<std::string, double> named_;
+  const StateParameters* state_ = nullptr;
 };
 
 }  // namespace vc::gcode

@@ -81,6 +81,8 @@ struct Effect {
 class Interpreter {
  public:
   explicit Interpreter(Setup setup);
+  Interpreter(const Interpreter&) = delete;  // its parameters point back at it
+  Interpreter& operator=(const Interpreter&) = delete;
 
   // Interprets one block (line `line` of the file). Throws vc::LoadError on anything it
   // cannot translate faithfully.
@@ -110,6 +112,13 @@ class Interpreter {
 
  private:
   struct Words;  // the block's evaluated words
+  // The modal state as the program reads it: #<_x>, #<_metric>, #5420... (state_parameters.cpp).
+  struct StateView final : gcode::StateParameters {
+    explicit StateView(const Interpreter& i) : interpreter(i) {}
+    std::optional<double> numbered(int n) const override;
+    std::optional<double> named(const std::string& name) const override;
+    const Interpreter& interpreter;
+  };
   void refuse(int line, int offset, const std::string& message) const;
   void set_tool_length(const Words& w, int line);
   void set_coordinate_system(int index);
@@ -137,6 +146,7 @@ class Interpreter {
   void arc_geometry(const Words& w, const Position& end, int line, Move& move) const;
 
   Setup setup_;
+  StateView state_view_{*this};
   std::optional<ToolTable> tools_;  // the tool table as G10 L1 leaves it (none: no table given)
   gcode::Parameters parameters_;
   // Modal state, LinuxCNC's defaults at program start.
@@ -158,7 +168,10 @@ class Interpreter {
   double spindle_rpm_ = 0.0;
   bool spindle_on_ = false;
   bool spindle_clockwise_ = true;  // M3 (M4: false)
+  bool mist_ = false, flood_ = false;  // M7, M8 (M9: both off)
   bool feed_override_ = true, spindle_override_ = true;  // M48-M51: LinuxCNC starts with both on
+  bool adaptive_feed_ = false, feed_hold_ = true;        // M52, M53 (rs274 starts with feed hold enabled)
+  bool constant_surface_speed_ = false;                  // G96 (G97: off)
   int selected_tool_ = -1;     // T word
   int tool_in_spindle_ = -1;   // after M6 / M61
   double tool_length_ = 0.0;   // mm, G43
