@@ -41,6 +41,8 @@ void Interpreter::compensation_rules(const gcode::Block& block, const Words& w, 
   }
   if (const auto* m = w.find_m({60, 610}))
     refuse(line, m->offset, "cannot change tools with cutter radius compensation on (turn it off with G40)");
+  if (const auto* m = w.find_m({700, 710, 720, 730}))
+    refuse(line, m->offset, "M70-M73 with cutter radius compensation on are not translated (turn it off with G40)");
   if (!compensation_.holding()) return;
   // LinuxCNC runs a T word and shows a message before the move it holds back: written after
   // that move, they would come later.
@@ -75,8 +77,8 @@ void Interpreter::set_compensation(const Words& w, int line, Effect& effect) {
     return;
   }
   for (char letter : {'D', 'L'})
-    if (w.has(letter)) effect.compensation_words.push_back(w[letter].index);
-  if (c->code != 400) effect.compensation_words.push_back(c->index);  // the output is offset already
+    if (w.has(letter)) effect.dropped_words.push_back(w[letter].index);
+  if (c->code != 400) effect.dropped_words.push_back(c->index);  // the output is offset already
   if (c->code == 400) {
     const bool moved = compensation_.offsets() && !compensation_.first_move();
     compensation_.stop(own_);

@@ -20,7 +20,7 @@ void Effect::clear() {
   g64_word = g64_p_word = g64_q_word = f_word = motion_code_word = -1;
   moved_as_written = false;
   after_tool_change_words.clear();
-  compensation_words.clear();
+  dropped_words.clear();
   after_moves.clear();
   exact_path = false;
   modal_motion = 800;
@@ -142,9 +142,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     if (c.code % 10 != 0) refuse(line, c.offset, "unknown M code");
     if (m == 98 || m == 99)
       refuse(line, c.offset, "M98/M99 subprograms are not translated: expand them in the post-processor");
-    if (m >= 70 && m <= 73)
-      refuse(line, c.offset, "M70-M73 (save/restore modal state) are not supported");
-    const bool known = m <= 9 || m == 19 || m == 30 || (m >= 48 && m <= 53) || (m >= 60 && m <= 68) || (m >= 100 && m <= 199);
+    const bool known = m <= 9 || m == 19 || m == 30 || (m >= 70 && m <= 73) || (m >= 48 && m <= 53) || (m >= 60 && m <= 68) || (m >= 100 && m <= 199);
     if (!known) refuse(line, c.offset, "unknown M code M" + std::to_string(m));
   }
   for (char c : {'U', 'V', 'W'})
@@ -158,6 +156,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
   }
 
   compensation_rules(block, w, line);
+  state_codes(w, line, effect);
 
   // LinuxCNC's order of execution (RS274/NGC 3.8, LinuxCNC docs "Order of Execution").
   if (w.find_g({930})) inverse_time_ = true;

@@ -89,6 +89,12 @@ void ProgramReader::refuse(const Origin& origin, int column, const std::string& 
 }
 
 bool ProgramReader::read_line(std::string& raw, Origin& origin) {
+  if (!injected_.empty()) {
+    raw = std::move(injected_.front().first);
+    origin = injected_.front().second;
+    injected_.pop_front();
+    return true;
+  }
   Source& s = *sources_[static_cast<std::size_t>(current_)];
   line_start_ = s.offset;
   if (!std::getline(*s.in, raw)) return false;
@@ -167,6 +173,7 @@ bool ProgramReader::execute_next(std::string& raw, Origin& origin, gcode::Block&
     interpreter_.set_file(file_names_[static_cast<std::size_t>(origin.file)]);
     interpreter_.execute(block, origin.line, effect);
     apply_original_assignments(origin);
+    inject(interpreter_.take_restore_lines(), origin);  // M72
     if (effect.program_end) ended_ = true;
     return true;
   }
@@ -267,6 +274,7 @@ void ProgramReader::call(const std::string& name, const std::array<double, gcode
     refuse(origin, column, "subroutine calls nested deeper than LinuxCNC's " + std::to_string(kCallLevels) + " levels");
   const Source& s = *sources_[static_cast<std::size_t>(current_)];
   Frame& f = frames_.emplace_back();
+  interpreter_.enter_call_level();
   f.file = current_;
   f.offset = s.offset;
   f.line = s.line;
@@ -318,6 +326,16 @@ void ProgramReader::leave(const Origin& origin) {
   s.line = f.line;
   current_ = f.file;
   frames_.pop_back();
+  interpreter_.leave_call_level();
+  inject(interpreter_.take_restore_lines(), origin);
+}
+
+void ProgramReader::inject(const std::string& lines, const Origin& origin) {
+  for (std::size_t begin = 0; begin < lines.size();) {
+    const std::size_t end = lines.find('\n', begin);
+    injected_.push_back({lines.substr(begin, end - begin), origin});
+    begin = end == std::string::npos ? lines.size() : end + 1;
+  }
 }
 
 bool ProgramReader::control(const gcode::Block& block, const Origin& origin) {

@@ -167,7 +167,7 @@ void Writer::verbatim(std::string_view raw, const gcode::Block& block, const int
   edit_text_.clear();
   blending_edits(block, effect);
   remove_words(block, effect.after_tool_change_words);
-  remove_words(block, effect.compensation_words);
+  remove_words(block, effect.dropped_words);
   write_edited(raw);
   if (!effect.after_tool_change_words.empty()) write_words(raw, block, effect.after_tool_change_words);
   motion_ = effect.modal_motion;
@@ -248,7 +248,7 @@ void Writer::translated(std::string_view raw, const gcode::Block& block, const i
   edits_.clear();
   edit_text_.clear();
   blending_edits(block, effect);
-  remove_words(block, effect.compensation_words);
+  remove_words(block, effect.dropped_words);
   for (std::size_t i = 0; i < removed.size(); ++i) {
     const gcode::Word& w = block.words[static_cast<std::size_t>(removed[i])];
     const std::size_t start = edit_text_.size();

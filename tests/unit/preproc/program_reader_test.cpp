@@ -134,6 +134,28 @@ TEST(ProgramReader, MessagesInACallAreExpandedAndTheLineNumberIsTheSources) {
   EXPECT_EQ(e.texts[0], "(DEBUG, depth 2.50 at 2.00)");
 }
 
+// M70-M73: the state is restored by the G-code LinuxCNC writes for it (F with one decimal, the
+// G and M codes that differ), run as lines of the flat program; M73's on the return.
+TEST(ProgramReader, SavedModalStateIsRestoredByTheLinesLinuxCncRuns) {
+  const Executed e = run(
+      "o<sub> sub\n"          // 1
+      "M73\n"                 // 2
+      "G91 F5 M8\n"           // 3
+      "o<sub> endsub\n"       // 4
+      "G21 F100.04 S500 M3\n" // 5
+      "M70 (save)\n"          // 6
+      "F20 G91 M4\n"          // 7
+      "M72\n"                 // 8
+      "o<sub> call\n"         // 9
+      "M2\n");                // 10
+  const std::vector<int> lines{5, 6, 7, 8, 8, 2, 3, 4, 10};  // (4: the restore after endsub)
+  EXPECT_EQ(e.lines, lines);
+  ASSERT_EQ(e.texts.size(), lines.size());
+  EXPECT_EQ(e.texts[3], "");  // M72 itself: written out instead
+  EXPECT_EQ(e.texts[4], " F100.0 S500 G90M3");
+  EXPECT_EQ(e.texts[7], " F100.0 S500 G90M9");  // M73's restore on the return from o<sub>
+}
+
 TEST(ProgramReader, RefusesWhatLinuxCncRefusesOrWhatNeverEnds) {
   EXPECT_NE(refusal("o1 call\nM2\n").find("test.ngc:2:1: error: the file ends before subroutine o1 is defined"),
             std::string::npos);

@@ -8,6 +8,7 @@
 // in released_moves() after a later line (ProgramReader puts them back where they belong).
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -66,8 +67,9 @@ struct Effect {
   // LinuxCNC keeps the machine still there, but the standalone interpreter (rs274, previews)
   // re-reads its position after the tool change without the new length: on two lines both agree.
   std::vector<int> after_tool_change_words;
-  // G41/G42 (.1) and their D and L words: the moves are written offset, with compensation off.
-  std::vector<int> compensation_words;
+  // Words the flat program leaves out: G41/G42 (.1) and their D and L words (the moves are
+  // written offset, with compensation off), M70-M73 (what they do is written out).
+  std::vector<int> dropped_words;
   // A canned cycle's dwells, spindle reversals, override switches and stops: G-code lines
   // (each ending in a newline) that LinuxCNC runs after moves[move].
   struct AfterMove {
@@ -99,6 +101,12 @@ class Interpreter {
   bool holding_moves() const { return compensation_.holding(); }
   // Moves of earlier lines (by sequence()) that the last execute() made final, in order.
   std::vector<ReleasedMove>& released_moves() { return released_; }
+  // Subroutine calls (ProgramReader): M70-M73 keep a saved state per call level, and M73's is
+  // restored on return. The restoring G-code lines LinuxCNC would run (after an M72 line, a
+  // return) are to be run as the next lines of the flat program: take_restore_lines().
+  void enter_call_level();
+  void leave_call_level();
+  std::string take_restore_lines();
 
   const gcode::Parameters& parameters() const { return parameters_; }
   gcode::Parameters& parameters() { return parameters_; }
@@ -134,6 +142,23 @@ class Interpreter {
   void set_compensation(const Words& w, int line, Effect& effect);
   void compensated_move(const Words& w, Move& m, int line, Effect& effect);
   void take_released(std::vector<ReleasedMove>& out, Effect& effect);
+  // M70-M73 (modal_state.cpp): the state LinuxCNC saves, as its active G and M codes.
+  struct ModalState {
+    bool inches = false;
+    std::array<int, 11> g{};  // plane, cutter comp, distance, feed mode, system, tool offset, retract,
+                              // spindle mode, arc centres, lathe mode, G92 applied (-1: not restored)
+    int path_mode = 640;
+    double path_p = -1.0;     // program units
+    double feed = 0.0, speed = 0.0;
+    std::array<int, 6> m{};   // spindle, mist, flood, overrides, adaptive feed, feed hold
+  };
+  struct Context {
+    std::optional<ModalState> saved;
+    bool restore_on_return = false;  // M73
+  };
+  ModalState modal_state() const;
+  void state_codes(const Words& w, int line, Effect& effect);
+  std::string restore_text(const ModalState& saved) const;
   // Where the next move starts: the current point, or where the tool was left (tool_elsewhere_).
   Position take_move_start();
   static bool is_cycle(int motion) { return motion == 730 || motion == 740 || (motion >= 810 && motion <= 890); }
@@ -187,6 +212,9 @@ class Interpreter {
   std::optional<Position> tool_elsewhere_;
   bool arc_not_allowed_ = false;  // LinuxCNC: the move after G40 must be straight
   long sequence_ = 0;
+  int call_level_ = 0;
+  std::vector<Context> contexts_;  // by call level
+  std::string restore_lines_;
   std::vector<ReleasedMove> released_, own_;
   unsigned known_ = 0;         // axes whose current position is known
 };

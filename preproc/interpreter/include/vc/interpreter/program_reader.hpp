@@ -81,6 +81,8 @@ class ProgramReader {
   };
 
   bool execute_next(std::string& raw, Origin& origin, gcode::Block& block, Effect& effect);
+  // G-code lines LinuxCNC runs by itself (M72's and M73's restoring): read before the file's next.
+  void inject(const std::string& lines, const Origin& origin);
   bool read_line(std::string& raw, Origin& origin);
   bool trailing_percent(std::string& raw, Origin& origin, gcode::Block& block, Effect& effect);
   // Acts on an O word or M98/M99; false if the line is to be executed as G-code.
@@ -117,6 +119,7 @@ class ProgramReader {
   bool ended_ = false;
   gcode::Block original_;           // a rewritten line as it was written
   std::deque<Held> held_;
+  std::deque<std::pair<std::string, Origin>> injected_;
 };
 
 }  // namespace vc::interpreter
