@@ -151,9 +151,9 @@ TEST(ProgramReader, SavedModalStateIsRestoredByTheLinesLinuxCncRuns) {
   const std::vector<int> lines{5, 6, 7, 8, 8, 2, 3, 4, 10};  // (4: the restore after endsub)
   EXPECT_EQ(e.lines, lines);
   ASSERT_EQ(e.texts.size(), lines.size());
-  EXPECT_EQ(e.texts[3], "");  // M72 itself: written out instead
-  EXPECT_EQ(e.texts[4], " F100.0 S500 G90M3");
-  EXPECT_EQ(e.texts[7], " F100.0 S500 G90M9");  // M73's restore on the return from o<sub>
+  EXPECT_EQ(e.texts[3], "M72");  // (the writer leaves the word out: Effect::dropped_words)
+  EXPECT_EQ(e.texts[4], " F100.0 S500 G90 G64M3");  // G64: LinuxCNC always states it
+  EXPECT_EQ(e.texts[7], " F100.0 S500 G90 G64M9");  // M73's restore on the return from o<sub>
 }
 
 TEST(ProgramReader, RefusesWhatLinuxCncRefusesOrWhatNeverEnds) {
