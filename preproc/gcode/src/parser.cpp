@@ -99,9 +99,9 @@ std::size_t parse_at(const Normalized& n, std::size_t pos, const Rule& rule, Att
 }
 
 bool is_word_letter(char c) {
-  // RS274/NGC word letters LinuxCNC knows (E and O are not words; N only at the start).
+  // RS274/NGC word letters LinuxCNC knows (O is not a word; N only at the start; E is G76's).
   // '@' and '^': polar coordinates (distance, angle in degrees) in the XY plane.
-  return std::string_view("abcdfghijklmpqrstuvwxyz@^").find(c) != std::string_view::npos;
+  return std::string_view("abcdefghijklmpqrstuvwxyz@^").find(c) != std::string_view::npos;
 }
 
 // "o<name> keyword [arg]..." or "o123 keyword ...": the rest of the (normalized) line.

@@ -60,10 +60,12 @@ void Interpreter::read(std::string& raw, int line, gcode::Block& block, Effect& 
   execute(block, line, effect);
 }
 
-Frame Interpreter::frame() const {
+Frame Interpreter::frame() const { return frame_for(coordinate_system_); }
+
+Frame Interpreter::frame_for(int system) const {
   Frame f;
-  for (int i = 0; i < kAxes; ++i) f.offset[i] = parameters_[offset_parameter(coordinate_system_, i)];
-  f.rotation_deg = parameters_[rotation_parameter(coordinate_system_)];
+  for (int i = 0; i < kAxes; ++i) f.offset[i] = parameters_[offset_parameter(system, i)];
+  f.rotation_deg = parameters_[rotation_parameter(system)];
   // G92/G52 offsets are added to program coordinates before the rotation (LinuxCNC's canon:
   // world = rotate(program + G92) + G5x + tool length).
   const Position g92 = Frame{{}, f.rotation_deg}.world(g92_);
@@ -124,16 +126,27 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     else if (g == 870)
       reason = "the back boring cycle G87 is not translated (the other canned cycles are): expand it into G0/G1 "
                "moves in the post-processor";
-    else if (g == 330 || g == 331 || (g >= 382 && g <= 385) || g == 50 || g == 51 || g == 52 || g == 70 ||
-             g == 80 || g == 432 || g == 171 || g == 181 || g == 191)
-      reason = "not supported by the pre-distorter (threading, probing, splines, lathe modes, G43.2, "
-               "G17.1-G19.1)";
+    else if (g == 330 || g == 331)
+      reason = "spindle-synchronised motion (threading, rigid tapping) cannot be pre-distorted honestly: the pieces "
+               "of a corrected move would each wait for the spindle";
+    else if (g >= 382 && g <= 385)
+      reason = "probing: where the probe stops is known only when the program runs, so the moves after it cannot be "
+               "corrected offline";
+    else if (g == 50 || g == 51 || g == 52)
+      reason = "splines (G5, G5.1, G5.2) are not translated: have the post-processor write G1/G2/G3";
+    else if (g >= 700 && g <= 722)
+      reason = "the lathe cycles G70-G72 are not translated: have the post-processor write the passes as G0/G1/G2/G3";
+    else if (g == 70)
+      reason = "lathe diameter mode (G7) is not translated: program radii (G8)";
+    else if (g == 432 || g == 171 || g == 181 || g == 191)
+      reason = "not supported by the pre-distorter (G43.2, G17.1-G19.1)";
     if (reason) refuse(line, c.offset, g_name(g) + ": " + reason);
     static constexpr int kKnown[] = {0,   10,  20,  30,  40,  100, 170, 180, 190, 200, 210, 280,
                                      281, 300, 301, 400, 430, 431, 490, 530, 540, 550, 560, 570,
                                      580, 590, 591, 592, 593, 610, 611, 640, 800, 900, 901, 910, 400, 410, 411, 420, 421,
                                      911, 920, 921, 922, 923, 520, 930, 940, 950, 960, 970, 980, 990,
-                                     730, 740, 810, 820, 830, 840, 850, 860, 880, 890};
+                                     730, 740, 810, 820, 830, 840, 850, 860, 880, 890,
+                                     80};  // G8: lathe radius mode, LinuxCNC's default (G7 is refused)
     if (std::find(std::begin(kKnown), std::end(kKnown), g) == std::end(kKnown))
       refuse(line, c.offset, "unknown G code " + g_name(g));
   }
@@ -145,6 +158,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     const bool known = m <= 9 || m == 19 || m == 30 || (m >= 70 && m <= 73) || (m >= 48 && m <= 53) || (m >= 60 && m <= 68) || (m >= 100 && m <= 199);
     if (!known) refuse(line, c.offset, "unknown M code M" + std::to_string(m));
   }
+  if (w.has('E')) refuse(line, w['E'].offset, "E word without G76");
   for (char c : {'U', 'V', 'W'})
     if (w.has(c)) refuse(line, w[c].offset, std::string("the ") + c + " axis is not supported (machines have X Y Z A B C)");
   if (block.block_delete) {

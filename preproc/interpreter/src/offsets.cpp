@@ -53,27 +53,32 @@ void Interpreter::set_offsets(const Words& w, int line) {
   if (system == 0) system = coordinate_system_;
   const Position world = world_position();
   const double scale = inches_ ? kInch : 1.0;
+  if (w.has('R')) {
+    if (l != 2) refuse(line, w['R'].offset, "R (rotation) only with G10 L2");
+    parameters_[rotation_parameter(system)] = w.get('R');
+  }
+  // L20 (convert_setup): the current position, in that system's coordinates, becomes the
+  // values given; X and Y are set in the system's rotated frame.
+  const Position current = frame_for(system).program(world);
+  Position wanted = current;
   for (int i = 0; i < kAxes; ++i) {
     const char letter = kAxisLetters[i];
     if (!w.has(letter)) continue;
     const double value = w.get(letter) * (is_linear(i) ? scale : 1.0);
-    double& offset = parameters_[offset_parameter(system, i)];
     if (l == 2) {
-      offset = value;
-    } else {
-      // L20: the current position becomes `value` in that system.
-      if (!(known_ >> i & 1u))
-        refuse(line, w[letter].offset, std::string("G10 L20: the current ") + letter + " is not known yet");
-      double tool = (i == 2 && setup_.tool_length_in_world) ? tool_length_ : 0.0;
-      if (parameters_[rotation_parameter(system)] != 0.0 && i < 2)
-        refuse(line, w[letter].offset, "G10 L20 on a rotated coordinate system is not supported");
-      if (g92_[i] != 0.0) refuse(line, w[letter].offset, "G10 L20 while G92 offsets are on is not supported");
-      offset = world[i] - tool - value;
+      parameters_[offset_parameter(system, i)] = value;
+      continue;
     }
+    if (!(known_ >> i & 1u))
+      refuse(line, w[letter].offset, std::string("G10 L20: the current ") + letter + " is not known yet");
+    wanted[i] = value;
   }
-  if (w.has('R')) {
-    if (l != 2) refuse(line, w['R'].offset, "R (rotation) only with G10 L2");
-    parameters_[rotation_parameter(system)] = w.get('R');
+  if (l == 20) {
+    const Frame rotation{{}, parameters_[rotation_parameter(system)]};
+    const Position now = rotation.world(current), then = rotation.world(wanted);
+    for (int i = 0; i < kAxes; ++i)
+      if (w.has(kAxisLetters[i]) || (i < 2 && (w.has('X') || w.has('Y'))))
+        parameters_[offset_parameter(system, i)] += now[i] - then[i];
   }
   offsets_set_ |= 1u << system;
   if (system == coordinate_system_) set_world_position(world);

@@ -165,6 +165,7 @@ class Interpreter {
   // A canned cycle block (canned_cycles.cpp); `code_on_line`: the cycle's G code is written here.
   void cycle(const Words& w, int previous_motion, bool code_on_line, int line, Effect& effect);
   Position world_position() const;
+  Frame frame_for(int system) const;  // frame() in coordinate system 1..9
   void set_world_position(const Position& world);  // after a frame change, as LinuxCNC does
   Position end_point(const Words& w, int line) const;
   void polar_end_point(const Words& w, int line, double& x, double& y) const;  // '@' '^' 
