@@ -3,7 +3,8 @@
 # the driver's result line ("ok N samples" or "error: ...").
 #
 #   run_headless.sh CONFIG.ini RUN_DIR [--kinematics "volkins machine=... world=tcp"]
-#                   [--without-volkins] [--program FILE] [--compensation on|off|toggle]
+#                   [--without-volkins] [--without-update] [--expect-message TEXT] [--program FILE]
+#                   [--compensation on|off|toggle]
 #                   [--set SECTION.KEY=VALUE]...
 #
 # The configuration folder and kins/configs/common are copied to RUN_DIR/kins/configs, with with the
@@ -14,14 +15,16 @@
 # lands in RUN_DIR/kins/configs/<name>/trace.csv. Exit 0 if the program ran cleanly.
 set -euo pipefail
 
-usage() { echo "usage: $0 CONFIG.ini RUN_DIR [--kinematics LINE] [--without-volkins] [--program FILE] [--compensation on|off|toggle] [--set SECTION.KEY=VALUE]..." >&2; exit 2; }
+usage() { echo "usage: $0 CONFIG.ini RUN_DIR [--kinematics LINE] [--without-volkins] [--without-update] [--expect-message TEXT] [--program FILE] [--compensation on|off|toggle] [--set SECTION.KEY=VALUE]..." >&2; exit 2; }
 [ $# -ge 2 ] || usage
 ini_src=$(realpath "$1"); run_dir=$2; shift 2
-kinematics="" ; without_volkins=0; program=""; compensation=""; settings=()
+kinematics="" ; without_volkins=0; without_update=0; program=""; compensation=""; settings=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --kinematics) kinematics=$2; shift 2 ;;
     --without-volkins) without_volkins=1; shift ;;
+    --without-update) without_update=1; shift ;;  # a HAL file that forgot volkins.update
+    --expect-message) export VOLKINS_EXPECT_MESSAGE=$2; shift 2 ;;
     --program) program=$(realpath "$2"); shift 2 ;;
     --compensation) compensation=$2; shift 2 ;;
     --set) settings+=("$2"); shift 2 ;;
@@ -54,6 +57,9 @@ for setting in "${settings[@]}"; do  # SECTION.KEY=VALUE: replaces KEY's line in
 done
 if [ "$without_volkins" = 1 ]; then
   sed -i '/^HALFILE = ..\/common\/volkins.hal/d' "$ini"
+fi
+if [ "$without_update" = 1 ]; then
+  sed -i '/^addf volkins.update/d' "$run_dir/kins/configs/common/volkins.hal"
 fi
 chmod -R a+rwX "$run_dir"
 # rtapi_app refuses to run as root: as root it gets a fallback uid.

@@ -8,7 +8,10 @@
 // homing and probing see nominal coordinates. The HAL function volkins.update (servo thread,
 // before motion-controller) ramps the correction in and out when volkins.enable changes, so
 // switching never jumps; the kinematics functions keep no state between calls (they read the
-// ramp and the parameters, and report on output pins).
+// ramp and the parameters, and report on output pins). A HAL file without `addf volkins.update`
+// does not leave the machine silently uncorrected: until the function has run, the kinematics
+// apply what volkins.enable asks for in full (no ramp), say so on volkins.gain, volkins.active
+// and volkins.update-missing, and print once how to fix the HAL file.
 // Servo thread: no allocation, no locks, no I/O, bounded iterations, no exceptions.
 
 #include <algorithm>
@@ -39,6 +42,8 @@ struct HalData {
   hal_bit_t* enable;                          // in: correction wanted
   hal_float_t* tool_length;                   // in: tool length offset (mm), net to motion.tooloffset.z
   hal_float_t* gain;                          // out: fraction applied now (ramp, 0..1)
+  hal_bit_t* active;                          // out: a correction is applied (gain > 0)
+  hal_bit_t* update_missing;                  // out: the kinematics ran before volkins.update ever did
   hal_float_t* correction[vm::kMaxAxes];      // out: joint - nominal joint of the last inverse
   hal_s32_t* iterations;                      // out: Newton steps of the last inverse
   hal_s32_t* forward_iterations;              // out: corrections evaluated by the last forward
@@ -53,6 +58,10 @@ struct HalData {
   hal_float_t pole_fade_full_deg;             // phi1: full orientation correction above
   // State of the ramp (only volkins.update writes it).
   double phase;
+  // Whether volkins.update has run, and whether the kinematics ran before it did (then it
+  // applied the full correction, and the ramp starts there: no step when update starts).
+  bool update_ran;
+  bool kinematics_before_update;
 };
 
 vc::kins::ModuleSettings* settings = nullptr;  // built in rtapi_app_main, read-only afterwards
@@ -97,10 +106,16 @@ void set_world(EmcPose& pose, Joints w, double tool_length_mm) {
 // (smoothstep, so joint velocity stays continuous) and takes up valid pole fade parameters.
 void update(void*, long period_ns) {
   const double target = *hal->enable ? 1.0 : 0.0;
+  if (!hal->update_ran) {
+    hal->update_ran = true;
+    *hal->update_missing = 0;
+    if (hal->kinematics_before_update) hal->phase = target;  // where the kinematics were
+  }
   const double step = hal->ramp_time > 0.0 ? period_ns * 1e-9 / hal->ramp_time : 1.0;
   hal->phase += std::clamp(target - hal->phase, -step, step);
   const double s = hal->phase;
   *hal->gain = s * s * (3.0 - 2.0 * s);
+  *hal->active = *hal->gain > 0.0;
 
   const double start = hal->pole_fade_start_deg, full = hal->pole_fade_full_deg;
   if (start >= 0.0 && full > start && full <= 90.0) {
@@ -114,6 +129,24 @@ int refuse() {
   return -1;
 }
 
+// The fraction of the correction the kinematics apply: the ramp's, or, while volkins.update has
+// never run (not in a thread), all of it as volkins.enable asks, reported on the pins.
+double applied_gain() {
+  if (hal->update_ran) return *hal->gain;
+  const double gain = *hal->enable ? 1.0 : 0.0;
+  *hal->gain = gain;
+  *hal->active = gain > 0.0;
+  *hal->update_missing = 1;
+  if (!hal->kinematics_before_update) {  // once: the first call
+    hal->kinematics_before_update = true;
+    rtapi_print_msg(RTAPI_MSG_ERR,
+                    "volkins: volkins.update has not run before the kinematics: the correction is applied in full "
+                    "without its ramp (volkins.enable steps the joints). Add 'addf volkins.update servo-thread 1' to "
+                    "the HAL file (kins/configs/common/volkins.hal)\n");
+  }
+  return gain;
+}
+
 }  // namespace
 
 extern "C" {
@@ -125,7 +158,7 @@ int kinematicsInverse(const EmcPose* pose, double* joints, const KINEMATICS_INVE
   const double offset = *hal->tool_length;       // LinuxCNC's tool length offset (G43)
   const double L = model.correction_length(offset);  // the tool-length rule
   const Joints previous = Eigen::Map<const Joints>(joints, n);  // LinuxCNC's seed
-  const vm::Applied applied{*hal->gain, &previous};
+  const vm::Applied applied{applied_gain(), &previous};
   Joints q;
   vm::Correction report;
   const vm::Status s = vm::joints_from_world(model, settings->world, world_of(*pose, offset), L, applied, q, &report);
@@ -156,7 +189,7 @@ int kinematicsForward(const double* joints, EmcPose* pose, const KINEMATICS_FORW
   Joints w;
   int iterations = 0;
   const vm::Status s =
-      vm::world_from_joints(model, settings->world, q, L, vm::Applied{*hal->gain, &seed}, w, &iterations);
+      vm::world_from_joints(model, settings->world, q, L, vm::Applied{applied_gain(), &seed}, w, &iterations);
   *hal->forward_iterations = iterations;
   if (s != vm::Status::Ok) return refuse();
   set_world(*pose, w, offset);
@@ -188,6 +221,8 @@ bool export_hal(const vm::Model& model) {
   r |= hal_pin_bit_newf(HAL_IN, &hal->enable, comp_id, "volkins.enable");
   r |= hal_pin_float_newf(HAL_IN, &hal->tool_length, comp_id, "volkins.tool-length");
   r |= hal_pin_float_newf(HAL_OUT, &hal->gain, comp_id, "volkins.gain");
+  r |= hal_pin_bit_newf(HAL_OUT, &hal->active, comp_id, "volkins.active");
+  r |= hal_pin_bit_newf(HAL_OUT, &hal->update_missing, comp_id, "volkins.update-missing");
   for (int j = 0; j < model.joint_count(); ++j)
     r |= hal_pin_float_newf(HAL_OUT, &hal->correction[j], comp_id, "volkins.joint.%d.correction", j);
   r |= hal_pin_s32_newf(HAL_OUT, &hal->iterations, comp_id, "volkins.iterations");
@@ -208,7 +243,11 @@ bool export_hal(const vm::Model& model) {
   // Not netted: the typical tool's offset, so that L = the machine file's tool_length_mm.
   *hal->tool_length = model.tool_length_mm - model.tool_length_reference_mm;
   *hal->gain = 0.0;
+  *hal->active = 0;
+  *hal->update_missing = 0;
   hal->phase = 0.0;
+  hal->update_ran = false;
+  hal->kinematics_before_update = false;
   hal->ramp_time = 1.0;
   hal->max_correction_mm = 1.0;
   hal->max_correction_deg = 0.1;

@@ -45,7 +45,8 @@ TEST_P(ShippedMachine, LoadsAndExposesItsPins) {
   const test::CommandResult r =
       test::halrun("load_" + GetParam(), loadrt(shipped(GetParam())) + "show pin volkins\nshow param volkins\n");
   ASSERT_EQ(r.exit_code, 0) << r.out;
-  for (const char* pin : {"volkins.enable", "volkins.tool-length", "volkins.gain", "volkins.iterations",
+  for (const char* pin : {"volkins.enable", "volkins.tool-length", "volkins.gain", "volkins.active",
+                          "volkins.update-missing", "volkins.iterations",
                           "volkins.forward-iterations", "volkins.out-of-table", "volkins.limit-exceeded",
                           "volkins.failures", "volkins.ramp-time", "volkins.max-correction-mm",
                           "volkins.max-correction-deg", "volkins.pole-fade-start-deg",
@@ -75,9 +76,12 @@ TEST(Volkins, EnableRampsTheGainInRampTime) {
                              "show pin volkins.gain\n"
                              "loadusr -w sleep 0.8\n"
                              "show pin volkins.gain\n"
+                             "show pin volkins.active\n"
                              "setp volkins.enable 0\n"
                              "loadusr -w sleep 0.8\n"
-                             "show pin volkins.gain\n";
+                             "show pin volkins.gain\n"
+                             "show pin volkins.active\n"
+                             "show pin volkins.update-missing\n";
   const test::CommandResult r = test::halrun("ramp", script);
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const std::vector<double> gain = shown_values(r.out, "volkins.gain");
@@ -87,6 +91,13 @@ TEST(Volkins, EnableRampsTheGainInRampTime) {
   EXPECT_LT(early, 1.0) << r.out;
   EXPECT_EQ(on, 1.0) << r.out;
   EXPECT_EQ(off, 0.0) << r.out;
+  // volkins.active says whether a correction is applied; the update function ran.
+  const std::regex active(R"(bit\s+OUT\s+(TRUE|FALSE)\s+volkins\.active\s)");
+  std::vector<std::string> states;
+  for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), active); it != std::sregex_iterator(); ++it)
+    states.push_back((*it)[1]);
+  EXPECT_EQ(states, (std::vector<std::string>{"TRUE", "FALSE"})) << r.out;
+  EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(bit\s+OUT\s+FALSE\s+volkins\.update-missing)"))) << r.out;
 }
 
 // Every golden bad machine file is refused by loadrt with the loader's message (the .expect

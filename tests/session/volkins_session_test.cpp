@@ -220,5 +220,18 @@ TEST(Mill3Session, CompensationOnPutsTheRealToolOnTheCommandedPose) {
   expect_compensated(trace::check_trace(model, WorldConvention::Axes, t), 0, "mill3, compensation on");
 }
 
+// A HAL file without `addf volkins.update` (a stock configuration that loads volkins and
+// forgets the function): the machine is still corrected, in full from the start, volkins.gain
+// says so at every sample, and the operator is told what is missing (the headless driver
+// fails the session unless that message comes).
+TEST(Mill3Session, WithoutTheUpdateFunctionTheCorrectionIsAppliedInFullAndSaidSo) {
+  const machine::Model model = machine::load_machine(test::machine_path("mill3"));
+  const trace::SessionTrace t =
+      run_session("mill3_no_update", "kins/configs/mill3/mill3.ini", model,
+                  "--without-update --expect-message 'volkins.update has not run before the kinematics'");
+  for (std::size_t n = 0; n < t.size(); ++n) ASSERT_EQ(t.gain[n], 1.0) << "sample " << n;
+  expect_compensated(trace::check_trace(model, WorldConvention::Axes, t), 0, "mill3 without volkins.update");
+}
+
 }  // namespace
 }  // namespace vc

@@ -11,7 +11,8 @@ Settings: the [DRIVER] section of the INI, each overridable by an environment va
 (VOLKINS_<KEY>): PROGRAM (G-code file), COMPENSATION (on | off | toggle), TOGGLE_PERIOD (s,
 toggle mode: volkins.enable flips this often while the program runs), TRACE (CSV written),
 TRACE_COLUMNS (names of the sampler's pins, in its cfg order), RESULT (a file that receives
-"ok" or "error: ..." last, so a caller knows how the session ended), TIMEOUT (s).
+"ok" or "error: ..." last, so a caller knows how the session ended), TIMEOUT (s), EXPECT_MESSAGE
+(an operator message containing this text must come, and is then no error).
 Must run with Debian's /usr/bin/python3 (the linuxcnc and hal modules live there).
 """
 import os
@@ -130,8 +131,12 @@ class Session:
             rows.append(sample)
         if stream.num_overruns:
             raise RuntimeError("the sampler overran %d times: samples are missing" % stream.num_overruns)
-        if self.stat.task_state != linuxcnc.STATE_ON or self.messages:
-            raise RuntimeError("the program did not run cleanly: " + "; ".join(self.messages))
+        expected = setting(self.ini, "EXPECT_MESSAGE", "")
+        unexpected = [m for m in self.messages if not (expected and expected in m)]
+        if expected and len(unexpected) == len(self.messages):
+            raise RuntimeError("the expected message did not come: " + expected)
+        if self.stat.task_state != linuxcnc.STATE_ON or unexpected:
+            raise RuntimeError("the program did not run cleanly: " + "; ".join(unexpected))
 
         with open(self.path("TRACE", "trace.csv"), "w") as out:
             out.write(",".join(columns) + "\n")
