@@ -9,6 +9,7 @@ cmake --build "$build" -j "$(nproc)" >/dev/null
 corpus="$build/corpus"
 mkdir -p "$corpus"
 find "$src/kins/configs" "$src/tests" -name '*.ngc' -exec cp {} "$corpus/" \;
+# (tests/fuzz/regressions: inputs that once crashed it, run first like every corpus file)
 printf 'G1 X[1+2*3] Y#<a> Z-#5\n#<a>=[atan[1]/[2] mod 3]\n' > "$corpus/expressions.ngc"
 printf 'G2 X1 Y1 R-0.5 P2\nG18 G3 Z1 X0 I0 K1\n' > "$corpus/arcs.ngc"
 printf '/N10 G10 L20 P0 X0 (c) ; x\nO100 sub\n%%\n' > "$corpus/misc.ngc"

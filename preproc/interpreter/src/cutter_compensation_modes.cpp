@@ -4,6 +4,7 @@
 // CutterCompensation's (cutter_compensation.cpp).
 #include <cctype>
 #include <cmath>
+#include <functional>
 
 #include "words.hpp"
 
@@ -81,8 +82,7 @@ void Interpreter::set_compensation(const Words& w, int line, Effect& effect) {
   if (c->code != 400) effect.dropped_words.push_back(c->index);  // the output is offset already
   if (c->code == 400) {
     const bool moved = compensation_.offsets() && !compensation_.first_move();
-    compensation_.stop(own_);
-    take_released(own_, effect);
+    compensating(line, c->offset, effect, [&] { compensation_.stop(own_); });
     if (moved) {
       // LinuxCNC takes the programmed point as its position again; the tool stays at the offset one.
       tool_elsewhere_ = frame().world(compensation_.tool());
@@ -130,12 +130,18 @@ void Interpreter::compensated_move(const Words& w, Move& m, int line, Effect& ef
   if (inverse_time_)
     refuse(line, w.first_motion_offset(), "inverse time feed (G93) with cutter radius compensation is not translated");
   const Position tool_at = take_move_start();
-  try {
+  compensating(line, w.first_motion_offset(), effect, [&] {
     if (m.kind == MoveKind::Arc) compensation_.arc(m, position_, tool_at, sequence_, own_);
     else compensation_.straight(m, position_, tool_at, sequence_, own_);
-  } catch (const CompensationError& e) {
+  });
+}
+
+void Interpreter::compensating(int line, int offset, Effect& effect, const std::function<void()>& step) {
+  try {
+    step();
+  } catch (const CompensationError& e) {  // a gouge found when a held move is made final
     own_.clear();
-    refuse(line, w.first_motion_offset(), std::string(e.what()) + " (LinuxCNC refuses it too)");
+    refuse(line, offset, std::string(e.what()) + " (LinuxCNC refuses it too)");
   }
   take_released(own_, effect);
 }

@@ -259,9 +259,10 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
       if (c.code == 20 || c.code == 300) effect.program_end = true;
     }
   if (!effect.stop_words.empty()) {  // LinuxCNC's convert_stop: the held moves end where they are
-    if (effect.program_end) compensation_.stop(own_);
-    else compensation_.flush(own_);
-    take_released(own_, effect);
+    compensating(line, 0, effect, [&] {
+      if (effect.program_end) compensation_.stop(own_);
+      else compensation_.flush(own_);
+    });
   }
   if (const auto* code = w.find_g({0, 10, 20, 30})) effect.motion_code_word = code->index;
   const auto* length_code = w.find_g({430, 431, 490});

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -142,6 +143,8 @@ class Interpreter {
   void set_compensation(const Words& w, int line, Effect& effect);
   void compensated_move(const Words& w, Move& m, int line, Effect& effect);
   void take_released(std::vector<ReleasedMove>& out, Effect& effect);
+  // Runs a step of the compensation; what it refuses is refused with this line and column.
+  void compensating(int line, int offset, Effect& effect, const std::function<void()>& step);
   // M70-M73 (modal_state.cpp): the state LinuxCNC saves, as its active G and M codes.
   struct ModalState {
     bool inches = false;
