@@ -44,6 +44,7 @@ struct HalData {
   hal_float_t* gain;                          // out: fraction applied now (ramp, 0..1)
   hal_bit_t* active;                          // out: a correction is applied (gain > 0)
   hal_bit_t* update_missing;                  // out: the kinematics ran before volkins.update ever did
+  hal_float_t* correction_length;             // out: L the correction is computed for now (mm)
   hal_float_t* correction[vm::kMaxAxes];      // out: joint - nominal joint of the last inverse
   hal_s32_t* iterations;                      // out: Newton steps of the last inverse
   hal_s32_t* forward_iterations;              // out: corrections evaluated by the last forward
@@ -56,12 +57,16 @@ struct HalData {
   hal_float_t max_correction_deg;             // largest rotary joint correction allowed
   hal_float_t pole_fade_start_deg;            // phi0 (model.md): no orientation correction below
   hal_float_t pole_fade_full_deg;             // phi1: full orientation correction above
+  hal_float_t tool_length_slew_time;          // s: a tool length change reaches the correction in this time
   // State of the ramp (only volkins.update writes it).
   double phase;
   // Whether volkins.update has run, and whether the kinematics ran before it did (then it
   // applied the full correction, and the ramp starts there: no step when update starts).
   bool update_ran;
   bool kinematics_before_update;
+  // The tool length offset the correction follows (volkins.update slews it to volkins.tool-length
+  // along a smoothstep, so that a G43 does not step the joints by angular error x change of L).
+  double offset_from, offset_to, offset_phase, offset_applied;
 };
 
 vc::kins::ModuleSettings* settings = nullptr;  // built in rtapi_app_main, read-only afterwards
@@ -110,12 +115,27 @@ void update(void*, long period_ns) {
     hal->update_ran = true;
     *hal->update_missing = 0;
     if (hal->kinematics_before_update) hal->phase = target;  // where the kinematics were
+    hal->offset_from = hal->offset_to = hal->offset_applied = *hal->tool_length;
+    hal->offset_phase = 1.0;
   }
   const double step = hal->ramp_time > 0.0 ? period_ns * 1e-9 / hal->ramp_time : 1.0;
   hal->phase += std::clamp(target - hal->phase, -step, step);
   const double s = hal->phase;
   *hal->gain = s * s * (3.0 - 2.0 * s);
   *hal->active = *hal->gain > 0.0;
+
+  const double offset = *hal->tool_length;
+  if (offset != hal->offset_to) {  // a new tool length: slew from where the correction is
+    hal->offset_from = hal->offset_applied;
+    hal->offset_to = offset;
+    hal->offset_phase = 0.0;
+  }
+  const double slew = hal->tool_length_slew_time > 0.0 ? period_ns * 1e-9 / hal->tool_length_slew_time : 1.0;
+  hal->offset_phase = std::min(1.0, hal->offset_phase + slew);
+  const double p = hal->offset_phase;
+  hal->offset_applied = hal->offset_from + (hal->offset_to - hal->offset_from) * p * p * (3.0 - 2.0 * p);
+  if (p >= 1.0) hal->offset_applied = hal->offset_to;
+  *hal->correction_length = settings->model.correction_length(hal->offset_applied);
 
   const double start = hal->pole_fade_start_deg, full = hal->pole_fade_full_deg;
   if (start >= 0.0 && full > start && full <= 90.0) {
@@ -127,6 +147,13 @@ void update(void*, long period_ns) {
 int refuse() {
   ++*hal->failures;
   return -1;
+}
+
+// The L the correction is computed for: the slewed tool length, or, while volkins.update has
+// never run, LinuxCNC's offset as it is.
+double correction_length() {
+  if (hal->update_ran) return *hal->correction_length;
+  return *hal->correction_length = settings->model.correction_length(*hal->tool_length);
 }
 
 // The fraction of the correction the kinematics apply: the ramp's, or, while volkins.update has
@@ -156,7 +183,7 @@ int kinematicsInverse(const EmcPose* pose, double* joints, const KINEMATICS_INVE
   const vm::Model& model = settings->model;
   const int n = model.joint_count();
   const double offset = *hal->tool_length;       // LinuxCNC's tool length offset (G43)
-  const double L = model.correction_length(offset);  // the tool-length rule
+  const double L = correction_length();          // the tool-length rule, slewed
   const Joints previous = Eigen::Map<const Joints>(joints, n);  // LinuxCNC's seed
   const vm::Applied applied{applied_gain(), &previous};
   Joints q;
@@ -184,7 +211,7 @@ int kinematicsForward(const double* joints, EmcPose* pose, const KINEMATICS_FORW
   const vm::Model& model = settings->model;
   const Joints q = Eigen::Map<const Joints>(joints, model.joint_count());
   const double offset = *hal->tool_length;
-  const double L = model.correction_length(offset);
+  const double L = correction_length();
   const Joints seed = world_of(*pose, offset);  // LinuxCNC passes the previous position (or home)
   Joints w;
   int iterations = 0;
@@ -223,6 +250,8 @@ bool export_hal(const vm::Model& model) {
   r |= hal_pin_float_newf(HAL_OUT, &hal->gain, comp_id, "volkins.gain");
   r |= hal_pin_bit_newf(HAL_OUT, &hal->active, comp_id, "volkins.active");
   r |= hal_pin_bit_newf(HAL_OUT, &hal->update_missing, comp_id, "volkins.update-missing");
+  r |= hal_pin_float_newf(HAL_OUT, &hal->correction_length, comp_id, "volkins.correction-length");
+  r |= hal_param_float_newf(HAL_RW, &hal->tool_length_slew_time, comp_id, "volkins.tool-length-slew-time");
   for (int j = 0; j < model.joint_count(); ++j)
     r |= hal_pin_float_newf(HAL_OUT, &hal->correction[j], comp_id, "volkins.joint.%d.correction", j);
   r |= hal_pin_s32_newf(HAL_OUT, &hal->iterations, comp_id, "volkins.iterations");
@@ -248,6 +277,10 @@ bool export_hal(const vm::Model& model) {
   hal->phase = 0.0;
   hal->update_ran = false;
   hal->kinematics_before_update = false;
+  hal->tool_length_slew_time = 0.25;
+  hal->offset_from = hal->offset_to = hal->offset_applied = *hal->tool_length;
+  hal->offset_phase = 1.0;
+  *hal->correction_length = model.correction_length(*hal->tool_length);
   hal->ramp_time = 1.0;
   hal->max_correction_mm = 1.0;
   hal->max_correction_deg = 0.1;

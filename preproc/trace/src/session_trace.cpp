@@ -37,6 +37,10 @@ SessionTrace read_session_trace(const std::string& path, const machine::Model& m
     if (column[w] < 0)
       throw LoadError({path, header.line, 1}, "no column '" + wanted[w] + "' (the machine's axes are " + axes + ")");
 
+  int correction_length = -1;  // optional: traces recorded before volkins slewed the tool length
+  for (std::size_t c = 0; c < header.cells.size(); ++c)
+    if (header.cells[c].text == "correction_length") correction_length = static_cast<int>(c);
+
   SessionTrace t;
   t.path = path;
   for (std::size_t r = 1; r < rows.size(); ++r) {
@@ -55,6 +59,8 @@ SessionTrace read_session_trace(const std::string& path, const machine::Model& m
     t.gain.push_back(value(2 * n));
     t.tool_length_mm.push_back(value(2 * n + 1));
     t.controller_ticks.push_back(value(2 * n + 2));
+    if (correction_length >= 0)
+      t.correction_length_mm.push_back(tables::csv_number(path, row.line, row.cells[correction_length]));
   }
   return t;
 }
@@ -68,26 +74,35 @@ TraceSummary check_trace(const machine::Model& model, machine::WorldConvention c
   using machine::Machine;
   TraceSummary out;
   const std::size_t count = trace.size();
-  // Kinematics outputs per sample. Cycle k's inverse ran with that cycle's gain (volkins.update
+  // Kinematics outputs per sample. Cycle k's inverse ran with that cycle's gain and L (volkins.update
   // runs first) and the tool length of cycle k-1 (motion writes tooloffset.z at its end).
+  const bool recorded_L = trace.correction_length_mm.size() == count;
+  auto correction_length = [&](std::size_t k) {
+    return recorded_L ? trace.correction_length_mm[k] : model.correction_length(trace.tool_length_mm[k == 0 ? 0 : k - 1]);
+  };
   std::vector<Joints> nominal(count), expected(count);
   std::vector<machine::Correction> corrections(count);
   for (std::size_t k = 0; k < count; ++k) {
     const double offset = trace.tool_length_mm[k == 0 ? 0 : k - 1];
-    const double L = model.correction_length(offset);  // the tool-length rule
+    const double L = correction_length(k);  // the tool-length rule (slewed)
     const Joints world = core_world(model, convention, trace.world[k], offset);
     machine::nominal_inverse(model, convention, world, L, nominal[k]);
     machine::joints_from_world(model, convention, world, L, machine::Applied{trace.gain[k], nullptr}, expected[k],
                                &corrections[k]);
   }
+  // Left out of the tool-tip claims: the samples while L differs from the tool's (the tool length
+  // slews after a G43: the tip is off by angular error x difference of L meanwhile), and the
+  // interpolation's window after it.
   std::size_t last_tool_change = 0;
   for (std::size_t n = 1; n < count; ++n) {
-    if (trace.tool_length_mm[n] != trace.tool_length_mm[n - 1]) last_tool_change = n;
+    const double tool_L = model.correction_length(trace.tool_length_mm[n - 1]);
+    if (trace.tool_length_mm[n] != trace.tool_length_mm[n - 1] || (recorded_L && correction_length(n) != tool_L))
+      last_tool_change = n;
     if (n < 3 || (last_tool_change > 0 && n <= last_tool_change + 4)) {
       out.skipped += n >= 3;
       continue;
     }
-    const double L = model.correction_length(trace.tool_length_mm[n - 1]);
+    const double L = correction_length(n);
     SampleCheck s;
     s.sample = n;
     const machine::ToolPose real = machine::tool_pose(model, Machine::Real, trace.joints[n], L);

@@ -23,6 +23,8 @@ struct SessionTrace {
   std::vector<machine::Joints> joints;  // joint.<j>.motor-pos-cmd
   std::vector<double> gain;             // volkins.gain (0 if the session ran without volkins)
   std::vector<double> tool_length_mm;   // motion.tooloffset.z: the offset (L by Model::correction_length)
+  std::vector<double> correction_length_mm;  // volkins.correction-length: the L applied (the offset's,
+                                             // slewed); empty in a trace without the column
   std::vector<double> controller_ticks; // motion-controller.time (CPU clock ticks)
   std::size_t size() const { return world.size(); }
 };
