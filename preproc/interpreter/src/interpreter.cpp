@@ -143,7 +143,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     if (reason) refuse(line, c.offset, g_name(g) + ": " + reason);
     static constexpr int kKnown[] = {0,   10,  20,  30,  40,  100, 170, 180, 190, 200, 210, 280,
                                      281, 300, 301, 400, 430, 431, 490, 530, 540, 550, 560, 570,
-                                     580, 590, 591, 592, 593, 610, 611, 640, 800, 900, 901, 910, 400, 410, 411, 420, 421,
+                                     580, 590, 591, 592, 593, 610, 611, 640, 800, 900, 901, 910, 410, 411, 420, 421,
                                      911, 920, 921, 922, 923, 520, 930, 940, 950, 960, 970, 980, 990,
                                      730, 740, 810, 820, 830, 840, 850, 860, 880, 890,
                                      80};  // G8: lathe radius mode, LinuxCNC's default (G7 is refused)
@@ -188,22 +188,24 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     tool_in_spindle_ = w.whole('Q');
     if (tool_in_spindle_ < 0) refuse(line, w['Q'].offset, "M61 Q must be a whole number >= 0");
   }
-  if (w.find_m({30, 40})) {
-    spindle_on_ = true;
-    spindle_clockwise_ = w.find_m({30}) != nullptr;
-  }
-  if (w.find_m({70})) mist_ = true;
-  if (w.find_m({80})) flood_ = true;
-  if (w.find_m({90})) mist_ = flood_ = false;
-  if (w.find_m({480})) feed_override_ = spindle_override_ = true;
-  if (w.find_m({490})) feed_override_ = spindle_override_ = false;
-  if (w.find_m({500})) feed_override_ = !w.has('P') || w.get('P') != 0;
-  if (w.find_m({510})) spindle_override_ = !w.has('P') || w.get('P') != 0;
-  if (w.find_m({520})) adaptive_feed_ = !w.has('P') || w.get('P') != 0;
-  if (w.find_m({530})) feed_hold_ = !w.has('P') || w.get('P') != 0;
+  const bool p_on = !w.has('P') || w.get('P') != 0;  // M50-M53 P0 switches off, P1 or none on
+  for (const Words::Code& c : w.m) switch (c.code) {
+      case 30: spindle_on_ = spindle_clockwise_ = true; break;
+      case 40: spindle_on_ = true; spindle_clockwise_ = false; break;
+      case 50: spindle_on_ = false; break;
+      case 70: mist_ = true; break;
+      case 80: flood_ = true; break;
+      case 90: mist_ = flood_ = false; break;
+      case 480: feed_override_ = spindle_override_ = true; break;
+      case 490: feed_override_ = spindle_override_ = false; break;
+      case 500: feed_override_ = p_on; break;
+      case 510: spindle_override_ = p_on; break;
+      case 520: adaptive_feed_ = p_on; break;
+      case 530: feed_hold_ = p_on; break;
+      default: break;
+    }
   if (w.find_g({960})) constant_surface_speed_ = true;
   if (w.find_g({970})) constant_surface_speed_ = false;
-  if (w.find_m({50})) spindle_on_ = false;
   if (w.find_g({170})) plane_ = 170;
   if (w.find_g({180})) plane_ = 180;
   if (w.find_g({190})) plane_ = 190;
