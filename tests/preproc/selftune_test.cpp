@@ -164,6 +164,7 @@ TEST_F(VirtualShop, ReportsThatDoNotFitTheProgramAreRefused) {
                                             report_b + " -o " + next + files());
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.out.find("is not on a surface"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("for this program?"), std::string::npos) << r.out;  // the cause tested: not spindle, tool, unit
   EXPECT_NE(r.out.find(report_b), std::string::npos) << r.out;
   // Deviations in um under a header that says mm.
   std::string text;
@@ -179,6 +180,53 @@ TEST_F(VirtualShop, ReportsThatDoNotFitTheProgramAreRefused) {
                         next + files());
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.out.find("is the unit in the report's header right?"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(next));
+  // The right report with its coordinates written in inches under a header that says mm: most
+  // points land on the cuts once read as inches, and the message says so.
+  {
+    std::istringstream in(text);
+    std::ostringstream inches;
+    std::vector<bool> in_mm;  // the header's columns in mm
+    const auto split = [](const std::string& row) {
+      std::vector<std::string> cells;
+      std::stringstream cs(row);
+      for (std::string c; std::getline(cs, c, ',');) cells.push_back(c);
+      return cells;
+    };
+    for (std::string row; std::getline(in, row);) {
+      if (!in_mm.empty() && !row.empty() && row[0] != '#') {
+        std::vector<std::string> cells = split(row);
+        for (std::size_t i = 0; i < cells.size() && i < in_mm.size(); ++i)
+          if (in_mm[i]) cells[i] = std::to_string(std::stod(cells[i]) / 25.4);
+        row.clear();
+        for (std::size_t i = 0; i < cells.size(); ++i) row += (i ? "," : "") + cells[i];
+      } else if (row.find("x[mm]") != std::string::npos) {
+        for (const std::string& c : split(row)) in_mm.push_back(c.find("[mm]") != std::string::npos);
+      }
+      inches << row << "\n";
+    }
+    std::ofstream(path("fit_inches.csv")) << inches.str();
+  }
+  r = test::run_volcomp("selftune " + test::machine_path("mill3") + " " + path("fit_p1.ngc") + " " +
+                        path("fit_inches.csv") + " -o " + next + files());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.out.find("read as inches"), std::string::npos) << r.out;
+  // The right report, but a program that never starts the spindle: nothing is cut, and the
+  // message says why rather than blaming the report.
+  std::string program;
+  {
+    std::ifstream in(path("fit_p1.ngc"));
+    std::stringstream s;
+    s << in.rdbuf();
+    program = s.str();
+  }
+  const std::size_t m3 = program.find("S8000 M3");
+  ASSERT_NE(m3, std::string::npos);
+  std::ofstream(path("fit_no_spindle.ngc")) << program.replace(m3, 8, "S8000");
+  r = test::run_volcomp("selftune " + test::machine_path("mill3") + " " + path("fit_no_spindle.ngc") + " " +
+                        report_a + " -o " + next + files());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.out.find("the program cuts nothing: no feed move runs with the spindle on"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(next));
 }
 

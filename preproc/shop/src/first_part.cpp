@@ -69,6 +69,39 @@ double flag_outliers(std::vector<MatchedPoint>& points, double reach, double sig
   return sigma;
 }
 
+// Why a report point lies on no surface the program cuts: each likely cause tested in turn,
+// the unit on the whole report (most of its points on cut surfaces once scaled).
+std::string likely_cause(const CmmPoint& p, const std::vector<CmmPoint>& report, const MachinedSurface& surface) {
+  const ToolPath& path = surface.path();
+  const auto cutting = [](const PathSample& s) { return s.cutting; };
+  if (std::none_of(path.begin(), path.end(), cutting))
+    return "the program cuts nothing: no feed move runs with the spindle on (M3 or M4 before the cuts)";
+  if (std::none_of(path.begin(), path.end(), [](const PathSample& s) { return s.cutting && s.radius_mm > 0; }))
+    return "the tool has no diameter: give the program's T word and a tool table with its D (--tool-table)";
+  const auto share_on_cuts = [&](double scale) {
+    const auto on = std::count_if(report.begin(), report.end(), [&](const CmmPoint& q) {
+      return !surface.contacts(q.nominal * scale, kShapedWithin).empty();
+    });
+    return static_cast<double>(on) / static_cast<double>(report.size());
+  };
+  const double as_given = share_on_cuts(1.0);
+  for (const auto& [scale, unit] : {std::pair{25.4, "inches"}, std::pair{1 / 25.4, "millimetres"}})
+    if (const double share = share_on_cuts(scale); share >= 0.8 && share > as_given + 0.3)
+      return "read as " + std::string(unit) + ", " + std::to_string(static_cast<int>(share * 100)) +
+             " % of the report's points lie on cut surfaces (as given: " + std::to_string(static_cast<int>(as_given * 100)) +
+             " %): is the report's unit right?";
+  Eigen::Vector3d low = Eigen::Vector3d::Constant(1e300), high = -low;
+  for (const PathSample& s : path)
+    if (s.cutting) {
+      low = low.cwiseMin(s.tip - Eigen::Vector3d::Constant(s.radius_mm));
+      high = high.cwiseMax(s.tip + Eigen::Vector3d::Constant(s.radius_mm));
+    }
+  if ((p.nominal.array() < low.array() - 1.0).any() || (p.nominal.array() > high.array() + 1.0).any())
+    return "the point lies outside the region the program cuts: is the report in the part frame (the work offset "
+           "the program runs in), and for this program?";
+  return "no cut reaches it: is the report for this program?";
+}
+
 }  // namespace
 
 FormError form_error(const std::vector<CmmPoint>& points) {
@@ -100,8 +133,7 @@ FirstPart analyse_first_part(const machine::Model& model, std::istream& program,
     const std::optional<double> predicted = surface.deviation(p.nominal, p.normal);
     if (m.cuts.empty() || !predicted)
       throw std::runtime_error(where(p) + " is not on a surface " + setup.file + " cuts (no cut within " +
-                               std::to_string(options.surface.reach_mm) +
-                               " mm): is the report for this program, in the part frame, in the right units?");
+                               std::to_string(options.surface.reach_mm) + " mm): " + likely_cause(p, report, surface));
     m.predicted_mm = *predicted;
     part.points.push_back(std::move(m));
   }
