@@ -99,7 +99,7 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
   if (r < bottom) fail("LinuxCNC refuses R below Z");
 
   const Frame f = frame();
-  Position tool = take_move_start();  // where the tool is
+  Position tool = take_move_start(f, position_);  // where the tool is
   // A move to (to_x, to_y) in the plane, at height to_z; `swapped`: to where LinuxCNC 2.9's
   // G74/G84 sends it outside G17 (convert_cycle_g74_g84 passes the plane's coordinates to
   // cycle_feed in another order), while LinuxCNC's own position stays the intended one.

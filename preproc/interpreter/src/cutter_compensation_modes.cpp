@@ -56,9 +56,9 @@ void Interpreter::compensation_rules(const gcode::Block& block, const Words& w, 
                             "move; show it before G41/G42 or after G40");
 }
 
-Position Interpreter::take_move_start() {
-  if (!tool_elsewhere_) return position_;
-  const Position start = frame().program(*tool_elsewhere_);
+Position Interpreter::take_move_start(const Frame& in, const Position& otherwise) {
+  if (!tool_elsewhere_) return otherwise;
+  const Position start = in.program(*tool_elsewhere_);
   tool_elsewhere_.reset();
   return start;
 }
@@ -129,10 +129,11 @@ void Interpreter::set_compensation(const Words& w, int line, Effect& effect) {
 void Interpreter::compensated_move(const Words& w, Move& m, int line, Effect& effect) {
   if (inverse_time_)
     refuse(line, w.first_motion_offset(), "inverse time feed (G93) with cutter radius compensation is not translated");
-  const Position tool_at = take_move_start();
+  // The compensation works from the programmed start; the tool may be elsewhere (after G40).
+  const Position tool_at = take_move_start(m.frame, m.start);
   compensating(line, w.first_motion_offset(), effect, [&] {
-    if (m.kind == MoveKind::Arc) compensation_.arc(m, position_, tool_at, sequence_, own_);
-    else compensation_.straight(m, position_, tool_at, sequence_, own_);
+    if (m.kind == MoveKind::Arc) compensation_.arc(m, m.start, tool_at, sequence_, own_);
+    else compensation_.straight(m, m.start, tool_at, sequence_, own_);
   });
 }
 

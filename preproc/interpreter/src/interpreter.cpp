@@ -278,7 +278,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     words.insert(words.end(), effect.stop_words.begin(), effect.stop_words.end());
   }
   if (tool_elsewhere_ && w.find_m({60, 610}))  // LinuxCNC reads its position back after a tool change
-    position_ = take_move_start();
+    position_ = take_move_start(frame(), position_);
   effect.modal_motion = motion_;
   effect.inches = inches_;
   effect.incremental = incremental_;
@@ -394,17 +394,11 @@ void Interpreter::move(const Words& w, int line, Effect& effect) {
       refuse(line, w.first_motion_offset(),
              "cannot compensate the cutter radius from an unknown position: move every axis first, or give the start "
              "position (volcomp predistort --start)");
-    const Position programmed_start = m.start;
-    position_ = programmed_start;  // the compensation starts from the programmed point
     compensated_move(w, m, line, effect);
-    position_ = m.end;
     motion_words(w, m, effect);
     return;
   }
-  if (tool_elsewhere_) {  // the first move after G40 starts where the tool is
-    m.start = m.frame.program(*tool_elsewhere_);
-    tool_elsewhere_.reset();
-  }
+  m.start = take_move_start(m.frame, m.start);  // the first move after G40 starts where the tool is
   if (!end_known || (m.kind != MoveKind::Rapid && !start_known)) {
     if (m.kind != MoveKind::Rapid) {
       std::string missing;

@@ -162,8 +162,9 @@ class Interpreter {
   ModalState modal_state() const;
   void state_codes(const Words& w, int line, Effect& effect);
   std::string restore_text(const ModalState& saved) const;
-  // Where the next move starts: the current point, or where the tool was left (tool_elsewhere_).
-  Position take_move_start();
+  // Where the next move starts, in `in`: `otherwise` (the current point), or where the tool was
+  // left (tool_elsewhere_, which this clears).
+  Position take_move_start(const Frame& in, const Position& otherwise);
   static bool is_cycle(int motion) { return motion == 730 || motion == 740 || (motion >= 810 && motion <= 890); }
   // A canned cycle block (canned_cycles.cpp); `code_on_line`: the cycle's G code is written here.
   void cycle(const Words& w, int previous_motion, bool code_on_line, int line, Effect& effect);
