@@ -104,17 +104,9 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
   // G74/G84 sends it outside G17 (convert_cycle_g74_g84 passes the plane's coordinates to
   // cycle_feed in another order), while LinuxCNC's own position stays the intended one.
   auto add = [&](MoveKind kind, double to_x, double to_y, double to_z, bool swapped = false) {
-    Move m;
+    Move m = new_move(line, f);
     m.kind = kind;
-    m.line = line;
     m.start = tool;
-    m.known_start = known_;
-    m.frame = f;
-    m.tool_length_mm = tool_length_;
-    m.tool = tool_in_spindle_;
-    m.feed = feed_;
-    m.spindle_on = spindle_on_;
-    m.spindle_rpm = spindle_rpm_;
     m.end = position_;
     m.end[a] = to_x;
     m.end[b] = to_y;

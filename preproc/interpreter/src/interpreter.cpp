@@ -285,6 +285,21 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
   effect.arc_absolute = arc_absolute_;
 }
 
+Move Interpreter::new_move(int line, const Frame& in) const {
+  Move m;
+  m.line = line;
+  m.start = position_;
+  m.known_start = known_;
+  m.frame = in;
+  m.tool_length_mm = tool_length_;
+  m.tool = tool_in_spindle_;
+  m.inverse_time = inverse_time_;
+  m.feed = feed_;
+  m.spindle_on = spindle_on_;
+  m.spindle_rpm = spindle_rpm_;
+  return m;
+}
+
 Position Interpreter::end_point(const Words& w, int line) const {
   Position end = position_;
   const double scale = inches_ ? kInch : 1.0;
@@ -342,17 +357,7 @@ void Interpreter::move(const Words& w, int line, Effect& effect) {
                                        [static_cast<std::size_t>(coordinate_system_ - 1)]) +
                " is not known: pass --var FILE (LinuxCNC's parameter file) or set it with G10 L2");
 
-  Move m;
-  m.line = line;
-  m.start = position_;
-  m.known_start = known_;
-  m.frame = frame();
-  m.tool_length_mm = tool_length_;
-  m.tool = tool_in_spindle_;
-  m.inverse_time = inverse_time_;
-  m.feed = feed_;
-  m.spindle_on = spindle_on_;
-  m.spindle_rpm = spindle_rpm_;
+  Move m = new_move(line, frame());
   m.kind = motion_ == 0 ? MoveKind::Rapid : motion_ == 10 ? MoveKind::Line : MoveKind::Arc;
 
   if (g53) {

@@ -136,6 +136,8 @@ class Interpreter {
   void set_axis_offsets(const Words& w, int code, int line);  // G92, G92.1-G92.3, G52
   void go_home(const Words& w, int code, int line, Effect& effect);
   void move(const Words& w, int line, Effect& effect);
+  // A move of line `line` in frame `in` from the current point, with the modal state it runs in.
+  Move new_move(int line, const Frame& in) const;
   void motion_words(const Words& w, const Move& m, Effect& effect) const;  // replaced by the corrected moves
   // Cutter compensation (cutter_compensation_modes.cpp): G40/G41/G42 and what LinuxCNC refuses
   // while it is on; a compensated move; the moves it releases, sorted into this line's and others.
