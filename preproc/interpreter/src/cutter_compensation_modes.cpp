@@ -107,9 +107,11 @@ void Interpreter::set_compensation(const Words& w, int line, Effect& effect) {
     int tool = tool_in_spindle_;
     if (w.has('D')) {
       const double d = w.get('D');
-      tool = static_cast<int>(d + 0.5);
-      if (std::abs(tool - d) >= 0.0001) refuse(line, w['D'].offset, g_name(c->code) + " requires D word to be a whole number");
-      if (tool < 0) refuse(line, w['D'].offset, "negative D word (tool) with " + g_name(c->code));
+      const double nearest = std::floor(d + 0.5);  // LinuxCNC's is_near_int, without its int overflow
+      if (std::abs(nearest - d) >= 0.0001) refuse(line, w['D'].offset, g_name(c->code) + " requires D word to be a whole number");
+      if (nearest < 0) refuse(line, w['D'].offset, "negative D word (tool) with " + g_name(c->code));
+      if (nearest > 1e6) refuse(line, w['D'].offset, "D word (tool number) with " + g_name(c->code) + " out of range");
+      tool = static_cast<int>(nearest);
     } else if (tool < 0) {
       refuse(line, c->offset, g_name(c->code) + " without D takes the radius of the tool in the spindle, and the program "
                                                "has not loaded one (M6 or M61): give D (the tool number)");

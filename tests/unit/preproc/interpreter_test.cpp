@@ -158,6 +158,7 @@ TEST(Interpreter, RefusesWhatItCannotTranslateWithLineAndColumn) {
   EXPECT_NE(refusal(kStart + "G41.1 D1 F1 G1 X5\nG92 X0\n").find("test.ngc:4:1: error: cannot use G92 with cutter"),
             std::string::npos);
   EXPECT_NE(refusal(kStart + "G1 F1 D1 X5\n").find("D word without G41"), std::string::npos);
+  EXPECT_NE(refusal(kStart + "G41 D100000000000000000000 G1 X5\n").find("out of range"), std::string::npos);  // (the fuzzer's)
   EXPECT_NE(refusal(kStart + "G1 F10 G87 X1 Z-1 R1\n").find("test.ngc:3:8: error: G87: the back boring"), std::string::npos);
   EXPECT_NE(refusal(kStart + "G18 F10 G81 X1 Y-1 R1 @1\n").find("XY plane (G17) only"), std::string::npos);
   EXPECT_NE(refusal(kStart + "F10 G81 X1 Z-1\n").find("R (the retract plane) is missing"), std::string::npos);
