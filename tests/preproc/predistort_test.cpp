@@ -441,7 +441,7 @@ TEST(PredistortCli, BadInputNamesLineAndColumnAndLeavesTheOutputAlone) {
   const fs::path out = dir / "out.ngc";
   std::ofstream(out) << "OLD\n";
   const std::vector<std::pair<std::string, std::string>> cases{
-      {"G21 G90\nG0 X0 Y0 Z0\nG1 X1 E5\n", "bad.ngc:3:7: error: E word without G76"},
+      {"G21 G90\nG0 X0 Y0 Z0\nG1 X1 E5\n", "bad.ngc:3:7: error: E word without G70 or G76"},
       {"G21\nG0 X0 Y0 Z0\nG43 H9\n", "bad.ngc:3:5: error: tool 9 is not in the tool table"},
       {"G21\nG0 X0 Y0 Z0\nG1 X1 (unclosed\n", "bad.ngc:3:7"},
       {"G21\nG0 X0 Y0 Z0\nG41 D1 G1 X4 F100\n",  // tool 1: 10 mm

@@ -74,7 +74,8 @@ void Interpreter::take_released(std::vector<ReleasedMove>& out, Effect& effect) 
 void Interpreter::set_compensation(const Words& w, int line, Effect& effect) {
   const Words::Code* c = w.find_g({400, 410, 411, 420, 421});
   if (!c) {
-    if (w.has('D')) refuse(line, w['D'].offset, "D word without G41, G42, G41.1 or G42.1");
+    if (w.has('D') && !w.find_g({700, 710, 711, 712, 720, 721, 722}))  // (a lathe cycle's allowance)
+      refuse(line, w['D'].offset, "D word without G41, G42, G41.1, G42.1 or G70-G72");
     return;
   }
   for (char letter : {'D', 'L'})

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lathe_cycle.hpp"
 #include "words.hpp"
 #include "vc/gcode/evaluate.hpp"
 #include "vc/gcode/parser.hpp"
@@ -19,6 +20,7 @@ void Effect::clear() {
   stop_words.clear();
   g64_word = g64_p_word = g64_q_word = f_word = motion_code_word = -1;
   moved_as_written = false;
+  profile_subroutine.clear();
   after_tool_change_words.clear();
   dropped_words.clear();
   after_moves.clear();
@@ -44,6 +46,8 @@ Interpreter::Interpreter(Setup setup) : setup_(std::move(setup)) {
     known_ = kAllAxes;
   }
 }
+
+Interpreter::~Interpreter() = default;
 
 void Interpreter::refuse(int line, int offset, const std::string& message) const {
   throw LoadError({setup_.file, line, offset + 1}, message);
@@ -78,17 +82,7 @@ Position Interpreter::world_position() const { return frame().world(position_); 
 
 void Interpreter::set_world_position(const Position& world) { position_ = frame().program(world); }
 
-void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
-  effect.clear();
-  ++sequence_;
-  released_.clear();
-  if (block.percent) return;
-  if (block.o_word >= 0)
-    refuse(line, block.o_word,
-           "O-word control flow (subroutines, loops, conditions) is not translated: expand it in the "
-           "post-processor");
-
-  // Words, evaluated before this line's assignments take effect.
+Interpreter::Words Interpreter::evaluate(const gcode::Block& block, int line) const {
   Words w;
   for (int i = 0; i < static_cast<int>(block.words.size()); ++i) {
     const gcode::Word& word = block.words[static_cast<std::size_t>(i)];
@@ -110,11 +104,29 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     if (v.has) refuse(line, word.begin, std::string("word ") + word.letter + " appears twice on the line");
     v = {true, value, i, word.begin};
   }
+  return w;
+}
+
+void Interpreter::assign(const gcode::Block& block, int line) {
   try {
     gcode::apply_assignments(block, parameters_);
   } catch (const gcode::SyntaxError& e) {
     refuse(line, e.offset, e.what());
   }
+}
+
+void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
+  effect.clear();
+  ++sequence_;
+  released_.clear();
+  if (block.percent) return;
+  if (block.o_word >= 0)
+    refuse(line, block.o_word,
+           "O-word control flow (subroutines, loops, conditions) is not translated: expand it in the "
+           "post-processor");
+
+  const Words w = evaluate(block, line);  // before this line's assignments take effect
+  assign(block, line);
   effect.f_word = w['F'].index;
 
   // Codes this tool refuses, with the reason.
@@ -134,8 +146,6 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
                "corrected offline";
     else if (g == 50 || g == 51 || g == 52)
       reason = "splines (G5, G5.1, G5.2) are not translated: have the post-processor write G1/G2/G3";
-    else if (g >= 700 && g <= 722)
-      reason = "the lathe cycles G70-G72 are not translated: have the post-processor write the passes as G0/G1/G2/G3";
     else if (g == 70)
       reason = "lathe diameter mode (G7) is not translated: program radii (G8)";
     else if (g == 432 || g == 171 || g == 181 || g == 191)
@@ -146,6 +156,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
                                      580, 590, 591, 592, 593, 610, 611, 640, 800, 900, 901, 910, 410, 411, 420, 421,
                                      911, 920, 921, 922, 923, 520, 930, 940, 950, 960, 970, 980, 990,
                                      730, 740, 810, 820, 830, 840, 850, 860, 880, 890,
+                                     700, 710, 711, 712, 720, 721, 722,
                                      80};  // G8: lathe radius mode, LinuxCNC's default (G7 is refused)
     if (std::find(std::begin(kKnown), std::end(kKnown), g) == std::end(kKnown))
       refuse(line, c.offset, "unknown G code " + g_name(g));
@@ -158,7 +169,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     const bool known = m <= 9 || m == 19 || m == 30 || (m >= 70 && m <= 73) || (m >= 48 && m <= 53) || (m >= 60 && m <= 68) || (m >= 100 && m <= 199);
     if (!known) refuse(line, c.offset, "unknown M code M" + std::to_string(m));
   }
-  if (w.has('E')) refuse(line, w['E'].offset, "E word without G76");
+  if (w.has('E') && !w.find_g({700})) refuse(line, w['E'].offset, "E word without G70 or G76");
   for (char c : {'U', 'V', 'W'})
     if (w.has(c)) refuse(line, w[c].offset, std::string("the ") + c + " axis is not supported (machines have X Y Z A B C)");
   if (block.block_delete) {
@@ -243,7 +254,8 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     for (int i = 0; i < kAxes; ++i) parameters_[base + i] = world[i];
   }
   // G80 with a motion code on the same line: the motion code is the mode (rs274 reads it so).
-  const Words::Code* motion = w.find_g({0, 10, 20, 30, 730, 740, 810, 820, 830, 840, 850, 860, 880, 890});
+  const Words::Code* motion =
+      w.find_g({0, 10, 20, 30, 730, 740, 810, 820, 830, 840, 850, 860, 880, 890, 700, 710, 711, 712, 720, 721, 722});
   if (!motion) motion = w.find_g({800});
   const int previous_motion = motion_;
   if (motion) motion_ = motion->code;
@@ -251,6 +263,8 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     // their axis words are not motion
   } else if (is_cycle(motion_)) {
     cycle(w, previous_motion, motion != nullptr, line, effect);
+  } else if (is_lathe_cycle(motion_)) {
+    lathe_cycle(w, line, effect);
   } else {
     move(w, line, effect);
     if (effect.translate || effect.moved_as_written) cycle_start_z_known_ = false;  // LinuxCNC's cycle_il_flag
@@ -424,7 +438,7 @@ void Interpreter::move(const Words& w, int line, Effect& effect) {
 void Interpreter::motion_words(const Words& w, const Move& m, Effect& effect) const {
   effect.translate = true;
   for (char c : {'X', 'Y', 'Z', 'A', 'B', 'C', 'I', 'J', 'K', 'R', '@', '^'})
-    if (w.has(c)) effect.motion_words.push_back(w[c].index);
+    if (w.has(c) && w[c].index >= 0) effect.motion_words.push_back(w[c].index);  // (< 0: a cycle's own move)
   if (m.kind == MoveKind::Arc && w.has('P')) effect.motion_words.push_back(w['P'].index);
 }
 

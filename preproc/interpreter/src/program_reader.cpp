@@ -173,10 +173,42 @@ bool ProgramReader::execute_next(std::string& raw, Origin& origin, gcode::Block&
     interpreter_.set_file(file_names_[static_cast<std::size_t>(origin.file)]);
     interpreter_.execute(block, origin.line, effect);
     apply_original_assignments(origin);
+    if (!effect.profile_subroutine.empty()) read_profile(effect, origin);
     inject(interpreter_.take_restore_lines(), origin);  // M72
     if (effect.program_end) ended_ = true;
     return true;
   }
+}
+
+void ProgramReader::read_profile(Effect& effect, const Origin& cycle) {
+  // LinuxCNC calls the subroutine and reads its lines until it returns (interp_g7x.cc).
+  const std::size_t level = frames_.size();
+  const std::array<double, gcode::Parameters::kLocals> no_arguments{};
+  call(effect.profile_subroutine, &no_arguments, false, 1, cycle, 0);
+  std::string raw;
+  Origin origin = cycle;
+  gcode::Block block;
+  while (frames_.size() > level) {
+    if (!read_line(raw, origin)) {
+      if (!skipping_to_.empty())
+        refuse(cycle, 0, "the file ends before subroutine " + o_name(skipping_to_) +
+                             " (the profile of this lathe cycle) is defined (nor is " + skipping_to_ +
+                             ".ngc on the subroutine path)");
+      refuse(origin, 0, "the file ends inside subroutine " + o_name(frames_.back().name));
+    }
+    try {
+      pin_line_number(raw, origin.line, interpreter_.parameters());
+      gcode::parse_block(raw, block);
+    } catch (const gcode::SyntaxError& e) {
+      if (!skipping_to_.empty()) continue;
+      refuse(origin, e.offset, e.what());
+    }
+    if (control(block, origin)) continue;
+    interpreter_.set_file(file_names_[static_cast<std::size_t>(origin.file)]);
+    interpreter_.profile_block(block, origin.line);
+  }
+  interpreter_.set_file(file_names_[static_cast<std::size_t>(cycle.file)]);
+  interpreter_.finish_lathe_cycle(effect);
 }
 
 bool ProgramReader::trailing_percent(std::string& raw, Origin& origin, gcode::Block& block, Effect& effect) {

@@ -9,7 +9,9 @@
 #pragma once
 
 #include <array>
+#include <complex>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -78,12 +80,17 @@ struct Effect {
     std::string codes;
   };
   std::vector<AfterMove> after_moves;
+  // A lathe cycle (G70-G72): the subroutine (O number) whose lines draw the profile. They are
+  // read, not run: ProgramReader passes them to Interpreter::profile_block, then the cycle's
+  // passes are added to this line's moves by Interpreter::finish_lathe_cycle.
+  std::string profile_subroutine;
   void clear();
 };
 
 class Interpreter {
  public:
   explicit Interpreter(Setup setup);
+  ~Interpreter();
   Interpreter(const Interpreter&) = delete;  // its parameters point back at it
   Interpreter& operator=(const Interpreter&) = delete;
 
@@ -105,6 +112,10 @@ class Interpreter {
   // Subroutine calls (ProgramReader): M70-M73 keep a saved state per call level, and M73's is
   // restored on return. The restoring G-code lines LinuxCNC would run (after an M72 line, a
   // return) are to be run as the next lines of the flat program: take_restore_lines().
+  // A lathe cycle's profile (see Effect::profile_subroutine): each line of the subroutine that
+  // is not control flow, then the end of the subroutine (the cycle's passes into `effect`).
+  void profile_block(const gcode::Block& block, int line);
+  void finish_lathe_cycle(Effect& effect);
   void enter_call_level();
   void leave_call_level();
   std::string take_restore_lines();
@@ -121,6 +132,8 @@ class Interpreter {
 
  private:
   struct Words;  // the block's evaluated words
+  Words evaluate(const gcode::Block& block, int line) const;
+  void assign(const gcode::Block& block, int line);  // the block's parameter assignments
   // The modal state as the program reads it: #<_x>, #<_metric>, #5420... (state_parameters.cpp).
   struct StateView final : gcode::StateParameters {
     explicit StateView(const Interpreter& i) : interpreter(i) {}
@@ -170,6 +183,13 @@ class Interpreter {
   static bool is_cycle(int motion) { return motion == 730 || motion == 740 || (motion >= 810 && motion <= 890); }
   // A canned cycle block (canned_cycles.cpp); `code_on_line`: the cycle's G code is written here.
   void cycle(const Words& w, int previous_motion, bool code_on_line, int line, Effect& effect);
+  // Lathe cycles G70-G72 (lathe_cycles.cpp): the rapid to X Z, then the profile is read.
+  struct LatheCycle;
+  static bool is_lathe_cycle(int motion) { return motion >= 700 && motion <= 722; }
+  void lathe_cycle(const Words& w, int line, Effect& effect);
+  // One move of a lathe cycle (G0, G1, G2, G3 as code x10) in the XZ plane, in program units.
+  void lathe_move(int code, std::complex<double> end, std::complex<double> center, int line, int offset,
+                  Effect& effect);
   Position world_position() const;
   Frame frame_for(int system) const;  // frame() in coordinate system 1..9
   void set_world_position(const Position& world);  // after a frame change, as LinuxCNC does
@@ -179,6 +199,7 @@ class Interpreter {
 
   Setup setup_;
   StateView state_view_{*this};
+  std::unique_ptr<LatheCycle> lathe_;  // a lathe cycle reading its profile
   std::optional<ToolTable> tools_;  // the tool table as G10 L1 leaves it (none: no table given)
   gcode::Parameters parameters_;
   // Modal state, LinuxCNC's defaults at program start.

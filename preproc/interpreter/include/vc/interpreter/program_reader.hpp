@@ -84,6 +84,8 @@ class ProgramReader {
   // G-code lines LinuxCNC runs by itself (M72's and M73's restoring): read before the file's next.
   void inject(const std::string& lines, const Origin& origin);
   bool read_line(std::string& raw, Origin& origin);
+  // A lathe cycle's profile: its subroutine's lines read into the interpreter, then the passes.
+  void read_profile(Effect& effect, const Origin& cycle);
   bool trailing_percent(std::string& raw, Origin& origin, gcode::Block& block, Effect& effect);
   // Acts on an O word or M98/M99; false if the line is to be executed as G-code.
   bool control(const gcode::Block& block, const Origin& origin);
