@@ -34,6 +34,10 @@ void print_first_part(const shop::FirstPart& part, std::ostream& report) {
          << "their neighbours by " << um(part.robust_sigma_mm) << " (robust sigma: noise and short waves); "
          << part.outliers << " outliers left out; short-wave part below the cut-off RMS " << um(part.short_wave_rms_mm)
          << "\n";
+  if (!part.left_out.empty())
+    report << "  " << part.left_out.size() << " points left out, on no surface the program cuts:\n";
+  for (const shop::LeftOutPoint& p : part.left_out)
+    report << "  left out " << p.point.id << " (report line " << p.point.line << "): " << p.reason << "\n";
   for (const shop::MatchedPoint& m : part.points)
     if (m.outlier)
       report << "  outlier " << m.point.id << " (report line " << m.point.line << "): deviation "

@@ -10,6 +10,7 @@
 // shop would run it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -163,7 +164,7 @@ TEST_F(VirtualShop, ReportsThatDoNotFitTheProgramAreRefused) {
   test::CommandResult r = test::run_volcomp("selftune " + test::machine_path("mill3") + " " + path("fit_p1.ngc") + " " +
                                             report_b + " -o " + next + files());
   EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.out.find("is not on a surface"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("report points lie on a surface"), std::string::npos) << r.out;  // too few: refused
   EXPECT_NE(r.out.find("for this program?"), std::string::npos) << r.out;  // the cause tested: not spindle, tool, unit
   EXPECT_NE(r.out.find(report_b), std::string::npos) << r.out;
   // Deviations in um under a header that says mm.
@@ -228,6 +229,39 @@ TEST_F(VirtualShop, ReportsThatDoNotFitTheProgramAreRefused) {
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.out.find("the program cuts nothing: no feed move runs with the spindle on"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(next));
+}
+
+// A report always has points near edges or on faces the program does not cut: they are left
+// out and listed with the reason, and the part is tuned from the others.
+TEST_F(VirtualShop, PointsOnNoCutSurfaceAreLeftOutWithTheReason) {
+  run("predistort " + test::machine_path("mill3") + " " + part("part_a.ngc") + " -o " + path("extra_p1.ngc") + files());
+  const std::string report = path("extra_r1.csv");
+  machine_and_measure(path("extra_p1.ngc"), part("part_a_points.csv"), report, 43);
+  std::string text;
+  {
+    std::ifstream in(report);
+    std::stringstream s;
+    s << in.rdbuf();
+    text = s.str();
+  }
+  // Two more points: one far outside the part, one 5 mm above the top face (uncut air).
+  const std::size_t header = text.find("id,");
+  ASSERT_NE(header, std::string::npos);
+  const std::string columns = text.substr(header, text.find('\n', header) - header);
+  ASSERT_EQ(columns.rfind("id,x[mm],y[mm],z[mm],i,j,k,", 0), 0u) << columns;
+  const int lines = static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+  text += "EXTRA_FAR,900,0,-5,1,0,0,0.0\nEXTRA_AIR,0,0,5,0,0,1,0.0\n";
+  const std::string extended = path("extra_r1_more.csv");
+  std::ofstream(extended) << text;
+  const test::CommandResult r = test::run_volcomp("selftune " + test::machine_path("mill3") + " " +
+                                                  path("extra_p1.ngc") + " " + extended + " -o " + path("extra_p2.ngc") + files());
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("2 points left out, on no surface the program cuts"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("left out EXTRA_FAR (report line " + std::to_string(lines + 1) + "): outside the region"),
+            std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("left out EXTRA_AIR (report line " + std::to_string(lines + 2) + "): no cut reaches it"),
+            std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(path("extra_p2.ngc")));
 }
 
 }  // namespace

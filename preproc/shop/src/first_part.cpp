@@ -1,8 +1,8 @@
 #include "vc/shop/first_part.hpp"
 
 #include <algorithm>
-#include <optional>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -69,9 +69,10 @@ double flag_outliers(std::vector<MatchedPoint>& points, double reach, double sig
   return sigma;
 }
 
-// Why a report point lies on no surface the program cuts: each likely cause tested in turn,
-// the unit on the whole report (most of its points on cut surfaces once scaled).
-std::string likely_cause(const CmmPoint& p, const std::vector<CmmPoint>& report, const MachinedSurface& surface) {
+// Why no report point might lie on a cut surface, for the whole report: each likely cause
+// tested in turn (the program cuts nothing, the tool has no diameter, the report's unit: most
+// of its points on cut surfaces once scaled). Nothing if none of them holds.
+std::optional<std::string> report_wide_cause(const std::vector<CmmPoint>& report, const MachinedSurface& surface) {
   const ToolPath& path = surface.path();
   const auto cutting = [](const PathSample& s) { return s.cutting; };
   if (std::none_of(path.begin(), path.end(), cutting))
@@ -90,15 +91,23 @@ std::string likely_cause(const CmmPoint& p, const std::vector<CmmPoint>& report,
       return "read as " + std::string(unit) + ", " + std::to_string(static_cast<int>(share * 100)) +
              " % of the report's points lie on cut surfaces (as given: " + std::to_string(static_cast<int>(as_given * 100)) +
              " %): is the report's unit right?";
+  return std::nullopt;
+}
+
+// Why this point lies on no cut surface, when the report as a whole fits the program.
+std::string point_cause(const CmmPoint& p, const MachinedSurface& surface, bool near_cut) {
+  if (near_cut)
+    return "a cut passes within reach, but the line along the point's normal meets no cut surface: on an edge, or "
+           "the normal is not the face's";
   Eigen::Vector3d low = Eigen::Vector3d::Constant(1e300), high = -low;
-  for (const PathSample& s : path)
+  for (const PathSample& s : surface.path())
     if (s.cutting) {
       low = low.cwiseMin(s.tip - Eigen::Vector3d::Constant(s.radius_mm));
       high = high.cwiseMax(s.tip + Eigen::Vector3d::Constant(s.radius_mm));
     }
   if ((p.nominal.array() < low.array() - 1.0).any() || (p.nominal.array() > high.array() + 1.0).any())
-    return "the point lies outside the region the program cuts: is the report in the part frame (the work offset "
-           "the program runs in), and for this program?";
+    return "outside the region the program cuts: is the report in the part frame (the work offset the program runs "
+           "in), and for this program?";
   return "no cut reaches it: is the report for this program?";
 }
 
@@ -121,6 +130,7 @@ FirstPart analyse_first_part(const machine::Model& model, std::istream& program,
   simulate(model, program, setup, options.simulation, [&](const PathSample& s) { part.path.push_back(s); });
   const MachinedSurface surface(part.path, options.surface);
 
+  std::optional<std::optional<std::string>> whole_report;  // report_wide_cause, once asked
   for (const CmmPoint& p : report) {
     if (!p.deviation_mm) throw std::runtime_error(where(p) + " has no deviation");
     if (std::abs(*p.deviation_mm) > options.largest_deviation_mm)
@@ -131,11 +141,31 @@ FirstPart analyse_first_part(const machine::Model& model, std::istream& program,
     m.point = p;
     m.cuts = surface.contacts(p.nominal, kShapedWithin);
     const std::optional<double> predicted = surface.deviation(p.nominal, p.normal);
-    if (m.cuts.empty() || !predicted)
-      throw std::runtime_error(where(p) + " is not on a surface " + setup.file + " cuts (no cut within " +
-                               std::to_string(options.surface.reach_mm) + " mm): " + likely_cause(p, report, surface));
+    if (m.cuts.empty() || !predicted) {
+      if (!whole_report) whole_report = report_wide_cause(report, surface);
+      if (*whole_report)
+        throw std::runtime_error(where(p) + " is not on a surface " + setup.file + " cuts: " + **whole_report);
+      part.left_out.push_back({p, point_cause(p, surface, !m.cuts.empty())});
+      continue;
+    }
     m.predicted_mm = *predicted;
     part.points.push_back(std::move(m));
+  }
+  // Points on no cut surface are left out, with the reason; too many of them say that the
+  // report does not belong to the program.
+  const auto total = static_cast<double>(report.size());
+  const auto needed = std::max<std::size_t>(options.minimum_points,
+                                            static_cast<std::size_t>(std::ceil(options.minimum_matched_share * total)));
+  if (part.points.size() < needed) {
+    std::string message = "only " + std::to_string(part.points.size()) + " of " + std::to_string(report.size()) +
+                          " report points lie on a surface " + setup.file + " cuts (needed: " + std::to_string(needed) +
+                          ", " + std::to_string(static_cast<int>(options.minimum_matched_share * 100)) +
+                          " % of the report and at least " + std::to_string(options.minimum_points) + "); not on one:";
+    const std::size_t shown = std::min<std::size_t>(part.left_out.size(), 5);
+    for (std::size_t k = 0; k < shown; ++k)
+      message += "\n  " + where(part.left_out[k].point) + ": " + part.left_out[k].reason;
+    if (part.left_out.size() > shown) message += "\n  ... and " + std::to_string(part.left_out.size() - shown) + " more";
+    throw std::runtime_error(message);
   }
 
   // Outliers first (against their neighbours, twice: a first outlier hides the next one),

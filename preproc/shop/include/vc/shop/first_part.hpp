@@ -2,8 +2,10 @@
 // seeds/000 ch. I fig. 1.12: part i machined with program Pi, its deviations Ri measured).
 //
 // Each report point is matched to the cuts of Pi that shaped it (on the path the machine
-// model predicts for Pi); a point far from every cut surface means the report does not
-// belong to the program (another part, another frame, wrong units) and is refused.
+// model predicts for Pi). A point on no cut surface (an edge, a face the program does not
+// cut) is left out with the reason; a report with too few points left, or whose points miss
+// for a reason that concerns all of them (nothing cut, no tool diameter, the unit), does not
+// belong to the program and is refused.
 // Then what the tables should not absorb is separated (seeds/000 ch. V, section 5.6): the
 // deviations are low-pass filtered over the points of each face (waves shorter than the
 // cut-off: vibration marks), and points that differ from their neighbours on the face far
@@ -11,7 +13,9 @@
 // left out. Noise is averaged by the strategies (the local radius, the least squares).
 #pragma once
 
+#include <cstddef>
 #include <istream>
+#include <string>
 #include <vector>
 
 #include "vc/shop/cmm.hpp"
@@ -28,6 +32,15 @@ struct FirstPartOptions {
   double outlier_sigmas = 4.0;       // ... and is an outlier beyond this many robust sigmas
   double outlier_floor_mm = 0.003;   // ... and beyond this (noise alone is never an outlier)
   double largest_deviation_mm = 1.0; // a larger deviation means a wrong unit, not a machine
+  // Points on no cut surface are left out; fewer matched than this share of the report, or
+  // than this count, and the report is refused (it does not belong to the program).
+  double minimum_matched_share = 0.8;
+  std::size_t minimum_points = 10;
+};
+
+struct LeftOutPoint {
+  CmmPoint point;
+  std::string reason;  // why it lies on no cut surface
 };
 
 struct MatchedPoint {
@@ -42,12 +55,13 @@ struct MatchedPoint {
 struct FirstPart {
   ToolPath path;               // the program's path as the model predicts it
   std::vector<MatchedPoint> points;
+  std::vector<LeftOutPoint> left_out;  // on no cut surface (edges, uncut faces), with the reason
   int outliers = 0;
   double short_wave_rms_mm = 0.0;  // of the points kept
   double robust_sigma_mm = 0.0;    // of the points' differences from their neighbours
 };
 
-// Throws std::runtime_error (naming the point and its report line) for a report that does
+// Throws std::runtime_error (naming points and their report lines) for a report that does
 // not fit the program.
 FirstPart analyse_first_part(const machine::Model& model, std::istream& program, const interpreter::Setup& setup,
                              const std::vector<CmmPoint>& report, const FirstPartOptions& options);
