@@ -17,6 +17,9 @@ struct Probe {
   int joint;
   int table;  // index into the tuned model's tables
   std::vector<tables::ErrorSymbol> columns;
+  bool periodic;  // a full turn: the last node is the first (one unknown)
+  int nodes;
+  int distinct_nodes() const { return periodic ? nodes - 1 : nodes; }
 };
 
 // The components to tune on each joint.
@@ -56,9 +59,12 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
     const char letter = model.axes[static_cast<std::size_t>(joint)].letter;
     machine::BoundTable bound{zero_table(model, joint, options.nodes, columns, tuning_table_name(letter)), {}};
     bound.joint[0] = joint;
+    const bool periodic = bound.table.grid()[0].periodic;
+    if (periodic && options.nodes < 3)
+      throw std::invalid_argument("--nodes must be at least 3 for the full-turn axis " + std::string(1, letter));
     tuned.axes[static_cast<std::size_t>(joint)].tables.push_back(static_cast<int>(tuned.tables.size()));
     tuned.axes[static_cast<std::size_t>(joint)].moved_by |= 1u << joint;
-    probes.push_back({joint, static_cast<int>(tuned.tables.size()), columns});
+    probes.push_back({joint, static_cast<int>(tuned.tables.size()), columns, periodic, options.nodes});
     tuned.tables.push_back(std::move(bound));
   }
   struct Unknown {
@@ -68,13 +74,22 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
   std::vector<Eigen::Index> first_unknown;  // of each probe
   for (std::size_t p = 0; p < probes.size(); ++p) {
     first_unknown.push_back(static_cast<Eigen::Index>(unknowns.size()));
-    for (int node = 0; node < options.nodes; ++node)
+    for (int node = 0; node < probes[p].distinct_nodes(); ++node)
       for (std::size_t c = 0; c < probes[p].columns.size(); ++c)
         unknowns.push_back({static_cast<int>(p), node, static_cast<int>(c)});
   }
+  // The unknown of a table value (a periodic table's nodes counted round the turn).
   const auto index = [&](int probe, int node, int column) {
-    return first_unknown[static_cast<std::size_t>(probe)] +
-           node * static_cast<Eigen::Index>(probes[static_cast<std::size_t>(probe)].columns.size()) + column;
+    const Probe& pr = probes[static_cast<std::size_t>(probe)];
+    node %= pr.distinct_nodes();
+    if (node < 0) node += pr.distinct_nodes();
+    return first_unknown[static_cast<std::size_t>(probe)] + node * static_cast<Eigen::Index>(pr.columns.size()) + column;
+  };
+  // The table rows an unknown sets: its node, and the last one too for a periodic table's first.
+  const auto set_unknown = [&](tables::ErrorTable& t, const Unknown& x, double value) {
+    t.set_value(x.node, x.column, value);
+    const Probe& pr = probes[static_cast<std::size_t>(x.probe)];
+    if (pr.periodic && x.node == 0) t.set_value(pr.nodes - 1, x.column, value);
   };
 
   // One equation per kept point: sensitivities by a small value at one node at a time.
@@ -96,9 +111,9 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
       tables::ErrorTable& t = tuned.tables[static_cast<std::size_t>(probes[static_cast<std::size_t>(x.probe)].table)].table;
       const double step = probes[static_cast<std::size_t>(x.probe)].columns[static_cast<std::size_t>(x.column)].quantity() ==
                                   tables::Quantity::Length ? 1e-3 : 1e-5;
-      t.set_value(x.node, x.column, step);
+      set_unknown(t, x, step);
       const Eigen::Vector3d moved = machine::tool_pose(tuned, machine::Machine::Real, q, s0.tool_length_mm).tip_mm;
-      t.set_value(x.node, x.column, 0.0);
+      set_unknown(t, x, 0.0);
       a(k, u) = m.point.normal.dot(moved - base) / step;
     }
     b[k] = m.filtered_mm - m.predicted_mm;
@@ -122,10 +137,11 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
   for (Eigen::Index u = 0; u < cols; ++u)
     if (normal(u, u) < 1e-12 * mean_diagonal) ++fit.unobservable;
   normal.diagonal().array() += options.regularisation * mean_diagonal;
-  // Second differences of scaled values along each table column: x[i-1] - 2 x[i] + x[i+1].
+  // Second differences of scaled values along each table column: x[i-1] - 2 x[i] + x[i+1]
+  // (round the turn on a periodic table).
   for (std::size_t p = 0; p < probes.size(); ++p)
     for (std::size_t c = 0; c < probes[p].columns.size(); ++c)
-      for (int node = 1; node + 1 < options.nodes; ++node) {
+      for (int node = probes[p].periodic ? 0 : 1; node + 1 < options.nodes; ++node) {
         const Eigen::Index i[3] = {index(static_cast<int>(p), node - 1, static_cast<int>(c)),
                                    index(static_cast<int>(p), node, static_cast<int>(c)),
                                    index(static_cast<int>(p), node + 1, static_cast<int>(c))};

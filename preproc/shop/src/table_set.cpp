@@ -68,9 +68,10 @@ tables::ErrorTable zero_table(const machine::Model& model, int joint, int nodes,
   tables::GridVariable g;
   g.axis = axis.letter;
   g.rotary = axis.type == machine::AxisType::Rotary;
-  g.periodic = false;
   for (int i = 0; i < nodes; ++i)
     g.nodes.push_back(axis.travel_min + (axis.travel_max - axis.travel_min) * i / (nodes - 1));
+  // A full turn is periodic (tables/README.md): its first and last rows must be equal.
+  g.periodic = g.rotary && std::abs(std::abs(g.nodes.back() - g.nodes.front()) - 360.0) <= 1e-9;
   std::vector<tables::Column> cols;
   for (const auto& s : columns) cols.push_back({s, {path}});
   return tables::ErrorTable(path, {g}, cols, std::vector<double>(static_cast<std::size_t>(nodes) * columns.size(), 0.0),

@@ -11,6 +11,7 @@
 #include "vc/machine/forward.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/shop/cmm.hpp"
+#include "vc/shop/selftune_model.hpp"
 #include "vc/shop/table_set.hpp"
 #include "vc/tables/source_error.hpp"
 
@@ -221,6 +222,49 @@ TEST_F(Files, PerturbedMachineIsTheModelPlusItsPerturbationTables) {
     const double ratio = (e_true - e_model).norm() / std::max(e_model.norm(), 1e-6);
     EXPECT_LT(ratio, 0.5 + 0.02);
   }
+}
+
+// The model strategy on a full-turn rotary axis (MC-300's C, 0-360 deg): the tuned table is
+// periodic (its last row is its first, one unknown), the machine file written with it loads,
+// and a deviation that goes round with C is explained.
+TEST_F(Files, ModelFitOnAFullTurnAxisWritesAPeriodicTableThatLoads) {
+  const machine::Model model = machine::load_machine(test::machine_path("mc300"));
+  const int c = model.joint_of('C');
+  ASSERT_GE(c, 0);
+  shop::FirstPart part;
+  for (int k = 0; k <= 72; ++k) {  // every 5 deg, each sample a cut with a matched point
+    shop::PathSample s;
+    s.joints = machine::Joints::Zero(model.joint_count());
+    s.joints[model.joint_of('X')] = -300;
+    s.joints[model.joint_of('Y')] = -160;
+    s.joints[model.joint_of('Z')] = -150;
+    s.joints[c] = 5.0 * k;
+    s.cutting = true;
+    part.path.push_back(s);
+  }
+  for (int k = 0; k < 72; ++k) {
+    shop::MatchedPoint m;
+    m.point.id = std::to_string(k);
+    m.point.normal = Eigen::Vector3d::UnitX();
+    m.cuts = {shop::Contact{k, 0.0, 0.0}};
+    m.filtered_mm = 0.004 * std::cos(5.0 * k * M_PI / 180.0);  // 4 um, once round
+    part.points.push_back(m);
+  }
+  shop::ModelOptions options;
+  options.deviations = {"EXC", "EYC"};
+  options.nodes = 9;
+  const shop::ModelFit fit = shop::fit_tables(model, part, options);
+  EXPECT_EQ(fit.parameters, 2 * 8);  // 9 nodes round the turn: 8 distinct
+  EXPECT_LT(fit.rms_after_mm, 0.2 * fit.rms_before_mm);
+  const shop::ExtraTable* table_c = nullptr;
+  for (const auto& t : fit.tables)
+    if (t.file_name == shop::tuning_table_name('C')) table_c = &t;
+  ASSERT_NE(table_c, nullptr);
+  ASSERT_TRUE(table_c->table.grid()[0].periodic);
+  for (int column = 0; column < 2; ++column)
+    EXPECT_EQ(table_c->table.value(0, column), table_c->table.value(8, column));
+  const std::string written = shop::write_machine_with_tables(model, (dir_ / "periodic").string(), fit.tables, "test");
+  EXPECT_NO_THROW(machine::load_machine(written));
 }
 
 }  // namespace
