@@ -17,6 +17,7 @@
 #include "vc/shop/selftune_local.hpp"
 #include "vc/shop/selftune_model.hpp"
 #include "vc/tables/source_error.hpp"
+#include "vc/tables/symbols.hpp"
 
 namespace vc::cli {
 namespace {
@@ -105,11 +106,28 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
   shop::ModelOptions fit_options{args.deviations, args.nodes, args.regularisation, args.smoothness};
   const shop::ModelFit fit = shop::fit_tables(model, part, fit_options);
   const std::string comment = "volcomp selftune (model) from " + args.report;
-  const std::string machine_out = shop::write_machine_with_tables(model, args.tables_out, fit.tables, comment);
+  const std::string machine_out =
+      shop::write_machine_with_tables(model, args.tables_out, fit.tables, comment, fit.locations);
   report << "  model: " << fit.parameters << " unknowns (" << fit.unobservable << " not seen by this part) from "
          << fit.points << " points; deviation left unexplained by the model RMS " << um(fit.rms_before_mm) << " -> "
-         << um(fit.rms_after_mm) << " after the fit; largest table change " << um(fit.largest_change_mm) << ", "
-         << format_fixed(fit.largest_change_rad * 1e6, 3) << " urad\n  updated machine file: " << machine_out << "\n";
+         << um(fit.rms_after_mm) << " after the fit; largest change " << um(fit.largest_change_mm) << ", "
+         << format_fixed(fit.largest_change_rad * 1e6, 3) << " urad\n";
+  // What the part determines: the resolution of each deviation (1: the points alone fix it,
+  // 0: only the ridge and the smoothness do, it stays at the model's value).
+  std::string shares, unseen;
+  for (const auto& s : fit.seen) {
+    shares += " " + s.symbol + " " + format_fixed(s.share, 2);
+    if (s.share < 0.05) unseen += " " + s.symbol;
+  }
+  report << "  resolution (1: determined by the points alone, 0: not seen):" << shares << "\n"
+         << "  not seen by this part (< 0.05: kept at the model; restrict with --deviations):"
+         << (unseen.empty() ? " none" : unseen) << "\n";
+  for (const shop::LocationValue& v : fit.locations) {
+    const char letter = model.axes[static_cast<std::size_t>(v.joint)].letter;
+    report << "  " << tables::ErrorSymbol{v.component, letter, true}.name() << " = "
+           << (v.component < 3 ? um(v.value) : format_fixed(v.value * 1e6, 3) + " urad") << "\n";
+  }
+  report << "  updated machine file: " << machine_out << "\n";
   const machine::Model tuned = machine::load_machine(machine_out);  // as the module will read it
   if (args.compensated) {
     report << "  load it in volkins; the program stays as it is\n";

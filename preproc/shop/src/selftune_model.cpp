@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <stdexcept>
@@ -22,26 +23,54 @@ struct Probe {
   int distinct_nodes() const { return periodic ? nodes - 1 : nodes; }
 };
 
-// The components to tune on each joint.
-std::map<int, std::vector<tables::ErrorSymbol>> selected(const machine::Model& model, const ModelOptions& options) {
-  std::map<int, std::vector<tables::ErrorSymbol>> by_joint;
+// One unknown: a tuning table's value (probe, node, column), or a location error of an axis
+// line (joint, component 0..5: X Y Z in mm, A B C in rad).
+struct Unknown {
+  int probe = -1, node = 0, column = 0;
+  int joint = -1, component = 0;
+  bool location() const { return joint >= 0; }
+};
+
+struct Selection {
+  std::map<int, std::vector<tables::ErrorSymbol>> tables;  // component errors, by joint
+  std::vector<tables::ErrorSymbol> locations;
+};
+
+// What to tune: the given symbols, or all six component errors of every axis and the
+// location errors of every rotary axis (its line's position and tilt: what a 5-axis part
+// shows most).
+Selection selected(const machine::Model& model, const ModelOptions& options) {
+  Selection out;
   if (options.deviations.empty()) {
-    for (int j = 0; j < model.joint_count(); ++j)
-      for (int c = 0; c < 6; ++c) by_joint[j].push_back({c, model.axes[static_cast<std::size_t>(j)].letter, false});
-    return by_joint;
+    for (int j = 0; j < model.joint_count(); ++j) {
+      const machine::Axis& axis = model.axes[static_cast<std::size_t>(j)];
+      for (int c = 0; c < 6; ++c) out.tables[j].push_back({c, axis.letter, false});
+      if (axis.type == machine::AxisType::Rotary)
+        for (int c = 0; c < 6; ++c) out.locations.push_back({c, axis.letter, true});
+    }
+    return out;
   }
   for (const std::string& name : options.deviations) {
     const auto symbol = tables::parse_error_symbol(name);
-    if (!symbol || symbol->location)
-      throw std::invalid_argument(name + " is not a component error (EXX, EYX, ..., ECC): location errors are "
-                                         "tuned through the linear shape of a component");
+    if (!symbol)
+      throw std::invalid_argument(name + " is not an error symbol (component errors EXX, EYX, ..., ECC; location "
+                                         "errors EX0C, EA0C, ...)");
     const int j = model.joint_of(symbol->axis);
     if (j < 0) throw std::invalid_argument(name + ": the machine has no axis " + std::string(1, symbol->axis));
-    auto& list = by_joint[j];
+    if (symbol->location) {
+      if (std::none_of(out.locations.begin(), out.locations.end(), [&](const auto& s) { return s.name() == symbol->name(); }))
+        out.locations.push_back(*symbol);
+      continue;
+    }
+    auto& list = out.tables[j];
     if (std::none_of(list.begin(), list.end(), [&](const auto& s) { return s.component == symbol->component; }))
       list.push_back(*symbol);
   }
-  return by_joint;
+  return out;
+}
+
+double& location_value(machine::Axis& axis, int component) {
+  return component < 3 ? axis.location_mm[component] : axis.location_rad[component - 3];
 }
 
 }  // namespace
@@ -52,10 +81,11 @@ std::string tuning_table_name(char axis) {
 
 ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const ModelOptions& options) {
   if (options.nodes < 2 || options.nodes > 101) throw std::invalid_argument("--nodes must be in [2, 101]");
+  const Selection selection = selected(model, options);
   // Probe tables (all zero) on a copy of the model: the unknowns are their values.
   machine::Model tuned = model;
   std::vector<Probe> probes;
-  for (const auto& [joint, columns] : selected(model, options)) {
+  for (const auto& [joint, columns] : selection.tables) {
     const char letter = model.axes[static_cast<std::size_t>(joint)].letter;
     machine::BoundTable bound{zero_table(model, joint, options.nodes, columns, tuning_table_name(letter)), {}};
     bound.joint[0] = joint;
@@ -67,17 +97,15 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
     probes.push_back({joint, static_cast<int>(tuned.tables.size()), columns, periodic, options.nodes});
     tuned.tables.push_back(std::move(bound));
   }
-  struct Unknown {
-    int probe, node, column;
-  };
-  std::vector<Unknown> unknowns;            // probe by probe, node by node, column by column
+  std::vector<Unknown> unknowns;            // probe by probe, node by node, column by column; then locations
   std::vector<Eigen::Index> first_unknown;  // of each probe
   for (std::size_t p = 0; p < probes.size(); ++p) {
     first_unknown.push_back(static_cast<Eigen::Index>(unknowns.size()));
     for (int node = 0; node < probes[p].distinct_nodes(); ++node)
       for (std::size_t c = 0; c < probes[p].columns.size(); ++c)
-        unknowns.push_back({static_cast<int>(p), node, static_cast<int>(c)});
+        unknowns.push_back({static_cast<int>(p), node, static_cast<int>(c), -1, 0});
   }
+  for (const tables::ErrorSymbol& s : selection.locations) unknowns.push_back({-1, 0, 0, model.joint_of(s.axis), s.component});
   // The unknown of a table value (a periodic table's nodes counted round the turn).
   const auto index = [&](int probe, int node, int column) {
     const Probe& pr = probes[static_cast<std::size_t>(probe)];
@@ -85,14 +113,26 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
     if (node < 0) node += pr.distinct_nodes();
     return first_unknown[static_cast<std::size_t>(probe)] + node * static_cast<Eigen::Index>(pr.columns.size()) + column;
   };
-  // The table rows an unknown sets: its node, and the last one too for a periodic table's first.
-  const auto set_unknown = [&](tables::ErrorTable& t, const Unknown& x, double value) {
-    t.set_value(x.node, x.column, value);
+  const auto quantity = [&](const Unknown& x) {
+    return x.location() ? (x.component < 3 ? tables::Quantity::Length : tables::Quantity::Angle)
+                        : probes[static_cast<std::size_t>(x.probe)].columns[static_cast<std::size_t>(x.column)].quantity();
+  };
+  // Sets an unknown on the tuned model: a table's rows (a periodic table's first is also its
+  // last), or a location error (the axis line's placement follows).
+  const auto set_unknown = [&](const Unknown& x, double value) {
+    if (x.location()) {
+      machine::Axis& axis = tuned.axes[static_cast<std::size_t>(x.joint)];
+      location_value(axis, x.component) = value;
+      axis.real_base = machine::line_placement(axis.pole_mm, axis.location_mm, axis.location_rad);
+      return;
+    }
     const Probe& pr = probes[static_cast<std::size_t>(x.probe)];
+    tables::ErrorTable& t = tuned.tables[static_cast<std::size_t>(pr.table)].table;
+    t.set_value(x.node, x.column, value);
     if (pr.periodic && x.node == 0) t.set_value(pr.nodes - 1, x.column, value);
   };
 
-  // One equation per kept point: sensitivities by a small value at one node at a time.
+  // One equation per kept point: sensitivities by a small value of one unknown at a time.
   std::vector<const MatchedPoint*> kept;
   for (const MatchedPoint& m : part.points)
     if (!m.outlier) kept.push_back(&m);
@@ -108,12 +148,12 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
     const Eigen::Vector3d base = machine::tool_pose(tuned, machine::Machine::Real, q, s0.tool_length_mm).tip_mm;
     for (Eigen::Index u = 0; u < cols; ++u) {
       const Unknown& x = unknowns[static_cast<std::size_t>(u)];
-      tables::ErrorTable& t = tuned.tables[static_cast<std::size_t>(probes[static_cast<std::size_t>(x.probe)].table)].table;
-      const double step = probes[static_cast<std::size_t>(x.probe)].columns[static_cast<std::size_t>(x.column)].quantity() ==
-                                  tables::Quantity::Length ? 1e-3 : 1e-5;
-      set_unknown(t, x, step);
+      const double step = quantity(x) == tables::Quantity::Length ? 1e-3 : 1e-5;
+      const double before =
+          x.location() ? location_value(tuned.axes[static_cast<std::size_t>(x.joint)], x.component) : 0.0;
+      set_unknown(x, before + step);
       const Eigen::Vector3d moved = machine::tool_pose(tuned, machine::Machine::Real, q, s0.tool_length_mm).tip_mm;
-      set_unknown(t, x, 0.0);
+      set_unknown(x, before);
       a(k, u) = m.point.normal.dot(moved - base) / step;
     }
     b[k] = m.filtered_mm - m.predicted_mm;
@@ -121,22 +161,20 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
 
   // Unknowns in um and urad (their effects on the tip are then of one size), a ridge relative
   // to the mean diagonal (what the part cannot see stays near zero) and second-difference
-  // smoothness.
+  // smoothness along the tables.
   ModelFit fit;
   fit.points = static_cast<int>(rows);
   fit.parameters = static_cast<int>(cols);
   Eigen::VectorXd scale(cols);
-  for (Eigen::Index u = 0; u < cols; ++u) {
-    const Unknown& x = unknowns[static_cast<std::size_t>(u)];
-    scale[u] = probes[static_cast<std::size_t>(x.probe)].columns[static_cast<std::size_t>(x.column)].quantity() ==
-                       tables::Quantity::Length ? 1e-3 : 1e-6;
-  }
-  const Eigen::MatrixXd as = a * scale.asDiagonal();
-  Eigen::MatrixXd normal = as.transpose() * as;
-  const double mean_diagonal = cols ? normal.diagonal().mean() : 0.0;
   for (Eigen::Index u = 0; u < cols; ++u)
-    if (normal(u, u) < 1e-12 * mean_diagonal) ++fit.unobservable;
-  normal.diagonal().array() += options.regularisation * mean_diagonal;
+    scale[u] = quantity(unknowns[static_cast<std::size_t>(u)]) == tables::Quantity::Length ? 1e-3 : 1e-6;
+  const Eigen::MatrixXd as = a * scale.asDiagonal();
+  const Eigen::MatrixXd data = as.transpose() * as;
+  const double mean_diagonal = cols ? data.diagonal().mean() : 0.0;
+  for (Eigen::Index u = 0; u < cols; ++u)
+    if (data(u, u) < 1e-12 * mean_diagonal) ++fit.unobservable;
+  Eigen::MatrixXd prior = Eigen::MatrixXd::Zero(cols, cols);
+  prior.diagonal().array() += options.regularisation * mean_diagonal;
   // Second differences of scaled values along each table column: x[i-1] - 2 x[i] + x[i+1]
   // (round the turn on a periodic table).
   for (std::size_t p = 0; p < probes.size(); ++p)
@@ -147,13 +185,42 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
                                    index(static_cast<int>(p), node + 1, static_cast<int>(c))};
         const double w[3] = {1, -2, 1};
         for (int r = 0; r < 3; ++r)
-          for (int s = 0; s < 3; ++s) normal(i[r], i[s]) += options.smoothness * mean_diagonal * w[r] * w[s];
+          for (int s = 0; s < 3; ++s) prior(i[r], i[s]) += options.smoothness * mean_diagonal * w[r] * w[s];
       }
-  const Eigen::VectorXd xs = normal.ldlt().solve(as.transpose() * b);
+  const Eigen::LDLT<Eigen::MatrixXd> solver(data + prior);
+  const Eigen::VectorXd xs = solver.solve(as.transpose() * b);
   Eigen::VectorXd x(cols);
   for (Eigen::Index u = 0; u < cols; ++u) x[u] = xs[u] * scale[u];
   fit.rms_before_mm = rows ? b.norm() / std::sqrt(static_cast<double>(rows)) : 0.0;
   fit.rms_after_mm = rows ? (b - a * x).norm() / std::sqrt(static_cast<double>(rows)) : 0.0;
+
+  // How much of each deviation the part determines: the diagonal of the resolution matrix
+  // (data + prior)^-1 data, 1 where the points alone fix an unknown, 0 where only the prior
+  // does, averaged over the deviation's unknowns.
+  const Eigen::VectorXd resolution = solver.solve(data).diagonal();
+  std::map<std::string, std::pair<double, int>> by_symbol;
+  for (Eigen::Index u = 0; u < cols; ++u) {
+    const Unknown& k = unknowns[static_cast<std::size_t>(u)];
+    const tables::ErrorSymbol symbol =
+        k.location() ? tables::ErrorSymbol{k.component, model.axes[static_cast<std::size_t>(k.joint)].letter, true}
+                     : probes[static_cast<std::size_t>(k.probe)].columns[static_cast<std::size_t>(k.column)];
+    auto& [sum, count] = by_symbol[symbol.name()];
+    sum += std::clamp(resolution[u], 0.0, 1.0);
+    ++count;
+  }
+  for (const auto& [name, value] : by_symbol) fit.seen.push_back({name, value.first / value.second});
+  std::sort(fit.seen.begin(), fit.seen.end(), [](const auto& l, const auto& r) { return l.share > r.share; });
+
+  // The location errors: the model's plus the change.
+  for (Eigen::Index u = 0; u < cols; ++u) {
+    const Unknown& k = unknowns[static_cast<std::size_t>(u)];
+    if (!k.location()) continue;
+    machine::Axis axis = model.axes[static_cast<std::size_t>(k.joint)];
+    const double before = location_value(axis, k.component);
+    fit.locations.push_back({k.joint, k.component, before + x[u]});
+    (k.component < 3 ? fit.largest_change_mm : fit.largest_change_rad) =
+        std::max(k.component < 3 ? fit.largest_change_mm : fit.largest_change_rad, std::abs(x[u]));
+  }
 
   // The tables: an earlier tuning of the axis (same file name) plus this one.
   for (std::size_t p = 0; p < probes.size(); ++p) {

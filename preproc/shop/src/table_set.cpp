@@ -9,6 +9,9 @@
 #include <stdexcept>
 #include <toml++/toml.h>
 
+#include "vc/tables/symbols.hpp"
+#include "vc/tables/units.hpp"
+
 namespace vc::shop {
 namespace {
 
@@ -30,6 +33,64 @@ struct AxisSection {
   std::string chain;  // "workpiece_chain" or "tool_chain"
   int header_line;    // 0-based
 };
+
+// Where the first line of an axis section's sub-tables ([chain.x], [[chain.x]]) or the next
+// section is, before the comments that lead into it: where lines of the axis's own go.
+int end_of_axis_keys(const std::vector<std::string>& lines, int header_line) {
+  int at = header_line + 1;
+  while (at < static_cast<int>(lines.size()) && trimmed(lines[static_cast<std::size_t>(at)]).rfind('[', 0) != 0) ++at;
+  while (at > header_line + 1) {
+    const std::string t = trimmed(lines[static_cast<std::size_t>(at - 1)]);
+    if (!t.empty() && t[0] != '#') break;
+    --at;
+  }
+  return at;
+}
+
+// A location error of the axis `letter`: the value of its key replaced (in the key's unit,
+// the old value kept in the comment), or a key added to the axis's location table (created
+// if the axis has none), in um or arcsec.
+void write_location(const LocationValue& v, char letter, const std::string& chain, const toml::table& axis,
+                    int header_line, const std::vector<std::string>& lines, std::map<int, std::string>& replaced,
+                    std::map<int, std::vector<std::string>, std::greater<>>& insertions, const std::string& comment) {
+  const std::string symbol = tables::ErrorSymbol{v.component, letter, true}.name();
+  const toml::table* location = axis["location"].as_table();
+  int last_key_line = -1;
+  if (location) {
+    for (auto&& [key, node] : *location) {
+      const int line = static_cast<int>(key.source().begin.line) - 1;
+      last_key_line = std::max(last_key_line, line);
+      const std::string k(key.str());
+      const std::size_t underscore = k.rfind('_');
+      if (underscore == std::string::npos || k.substr(0, underscore) != symbol) continue;
+      const auto unit = tables::find_unit(k.substr(underscore + 1));
+      if (!unit) throw std::runtime_error("unknown unit in " + k);
+      std::string& text = replaced.count(line) ? replaced[line] : (replaced[line] = lines[static_cast<std::size_t>(line)]);
+      const auto begin = static_cast<std::size_t>(node.source().begin.column) - 1;
+      const auto end = static_cast<std::size_t>(node.source().end.column) - 1;
+      if (node.source().end.line != node.source().begin.line || end > text.size() || begin >= end)
+        throw std::runtime_error("line " + std::to_string(line + 1) + ": cannot rewrite the value of " + k);
+      const std::string old = text.substr(begin, end - begin);
+      text = text.substr(0, begin) + number(std::round(v.value / unit->to_core * 1e6) / 1e6 + 0.0) + text.substr(end);
+      text += (text.find('#') == std::string::npos ? "   # " : "; ") + comment + ", was " + old;
+      return;
+    }
+  }
+  const bool length = v.component < 3;
+  const std::string line = symbol + (length ? "_um = " : "_arcsec = ") +
+                           number(std::round(v.value * (length ? 1e3 : 648000.0 / M_PI) * 1e6) / 1e6 + 0.0) +
+                           "   # " + comment;
+  if (location && last_key_line >= 0) {
+    insertions[last_key_line + 1].push_back(line);
+  } else if (location) {
+    insertions[static_cast<int>(location->source().begin.line)].push_back(line);  // after its header
+  } else {  // a new location table; several values share it
+    const std::string header = "[" + chain + ".location]";
+    std::vector<std::string>& block = insertions[end_of_axis_keys(lines, header_line)];
+    if (std::find(block.begin(), block.end(), header) == block.end()) block.push_back(header);
+    block.push_back(line);
+  }
+}
 
 }  // namespace
 
@@ -79,7 +140,8 @@ tables::ErrorTable zero_table(const machine::Model& model, int joint, int nodes,
 }
 
 std::string write_machine_with_tables(const machine::Model& model, const std::string& folder,
-                                      const std::vector<ExtraTable>& extras, const std::string& comment) {
+                                      const std::vector<ExtraTable>& extras, const std::string& comment,
+                                      const std::vector<LocationValue>& locations) {
   const fs::path source(model.path);
   const fs::path base = source.parent_path();
   std::vector<std::string> lines;
@@ -93,6 +155,7 @@ std::string write_machine_with_tables(const machine::Model& model, const std::st
   const toml::table root = toml::parse_file(model.path);  // the model loaded from it: it parses
 
   std::map<int, std::string> replaced_lines;                // 0-based line -> new text
+  std::map<int, std::vector<std::string>, std::greater<>> insertions;  // before 0-based line, last first
   std::vector<AxisSection> sections;
   std::vector<std::pair<char, std::string>> existing;      // (axis, file name) already listed
   for (const char* chain : {"workpiece_chain", "tool_chain"}) {
@@ -102,6 +165,9 @@ std::string write_machine_with_tables(const machine::Model& model, const std::st
       const toml::table& axis = *element.as_table();
       const char letter = axis["axis"].value_or(std::string("?"))[0];
       sections.push_back({letter, chain, static_cast<int>(element.source().begin.line) - 1});
+      for (const LocationValue& v : locations)
+        if (model.axes[static_cast<std::size_t>(v.joint)].letter == letter)
+          write_location(v, letter, chain, axis, sections.back().header_line, lines, replaced_lines, insertions, comment);
       const toml::array* list = axis["tables"].as_array();
       if (!list) continue;
       for (const toml::node& t : *list) {
@@ -130,7 +196,6 @@ std::string write_machine_with_tables(const machine::Model& model, const std::st
 
   // New tables go at the end of their axis's section: before the next header that is not
   // one of its sub-tables, and before the comments that lead into that header.
-  std::map<int, std::vector<std::string>, std::greater<>> insertions;
   for (const ExtraTable& e : extras) {
     const char letter = model.axes[static_cast<std::size_t>(e.joint)].letter;
     write_table_csv(e.table, (out_dir / e.file_name).string(),

@@ -267,5 +267,61 @@ TEST_F(Files, ModelFitOnAFullTurnAxisWritesAPeriodicTableThatLoads) {
   EXPECT_NO_THROW(machine::load_machine(written));
 }
 
+// Location errors of a rotary axis among the unknowns: a part cut with the C axis's line 10 um
+// off in X (the true machine) shows it at every C position; the fit finds it, says the part
+// sees it, and the machine file it writes carries it: the existing key's value replaced (its
+// comment kept), a key the file did not have added.
+TEST_F(Files, ModelFitFindsARotaryAxisLocationErrorAndWritesIt) {
+  const machine::Model model = machine::load_machine(test::machine_path("mc300"));
+  const int c = model.joint_of('C');
+  machine::Model truth = model;
+  machine::Axis& true_c = truth.axes[static_cast<std::size_t>(c)];
+  true_c.location_mm[0] += 0.010;
+  true_c.real_base = machine::line_placement(true_c.pole_mm, true_c.location_mm, true_c.location_rad);
+  shop::FirstPart part;
+  for (int k = 0; k <= 36; ++k) {
+    shop::PathSample s;
+    s.joints = machine::Joints::Zero(model.joint_count());
+    s.joints[model.joint_of('X')] = -300;
+    s.joints[model.joint_of('Y')] = -160;
+    s.joints[model.joint_of('Z')] = -150;
+    s.joints[c] = 10.0 * k;
+    s.tool_length_mm = 100;
+    part.path.push_back(s);
+  }
+  for (int k = 0; k < 36; ++k) {
+    const machine::Joints& q = part.path[static_cast<std::size_t>(k)].joints;
+    shop::MatchedPoint m;
+    m.point.normal = k % 2 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+    m.cuts = {shop::Contact{k, 0.0, 0.0}};
+    const Eigen::Vector3d shift = machine::tool_pose(truth, machine::Machine::Real, q, 100).tip_mm -
+                                  machine::tool_pose(model, machine::Machine::Real, q, 100).tip_mm;
+    m.filtered_mm = m.point.normal.dot(shift);
+    part.points.push_back(m);
+  }
+  shop::ModelOptions options;
+  options.deviations = {"EX0C", "EY0C"};
+  const shop::ModelFit fit = shop::fit_tables(model, part, options);
+  ASSERT_EQ(fit.locations.size(), 2u);
+  for (const shop::LocationValue& v : fit.locations) {
+    EXPECT_EQ(v.joint, c);
+    EXPECT_NEAR(v.value, v.component == 0 ? model.axes[static_cast<std::size_t>(c)].location_mm[0] + 0.010 : 0.0, 0.0003)
+        << v.component;
+  }
+  ASSERT_EQ(fit.seen.size(), 2u);
+  for (const auto& seen : fit.seen) EXPECT_GT(seen.share, 0.9) << seen.symbol;
+  EXPECT_LT(fit.rms_after_mm, 0.05 * fit.rms_before_mm);
+
+  const std::string written = shop::write_machine_with_tables(model, (dir_ / "located").string(), {}, "selftune", fit.locations);
+  const machine::Model loaded = machine::load_machine(written);
+  EXPECT_NEAR(loaded.axes[static_cast<std::size_t>(c)].location_mm[0], fit.locations[0].value, 1e-6);  // written to 1 nm
+  EXPECT_NEAR(loaded.axes[static_cast<std::size_t>(c)].location_mm[1], fit.locations[1].value, 1e-6);
+  std::ifstream in(written);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("# dxCB = 0.0 * e40: B-C non-intersection; selftune, was 0.0"), std::string::npos) << text;
+  EXPECT_NE(text.find("EY0C_um = "), std::string::npos);
+  EXPECT_NE(text.find("EC0C_arcsec = 5.0"), std::string::npos);  // the others as they were
+}
+
 }  // namespace
 }  // namespace vc

@@ -3,14 +3,17 @@
 //
 // Unknowns: for each tuned component error (EXX, EYX, ... of each axis) its values at
 // `nodes` equally spaced positions over the axis's travel, linearly interpolated (a low-order
-// shape; a linear shape of a straightness is a squareness). Each kept report point k, cut at
+// shape; a linear shape of a straightness is a squareness; a full turn is periodic), and the
+// location errors of the rotary axes' lines (EX0C ... EC0C). Each kept report point k, cut at
 // joints q_k, gives one equation
 //     n_k . (d tip(q_k) / d p) dp = filtered deviation_k - deviation the current model predicts
 // (the model predicts no deviation for a program pre-distorted with it). Least squares with
 // columns scaled to unit norm, a ridge (regularisation) for what the part cannot see, and a
 // penalty on second differences along each table (smoothness).
-// The result is one table per axis, "selftune_<axis>.csv", summed with the measured tables;
-// an earlier tuning of the same name is carried over and added to.
+// The result is one table per axis, "selftune_<axis>.csv", summed with the measured tables
+// (an earlier tuning of the same name is carried over and added to), and the new location
+// values. How much of each deviation the part determines is the resolution matrix's diagonal
+// (1: the points fix it, 0: only the ridge and the smoothness do).
 #pragma once
 
 #include <string>
@@ -22,7 +25,9 @@
 namespace vc::shop {
 
 struct ModelOptions {
-  std::vector<std::string> deviations;  // component errors to tune, e.g. EXX,EYX; empty: all of every axis
+  // Deviations to tune, e.g. EXX,EYX,EX0C; empty: the six component errors of every axis and
+  // the location errors of every rotary axis.
+  std::vector<std::string> deviations;
   int nodes = 5;
   double regularisation = 1e-3;
   double smoothness = 1e-2;
@@ -30,6 +35,12 @@ struct ModelOptions {
 
 struct ModelFit {
   std::vector<ExtraTable> tables;
+  std::vector<LocationValue> locations;  // tuned location errors: the model's plus the change
+  struct Seen {
+    std::string symbol;  // EXX, EX0C, ...
+    double share;        // 0..1: how much of it the part determines (resolution)
+  };
+  std::vector<Seen> seen;  // best seen first
   int points = 0, parameters = 0, unobservable = 0;
   double rms_before_mm = 0.0, rms_after_mm = 0.0;  // of the equations' right-hand side and residual
   double largest_change_mm = 0.0, largest_change_rad = 0.0;

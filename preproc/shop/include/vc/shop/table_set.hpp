@@ -19,16 +19,26 @@ struct ExtraTable {
   tables::ErrorTable table;  // core units (mm, rad)
 };
 
+// A location error of an axis line to write into the machine file.
+struct LocationValue {
+  int joint = 0;
+  int component = 0;  // 0..5: X Y Z (mm), A B C (rad)
+  double value = 0.0;
+};
+
 // Writes a table as CSV: positions in mm or deg, translations in um, rotations in urad.
 void write_table_csv(const tables::ErrorTable& table, const std::string& path,
                      const std::vector<std::string>& comments);
 
 // Writes `folder`/<machine file name> and the extra tables beside it; returns the machine
 // file's path. A table already listed under the same axis with the same file name (an
-// earlier tuning) is replaced by the extra one. Throws std::runtime_error if the machine
-// file cannot be read or written.
+// earlier tuning) is replaced by the extra one. `locations` replace the values of their
+// keys in the axis's location table (in the key's unit, the comment kept and the old value
+// added to it), or are added to it (in um or arcsec). Throws std::runtime_error if the
+// machine file cannot be read or written.
 std::string write_machine_with_tables(const machine::Model& model, const std::string& folder,
-                                      const std::vector<ExtraTable>& extras, const std::string& comment);
+                                      const std::vector<ExtraTable>& extras, const std::string& comment,
+                                      const std::vector<LocationValue>& locations = {});
 
 // An empty table (all zero) over the travel of `joint` with `nodes` equally spaced
 // positions and the given error columns, linear interpolation.
