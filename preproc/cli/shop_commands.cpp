@@ -92,11 +92,14 @@ int run_perturb(const PerturbArgs& args, std::ostream& report) {
     throw std::runtime_error("need 0 <= --low <= --high <= 2");
   const machine::Model model = machine::load_machine(args.machine);
   const std::vector<shop::ExtraTable> extras = shop::perturbation_tables(model, args.low, args.high, args.seed);
+  const std::vector<shop::LocationValue> locations = shop::perturbation_locations(model, args.low, args.high, args.seed);
   const std::string written = shop::write_machine_with_tables(
       model, args.folder, extras,
-      "virtual shop: the true machine's tables are off by " + format_number(args.low * 100) + "-" +
-          format_number(args.high * 100) + " % (volcomp perturb, seed " + std::to_string(args.seed) + ")");
-  report << "volcomp perturb: " << written << " (" << extras.size() << " perturbation tables)\n";
+      "virtual shop: the true machine's tables and location errors are off by " + format_number(args.low * 100) + "-" +
+          format_number(args.high * 100) + " % (volcomp perturb, seed " + std::to_string(args.seed) + ")",
+      locations);
+  report << "volcomp perturb: " << written << " (" << extras.size() << " perturbation tables, " << locations.size()
+         << " location errors changed)\n";
   return 0;
 }
 

@@ -53,7 +53,12 @@ namespace vc::shop {
 // same grid holding f(x) times its values, where f is smooth along the table's first grid
 // variable, f = s (a + b sin(pi t + phi)), t in [0, 1] over the grid, with its magnitude in
 // [low, high] (e.g. 0.2 .. 0.5: the true errors are 20-50 % off the measured ones), the sign
-// s, the phase phi and a, b drawn per column from `seed`.
+// s, the phase phi and a, b drawn per column from `seed` (on a full turn, sin(2 pi t + phi):
+// a periodic table stays periodic).
 std::vector<ExtraTable> perturbation_tables(const machine::Model& model, double low, double high, unsigned seed);
+
+// ... and its location errors: each non-zero one off by a share in [low, high] of itself,
+// the sign drawn per value from `seed`.
+std::vector<LocationValue> perturbation_locations(const machine::Model& model, double low, double high, unsigned seed);
 
 }  // namespace vc::shop
