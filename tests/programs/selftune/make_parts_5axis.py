@@ -1,0 +1,167 @@
+#!/usr/bin/env python3
+"""Writes the 5-axis test parts of the self-tuning proof (tests/preproc/selftune_test.cpp,
+VirtualShop5Axis) for the MC-300 (table-table, B about +Y on the bed, C about -Z on B), run
+in the tcp world: X Y Z are the tool tip in the part frame (the machine file's [fixture]
+frame; ../mc300.var has zero offsets), B C the table's angles. T1 = 10 mm flat end mill,
+100 mm long (../mc300.tbl).
+
+A 3+2 pocket: the table turned to B C and held there, a rectangular pocket milled into the
+plane square to the tool: the floor by a raster of the flat end, the walls by one pass of
+the tool's side around them (climb milling), the full depth in one pass. Its CMM plan: the
+floor on a grid 2 mm inside the walls (normal: the tool axis), the walls at three heights
+(normals into the pocket), 7 mm from the corners (which the tool rounds to R5).
+
+  pocket_32_a: B-45 C120, 60 x 40, 8 deep, centred on the part zero
+  pocket_32_b: B-25 C235, 50 x 50, 6 deep, centred 30 mm off it (another shape and pose)
+
+The tool axis in the part frame for B C is R_C(C)^T R_B(B)^T z with R_B the rotation about +Y
+and R_C about -Z (checked against `volcomp simulate`, which writes it). Before writing,
+checks (assertions): every floor point lies under the flat end of a raster pass at the floor
+depth, every wall point 5 mm (the radius) from the wall pass's axis, and the raster covers
+the floor (stepover below the diameter).
+
+Run: python3 make_parts_5axis.py (writes pocket_32_a.ngc, pocket_32_a_points.csv,
+pocket_32_b.ngc, pocket_32_b_points.csv beside itself). Standard library only,
+deterministic."""
+import math
+import os
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+RADIUS = 5.0
+STEPOVER = 6.0
+SAFE = 25.0    # retract distance above the pocket's top, along the tool axis
+FEED = 1000.0
+PLUNGE = 200.0
+CORNER = 7.0   # wall points stay this far from the pocket's corners (rounded to the tool radius, 5)
+
+
+def rot_y(a):
+    c, s = math.cos(a), math.sin(a)
+    return [[c, 0, s], [0, 1, 0], [-s, 0, c]]
+
+
+def rot_z(a):
+    c, s = math.cos(a), math.sin(a)
+    return [[c, -s, 0], [s, c, 0], [0, 0, 1]]
+
+
+def mul(a, b):
+    return [[sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+
+
+def add(*vs):
+    return tuple(sum(c) for c in zip(*vs))
+
+
+def scale(k, v):
+    return tuple(k * c for c in v)
+
+
+def dot(a, b):
+    return sum(x * y for x, y in zip(a, b))
+
+
+def cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def unit(v):
+    n = math.sqrt(dot(v, v))
+    return tuple(c / n for c in v)
+
+
+def frame(b_deg, c_deg):
+    """Tool axis t (tip into the spindle) and two directions u, v in the plane square to it."""
+    m = mul(rot_y(math.radians(b_deg)), rot_z(-math.radians(c_deg)))  # part -> machine
+    t = (m[2][0], m[2][1], m[2][2])  # third row: machine z in the part frame
+    u = unit(add((1.0, 0.0, 0.0), scale(-t[0], t)))
+    v = cross(t, u)
+    return t, u, v
+
+
+def fmt(x):
+    return f"{x:.4f}"
+
+
+def write_part(name, title, b_deg, c_deg, centre, half_u, half_v, depth):
+    t, u, v = frame(b_deg, c_deg)
+    at = lambda a, b, h: add(centre, scale(a, u), scale(b, v), scale(-h, t))  # h: depth below the top
+    lines = ["%", f"({title})",
+             "(tcp world: X Y Z are the tool tip in the part frame; written by make_parts_5axis.py)",
+             "G21 G90 G17 G40 G49 G54 G94", "T1 M6", "G43 H1", "S8000 M3"]
+    top = at(0, 0, -SAFE)
+    lines.append(f"G0 X{fmt(top[0])} Y{fmt(top[1])} Z{fmt(top[2])} B{fmt(b_deg)} C{fmt(c_deg)}")
+    # Floor: raster along u at the floor depth.
+    rows = []
+    b = -half_v + RADIUS
+    while b < half_v - RADIUS - 1e-9:
+        rows.append(b)
+        b += STEPOVER
+    rows.append(half_v - RADIUS)
+    assert all(r2 - r1 <= 2 * RADIUS - 1 for r1, r2 in zip(rows, rows[1:])), "the raster leaves ridges"
+    a0, a1 = -half_u + RADIUS, half_u - RADIUS
+    start = at(a0, rows[0], -2)
+    lines.append(f"G0 X{fmt(start[0])} Y{fmt(start[1])} Z{fmt(start[2])}")
+    p = at(a0, rows[0], depth)
+    lines.append(f"G1 X{fmt(p[0])} Y{fmt(p[1])} Z{fmt(p[2])} F{PLUNGE:.0f}")
+    floor_passes = []
+    for k, row in enumerate(rows):
+        a_from, a_to = (a0, a1) if k % 2 == 0 else (a1, a0)
+        p = at(a_to, row, depth)
+        lines.append(f"G1 X{fmt(p[0])} Y{fmt(p[1])} Z{fmt(p[2])} F{FEED:.0f}")
+        floor_passes.append((row, min(a_from, a_to), max(a_from, a_to)))
+        if k + 1 < len(rows):
+            q = at(a_to, rows[k + 1], depth)
+            lines.append(f"G1 X{fmt(q[0])} Y{fmt(q[1])} Z{fmt(q[2])}")
+    # Walls: one pass of the side around the pocket, climb milling (clockwise seen from the spindle).
+    corners = [(half_u - RADIUS, -half_v + RADIUS), (-half_u + RADIUS, -half_v + RADIUS),
+               (-half_u + RADIUS, half_v - RADIUS), (half_u - RADIUS, half_v - RADIUS)]
+    for a, b in corners + corners[:1]:
+        p = at(a, b, depth)
+        lines.append(f"G1 X{fmt(p[0])} Y{fmt(p[1])} Z{fmt(p[2])}")
+    p = at(corners[0][0], corners[0][1], -SAFE)
+    lines += [f"G0 X{fmt(p[0])} Y{fmt(p[1])} Z{fmt(p[2])}", "M5", "M2", "%"]
+    with open(os.path.join(HERE, name + ".ngc"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+    # CMM plan.
+    points = []
+    n_u, n_v = int(2 * (half_u - 2) // 6) + 1, int(2 * (half_v - 2) // 6) + 1
+    for i in range(n_u):
+        for j in range(n_v):
+            a = -half_u + 2 + i * (2 * (half_u - 2)) / (n_u - 1)
+            b = -half_v + 2 + j * (2 * (half_v - 2)) / (n_v - 1)
+            # under the flat end of a raster pass (or of the wall pass, at the same depth)
+            assert any(abs(b - row) <= RADIUS and lo - RADIUS <= a <= hi + RADIUS for row, lo, hi in floor_passes)
+            points.append(("FL", at(a, b, depth), t))
+    for h in (2.0, depth / 2, depth - 2.0):
+        for sign_u in (1, -1):  # walls u = +-half_u, normals into the pocket
+            n = int((2 * (half_v - CORNER)) // 5) + 1
+            for j in range(n):
+                b = -half_v + CORNER + j * (2 * (half_v - CORNER)) / (n - 1)
+                assert abs(b) <= half_v - RADIUS  # across from the wall pass, not in a corner's fillet
+                points.append(("WU" + ("+" if sign_u > 0 else "-"), at(sign_u * half_u, b, h), scale(-sign_u, u)))
+        for sign_v in (1, -1):
+            n = int((2 * (half_u - CORNER)) // 5) + 1
+            for i in range(n):
+                a = -half_u + CORNER + i * (2 * (half_u - CORNER)) / (n - 1)
+                assert abs(a) <= half_u - RADIUS
+                points.append(("WV" + ("+" if sign_v > 0 else "-"), at(a, sign_v * half_v, h), scale(-sign_v, v)))
+    with open(os.path.join(HERE, name + "_points.csv"), "w") as f:
+        f.write(f"# {title}: CMM plan written by make_parts_5axis.py\n")
+        f.write("# FL: floor (normal: the tool axis); WU+ WU- WV+ WV-: walls at three heights, normals into the pocket\n")
+        f.write("# nominal points on the cut surfaces (part frame), unit normals out of the material\n")
+        f.write("id,x[mm],y[mm],z[mm],i,j,k\n")
+        counts = {}
+        for face, p, n in points:
+            counts[face] = counts.get(face, 0) + 1
+            f.write(f"{face}{counts[face]:03d},{fmt(p[0])},{fmt(p[1])},{fmt(p[2])},"
+                    f"{n[0]:.6f},{n[1]:.6f},{n[2]:.6f}\n")
+    return len(points)
+
+
+if __name__ == "__main__":
+    print(write_part("pocket_32_a", "3+2 pocket at B-45 C120 on the MC-300, 60 x 40 x 8", -45, 120, (0.0, 0.0, 0.0),
+                     30, 20, 8))
+    print(write_part("pocket_32_b", "3+2 pocket at B-25 C235 on the MC-300, 50 x 50 x 6", -25, 235, (30.0, -20.0, 0.0),
+                     25, 25, 6))
