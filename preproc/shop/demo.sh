@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# The virtual shop demo: self-tuning from the first part on mill3 (preproc/shop/README.md).
-# A "true" machine is mill3 with every table off by a smooth 20-50 %; part A is machined,
-# measured with 1 um noise and tuned, three parts per strategy; then a different part (B) is
-# machined with the tuned tables. Prints the form error of every part.
+# The virtual shop demo: self-tuning from the first part (preproc/shop/README.md).
+# mill3: a "true" machine is mill3 with every table and squareness off by a smooth 20-50 %;
+# part A is machined, measured with 1 um noise and tuned, three parts per strategy; then a
+# different part (B) is machined with the tuned tables. MC-300 (5-axis, tcp world): a swarf
+# part (a conical pocket cut while C turns 360 deg) tunes the tables and the rotary axes'
+# location errors, which then serve a 3+2 pocket at another pose. Prints the form errors.
 #
 #   preproc/shop/demo.sh [BUILD_DIR] [WORK_DIR]      (default build, a temporary folder)
 set -euo pipefail
@@ -38,4 +40,24 @@ done
 "$volcomp" predistort "$machine" "$parts/part_b.ngc" -o "$work/b-tuned.ngc" "${files[@]}" -q
 echo "part B with the measured tables: form error $(form_error "$work/b-model.ngc" "$parts/part_b_points.csv" b-model)"
 echo "part B with the tuned tables:    form error $(form_error "$work/b-tuned.ngc" "$parts/part_b_points.csv" b-tuned)"
+
+# 5-axis: MC-300, the swarf cone tunes the model; a 3+2 pocket elsewhere is cut with it.
+files=(--var tests/programs/mc300.var --tool-table tests/programs/mc300.tbl --world tcp)
+model=machines/data/mc300.toml
+"$volcomp" perturb "$model" -o "$work/true5" --seed 5 2>/dev/null
+form5() {  # program plan name: as form_error, on the true MC-300
+  "$volcomp" simulate "$work/true5/mc300.toml" "$1" -o "$work/$3.path.csv" "${files[@]}" 2>/dev/null
+  "$volcomp" measure "$work/$3.path.csv" "$2" -o "$work/$3.report.csv" --noise 1 --seed 11 2>/dev/null
+  "$volcomp" measure "$work/$3.path.csv" "$2" -o "$work/$3.exact.csv" 2>&1 | sed 's/.*largest deviation //'
+}
+"$volcomp" predistort "$model" "$parts/cone_a.ngc" -o "$work/cone-p1.ngc" "${files[@]}" -q
+echo "MC-300 swarf cone, part 1: form error $(form5 "$work/cone-p1.ngc" "$parts/cone_a_points.csv" cone-part1)"
+"$volcomp" selftune "$model" "$work/cone-p1.ngc" "$work/cone-part1.report.csv" -o "$work/cone-p2.ngc" --strategy model \
+  --nominal "$parts/cone_a.ngc" --tables-out "$work/tables5" "${files[@]}" 2>&1 | sed 's/^/    /'
+echo "MC-300 swarf cone, part 2: form error $(form5 "$work/cone-p2.ngc" "$parts/cone_a_points.csv" cone-part2)"
+"$volcomp" predistort "$model" "$parts/pocket_32_b.ngc" -o "$work/pocket-model.ngc" "${files[@]}" -q
+"$volcomp" predistort "$work/tables5/mc300.toml" "$parts/pocket_32_b.ngc" -o "$work/pocket-tuned.ngc" "${files[@]}" -q
+echo "MC-300 3+2 pocket, raw machine:     form error $(form5 "$parts/pocket_32_b.ngc" "$parts/pocket_32_b_points.csv" pocket-raw)"
+echo "MC-300 3+2 pocket, shipped model:   form error $(form5 "$work/pocket-model.ngc" "$parts/pocket_32_b_points.csv" pocket-model)"
+echo "MC-300 3+2 pocket, tuned on cone:   form error $(form5 "$work/pocket-tuned.ngc" "$parts/pocket_32_b_points.csv" pocket-tuned)"
 echo "files in $work"
