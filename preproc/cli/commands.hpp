@@ -14,6 +14,14 @@ struct CheckArgs {
   int samples = 10000;  // random poses over the travel, besides the grid of corners and mids
 };
 
+struct BalanceArgs {
+  std::string machine;
+  int levels = 5;                        // positions per joint over the travel
+  std::optional<double> tool_length_mm;  // default: the machine file's tool_length_mm
+  std::string output;                    // CSV (optional)
+  std::string plot;                      // PNG (optional, gnuplot)
+};
+
 struct PoseArgs {
   std::string machine;
   std::string poses;
@@ -100,6 +108,7 @@ int run_simulate(const SimulateArgs& args, std::ostream& report);
 int run_measure(const MeasureArgs& args, std::ostream& report);
 int run_predistort(const PredistortArgs& args, std::ostream& report);
 int run_check(const CheckArgs& args, std::ostream& out);
+int run_balance(const BalanceArgs& args, std::ostream& out);
 int run_trace(const TraceArgs& args, std::ostream& out);
 int run_error(const PoseArgs& args, std::ostream& out);
 int run_correct(const PoseArgs& args, std::ostream& out);

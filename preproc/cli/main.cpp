@@ -147,7 +147,7 @@ int main(int argc, char** argv) {
   selftune_cmd->add_option("--tolerance", selftune.tolerance_mm, "chord and blending tolerance, mm")->capture_default_str();
   selftune_cmd->add_option("--tables-out", selftune.tables_out, "model: folder for the updated machine file and tables");
   selftune_cmd->add_option("--nominal", selftune.nominal, "model: the original program P0 (default: PROGRAM)");
-  selftune_cmd->add_option("--deviations", selftune.deviations, "model: component errors to tune (default: all)")
+  selftune_cmd->add_option("--deviations", selftune.deviations, "model: deviations to tune, e.g. EXX,EX0C (default: every table and the rotary axes' locations)")
       ->delimiter(',');
   selftune_cmd->add_option("--nodes", selftune.nodes, "model: table nodes over each axis's travel")->capture_default_str();
   selftune_cmd->add_option("--regularisation", selftune.regularisation, "model: ridge on scaled unknowns")
@@ -155,9 +155,20 @@ int main(int argc, char** argv) {
   selftune_cmd->add_option("--smoothness", selftune.smoothness, "model: penalty on second differences")
       ->capture_default_str();
 
+  vc::cli::BalanceArgs balance;
+  CLI::App* balance_cmd = app.add_subcommand(
+      "balance", "Accuracy balance: each deviation's effect at the tool tip over the travel, largest first "
+                 "(what to measure first)");
+  balance_cmd->add_option("MACHINE", balance.machine, "machine description file (.toml)")->required();
+  balance_cmd->add_option("--levels", balance.levels, "positions per joint over its travel (2..21)")->capture_default_str();
+  balance_cmd->add_option("--tool-length", balance.tool_length_mm, "tool length L, mm (default: the machine file's)");
+  balance_cmd->add_option("-o,--output", balance.output, "CSV: deviation, M, delta, RMS (um), share (%), direction (urad)");
+  balance_cmd->add_option("--plot", balance.plot, "PNG bar chart (gnuplot)");
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*check_cmd) return vc::cli::run_check(check, std::cout);
+    if (*balance_cmd) return vc::cli::run_balance(balance, std::cout);
     if (*error_cmd) return vc::cli::run_error(error, std::cout);
     if (*correct_cmd) return vc::cli::run_correct(correct, std::cout);
     if (*trace_cmd) return vc::cli::run_trace(trace, std::cout);

@@ -84,8 +84,29 @@ TEST(VolcompCli, BadMachineFileFailsWithItsLocation) {
   EXPECT_NE(r.out.find("README.md:3:8: error: "), std::string::npos) << r.out;
 }
 
+TEST(VolcompCli, BalanceListsTheDeviationsAndWritesItsCsv) {
+  const std::string csv = write_temp("balance.csv", "");
+  std::filesystem::remove(csv);
+  auto r = test::run_volcomp("balance " + kMc300 + " --levels 3 -o " + csv);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("243 poses over the travel (3 per joint), L = 100 mm"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("EA0B"), std::string::npos) << r.out;
+  std::ifstream in(csv);
+  std::string line;
+  int rows = 0;
+  while (std::getline(in, line))
+    if (!line.empty() && line[0] != '#' && line.rfind("deviation,", 0) != 0) ++rows;
+  EXPECT_EQ(rows, 37);  // MC-300: 41 primary deviations, 4 of them zero in the source (e30 e31 e40 e41)
+  r = test::run_volcomp("balance " + kMc300 + " --levels 1");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.out.find("--levels must be in 2..21"), std::string::npos) << r.out;
+  r = test::run_volcomp("balance /nonexistent/machine.toml");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.out.find("/nonexistent/machine.toml"), std::string::npos) << r.out;
+}
+
 TEST(VolcompCli, HelpIsEverywhere) {
-  for (const char* sub : {"", "check ", "error ", "correct "}) {
+  for (const char* sub : {"", "check ", "error ", "correct ", "balance "}) {
     const auto r = test::run_volcomp(std::string(sub) + "--help");
     EXPECT_EQ(r.exit_code, 0) << sub;
     EXPECT_NE(r.out.find("Usage"), std::string::npos) << sub;
