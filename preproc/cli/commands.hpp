@@ -22,6 +22,14 @@ struct BalanceArgs {
   std::string plot;                      // PNG (optional, gnuplot)
 };
 
+struct IdentifyLaserArgs {
+  std::string runs;                // laser runs CSV
+  std::string error;               // the component error they measure: EXX, EYX, EAX, ECC, ...
+  std::string output;              // error table CSV (optional)
+  std::string direction = "both";  // the table's value: both (mean bidirectional), up or down
+  bool keep_all = false;           // keep the suspicious runs in the evaluation
+};
+
 struct PoseArgs {
   std::string machine;
   std::string poses;
@@ -109,6 +117,7 @@ int run_measure(const MeasureArgs& args, std::ostream& report);
 int run_predistort(const PredistortArgs& args, std::ostream& report);
 int run_check(const CheckArgs& args, std::ostream& out);
 int run_balance(const BalanceArgs& args, std::ostream& out);
+int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out);
 int run_trace(const TraceArgs& args, std::ostream& out);
 int run_error(const PoseArgs& args, std::ostream& out);
 int run_correct(const PoseArgs& args, std::ostream& out);

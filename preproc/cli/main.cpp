@@ -165,10 +165,23 @@ int main(int argc, char** argv) {
   balance_cmd->add_option("-o,--output", balance.output, "CSV: deviation, M, delta, RMS (um), share (%), direction (urad)");
   balance_cmd->add_option("--plot", balance.plot, "PNG bar chart (gnuplot)");
 
+  CLI::App* identify_cmd = app.add_subcommand("identify", "From measurements to the machine file")->require_subcommand(1);
+  vc::cli::IdentifyLaserArgs laser;
+  CLI::App* laser_cmd = identify_cmd->add_subcommand(
+      "laser", "Laser interferometer runs (ISO 230-2): evaluation, suspicious runs, the error table");
+  laser_cmd->add_option("RUNS", laser.runs, "runs CSV: target[mm],run,direction,deviation[um] or target[mm],1+[um],1-[um],...")
+      ->required();
+  laser_cmd->add_option("--error", laser.error, "the component error the runs measure: EXX, EYX, EAX, ECC, ...")->required();
+  laser_cmd->add_option("-o,--output", laser.output, "error table CSV in the project's format");
+  laser_cmd->add_option("--direction", laser.direction, "the table's value: both (mean bidirectional), up or down")
+      ->capture_default_str();
+  laser_cmd->add_flag("--keep-all", laser.keep_all, "keep the suspicious runs in the evaluation");
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*check_cmd) return vc::cli::run_check(check, std::cout);
     if (*balance_cmd) return vc::cli::run_balance(balance, std::cout);
+    if (*laser_cmd) return vc::cli::run_identify_laser(laser, std::cout);
     if (*error_cmd) return vc::cli::run_error(error, std::cout);
     if (*correct_cmd) return vc::cli::run_correct(correct, std::cout);
     if (*trace_cmd) return vc::cli::run_trace(trace, std::cout);

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "test_support.hpp"
+#include "vc/tables/load_table.hpp"
 
 namespace vc {
 namespace {
@@ -105,8 +106,31 @@ TEST(VolcompCli, BalanceListsTheDeviationsAndWritesItsCsv) {
   EXPECT_NE(r.out.find("/nonexistent/machine.toml"), std::string::npos) << r.out;
 }
 
+TEST(VolcompCli, IdentifyLaserWritesATableTheLoaderReads) {
+  std::string runs = "# instrument: test\n# measured_at_mm: 0, 0, -100\ntarget[mm],1+[um],1-[um],2+[um],2-[um],3+[um],3-[um]\n";
+  for (int k = 0; k <= 6; ++k)
+    runs += std::to_string(-100 * k) + "," + std::to_string(0.5 * k) + "," + std::to_string(0.5 * k - 1) + "," +
+            std::to_string(0.5 * k + 0.2) + "," + std::to_string(0.5 * k - 0.8) + "," + std::to_string(0.5 * k - 0.2) +
+            "," + std::to_string(0.5 * k - 1.2) + "\n";
+  const std::string in = write_temp("runs.csv", runs), table = write_temp("exx.csv", "");
+  std::filesystem::remove(table);
+  auto r = test::run_volcomp("identify laser " + in + " --error EXX -o " + table);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("reversal value B            1.00 um"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("measured_at_mm = [0, 0, -100]"), std::string::npos) << r.out;
+  const tables::ErrorTable t = tables::load_table(table);
+  ASSERT_EQ(t.node_count(), 7);
+  EXPECT_NEAR(t.value(0, 0), (0.5 * 6 - 0.5) * 1e-3, 1e-9);  // at -600 mm (ascending): mean of +3.0 ... -> 2.5 um
+  // The runs measure a translation of a linear axis: an angle or a rotary axis is refused.
+  r = test::run_volcomp("identify laser " + in + " --error EAX");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.out.find("the deviations are lengths but EAX is a rotation"), std::string::npos) << r.out;
+  r = test::run_volcomp("identify laser " + in + " --error ECC");
+  EXPECT_NE(r.out.find("the targets are in mm but ECC is an error of the rotary axis C"), std::string::npos) << r.out;
+}
+
 TEST(VolcompCli, HelpIsEverywhere) {
-  for (const char* sub : {"", "check ", "error ", "correct ", "balance "}) {
+  for (const char* sub : {"", "check ", "error ", "correct ", "balance ", "identify laser "}) {
     const auto r = test::run_volcomp(std::string(sub) + "--help");
     EXPECT_EQ(r.exit_code, 0) << sub;
     EXPECT_NE(r.out.find("Usage"), std::string::npos) << sub;

@@ -1,0 +1,107 @@
+// `volcomp identify laser RUNS.csv --error EXX`: laser interferometer runs (ISO 230-2 test
+// cycle) evaluated as ISO 230-2 does, suspicious runs left out with the reason, and the error
+// table written in the project's CSV format with the measurement's metadata
+// (preproc/identify/README.md).
+#include <cctype>
+#include <cmath>
+#include <set>
+
+#include "atomic_output.hpp"
+#include "commands.hpp"
+#include "format.hpp"
+#include "vc/identify/iso230_2.hpp"
+#include "vc/identify/laser_runs.hpp"
+#include "vc/tables/symbols.hpp"
+
+namespace vc::cli {
+namespace {
+
+// Deviations in um (lengths) or arcsec and urad (angles), for the printout.
+std::string shown(double v, tables::Quantity q) {
+  return q == tables::Quantity::Length ? format_fixed(v * 1e3, 2) + " um"
+                                       : format_fixed(v * 648000.0 / M_PI, 2) + " arcsec (" + format_fixed(v * 1e6, 1) + " urad)";
+}
+
+}  // namespace
+
+int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
+  const auto symbol = tables::parse_error_symbol(args.error);
+  if (!symbol || symbol->location)
+    throw std::runtime_error("--error " + args.error + ": the component error the runs measure (EXX positioning, EYX "
+                             "straightness, EAX angular, ECC a rotary axis's positioning ...)");
+  if (args.direction != "both" && args.direction != "up" && args.direction != "down")
+    throw std::runtime_error("--direction must be both, up or down");
+  const identify::LaserRuns runs = identify::read_laser_runs(args.runs);
+  const bool rotary_axis = symbol->axis == 'A' || symbol->axis == 'B' || symbol->axis == 'C';
+  if (runs.rotary != rotary_axis)
+    throw std::runtime_error(args.runs + ": the targets are in " + (runs.rotary ? "deg" : "mm") + " but " + args.error +
+                             " is an error of the " + (rotary_axis ? "rotary" : "linear") + " axis " +
+                             std::string(1, symbol->axis));
+  if (runs.quantity != symbol->quantity())
+    throw std::runtime_error(args.runs + ": the deviations are " +
+                             (runs.quantity == tables::Quantity::Length ? "lengths" : "angles") + " but " + args.error +
+                             " is " + (symbol->quantity() == tables::Quantity::Length ? "a translation" : "a rotation"));
+
+  const std::vector<identify::SuspiciousRun> suspicious = identify::suspicious_runs(runs);
+  std::set<identify::RunKey> left_out;
+  for (const auto& s : suspicious)
+    if (!args.keep_all) left_out.insert(s.run);
+  const identify::Iso230_2 e = identify::evaluate_iso230_2(runs, left_out);
+  const tables::Quantity q = runs.quantity;
+
+  out << "volcomp identify laser: " << args.runs << ", " << args.error << ", " << e.targets.size() << " targets, "
+      << e.runs_up << " runs up and " << e.runs_down << " down\n";
+  for (const auto& [key, value] : runs.metadata) out << "  " << key << ": " << value << "\n";
+  for (const auto& s : suspicious)
+    out << "  " << (args.keep_all ? "suspicious (kept): " : "left out: ") << s.reason << "\n";
+  out << "ISO 230-2 evaluation:\n"
+      << "  reversal value B            " << shown(e.reversal, q) << " (mean " << shown(e.mean_reversal, q) << ")\n"
+      << "  repeatability R             " << shown(e.repeatability, q) << " (up " << shown(e.repeatability_up, q)
+      << ", down " << shown(e.repeatability_down, q) << ")\n"
+      << "  systematic deviation E      " << shown(e.systematic, q) << " (up " << shown(e.systematic_up, q) << ", down "
+      << shown(e.systematic_down, q) << ")\n"
+      << "  mean bidirectional range M  " << shown(e.range, q) << "\n"
+      << "  accuracy A                  " << shown(e.accuracy, q) << " (up " << shown(e.accuracy_up, q) << ", down "
+      << shown(e.accuracy_down, q) << ")\n"
+      << "  target " << (runs.rotary ? "[deg]" : "[mm]") << "   mean up   mean down   bidirectional   B_i   R_i  ("
+      << (q == tables::Quantity::Length ? "um" : "urad") << ")\n";
+  const double unit = q == tables::Quantity::Length ? 1e3 : 1e6;
+  for (const identify::TargetStatistics& t : e.targets)
+    out << "  " << format_number(t.target) << "  " << format_fixed(t.mean_up * unit, 3) << "  "
+        << format_fixed(t.mean_down * unit, 3) << "  " << format_fixed(t.mean * unit, 3) << "  "
+        << format_fixed(t.reversal * unit, 3) << "  " << format_fixed(t.r * unit, 3) << "\n";
+  out << "The table holds the " << (args.direction == "both" ? "mean bidirectional deviation" : args.direction + " runs' mean")
+      << " at each target. The reversal (B = " << shown(e.reversal, q)
+      << ") is not part of the geometric model: it stays uncorrected (a backlash compensation in the drive's INI takes "
+         "it).\n";
+
+  if (!args.output.empty()) {
+    write_atomically(args.output, [&](std::ostream& csv) {
+      csv << "# " << args.error << " identified by volcomp identify laser from " << args.runs << " (ISO 230-2: "
+          << e.runs_up << " runs up, " << e.runs_down << " down"
+          << (left_out.empty() ? "" : ", " + std::to_string(left_out.size()) + " left out") << ")\n";
+      for (const auto& [key, value] : runs.metadata) csv << "# " << key << ": " << value << "\n";
+      csv << "# value: " << (args.direction == "both" ? "mean bidirectional deviation" : args.direction + " runs' mean")
+          << "; reversal B " << shown(e.reversal, q) << ", repeatability R " << shown(e.repeatability, q)
+          << ", accuracy A " << shown(e.accuracy, q) << "\n# error = actual - nominal\n";
+      csv << static_cast<char>(std::tolower(symbol->axis)) << (runs.rotary ? "[deg]" : "[mm]") << "," << args.error
+          << (q == tables::Quantity::Length ? "[um]" : "[urad]") << "\n";
+      for (const identify::TargetStatistics& t : e.targets) {
+        const double v = args.direction == "up" ? t.mean_up : args.direction == "down" ? t.mean_down : t.mean;
+        csv << format_number(t.target) << "," << format_fixed(v * unit, 4) << "\n";
+      }
+    });
+    std::string measured_at;
+    for (const auto& [key, value] : runs.metadata)
+      if (key == "measured_at_mm") measured_at = value;
+    out << "table written: " << args.output << "; in the machine file, under axis " << symbol->axis << ":\n"
+        << "  [[<workpiece_chain or tool_chain>.tables]]\n  file = \"" << args.output << "\"\n";
+    if (!measured_at.empty())
+      out << "  measured_at_mm = [" << measured_at << "]   # where the optics sat (the runs' metadata)\n";
+    else
+      out << "  # measured_at_mm = [x, y, z] if the optics sat away from the tool (machines/README.md section 5)\n";
+  }
+  return 0;
+}
+
+}  // namespace vc::cli

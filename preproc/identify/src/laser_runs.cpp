@@ -1,0 +1,174 @@
+#include "vc/identify/laser_runs.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <optional>
+
+#include "vc/tables/csv.hpp"
+#include "vc/tables/source_error.hpp"
+
+namespace vc::identify {
+namespace {
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::optional<Direction> direction_of(const std::string& text) {
+  const std::string t = lower(text);
+  if (t == "+" || t == "up" || t == "forward" || t == "fwd" || t == "pos" || t == "positive") return Direction::Up;
+  if (t == "-" || t == "down" || t == "backward" || t == "bwd" || t == "back" || t == "neg" || t == "negative")
+    return Direction::Down;
+  return std::nullopt;
+}
+
+// "name[unit]" split; the unit looked up (nothing for a cell without brackets).
+struct Header {
+  std::string name;
+  std::string unit_name;
+  std::optional<tables::Unit> unit;
+  bool bracket = false;
+};
+
+Header header_of(const std::string& path, int line, const tables::CsvCell& cell) {
+  Header h;
+  const auto open = cell.text.find('[');
+  if (open == std::string::npos) {
+    h.name = lower(cell.text);
+    return h;
+  }
+  if (cell.text.back() != ']') throw LoadError({path, line, cell.column}, "a unit is written name[unit], e.g. target[mm]");
+  h.bracket = true;
+  h.name = lower(cell.text.substr(0, open));
+  h.unit_name = cell.text.substr(open + 1, cell.text.size() - open - 2);
+  h.unit = tables::find_unit(h.unit_name);
+  if (!h.unit)
+    throw LoadError({path, line, cell.column + static_cast<int>(open) + 1},
+                    "unknown unit '" + h.unit_name + "' (lengths: " + std::string(tables::unit_names(tables::Quantity::Length)) +
+                        "; angles: " + std::string(tables::unit_names(tables::Quantity::Angle)) + ")");
+  return h;
+}
+
+void read_metadata(const std::string& path, LaserRuns& runs) {
+  std::ifstream in(path);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    if (line[0] != '#') break;
+    const auto colon = line.find(':');
+    if (colon == std::string::npos) continue;
+    auto trim = [](std::string s) {
+      const auto b = s.find_first_not_of(" \t#"), e = s.find_last_not_of(" \t");
+      return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
+    };
+    runs.metadata.emplace_back(trim(line.substr(0, colon)), trim(line.substr(colon + 1)));
+  }
+}
+
+}  // namespace
+
+LaserRuns read_laser_runs(const std::string& path) {
+  LaserRuns runs;
+  runs.path = path;
+  const std::vector<tables::CsvRow> rows = tables::read_csv_rows(path, "laser runs");
+  if (rows.empty()) throw LoadError({path}, "no header: target[mm],run,direction,deviation[um] (or target[mm],1+[um],1-[um],...)");
+  read_metadata(path, runs);
+  const tables::CsvRow& header = rows.front();
+  std::vector<Header> cells;
+  for (const tables::CsvCell& c : header.cells) cells.push_back(header_of(path, header.line, c));
+
+  const auto find = [&](const std::string& name) -> int {
+    for (std::size_t i = 0; i < cells.size(); ++i)
+      if (cells[i].name == name) return static_cast<int>(i);
+    return -1;
+  };
+  const int target = find("target");
+  if (target < 0) throw LoadError({path, header.line}, "missing column target[mm] (or target[deg] for a rotary axis)");
+  const Header& t = cells[static_cast<std::size_t>(target)];
+  if (!t.bracket) throw LoadError({path, header.line, header.cells[static_cast<std::size_t>(target)].column}, "the target needs its unit: target[mm] or target[deg]");
+  runs.rotary = t.unit_name == "deg";
+  if (t.unit_name != "deg" && t.unit_name != "mm")
+    throw LoadError({path, header.line, header.cells[static_cast<std::size_t>(target)].column}, "targets are in mm (a linear axis) or deg (a rotary one)");
+
+  // The deviation columns: one (long layout) or one per run and direction (wide layout).
+  struct Column {
+    int index;
+    int run;                          // wide: its run; long: 0
+    std::optional<Direction> direction;  // wide: its direction
+    double to_core;
+  };
+  std::vector<Column> columns;
+  int run_column = -1, direction_column = -1;
+  std::optional<tables::Quantity> quantity;
+  auto take_unit = [&](std::size_t i) {
+    const Header& h = cells[i];
+    if (!h.unit) throw LoadError({path, header.line, header.cells[i].column}, "a deviation needs its unit, e.g. deviation[um]");
+    if (quantity && *quantity != h.unit->quantity)
+      throw LoadError({path, header.line, header.cells[i].column}, "the deviations mix lengths and angles");
+    quantity = h.unit->quantity;
+    return h.unit->to_core;
+  };
+  if (const int d = find("deviation"); d >= 0) {
+    run_column = find("run");
+    direction_column = find("direction");
+    if (run_column < 0 || direction_column < 0)
+      throw LoadError({path, header.line}, "the long layout needs the columns run and direction (with target and deviation)");
+    columns.push_back({d, 0, std::nullopt, take_unit(static_cast<std::size_t>(d))});
+  } else {
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      if (static_cast<int>(i) == target) continue;
+      std::string name = cells[i].name;
+      if (name.rfind("run", 0) == 0) name = name.substr(3);
+      const char sign = name.empty() ? ' ' : name.back();
+      const std::string number = name.substr(0, name.empty() ? 0 : name.size() - 1);
+      if ((sign != '+' && sign != '-') || number.empty() ||
+          !std::all_of(number.begin(), number.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); }))
+        throw LoadError({path, header.line, header.cells[i].column},
+                        "'" + header.cells[i].text + "' is neither a run column (1+[um], 1-[um], run2+[um], ...) nor target");
+      columns.push_back({static_cast<int>(i), std::stoi(number), sign == '+' ? Direction::Up : Direction::Down,
+                         take_unit(i)});
+    }
+    if (columns.empty()) throw LoadError({path, header.line}, "no deviation columns: deviation[um] with run and direction, or 1+[um],1-[um],...");
+  }
+  runs.quantity = *quantity;
+
+  for (std::size_t r = 1; r < rows.size(); ++r) {
+    const tables::CsvRow& row = rows[r];
+    if (row.cells.size() != header.cells.size())
+      throw LoadError({path, row.line}, std::to_string(row.cells.size()) + " cells, the header has " +
+                                            std::to_string(header.cells.size()));
+    const double at = tables::csv_number(path, row.line, row.cells[static_cast<std::size_t>(target)]);
+    for (const Column& c : columns) {
+      const tables::CsvCell& cell = row.cells[static_cast<std::size_t>(c.index)];
+      if (cell.text.empty() && !c.direction) throw LoadError({path, row.line, cell.column}, "no deviation");
+      if (cell.text.empty()) continue;  // a wide layout's run that skipped this target
+      Reading reading;
+      reading.line = row.line;
+      reading.target = at;
+      reading.deviation = tables::csv_number(path, row.line, cell) * c.to_core;
+      if (c.direction) {
+        reading.run = c.run;
+        reading.direction = *c.direction;
+      } else {
+        const tables::CsvCell& run = row.cells[static_cast<std::size_t>(run_column)];
+        const double number = tables::csv_number(path, row.line, run);
+        if (number != std::floor(number) || number < 0 || number > 1e6)
+          throw LoadError({path, row.line, run.column}, "the run is a whole number");
+        reading.run = static_cast<int>(number);
+        const tables::CsvCell& way = row.cells[static_cast<std::size_t>(direction_column)];
+        const auto d = direction_of(way.text);
+        if (!d) throw LoadError({path, row.line, way.column}, "direction '" + way.text + "': +, -, up, down, forward or backward");
+        reading.direction = *d;
+      }
+      runs.readings.push_back(reading);
+    }
+  }
+  if (runs.readings.empty()) throw LoadError({path}, "no readings");
+  return runs;
+}
+
+}  // namespace vc::identify
