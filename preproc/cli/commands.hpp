@@ -30,6 +30,15 @@ struct IdentifyLaserArgs {
   bool keep_all = false;           // keep the suspicious runs in the evaluation
 };
 
+struct IdentifyCircleArgs {
+  std::string run;                 // circular test CSV
+  std::string plane;               // XY, YZ, ZX (default: the file's "# plane:")
+  std::optional<double> radius_mm; // default: the file's "# radius_mm:"
+  std::string machine;             // to express the squareness in its terms (optional)
+  std::string machine_out;         // folder for the machine file with the squareness set
+  std::string symbol;              // which term takes it (default: the one the file uses)
+};
+
 struct PoseArgs {
   std::string machine;
   std::string poses;
@@ -118,6 +127,7 @@ int run_predistort(const PredistortArgs& args, std::ostream& report);
 int run_check(const CheckArgs& args, std::ostream& out);
 int run_balance(const BalanceArgs& args, std::ostream& out);
 int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out);
+int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out);
 int run_trace(const TraceArgs& args, std::ostream& out);
 int run_error(const PoseArgs& args, std::ostream& out);
 int run_correct(const PoseArgs& args, std::ostream& out);

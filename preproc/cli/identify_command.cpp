@@ -9,8 +9,11 @@
 #include "atomic_output.hpp"
 #include "commands.hpp"
 #include "format.hpp"
+#include "vc/identify/circular_test.hpp"
 #include "vc/identify/iso230_2.hpp"
 #include "vc/identify/laser_runs.hpp"
+#include "vc/machine/load_machine.hpp"
+#include "vc/shop/table_set.hpp"
 #include "vc/tables/symbols.hpp"
 
 namespace vc::cli {
@@ -101,6 +104,59 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
     else
       out << "  # measured_at_mm = [x, y, z] if the optics sat away from the tool (machines/README.md section 5)\n";
   }
+  return 0;
+}
+
+int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
+  identify::CircularTest test = identify::read_circular_test(args.run);
+  if (!args.plane.empty()) test.plane = args.plane;
+  if (args.radius_mm) test.radius_mm = *args.radius_mm;
+  const identify::CircularEvaluation e = identify::evaluate_circular_test(test);
+  const auto um = [](double mm) { return format_fixed(mm * 1e3, 2) + " um"; };
+  const auto arcsec = [](double rad) { return format_fixed(rad * 648000.0 / M_PI, 2) + " arcsec"; };
+  const std::string first(1, test.plane[0]), second(1, test.plane[1]);
+  out << "volcomp identify circle: " << args.run << ", plane " << test.plane << ", radius " << format_number(test.radius_mm)
+      << " mm\n";
+  for (const auto& [key, value] : test.metadata) out << "  " << key << ": " << value << "\n";
+  out << "ISO 230-4:\n  bidirectional circular deviation G(b) " << um(e.circular_deviation_mm)
+      << (test.runs.size() == 2 ? ", circular hysteresis H " + um(e.hysteresis_mm) : std::string()) << "\n";
+  for (const identify::CircleFit& f : e.fits) {
+    out << "  " << (f.ccw ? "ccw" : "cw ") << ": circular deviation G " << um(f.circular_deviation_mm)
+        << ", radial deviation F " << um(f.radial_deviation_mm) << "; centre offset " << first << " "
+        << um(f.centre_first_mm) << ", " << second << " " << um(f.centre_second_mm) << "; squareness "
+        << arcsec(f.squareness_rad) << ", scale mismatch " << format_fixed(f.scale_mismatch * 1e6, 2)
+        << " um/m; left by the first-order fit RMS " << um(f.residual_rms_mm) << "\n    reversal spikes:";
+    for (const auto& [angle, height] : f.spikes) out << " " << format_number(angle) << " deg " << um(height);
+    out << "\n";
+  }
+  out << "squareness (both directions' mean; " << first << "' = " << first << " + theta " << second << "): theta = "
+      << arcsec(e.squareness_rad) << "; scale mismatch e" << first << " - e" << second << " = "
+      << format_fixed(e.scale_mismatch * 1e6, 2) << " um/m (a positioning table's slope: measure it with the laser)\n";
+  if (args.machine.empty()) return 0;
+
+  const machine::Model model = machine::load_machine(args.machine);
+  const std::vector<identify::SquarenessTerm> terms =
+      identify::squareness_terms(model, test.plane, test.radius_mm, e.squareness_rad);
+  out << "in " << args.machine << "'s terms (measured with the compensation off: the machine's own squareness):\n";
+  for (const auto& t : terms)
+    out << "  " << t.symbol << " = " << arcsec(t.value_rad) << " alone (the file has " << arcsec(t.in_file_rad) << ")\n";
+  if (args.machine_out.empty()) return 0;
+  // The term the file already uses (a non-zero value), else the first.
+  const identify::SquarenessTerm* chosen = terms.empty() ? nullptr : &terms.front();
+  for (const auto& t : terms)
+    if (!args.symbol.empty() ? t.symbol == args.symbol : t.in_file_rad != 0.0) chosen = &t;
+  if (!chosen || (!args.symbol.empty() && chosen->symbol != args.symbol))
+    throw std::runtime_error("--symbol " + args.symbol + " is not one of the squareness terms of the " + test.plane + " plane");
+  // The other terms of the plane go to zero: the measured squareness is all in the chosen one.
+  std::vector<shop::LocationValue> values;
+  for (const auto& t : terms) {
+    const auto s = tables::parse_error_symbol(t.symbol);
+    values.push_back({model.joint_of(s->axis), s->component, &t == chosen ? t.value_rad : 0.0});
+  }
+  const std::string written = shop::write_machine_with_tables(
+      model, args.machine_out, {}, "volcomp identify circle from " + args.run, values);
+  machine::load_machine(written);  // it loads
+  out << "machine file written: " << written << " (" << chosen->symbol << " = " << arcsec(chosen->value_rad) << ")\n";
   return 0;
 }
 

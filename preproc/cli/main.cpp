@@ -176,12 +176,22 @@ int main(int argc, char** argv) {
   laser_cmd->add_option("--direction", laser.direction, "the table's value: both (mean bidirectional), up or down")
       ->capture_default_str();
   laser_cmd->add_flag("--keep-all", laser.keep_all, "keep the suspicious runs in the evaluation");
+  vc::cli::IdentifyCircleArgs circle;
+  CLI::App* circle_cmd = identify_cmd->add_subcommand(
+      "circle", "Circular test / ballbar (ISO 230-4): G, H, centre, squareness, scale mismatch, reversal spikes");
+  circle_cmd->add_option("RUN", circle.run, "CSV: angle[deg],direction,deviation[um] or angle[deg],ccw[um],cw[um]")->required();
+  circle_cmd->add_option("--plane", circle.plane, "XY, YZ or ZX (default: the file's '# plane:')");
+  circle_cmd->add_option("--radius", circle.radius_mm, "the circle's radius, mm (default: the file's '# radius_mm:')");
+  circle_cmd->add_option("--machine", circle.machine, "machine file: the squareness in its location errors");
+  circle_cmd->add_option("--machine-out", circle.machine_out, "folder: a copy of the machine file with the squareness set");
+  circle_cmd->add_option("--symbol", circle.symbol, "the location error that takes it (default: the one the file uses)");
 
   CLI11_PARSE(app, argc, argv);
   try {
     if (*check_cmd) return vc::cli::run_check(check, std::cout);
     if (*balance_cmd) return vc::cli::run_balance(balance, std::cout);
     if (*laser_cmd) return vc::cli::run_identify_laser(laser, std::cout);
+    if (*circle_cmd) return vc::cli::run_identify_circle(circle, std::cout);
     if (*error_cmd) return vc::cli::run_error(error, std::cout);
     if (*correct_cmd) return vc::cli::run_correct(correct, std::cout);
     if (*trace_cmd) return vc::cli::run_trace(trace, std::cout);

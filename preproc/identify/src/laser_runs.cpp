@@ -3,20 +3,13 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <fstream>
-#include <map>
 #include <optional>
 
-#include "vc/tables/csv.hpp"
+#include "instrument_csv.hpp"
 #include "vc/tables/source_error.hpp"
 
 namespace vc::identify {
 namespace {
-
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 std::optional<Direction> direction_of(const std::string& text) {
   const std::string t = lower(text);
@@ -26,49 +19,6 @@ std::optional<Direction> direction_of(const std::string& text) {
   return std::nullopt;
 }
 
-// "name[unit]" split; the unit looked up (nothing for a cell without brackets).
-struct Header {
-  std::string name;
-  std::string unit_name;
-  std::optional<tables::Unit> unit;
-  bool bracket = false;
-};
-
-Header header_of(const std::string& path, int line, const tables::CsvCell& cell) {
-  Header h;
-  const auto open = cell.text.find('[');
-  if (open == std::string::npos) {
-    h.name = lower(cell.text);
-    return h;
-  }
-  if (cell.text.back() != ']') throw LoadError({path, line, cell.column}, "a unit is written name[unit], e.g. target[mm]");
-  h.bracket = true;
-  h.name = lower(cell.text.substr(0, open));
-  h.unit_name = cell.text.substr(open + 1, cell.text.size() - open - 2);
-  h.unit = tables::find_unit(h.unit_name);
-  if (!h.unit)
-    throw LoadError({path, line, cell.column + static_cast<int>(open) + 1},
-                    "unknown unit '" + h.unit_name + "' (lengths: " + std::string(tables::unit_names(tables::Quantity::Length)) +
-                        "; angles: " + std::string(tables::unit_names(tables::Quantity::Angle)) + ")");
-  return h;
-}
-
-void read_metadata(const std::string& path, LaserRuns& runs) {
-  std::ifstream in(path);
-  for (std::string line; std::getline(in, line);) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty()) continue;
-    if (line[0] != '#') break;
-    const auto colon = line.find(':');
-    if (colon == std::string::npos) continue;
-    auto trim = [](std::string s) {
-      const auto b = s.find_first_not_of(" \t#"), e = s.find_last_not_of(" \t");
-      return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
-    };
-    runs.metadata.emplace_back(trim(line.substr(0, colon)), trim(line.substr(colon + 1)));
-  }
-}
-
 }  // namespace
 
 LaserRuns read_laser_runs(const std::string& path) {
@@ -76,10 +26,10 @@ LaserRuns read_laser_runs(const std::string& path) {
   runs.path = path;
   const std::vector<tables::CsvRow> rows = tables::read_csv_rows(path, "laser runs");
   if (rows.empty()) throw LoadError({path}, "no header: target[mm],run,direction,deviation[um] (or target[mm],1+[um],1-[um],...)");
-  read_metadata(path, runs);
+  runs.metadata = read_metadata(path);
   const tables::CsvRow& header = rows.front();
-  std::vector<Header> cells;
-  for (const tables::CsvCell& c : header.cells) cells.push_back(header_of(path, header.line, c));
+  std::vector<HeaderCell> cells;
+  for (const tables::CsvCell& c : header.cells) cells.push_back(header_cell(path, header.line, c));
 
   const auto find = [&](const std::string& name) -> int {
     for (std::size_t i = 0; i < cells.size(); ++i)
@@ -88,7 +38,7 @@ LaserRuns read_laser_runs(const std::string& path) {
   };
   const int target = find("target");
   if (target < 0) throw LoadError({path, header.line}, "missing column target[mm] (or target[deg] for a rotary axis)");
-  const Header& t = cells[static_cast<std::size_t>(target)];
+  const HeaderCell& t = cells[static_cast<std::size_t>(target)];
   if (!t.bracket) throw LoadError({path, header.line, header.cells[static_cast<std::size_t>(target)].column}, "the target needs its unit: target[mm] or target[deg]");
   runs.rotary = t.unit_name == "deg";
   if (t.unit_name != "deg" && t.unit_name != "mm")
@@ -105,7 +55,7 @@ LaserRuns read_laser_runs(const std::string& path) {
   int run_column = -1, direction_column = -1;
   std::optional<tables::Quantity> quantity;
   auto take_unit = [&](std::size_t i) {
-    const Header& h = cells[i];
+    const HeaderCell& h = cells[i];
     if (!h.unit) throw LoadError({path, header.line, header.cells[i].column}, "a deviation needs its unit, e.g. deviation[um]");
     if (quantity && *quantity != h.unit->quantity)
       throw LoadError({path, header.line, header.cells[i].column}, "the deviations mix lengths and angles");
