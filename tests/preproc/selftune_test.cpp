@@ -46,7 +46,7 @@ struct Form {
 // tuning, and the form error without noise.
 Form test_part(const std::string& true_machine, const std::string& files, const std::string& program,
                const std::string& plan, const std::string& report, unsigned seed) {
-  const std::string tool_path = program + ".path.csv";
+  const std::string tool_path = report + ".path.csv";  // (beside the report: the program may be a source file)
   run_ok("simulate " + true_machine + " " + program + " -o " + tool_path + files);
   run_ok("measure " + tool_path + " " + plan + " -o " + report + " --noise " + std::to_string(kNoiseUm) + " --seed " +
          std::to_string(seed));
