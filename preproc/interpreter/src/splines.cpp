@@ -40,6 +40,7 @@ struct PlanePoint {
 // A piece that is an arc of radius under this is written as chords (see curve_moves).
 constexpr double kSmallestArc_mm = 0.0013;
 constexpr double kChordAngle_rad = 0.15;
+constexpr int kLargestOrder = 64;  // G5.2 L
 
 // LinuxCNC's unit(): the vector scaled to length 1 (a zero vector stays zero).
 PlanePoint unit(PlanePoint p) {
@@ -397,8 +398,11 @@ void Interpreter::nurbs_point(const Words& w, int mode_before, int line) {
   int order = -1;
   if (w.has('L')) {
     const double l = w.get('L'), nearest = std::round(l);
-    if (std::abs(l - nearest) > 0.0001 || nearest < 0 || nearest > 1000)
-      refuse(line, w['L'].offset, "L (the NURBS's order) must be a whole number 0..1000");
+    if (std::abs(l - nearest) > 0.0001 || nearest < 0)
+      refuse(line, w['L'].offset, "L (the NURBS's order) must be a whole number >= 0 (LinuxCNC)");
+    if (nearest > kLargestOrder)
+      refuse(line, w['L'].offset, "a NURBS of order L above " + std::to_string(kLargestOrder) +
+                                      " is not translated (LinuxCNC's own evaluation takes a time growing as 2^L)");
     order = static_cast<int>(nearest);
   }
   for (char c : {'X', 'Y'})

@@ -194,6 +194,8 @@ TEST(Splines, RefusesWhatLinuxCncRefusesWithLineAndColumn) {
   EXPECT_NE(refusal(kStart + "G5.2 X1 Y1 P1 L4\nX2 Y0 P1\nG5.3\n").find("test.ngc:6:1: error: a NURBS of order L = 4 needs "
                                                                         "at least 4 control points"),
             std::string::npos);
+  EXPECT_NE(refusal(kStart + "G5.2 X1 Y1 P1 L65\n").find("test.ngc:4:15: error: a NURBS of order L above 64"),
+            std::string::npos);
   EXPECT_NE(refusal(kStart + "G5.2 X1 P1\n").find("test.ngc:4:6: error: a G5.2 control point needs both X and Y"),
             std::string::npos);
   EXPECT_NE(refusal(kStart + "G5.2 X1 Y1 P1\nX2 Y0\n").find("test.ngc:5:1: error: every G5.2 control point needs a "
