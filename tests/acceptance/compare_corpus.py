@@ -5,7 +5,9 @@ mean what the originals mean, as LinuxCNC's own interpreter (rs274 -g) reads the
 For each program: rs274 on the original (not clean: excluded), volcomp predistort (refused:
 counted with its reason), rs274 on the output, and the two canonical call streams compared:
 the same path within the tolerance, the same feeds (G93: the same time per move), tools, tool
-length offsets, spindle, coolant, dwells, messages and stops, in order. See README.md.
+length offsets, spindle, coolant, dwells, messages and stops, in order. Splines and NURBS: rs274
+prints only NURBS_FEED; their control points are read from it with gdb and turned into the arcs
+LinuxCNC's task canon makes of them (nurbs_feed). See README.md.
 
     compare_corpus.py --volcomp build/preproc/volcomp [--report out.csv] [--min-equivalent 95]
     compare_corpus.py --volcomp ... --program FILE      (one program, the first difference shown)
@@ -107,11 +109,130 @@ def normalized(program, work):
 
 
 def rs274(work, program):
+    """rs274's canonical calls for a program, with the control points of its NURBS_FEED calls
+    ((text, splines); None if rs274 fails), and all it printed."""
+    args = ["rs274", "-i", "rs274.ini", "-t", "tools_inch.tbl", "-v", "zero.var", "-g", program]
     zero_var(work)
-    code, out, err = run(["rs274", "-i", "rs274.ini", "-t", "tools_inch.tbl", "-v", "zero.var", "-g", program], work)
+    code, out, err = run(args, work)
     text = out + err
     bad = code != 0 or re.search(r"^\s*(error|Error|Unknown|Unable|Cannot|.*failed)", err, re.M)
-    return (None if bad else out), text
+    if bad:
+        return None, text
+    splines = []
+    if "NURBS_FEED(" in out:
+        splines = nurbs_control_points(work, args, out.count("NURBS_FEED("))
+        if splines is None:
+            return None, text + "\nNURBS_FEED: its control points could not be read (gdb is needed)"
+    return (out, splines), text
+
+
+def nurbs_control_points(work, args, calls):
+    """[(order, [(x, y, weight), ...]), ...] of rs274's NURBS_FEED calls, in order (program
+    units), read with gdb (nurbs_control_points_gdb.py); None if that fails."""
+    if not shutil.which("gdb"):
+        return None
+    points_file = os.path.join(work, "nurbs_points.txt")
+    zero_var(work)
+    script = os.path.join(HERE, "nurbs_control_points_gdb.py")
+    env = dict(os.environ, HOME=work, NURBS_POINTS=points_file)
+    try:
+        subprocess.run(["gdb", "-q", "-batch", "-nx", "-x", script, "--args"] + args, cwd=work, env=env,
+                       capture_output=True, text=True, timeout=300)
+        splines = []
+        for line in open(points_file):
+            v = line.split()
+            values = [float(x) for x in v[1:]]
+            splines.append((int(v[0]), [tuple(values[i:i + 3]) for i in range(0, len(values), 3)]))
+    except (OSError, ValueError, subprocess.TimeoutExpired):
+        return None
+    return splines if len(splines) == calls else None
+
+
+def nurbs_feed(points, order):
+    """The moves LinuxCNC 2.9's task canon makes of NURBS_FEED (emccanon.cc NURBS_FEED, biarc,
+    arc; nurbs_additional_functions.cc), redone here in its order of operations: the curve
+    sampled at 4 points per control point, each pair of samples joined by a biarc. A list of
+    ("arc", end, centre, rotation) and ("line", end, None, 0), program units, XY plane."""
+    n = len(points) - 1
+    knots = [0 if i < order else i - order + 1 if i <= n else n - order + 2 for i in range(n + order + 1)]
+    u_max = float(n - order + 2)
+
+    def basis(u):  # N(i, order)(u), i = 0..n: Cox-de Boor, a span holds u with both ends
+        level = [1.0 if knots[i] <= u <= knots[i + 1] else 0.0 for i in range(len(knots) - 1)]
+        for k in range(2, order + 1):
+            nxt = []
+            for i in range(len(knots) - k):
+                left, right = knots[i + k - 1] - knots[i], knots[i + k] - knots[i + 1]
+                if left == 0 and right != 0:
+                    nxt.append(((knots[i + k] - u) * level[i + 1]) / right)
+                elif right == 0 and left != 0:
+                    nxt.append(((u - knots[i]) * level[i]) / left)
+                elif left == 0 and right == 0:
+                    nxt.append(0.0)
+                else:
+                    nxt.append(((u - knots[i]) * level[i]) / left + ((knots[i + k] - u) * level[i + 1]) / right)
+            level = nxt
+        return level
+
+    def point(u):
+        b = basis(u)
+        den = 0.0
+        for i, p in enumerate(points):
+            den = den + b[i] * p[2]
+        x = y = 0.0
+        for i, p in enumerate(points):
+            x = x + p[0] * b[i] * p[2] / den
+            y = y + p[1] * b[i] * p[2] / den
+        return x, y
+
+    def unit(x, y):
+        h = math.hypot(x, y)
+        return (x / h, y / h) if h != 0 else (x, y)
+
+    def tangent(u):
+        lo, hi = max(0.0, u - 1e-5), min(u_max, u + 1e-5)
+        (x1, y1), (x3, y3) = point(lo), point(hi)
+        return unit((x3 - x1) / (hi - lo), (y3 - y1) / (hi - lo))
+
+    moves = []
+
+    def arc(x0, y0, x1, y1, dx, dy):
+        x, y = x1 - x0, y1 - y0
+        den = 2 * (y * dx - x * dy)
+        if abs(den) > 0.000001:
+            r = -(x * x + y * y) / den
+            moves.append(("arc", (x1, y1), (x0 + dy * r, y0 - dx * r), 1 if r < 0 else -1))
+        else:
+            moves.append(("line", (x1, y1), None, 0))
+
+    def biarc(p0, ts, p4, te):
+        ts, te = unit(*ts), unit(*te)
+        vx, vy = p0[0] - p4[0], p0[1] - p4[1]
+        c = vx * vx + vy * vy
+        b = 2 * (vx * (ts[0] + te[0]) + vy * (ts[1] + te[1]))
+        a = 2 * (ts[0] * te[0] + ts[1] * te[1] - 1)
+        discr = b * b - 4 * a * c
+        if discr < 0:
+            return
+        beta1, beta2 = (-b - math.sqrt(discr)) / 2 / a, (-b + math.sqrt(discr)) / 2 / a
+        if beta1 > 0 and beta2 > 0:
+            return
+        beta = beta2 if beta1 < beta2 else beta1
+        alpha = beta
+        p1 = (p0[0] + alpha * ts[0], p0[1] + alpha * ts[1])
+        p3 = (p4[0] - beta * te[0], p4[1] - beta * te[1])
+        p2 = ((p1[0] * beta + p3[0] * alpha) / (alpha + beta), (p1[1] * beta + p3[1] * alpha) / (alpha + beta))
+        arc(p0[0], p0[1], p2[0], p2[1], *ts)
+        arc(p2[0], p2[1], p4[0], p4[1], *unit(p3[0] - p2[0], p3[1] - p2[1]))
+
+    steps = len(points) * 4
+    p0, t0 = point(0.0), tangent(0.0)
+    for i in range(1, steps + 1):
+        u = u_max * i / steps
+        p1, t1 = point(u), tangent(u)
+        biarc(p0, t0, p1, t1)
+        p0, t0 = p1, t1
+    return moves
 
 
 NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
@@ -125,11 +246,13 @@ class Canon:
     """The canonical calls of one rs274 run: moves in world coordinates (mm, deg) and the
     other events, in order."""
 
-    def __init__(self, text):
+    def __init__(self, text, splines=()):
         self.moves, self.events = [], []
         units, g5x, g92, rotation, tool = 1.0, [0.0] * 6, [0.0] * 6, 0.0, [0.0, 0.0, 0.0]
         plane, feed, inverse = 17, 0.0, False
         at = [0.0] * 6
+        program_at = [0.0] * 6  # the same in program coordinates (mm, deg)
+        splines = list(splines)
 
         def world(p):
             q = [p[i] + g92[i] for i in range(6)]
@@ -179,14 +302,29 @@ class Canon:
                     move = {"kind": "arc", "end": end, "centre": centre, "plane": (first, second, normal),
                             "rotation": int(v[4])}
                 else:
-                    end = world(length(v[0:3]) + v[3:6])
+                    p = length(v[0:3]) + v[3:6]
+                    end = world(p)
                     move = {"kind": "rapid" if call == "STRAIGHT_TRAVERSE" else "feed", "end": end}
                 move["start"] = at
                 move["feed"] = feed
                 move["inverse"] = inverse
-                at = end
+                at, program_at = end, p
                 self.moves.append(move)
                 self.events.append(("MOVE", len(self.moves) - 1))
+            elif call == "NURBS_FEED":  # the task canon's moves (XY plane, the other axes stay)
+                order, points = splines.pop(0)
+                for kind, xy, centre_xy, turn in nurbs_feed(points, order):
+                    p = list(program_at)
+                    p[0], p[1] = xy[0] * units, xy[1] * units
+                    move = {"kind": "feed" if kind == "line" else "arc", "end": world(p), "start": at,
+                            "feed": feed, "inverse": inverse}
+                    if kind == "arc":
+                        c = list(p)
+                        c[0], c[1] = centre_xy[0] * units, centre_xy[1] * units
+                        move.update(centre=world(c), plane=(0, 1, 2), rotation=turn)
+                    at, program_at = move["end"], p
+                    self.moves.append(move)
+                    self.events.append(("MOVE", len(self.moves) - 1))
             elif call in ("SELECT_TOOL", "CHANGE_TOOL", "CHANGE_TOOL_NUMBER", "SET_SPINDLE_SPEED", "DWELL"):
                 self.events.append((call, tuple(round(x, 4) for x in v)))
             elif call in ("START_SPINDLE_CLOCKWISE", "START_SPINDLE_COUNTERCLOCKWISE", "STOP_SPINDLE_TURNING",
@@ -243,7 +381,7 @@ def on_move(point, m, tolerance):
 
 def compare(original, output, tolerance):
     """The first difference of the output's canon from the original's, or None."""
-    a, b = Canon(original), Canon(output)
+    a, b = Canon(*original), Canon(*output)
     # Motion: each input move's end reached in order; output ends in between lie on it.
     k = 0
     piece_of = {}
@@ -307,7 +445,7 @@ def check(program, volcomp, keep=None):
         if original is None:
             last = [l for l in text.splitlines() if l.strip()][-1:] or ["?"]
             return "rs274-error", last[0][:200]
-        tolerance = TOLERANCE_INCH_MM if "CANON_UNITS_INCHES" in original else TOLERANCE_MM
+        tolerance = TOLERANCE_INCH_MM if "CANON_UNITS_INCHES" in original[0] else TOLERANCE_MM
         out = os.path.join(work, "out.ngc")
         args = [volcomp, "predistort", MACHINE, program, "-o", out, "--var", "zero.var", "--tool-table",
                 "tools_mm.tbl", "-q", "--start", "0,0,0"]
@@ -338,15 +476,17 @@ def reason_group(detail):
 
 
 def self_test(volcomp):
-    """The comparison must see a 0.01 mm move and a 1 % feed change."""
+    """The comparison must see a 0.01 mm move, a 1 % feed change, an arc turned the other way and
+    a spline's end 0.01 mm away."""
     work = tempfile.mkdtemp(prefix="acceptance-self-")
     program = os.path.join(work, "p.ngc")
     with open(program, "w") as f:
-        f.write("G21 G90 G54\nG0 X0 Y0 Z5\nG1 Z-1 F300\nG1 X20 Y10\nG2 X30 Y0 I5 J-5\nG0 Z5\nM2\n")
+        f.write("G21 G90 G54\nG0 X0 Y0 Z5\nG1 Z-1 F300\nG1 X20 Y10\nG2 X30 Y0 I5 J-5\n"
+                "G5 X40 Y5 I2 J0 P0 Q-2\nG0 Z5\nM2\n")
     write_files(work, program)
     original, _ = rs274(work, program)
-    ok = compare(original, original, TOLERANCE_MM) is None
-    for old, new in (("X20 Y10", "X20.01 Y10"), ("F300", "F303"), ("G2 X30", "G3 X30")):
+    ok = original is not None and compare(original, original, TOLERANCE_MM) is None
+    for old, new in (("X20 Y10", "X20.01 Y10"), ("F300", "F303"), ("G2 X30", "G3 X30"), ("G5 X40", "G5 X40.01")):
         with open(os.path.join(work, "q.ngc"), "w") as f:
             f.write(open(program).read().replace(old, new))
         changed, _ = rs274(work, "q.ngc")

@@ -71,15 +71,19 @@ void Interpreter::arc_geometry(const Words& w, const Position& end, int line, Mo
   }
   const double t0 = std::atan2(b0 - arc.center_second, a0 - arc.center_first);
   const double t1 = std::atan2(b1 - arc.center_second, a1 - arc.center_first);
+  arc.sweep_rad = arc_sweep(t0, t1, arc.clockwise, arc.turns);
+}
+
+double arc_sweep(double t0, double t1, bool clockwise, int turns) {
   double sweep = t1 - t0;
-  if (arc.clockwise) {
+  if (clockwise) {
     while (sweep >= -1e-12) sweep -= kTwoPi;  // (-2 pi, 0), a full turn if start == end
     if (sweep < -kTwoPi) sweep += kTwoPi;
   } else {
     while (sweep <= 1e-12) sweep += kTwoPi;
     if (sweep > kTwoPi) sweep -= kTwoPi;
   }
-  arc.sweep_rad = sweep + (arc.clockwise ? -1.0 : 1.0) * kTwoPi * (arc.turns - 1);
+  return sweep + (clockwise ? -1.0 : 1.0) * kTwoPi * (turns - 1);
 }
 
 Position point_at(const Move& m, double s) {

@@ -144,8 +144,6 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     else if (g >= 382 && g <= 385)
       reason = "probing: where the probe stops is known only when the program runs, so the moves after it cannot be "
                "corrected offline";
-    else if (g == 50 || g == 51 || g == 52)
-      reason = "splines (G5, G5.1, G5.2) are not translated: have the post-processor write G1/G2/G3";
     else if (g == 70)
       reason = "lathe diameter mode (G7) is not translated: program radii (G8)";
     else if (g == 432 || g == 171 || g == 181 || g == 191)
@@ -157,6 +155,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
                                      911, 920, 921, 922, 923, 520, 930, 940, 950, 960, 970, 980, 990,
                                      730, 740, 810, 820, 830, 840, 850, 860, 880, 890,
                                      700, 710, 711, 712, 720, 721, 722,
+                                     50,  51,  52,  53,  // splines and NURBS (splines.cpp)
                                      80};  // G8: lathe radius mode, LinuxCNC's default (G7 is refused)
     if (std::find(std::begin(kKnown), std::end(kKnown), g) == std::end(kKnown))
       refuse(line, c.offset, "unknown G code " + g_name(g));
@@ -181,6 +180,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
   }
 
   compensation_rules(block, w, line);
+  spline_rules(w, line);
   state_codes(w, line, effect);
 
   // LinuxCNC's order of execution (RS274/NGC 3.8, LinuxCNC docs "Order of Execution").
@@ -220,8 +220,15 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
   if (w.find_g({170})) plane_ = 170;
   if (w.find_g({180})) plane_ = 180;
   if (w.find_g({190})) plane_ = 190;
+  const bool was_inches = inches_;
   if (w.find_g({200})) inches_ = true;
   if (w.find_g({210})) inches_ = false;
+  if (inches_ != was_inches && program_xy_.known) {  // LinuxCNC's convert_length_units
+    const double factor = inches_ ? 1.0 / kInch : kInch;
+    program_xy_.x *= factor;
+    program_xy_.y *= factor;
+    program_xy_.inches = inches_;
+  }
   set_compensation(w, line, effect);
   if (w.find_g({430, 431, 490})) set_tool_length(w, line);
   if (const auto* c = w.find_g({540, 550, 560, 570, 580, 590, 591, 592, 593})) {
@@ -254,13 +261,13 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     for (int i = 0; i < kAxes; ++i) parameters_[base + i] = world[i];
   }
   // G80 with a motion code on the same line: the motion code is the mode (rs274 reads it so).
-  const Words::Code* motion =
-      w.find_g({0, 10, 20, 30, 730, 740, 810, 820, 830, 840, 850, 860, 880, 890, 700, 710, 711, 712, 720, 721, 722});
-  if (!motion) motion = w.find_g({800});
+  const Words::Code* motion = w.motion_code();
   const int previous_motion = motion_;
   if (motion) motion_ = motion->code;
   if (w.find_g({280, 300, 100, 431, 520, 920})) {
     // their axis words are not motion
+  } else if (is_spline(motion_) || w.find_g({53})) {  // (G5.3 ends a NURBS whatever the line's mode)
+    spline(w, previous_motion, line, effect);
   } else if (is_cycle(motion_)) {
     cycle(w, previous_motion, motion != nullptr, line, effect);
   } else if (is_lathe_cycle(motion_)) {
@@ -329,6 +336,20 @@ Position Interpreter::end_point(const Words& w, int line) const {
   return end;
 }
 
+std::array<double, 2> Interpreter::program_xy() const {
+  const ProgramXY& p = program_xy_;
+  // (Within 1e-9 mm: a frame change that keeps the point, such as a tool length, may move
+  // position_ in its last bits where LinuxCNC's current X Y stay as they were.)
+  if (p.known && p.inches == inches_ && std::abs(p.mm_x - position_[0]) <= 1e-9 && std::abs(p.mm_y - position_[1]) <= 1e-9)
+    return {p.x, p.y};
+  const double scale = inches_ ? kInch : 1.0;
+  return {position_[0] / scale, position_[1] / scale};
+}
+
+void Interpreter::note_program_xy(double x, double y) {
+  program_xy_ = {x, y, position_[0], position_[1], inches_, true};
+}
+
 void Interpreter::polar_end_point(const Words& w, int line, double& x, double& y) const {
   // LinuxCNC's find_ends: '@' distance and '^' angle (deg) about the origin of the XY plane;
   // the one not given is the current point's; in G91 both are increments of the current point's.
@@ -362,14 +383,11 @@ void Interpreter::move(const Words& w, int line, Effect& effect) {
     if (g53) refuse(line, g53->offset, "G53 without axis words");
     return;
   }
-  if (motion_ == 800)
+  if (no_motion_mode())
     refuse(line, w.first_motion_offset(),
-           "axis words without a motion mode (G0, G1, G2 or G3)");
-  if (!offsets_known_ && !(offsets_set_ >> coordinate_system_ & 1u) && !g53)
-    refuse(line, w.first_motion_offset(),
-           "work offset " + g_name(std::array{540, 550, 560, 570, 580, 590, 591, 592, 593}
-                                       [static_cast<std::size_t>(coordinate_system_ - 1)]) +
-               " is not known: pass --var FILE (LinuxCNC's parameter file) or set it with G10 L2");
+           std::string("axis words without a motion mode (G0, G1, G2 or G3)") +
+               (motion_ == -1 ? ": G5.3 leaves none, as LinuxCNC" : ""));
+  if (!g53) require_known_offsets(line, w.first_motion_offset());
 
   Move m = new_move(line, frame());
   m.kind = motion_ == 0 ? MoveKind::Rapid : motion_ == 10 ? MoveKind::Line : MoveKind::Arc;
@@ -393,6 +411,7 @@ void Interpreter::move(const Words& w, int line, Effect& effect) {
     m.end = machine.program(world_end);
     position_ = frame().program(world_end);
   } else {
+    const std::array<double, 2> xy = program_xy();
     m.end = end_point(w, line);
     if (m.kind == MoveKind::Arc && arc_not_allowed_)
       refuse(line, w.first_motion_offset(), "the move just after exiting cutter compensation mode must be straight, not an arc");
@@ -401,6 +420,9 @@ void Interpreter::move(const Words& w, int line, Effect& effect) {
       refuse(line, w[w.has('I') ? 'I' : w.has('J') ? 'J' : w.has('K') ? 'K' : 'R'].offset,
              "I, J, K or R words without G2/G3");
     position_ = m.end;
+    if (!w.polar())
+      note_program_xy(w.has('X') ? (incremental_ ? xy[0] + w.get('X') : w.get('X')) : xy[0],
+                      w.has('Y') ? (incremental_ ? xy[1] + w.get('Y') : w.get('Y')) : xy[1]);
   }
   known_ |= named;
 
@@ -433,6 +455,14 @@ void Interpreter::move(const Words& w, int line, Effect& effect) {
   }
   effect.moves.push_back(m);
   motion_words(w, m, effect);
+}
+
+void Interpreter::require_known_offsets(int line, int offset) const {
+  if (!offsets_known_ && !(offsets_set_ >> coordinate_system_ & 1u))
+    refuse(line, offset,
+           "work offset " + g_name(std::array{540, 550, 560, 570, 580, 590, 591, 592, 593}
+                                       [static_cast<std::size_t>(coordinate_system_ - 1)]) +
+               " is not known: pass --var FILE (LinuxCNC's parameter file) or set it with G10 L2");
 }
 
 void Interpreter::motion_words(const Words& w, const Move& m, Effect& effect) const {

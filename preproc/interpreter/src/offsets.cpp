@@ -106,6 +106,7 @@ void Interpreter::set_axis_offsets(const Words& w, int code, int line) {
   // the current point gets the given coordinates; G52: the offset is the given values; G92.1
   // and G92.2 take the offsets off (G92.1 also zeroes #5211..), G92.3 puts #5211.. back on.
   const Position world = world_position();
+  const std::array<double, 2> xy = program_xy();
   const double scale = inches_ ? kInch : 1.0;
   if (code == 920 || code == 520) {
     bool any = false;
@@ -133,6 +134,8 @@ void Interpreter::set_axis_offsets(const Words& w, int code, int line) {
     for (int i = 0; i < kAxes; ++i) g92_[i] = parameters_[kG92 + i];
   }
   set_world_position(world);
+  if (code == 920)  // LinuxCNC's current X Y are then the words as written
+    note_program_xy(w.has('X') ? w.get('X') : xy[0], w.has('Y') ? w.get('Y') : xy[1]);
 }
 
 void Interpreter::go_home(const Words& w, int code, int line, Effect& effect) {

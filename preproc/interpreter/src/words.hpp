@@ -67,11 +67,22 @@ struct Interpreter::Words {
       if (std::find(codes.begin(), codes.end(), c.code) != codes.end()) return &c;
     return nullptr;
   }
+  // The line's motion code (group 1), if any: G80 only if there is no other.
+  const Code* motion_code() const {
+    const Code* c = find_g({0, 10, 20, 30, 50, 51, 52, 730, 740, 810, 820, 830, 840, 850, 860, 880, 890,  // (G5.3: splines.cpp)
+                            700, 710, 711, 712, 720, 721, 722});
+    return c ? c : find_g({800});
+  }
   const Code* find_m(std::initializer_list<int> codes) const {
     for (const Code& c : m)
       if (std::find(codes.begin(), codes.end(), c.code) != codes.end()) return &c;
     return nullptr;
   }
 };
+
+// The signed angle (rad) an arc sweeps from angle t0 to angle t1 about its center, in
+// `turns` (P) turns, as LinuxCNC's arcs do: (0, 2 pi] counterclockwise, [-2 pi, 0) clockwise
+// (a full turn if t1 is t0), plus the further turns (arcs.cpp).
+double arc_sweep(double t0, double t1, bool clockwise, int turns);
 
 }  // namespace vc::interpreter

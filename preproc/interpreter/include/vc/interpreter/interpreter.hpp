@@ -42,6 +42,12 @@ struct Setup {
   std::optional<Position> start_world;
 };
 
+// A NURBS control point (G5.2, and the points LinuxCNC makes for G5 and G5.1): program units,
+// as the program gave it, and its weight.
+struct ControlPoint {
+  double x = 0.0, y = 0.0, weight = 1.0;
+};
+
 // What one block does, for a writer that copies the block and replaces its motion.
 struct Effect {
   std::vector<Move> moves;           // in the order LinuxCNC makes them
@@ -51,7 +57,8 @@ struct Effect {
   int g64_word = -1, g64_p_word = -1, g64_q_word = -1;  // path blending words, if any
   int f_word = -1;                   // F word, if any
   int motion_code_word = -1;         // G0/G1/G2/G3 word, if any (replaced with the moves)
-  int modal_motion = 800;            // motion mode after the block, G code x10 (800: none)
+  int modal_motion = 800;            // motion mode after the block, G code x10 (800: G80, -1: none
+                                     // after G5.3)
   // Modal state the moves are written in.
   bool inches = false;
   bool incremental = false;          // G91
@@ -190,10 +197,25 @@ class Interpreter {
   // One move of a lathe cycle (G0, G1, G2, G3 as code x10) in the XZ plane, in program units.
   void lathe_move(int code, std::complex<double> end, std::complex<double> center, int line, int offset,
                   Effect& effect);
+  // Splines and NURBS (splines.cpp): G5, G5.1, G5.2 (the line's motion code, or the mode with
+  // axis words) and G5.3, as LinuxCNC runs them; the rules of the words on such a line.
+  static bool is_spline(int motion) { return motion == 50 || motion == 51 || motion == 52; }
+  void spline_rules(const Words& w, int line) const;
+  void spline(const Words& w, int previous_motion, int line, Effect& effect);
+  void cubic_or_quadratic_spline(const Words& w, int code, int line, Effect& effect);  // G5, G5.1
+  void nurbs_point(const Words& w, int mode_before, int line);                           // G5.2
+  void end_nurbs(const Words& w, int previous_motion, int line, Effect& effect);         // G5.3
+  // The curve's moves (LinuxCNC's NURBS_FEED in the task's canon), from the current point.
+  void curve_moves(const std::vector<ControlPoint>& points, unsigned order, int line, int offset, Effect& effect);
+  void spline_start_rules(int line, int offset, const std::string& what, bool nurbs) const;  // what a curve needs
+  void require_known_offsets(int line, int offset) const;
+  bool no_motion_mode() const { return motion_ == 800 || motion_ == -1; }
   Position world_position() const;
   Frame frame_for(int system) const;  // frame() in coordinate system 1..9
   void set_world_position(const Position& world);  // after a frame change, as LinuxCNC does
   Position end_point(const Words& w, int line) const;
+  std::array<double, 2> program_xy() const;  // the current X Y in program units (program_xy_)
+  void note_program_xy(double x, double y);   // position_ is at these X Y (program units)
   void polar_end_point(const Words& w, int line, double& x, double& y) const;  // '@' '^' 
   void arc_geometry(const Words& w, const Position& end, int line, Move& move) const;
 
@@ -207,7 +229,7 @@ class Interpreter {
   bool incremental_ = false;
   bool arc_absolute_ = false;
   int plane_ = 170;            // G17 x10
-  int motion_ = 800;           // G80 x10: none yet
+  int motion_ = 800;           // G80 x10: none yet (-1: none after G5.3, as LinuxCNC)
   int path_mode_ = 640;        // G61, G61.1, G64 (x10), and G64's P (mm; < 0: none)
   double path_p_ = -1.0;
   // Canned cycles: retract to R (G99, rs274's start) or to the start Z (G98); the words that
@@ -216,6 +238,12 @@ class Interpreter {
   double cycle_r_ = 0.0, cycle_z_ = 0.0, cycle_p_ = 0.0, cycle_q_ = 0.0;
   double cycle_start_z_ = 0.0;
   bool cycle_start_z_known_ = false;
+  // Splines: the first control point of the next G5 without I J, from the last G5's P Q
+  // (LinuxCNC's cycle_i, cycle_j: program units as written); the G5.2 points not yet ended
+  // by G5.3, and the NURBS's order (L).
+  double spline_i_ = 0.0, spline_j_ = 0.0;
+  std::vector<ControlPoint> nurbs_points_;
+  unsigned nurbs_order_ = 3;
   bool inverse_time_ = false;
   double feed_ = 0.0;          // program units per minute, or 1/min in G93
   double spindle_rpm_ = 0.0;
@@ -234,6 +262,15 @@ class Interpreter {
   Position g92_{};             // G92/G52 offsets (mm, deg), added before the rotation
   Position position_{};        // current point, program coordinates (mm, deg); with cutter
                                // compensation the programmed point, not the tool's
+  // LinuxCNC's current X and Y in program units as it computes them (the words as written, G91
+  // sums and unit changes in program units), where the interpreter knows them: a spline's
+  // arithmetic starts from them, and converted from mm they can differ in the last bit, which
+  // LinuxCNC's biarcs can magnify (splines.cpp). Valid while position_ is still at mm_x, mm_y.
+  struct ProgramXY {
+    double x = 0.0, y = 0.0, mm_x = 0.0, mm_y = 0.0;
+    bool inches = false, known = false;
+  };
+  ProgramXY program_xy_;
   CutterCompensation compensation_;
   // Where the tool is (world) when LinuxCNC's position is not where it left the tool: after G40
   // (the programmed point again), after a G74/G84 outside G17 (LinuxCNC 2.9 swaps its axes).
