@@ -71,8 +71,10 @@ std::optional<double> Interpreter::StateView::named(const std::string& name) con
   if (name == "_rpm") return std::abs(i.spindle_rpm_);
   if (name == "_current_tool") return numbered(5400);
   if (name == "_selected_tool") return i.selected_tool_ >= 0 ? std::optional<double>(i.selected_tool_) : std::nullopt;
-  if (name == "_vmajor") return 2.9;  // LinuxCNC 2.9, whose rules this interpreter follows (_vminor: the
-                                      // release that runs the program, unknown here)
+  // LinuxCNC 2.9.0 (Debian 12's 2.9.0~pre1), whose rules this interpreter follows (the lathe
+  // cycles are that release's; a program that tests for a later one is written for that one).
+  if (name == "_vmajor") return 2.9;
+  if (name == "_vminor") return 0.0;
   return std::nullopt;
 }
 
