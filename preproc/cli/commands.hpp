@@ -39,6 +39,14 @@ struct IdentifyCircleArgs {
   std::string symbol;              // which term takes it (default: the one the file uses)
 };
 
+struct IdentifySphereArgs {
+  std::string machine;
+  std::string centres;                   // CSV: the joints at the sphere's centre, one pose per row
+  std::vector<std::string> deviations;   // location errors to identify (default: all of the rotary axes)
+  std::optional<double> tool_length_mm;  // default: the machine file's
+  std::string machine_out;               // folder for the machine file with the identified values
+};
+
 struct PoseArgs {
   std::string machine;
   std::string poses;
@@ -128,6 +136,7 @@ int run_check(const CheckArgs& args, std::ostream& out);
 int run_balance(const BalanceArgs& args, std::ostream& out);
 int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out);
 int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out);
+int run_identify_sphere(const IdentifySphereArgs& args, std::ostream& out);
 int run_trace(const TraceArgs& args, std::ostream& out);
 int run_error(const PoseArgs& args, std::ostream& out);
 int run_correct(const PoseArgs& args, std::ostream& out);

@@ -11,6 +11,7 @@
 #include "format.hpp"
 #include "vc/identify/circular_test.hpp"
 #include "vc/identify/iso230_2.hpp"
+#include "vc/identify/sphere_centres.hpp"
 #include "vc/identify/laser_runs.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/shop/table_set.hpp"
@@ -157,6 +158,43 @@ int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
       model, args.machine_out, {}, "volcomp identify circle from " + args.run, values);
   machine::load_machine(written);  // it loads
   out << "machine file written: " << written << " (" << chosen->symbol << " = " << arcsec(chosen->value_rad) << ")\n";
+  return 0;
+}
+
+int run_identify_sphere(const IdentifySphereArgs& args, std::ostream& out) {
+  const machine::Model model = machine::load_machine(args.machine);
+  const std::vector<identify::SpherePose> poses = identify::read_sphere_centres(args.centres, model);
+  const double length = args.tool_length_mm.value_or(model.tool_length_mm);
+  const identify::SphereFit fit = identify::identify_from_sphere(model, poses, args.deviations, length);
+  const auto value = [](int component, double v) {
+    return component < 3 ? format_fixed(v * 1e3, 2) + " um" : format_fixed(v * 648000.0 / M_PI, 2) + " arcsec";
+  };
+  out << "volcomp identify sphere: " << args.centres << ", " << poses.size() << " poses, " << model.info.name
+      << " at L = " << format_number(length) << " mm (the linear axes' errors enter the centres: identify after the "
+      << "linear tables are in the machine file)\n"
+      << "  " << fit.rank << " of " << fit.parameters << " location errors identified, condition "
+      << format_fixed(fit.condition, 1) << "; sphere centre in the part frame " << format_fixed(fit.centre_mm.x(), 4) << ", "
+      << format_fixed(fit.centre_mm.y(), 4) << ", " << format_fixed(fit.centre_mm.z(), 4) << " mm\n";
+  for (const identify::LocationEstimate& e : fit.estimates)
+    out << "  " << e.symbol << " = " << value(e.component, e.value) << " +- " << value(e.component, e.uncertainty)
+        << " (standard uncertainty; the file has " << value(e.component, e.before) << ")\n";
+  for (const identify::NotSeparable& n : fit.not_separable) {
+    out << "  " << n.symbol << ": not separable from";
+    for (const std::string& w : n.with) out << " " << w;
+    out << " with these poses: left as it is; only their combination is seen, carried by the others\n";
+  }
+  out << "  distance of the model's tip from the common centre per pose, um (before -> after):";
+  for (std::size_t k = 0; k < poses.size(); ++k)
+    out << (k % 6 ? " " : "\n   ") << "line " << poses[k].line << ": " << format_fixed(fit.residual_before_um[k], 2) << " -> "
+        << format_fixed(fit.residual_after_um[k], 2);
+  out << "\n  RMS " << format_fixed(fit.rms_before_um, 3) << " -> " << format_fixed(fit.rms_after_um, 3) << " um\n";
+  if (args.machine_out.empty()) return 0;
+  std::vector<shop::LocationValue> values;
+  for (const identify::LocationEstimate& e : fit.estimates) values.push_back({e.joint, e.component, e.value});
+  const std::string written =
+      shop::write_machine_with_tables(model, args.machine_out, {}, "volcomp identify sphere from " + args.centres, values);
+  machine::load_machine(written);  // it loads
+  out << "machine file written: " << written << "\n";
   return 0;
 }
 

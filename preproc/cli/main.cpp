@@ -185,6 +185,15 @@ int main(int argc, char** argv) {
   circle_cmd->add_option("--machine", circle.machine, "machine file: the squareness in its location errors");
   circle_cmd->add_option("--machine-out", circle.machine_out, "folder: a copy of the machine file with the squareness set");
   circle_cmd->add_option("--symbol", circle.symbol, "the location error that takes it (default: the one the file uses)");
+  vc::cli::IdentifySphereArgs sphere;
+  CLI::App* sphere_cmd = identify_cmd->add_subcommand(
+      "sphere", "Rotary axes' location errors from a sphere's centre probed at several rotary positions");
+  sphere_cmd->add_option("MACHINE", sphere.machine, "machine description file (.toml)")->required();
+  sphere_cmd->add_option("CENTRES", sphere.centres, "CSV: the joints at the sphere's centre per pose (x,y,z,b,c)")->required();
+  sphere_cmd->add_option("--deviations", sphere.deviations, "location errors to identify, e.g. EX0C,EA0B (default: all)")
+      ->delimiter(',');
+  sphere_cmd->add_option("--tool-length", sphere.tool_length_mm, "probe length L, mm (default: the machine file's)");
+  sphere_cmd->add_option("--machine-out", sphere.machine_out, "folder: a copy of the machine file with the values");
 
   CLI11_PARSE(app, argc, argv);
   try {
@@ -192,6 +201,7 @@ int main(int argc, char** argv) {
     if (*balance_cmd) return vc::cli::run_balance(balance, std::cout);
     if (*laser_cmd) return vc::cli::run_identify_laser(laser, std::cout);
     if (*circle_cmd) return vc::cli::run_identify_circle(circle, std::cout);
+    if (*sphere_cmd) return vc::cli::run_identify_sphere(sphere, std::cout);
     if (*error_cmd) return vc::cli::run_error(error, std::cout);
     if (*correct_cmd) return vc::cli::run_correct(correct, std::cout);
     if (*trace_cmd) return vc::cli::run_trace(trace, std::cout);

@@ -130,7 +130,7 @@ TEST(VolcompCli, IdentifyLaserWritesATableTheLoaderReads) {
 }
 
 TEST(VolcompCli, HelpIsEverywhere) {
-  for (const char* sub : {"", "check ", "error ", "correct ", "balance ", "identify laser ", "identify circle "}) {
+  for (const char* sub : {"", "check ", "error ", "correct ", "balance ", "identify laser ", "identify circle ", "identify sphere "}) {
     const auto r = test::run_volcomp(std::string(sub) + "--help");
     EXPECT_EQ(r.exit_code, 0) << sub;
     EXPECT_NE(r.out.find("Usage"), std::string::npos) << sub;
