@@ -47,6 +47,17 @@ struct IdentifySphereArgs {
   std::string machine_out;               // folder for the machine file with the identified values
 };
 
+struct ProbePlanArgs {
+  std::string machine;
+  std::vector<double> centre;            // X,Y,Z of the sphere's centre at rotary 0 (joints, mm)
+  double sphere_diameter_mm = 25.0;
+  double ball_diameter_mm = 2.0;
+  std::optional<double> probe_length_mm;  // default: the machine file's tool length
+  std::vector<std::string> grid;         // "B=0,-30,-60" "C=0,90,180,270"
+  std::string log_file = "volcomp_sphere_probe.txt";
+  std::string output;                    // the program (default: stdout)
+};
+
 struct PoseArgs {
   std::string machine;
   std::string poses;
@@ -137,6 +148,7 @@ int run_balance(const BalanceArgs& args, std::ostream& out);
 int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out);
 int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out);
 int run_identify_sphere(const IdentifySphereArgs& args, std::ostream& out);
+int run_probe_plan(const ProbePlanArgs& args, std::ostream& out);
 int run_trace(const TraceArgs& args, std::ostream& out);
 int run_error(const PoseArgs& args, std::ostream& out);
 int run_correct(const PoseArgs& args, std::ostream& out);

@@ -4,16 +4,22 @@
 // (preproc/identify/README.md).
 #include <cctype>
 #include <cmath>
+#include <fstream>
+#include <iostream>
 #include <set>
+#include <sstream>
 
 #include "atomic_output.hpp"
 #include "commands.hpp"
 #include "format.hpp"
 #include "vc/identify/circular_test.hpp"
 #include "vc/identify/iso230_2.hpp"
+#include "vc/identify/probe_log.hpp"
+#include "vc/identify/probe_plan.hpp"
 #include "vc/identify/sphere_centres.hpp"
 #include "vc/identify/laser_runs.hpp"
 #include "vc/machine/load_machine.hpp"
+#include "vc/tables/source_error.hpp"
 #include "vc/shop/table_set.hpp"
 #include "vc/tables/symbols.hpp"
 
@@ -163,8 +169,25 @@ int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
 
 int run_identify_sphere(const IdentifySphereArgs& args, std::ostream& out) {
   const machine::Model model = machine::load_machine(args.machine);
-  const std::vector<identify::SpherePose> poses = identify::read_sphere_centres(args.centres, model);
-  const double length = args.tool_length_mm.value_or(model.tool_length_mm);
+  // A probe-plan log (its '# volcomp probe log' header) or a CSV of centres.
+  std::string first;
+  {
+    std::ifstream in(args.centres);
+    if (!in) throw LoadError({args.centres}, "cannot open the probe log or centres");
+    while (std::getline(in, first) && first.find_first_not_of(" \t\r") == std::string::npos) {}
+  }
+  std::vector<identify::SpherePose> poses;
+  double length = args.tool_length_mm.value_or(model.tool_length_mm);
+  if (first.rfind("# volcomp probe log", 0) == 0 || first.rfind("POINT", 0) == 0) {
+    const identify::ProbeLog log = identify::read_probe_log(args.centres, model);
+    poses = log.centres;
+    if (!args.tool_length_mm && log.probe_length_mm > 0) length = log.probe_length_mm;
+    out << "probe log: " << poses.size() << " poses, sphere " << format_number(log.sphere_diameter_mm) << " mm, ball "
+        << format_number(log.ball_diameter_mm) << " mm; the points lie within "
+        << format_fixed(log.largest_residual_um, 2) << " um of their fitted spheres\n";
+  } else {
+    poses = identify::read_sphere_centres(args.centres, model);
+  }
   const identify::SphereFit fit = identify::identify_from_sphere(model, poses, args.deviations, length);
   const auto value = [](int component, double v) {
     return component < 3 ? format_fixed(v * 1e3, 2) + " um" : format_fixed(v * 648000.0 / M_PI, 2) + " arcsec";
@@ -195,6 +218,49 @@ int run_identify_sphere(const IdentifySphereArgs& args, std::ostream& out) {
       shop::write_machine_with_tables(model, args.machine_out, {}, "volcomp identify sphere from " + args.centres, values);
   machine::load_machine(written);  // it loads
   out << "machine file written: " << written << "\n";
+  return 0;
+}
+
+int run_probe_plan(const ProbePlanArgs& args, std::ostream& out) {
+  const machine::Model model = machine::load_machine(args.machine);
+  identify::ProbePlanOptions o;
+  if (args.centre.size() != 3) throw std::runtime_error("--centre X,Y,Z: the sphere's centre at rotary 0 (the DRO, mm)");
+  o.centre_mm = Eigen::Vector3d(args.centre[0], args.centre[1], args.centre[2]);
+  o.sphere_diameter_mm = args.sphere_diameter_mm;
+  o.ball_diameter_mm = args.ball_diameter_mm;
+  o.probe_length_mm = args.probe_length_mm.value_or(0.0);
+  o.log_file = args.log_file;
+  if (!(o.sphere_diameter_mm > 0) || !(o.ball_diameter_mm >= 0)) throw std::runtime_error("the diameters must be positive");
+  // --grid B=0,-30,-60 --grid C=0,90,180,270: every combination, in joint order.
+  std::vector<std::vector<double>> axes;
+  for (int j = 0; j < model.joint_count(); ++j) {
+    const machine::Axis& a = model.axes[static_cast<std::size_t>(j)];
+    if (a.type != machine::AxisType::Rotary) continue;
+    std::vector<double> values;
+    for (const std::string& g : args.grid)
+      if (g.size() > 2 && std::toupper(static_cast<unsigned char>(g[0])) == a.letter && g[1] == '=') {
+        std::stringstream list(g.substr(2));
+        for (std::string v; std::getline(list, v, ',');) values.push_back(std::stod(v));
+      }
+    if (values.empty()) throw std::runtime_error("--grid " + std::string(1, a.letter) + "=...: the positions of " + a.letter);
+    axes.push_back(values);
+  }
+  std::vector<std::size_t> index(axes.size(), 0);
+  while (true) {
+    std::vector<double> pose;
+    for (std::size_t r = 0; r < axes.size(); ++r) pose.push_back(axes[r][index[r]]);
+    o.rotary_positions.push_back(pose);
+    std::size_t r = 0;
+    while (r < axes.size() && ++index[r] == axes[r].size()) index[r++] = 0;
+    if (r == axes.size()) break;
+  }
+  const std::string program = identify::probe_plan(model, o);
+  if (args.output.empty() || args.output == "-") {
+    out << program;
+  } else {
+    write_atomically(args.output, [&](std::ostream& file) { file << program; });
+    std::cerr << "volcomp probe-plan: " << args.output << ", " << o.rotary_positions.size() << " poses, 5 points each\n";
+  }
   return 0;
 }
 

@@ -189,11 +189,24 @@ int main(int argc, char** argv) {
   CLI::App* sphere_cmd = identify_cmd->add_subcommand(
       "sphere", "Rotary axes' location errors from a sphere's centre probed at several rotary positions");
   sphere_cmd->add_option("MACHINE", sphere.machine, "machine description file (.toml)")->required();
-  sphere_cmd->add_option("CENTRES", sphere.centres, "CSV: the joints at the sphere's centre per pose (x,y,z,b,c)")->required();
+  sphere_cmd->add_option("CENTRES", sphere.centres, "probe-plan log, or a CSV of the joints at the sphere's centre per pose (x,y,z,b,c)")->required();
   sphere_cmd->add_option("--deviations", sphere.deviations, "location errors to identify, e.g. EX0C,EA0B (default: all)")
       ->delimiter(',');
   sphere_cmd->add_option("--tool-length", sphere.tool_length_mm, "probe length L, mm (default: the machine file's)");
   sphere_cmd->add_option("--machine-out", sphere.machine_out, "folder: a copy of the machine file with the values");
+
+  vc::cli::ProbePlanArgs plan;
+  CLI::App* plan_cmd = app.add_subcommand(
+      "probe-plan", "A LinuxCNC program that probes a sphere at rotary positions for 'identify sphere' (G38.2, LOG)");
+  plan_cmd->add_option("MACHINE", plan.machine, "machine description file (.toml)")->required();
+  plan_cmd->add_option("--centre", plan.centre, "X,Y,Z: the sphere's centre at rotary 0, as the DRO shows it (mm)")
+      ->delimiter(',')->required();
+  plan_cmd->add_option("--sphere-diameter", plan.sphere_diameter_mm, "mm")->capture_default_str();
+  plan_cmd->add_option("--ball-diameter", plan.ball_diameter_mm, "the stylus ball, mm")->capture_default_str();
+  plan_cmd->add_option("--probe-length", plan.probe_length_mm, "gauge point to ball centre, mm (default: the machine file's)");
+  plan_cmd->add_option("--grid", plan.grid, "rotary positions, e.g. --grid B=0,-30,-60,-90 --grid C=0,90,180,270")->required();
+  plan_cmd->add_option("--log", plan.log_file, "the log file LinuxCNC writes (LOGOPEN)")->capture_default_str();
+  plan_cmd->add_option("-o,--output", plan.output, "the program (default: stdout)");
 
   CLI11_PARSE(app, argc, argv);
   try {
@@ -202,6 +215,7 @@ int main(int argc, char** argv) {
     if (*laser_cmd) return vc::cli::run_identify_laser(laser, std::cout);
     if (*circle_cmd) return vc::cli::run_identify_circle(circle, std::cout);
     if (*sphere_cmd) return vc::cli::run_identify_sphere(sphere, std::cout);
+    if (*plan_cmd) return vc::cli::run_probe_plan(plan, std::cout);
     if (*error_cmd) return vc::cli::run_error(error, std::cout);
     if (*correct_cmd) return vc::cli::run_correct(correct, std::cout);
     if (*trace_cmd) return vc::cli::run_trace(trace, std::cout);

@@ -162,6 +162,64 @@ TEST(SphereCentres, CommandLineWritesAMachineFileThatLoads) {
   std::filesystem::remove_all(dir);
 }
 
+// The probing loop without the machine: probe-plan's program runs clean in LinuxCNC's own
+// interpreter; a log as that program writes it, of probe trips on the true machine's sphere
+// (5 per pose, 25 mm sphere, 2 mm ball), gives the centres and the location errors back; a
+// log with the wrong sphere diameter or of another machine is refused with its line.
+TEST(SphereCentres, ProbePlanAndItsLogCloseTheLoop) {
+  const machine::Model model = machine::load_machine(test::machine_path("mc300"));
+  const auto dir = std::filesystem::temp_directory_path() / ("vc_probe_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string program = (dir / "plan.ngc").string();
+  auto r = test::run_volcomp("probe-plan " + test::machine_path("mc300") +
+                             " --centre -300,-160,-200 --grid B=0,-45,-90 --grid C=0,90,180,270 -o " + program);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const std::string rs274 = "cd " + dir.string() + " && HOME=" + dir.string() + " rs274 -g plan.ngc < /dev/null > rs274.out 2>&1";
+  EXPECT_EQ(std::system(rs274.c_str()), 0);
+  std::ifstream rs274_out(dir / "rs274.out");
+  const std::string canon((std::istreambuf_iterator<char>(rs274_out)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(canon.find("rror"), std::string::npos) << canon.substr(0, 2000);
+  EXPECT_NE(canon.find("STRAIGHT_PROBE"), std::string::npos);
+
+  machine::Model truth = model;
+  offset(truth, 'C', 0, 0.015);
+  offset(truth, 'C', 3, 4 * kArcsec);
+  offset(truth, 'B', 2, 0.008);
+  const double reach = (25.0 + 2.0) / 2;
+  const auto write_log = [&](const std::string& name, double reach_written, const std::string& axes) {
+    std::ofstream log(dir / name);
+    log << "# volcomp probe log: sphere_diameter_mm 25.0000 ball_diameter_mm 2.0000 probe_length_mm 100.0000 axes " << axes
+        << "\n";
+    int pose = 0;
+    for (const SpherePose& p : plan(truth, {0, -45, -90}, {0, 90, 180, 270}, 21)) {
+      ++pose;
+      const Eigen::Vector3d c(p.joints[0], p.joints[1], p.joints[2]);
+      for (const Eigen::Vector3d& d : {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(-1, 0, 0),
+                                      Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, -1, 0)}) {
+        const Eigen::Vector3d trip = c + reach_written * d;  // (G54 offsets zero)
+        log << "POINT " << pose << std::fixed << std::setprecision(6) << " " << p.joints[3] << " " << p.joints[4] << " "
+            << trip.x() << " " << trip.y() << " " << trip.z() << " 0.000000 0.000000 0.000000\n";
+      }
+    }
+    return (dir / name).string();
+  };
+  r = test::run_volcomp("identify sphere " + test::machine_path("mc300") + " " + write_log("good.txt", reach, "xyzbc") +
+                        " --deviations EX0C,EY0C,EA0C,EX0B,EZ0B,EA0B,EC0B --machine-out " + (dir / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("probe log: 12 poses, sphere 25 mm, ball 2 mm"), std::string::npos) << r.out;
+  const machine::Model written = machine::load_machine((dir / "out" / "mc300.toml").string());
+  EXPECT_NEAR(written.axes[written.joint_of('C')].location_mm[0], truth.axes[truth.joint_of('C')].location_mm[0], 0.002);
+  EXPECT_NEAR(written.axes[written.joint_of('B')].location_mm[2], truth.axes[truth.joint_of('B')].location_mm[2], 0.002);
+
+  r = test::run_volcomp("identify sphere " + test::machine_path("mc300") + " " + write_log("wrong.txt", reach + 0.5, "xyzbc"));
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.out.find("off the sphere of diameter"), std::string::npos) << r.out;
+  r = test::run_volcomp("identify sphere " + test::machine_path("mc300") + " " + write_log("other.txt", reach, "xyzac"));
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.out.find("other.txt:1: error: the log is of a machine with axes xyzac"), std::string::npos) << r.out;
+  std::filesystem::remove_all(dir);
+}
+
 TEST(SphereCentres, APlanAtOnePoseIsRefusedNotFitted) {
   const machine::Model model = machine::load_machine(test::machine_path("mc300"));
   const std::vector<SpherePose> poses = plan(model, {-30}, {120}, 4);
