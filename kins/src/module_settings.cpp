@@ -28,6 +28,11 @@ ModuleSettings settings_from_parameters(const char* machine, const char* coordin
   // A relative path is taken from rtapi_app's working directory (LinuxCNC starts it in the
   // configuration's directory); made absolute here so every message names the file tried.
   s.model = machine::load_machine(std::filesystem::absolute(machine).lexically_normal().string());
+  // Not yet read from HAL: a machine with temperature inputs would be corrected at their
+  // reference temperatures while the user believes it follows the sensors.
+  if (!s.model.temperatures.empty())
+    refuse(s.model.path + " has temperature inputs ([temperatures]), which volkins does not read from HAL yet: "
+           "remove them for volkins (pre-distort with `volcomp predistort --temperature NAME=VALUE` for the thermal case)");
 
   const std::string wanted = s.model.coordinates();
   const std::string given = coordinates && *coordinates ? lower(coordinates) : wanted;

@@ -363,6 +363,18 @@ void axis_errors(const Model& model, int joint, const Joints& q, AxisErrors& out
       for (std::size_t v = 0; v < grid.size(); ++v)
         out.slope(columns[c].symbol.component, bound.joint[v]) += sample.slope[c][v];
   }
+  // Thermal expansion of a linear axis: it travels (1 + strain) times as far from its reference
+  // point, along its own direction u (a table axis then carries the part the other way).
+  const LinearThermal& thermal = model.axes[joint].thermal;
+  if (thermal.input >= 0) {
+    const TemperatureInput& t = model.temperatures[static_cast<std::size_t>(thermal.input)];
+    const double strain = thermal.expansion_per_K * (t.value_degC - t.reference_degC);
+    const Eigen::Vector3d& u = model.axes[joint].direction;
+    for (int c = 0; c < 3; ++c) {
+      sum[static_cast<std::size_t>(c)] += strain * (q[joint] - thermal.reference_mm) * u[c];
+      if (with_slopes) out.slope(c, joint) += strain * u[c];
+    }
+  }
   out.delta_mm = {sum[0], sum[1], sum[2]};
   out.eps_rad = {sum[3], sum[4], sum[5]};
 }

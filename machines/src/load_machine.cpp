@@ -46,8 +46,9 @@ class MachineReader {
     model_.path = path_;
     check_keys(root, "the machine file",
                {"machine", "measurement", "spindle", "fixture", "correction", "tool_chain",
-                "workpiece_chain", "stiffness"});
+                "workpiece_chain", "stiffness", "temperatures"});
     read_info(root);
+    read_temperatures(root);
     read_spindle(root);
     read_fixture(root);
     read_correction(root);
@@ -188,6 +189,50 @@ class MachineReader {
     }
   }
 
+  // [temperatures]: name = { reference_degC = 20, min_degC = 10, max_degC = 45 }
+  void read_temperatures(const toml::table& root) {
+    const toml::table* temps = table(root, "temperatures", false, "");
+    if (!temps) return;
+    for (auto&& [key, value] : *temps) {
+      const std::string name(key.str());
+      const toml::table* t = value.as_table();
+      if (!t) throw LoadError(where(key.source()), "temperature input '" + name + "' = { reference_degC = 20.0, min_degC = ..., max_degC = ... }");
+      const std::string context = "temperature input '" + name + "'";
+      check_keys(*t, context, {"reference_degC", "min_degC", "max_degC"});
+      TemperatureInput in;
+      in.name = name;
+      in.reference_degC = scalar(*t, "reference_degC", 20.0, context);
+      in.min_degC = scalar(*t, "min_degC", 0.0, context);
+      in.max_degC = scalar(*t, "max_degC", 50.0, context);
+      if (!(in.min_degC <= in.reference_degC && in.reference_degC <= in.max_degC) || in.min_degC < -50 || in.max_degC > 150)
+        throw LoadError(where(*t), context + ": needs -50 <= min_degC <= reference_degC <= max_degC <= 150");
+      in.value_degC = in.reference_degC;
+      model_.temperatures.push_back(in);
+    }
+  }
+
+  // thermal = { input = "x_screw", expansion_um_per_m_K = 11.5, reference_mm = 0 } (linear axes)
+  void read_thermal(const toml::table& axis_table, Axis& axis, const std::string& context) {
+    const toml::node* n = axis_table.get("thermal");
+    if (!n) return;
+    const toml::table* t = n->as_table();
+    if (!t) throw LoadError(where(*n), "thermal = { input = \"name\", expansion_um_per_m_K = 11.5, reference_mm = 0 }");
+    if (axis.type != AxisType::Linear || (axis.letter != 'X' && axis.letter != 'Y' && axis.letter != 'Z'))
+      throw LoadError(where(*n), "thermal expansion is for the linear axes X, Y, Z (a rotary axis's thermal drift goes in a table)");
+    const std::string where_text = context + " thermal";
+    check_keys(*t, where_text, {"input", "expansion_um_per_m_K", "reference_mm"});
+    const std::string input = text(*t, "input", true, where_text);
+    axis.thermal.input = model_.temperature_of(input);
+    if (axis.thermal.input < 0)
+      throw LoadError(where(*t->get("input")), "no temperature input '" + input + "' in [temperatures]");
+    const double um_per_m_K = scalar(*t, "expansion_um_per_m_K", std::nullopt, where_text);
+    if (std::abs(um_per_m_K) > 50)
+      throw LoadError(where(*t->get("expansion_um_per_m_K")), "expansion_um_per_m_K must be within +-50 (steel 11.5, "
+                                                               "cast iron 10.5, glass scales 0-8)");
+    axis.thermal.expansion_per_K = um_per_m_K * 1e-6;
+    axis.thermal.reference_mm = scalar(*t, "reference_mm", 0.0, where_text);
+  }
+
   void read_spindle(const toml::table& root) {
     const toml::table& s = *table(root, "spindle", true, "the machine file");
     check_keys(s, "[spindle]", {"gauge_point_mm", "tool_length_mm", "tool_length_reference_mm", "location"});
@@ -285,7 +330,7 @@ class MachineReader {
       const toml::table& t = *item.as_table();
       const std::string context = "[[" + std::string(key) + "]]";
       check_keys(t, context, {"axis", "type", "direction", "pole_mm", "travel_mm", "travel_deg",
-                              "location", "tables"});
+                              "location", "tables", "thermal"});
       Axis axis{};
       const std::string letter = text(t, "axis", true, context);
       if (letter.size() != 1 || tables::kAxisLetters.find(letter[0]) == std::string_view::npos)
@@ -316,6 +361,7 @@ class MachineReader {
       axis.travel_max = travel[1];
       read_location(table(t, "location", false, ""), axis.letter, axis.location_mm, axis.location_rad);
       axis.real_base = line_placement(axis.pole_mm, axis.location_mm, axis.location_rad);
+      read_thermal(t, axis, context);
       const toml::node* tl = t.get("tables");
       if (tl && !(tl->is_array() && tl->as_array()->is_array_of_tables()))
         throw LoadError(where(*tl), "'tables' must be a list: [[" + std::string(key) + ".tables]]");

@@ -1,3 +1,4 @@
+#include <stdexcept>
 #include "vc/machine/model.hpp"
 
 #include <cctype>
@@ -51,6 +52,27 @@ Eigen::Isometry3d line_placement(const Eigen::Vector3d& origin_mm, const Eigen::
   t.translation() = origin_mm + location_mm;
   t.linear() = rotation_xyz(location_rad);
   return t;
+}
+
+void Model::set_temperature(const std::string& name, double degC) {
+  const int i = temperature_of(name);
+  if (i < 0) {
+    std::string names;
+    for (const TemperatureInput& t : temperatures) names += (names.empty() ? "" : ", ") + t.name;
+    throw std::invalid_argument("no temperature input '" + name + "' in " + path +
+                                (names.empty() ? " (it has no [temperatures])" : " (it has: " + names + ")"));
+  }
+  TemperatureInput& t = temperatures[static_cast<std::size_t>(i)];
+  if (!(degC >= t.min_degC && degC <= t.max_degC))
+    throw std::invalid_argument("temperature " + name + " = " + std::to_string(degC) + " degC is outside the range the model holds for (" +
+                                std::to_string(t.min_degC) + " .. " + std::to_string(t.max_degC) + " degC)");
+  t.value_degC = degC;
+}
+
+int Model::temperature_of(const std::string& name) const {
+  for (std::size_t i = 0; i < temperatures.size(); ++i)
+    if (temperatures[i].name == name) return static_cast<int>(i);
+  return -1;
 }
 
 }  // namespace vc::machine

@@ -86,6 +86,7 @@ struct PredistortArgs {
   std::string line_map;            // CSV: output line -> input file and line
   double tolerance_mm = 0.0005;
   double tolerance_rad = 2e-5;     // tool direction between written points (rotary axes)
+  std::vector<std::string> temperatures;  // NAME=VALUE (degC) of the machine file's [temperatures]
   bool quiet = false;
 };
 

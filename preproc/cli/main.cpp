@@ -71,6 +71,8 @@ int main(int argc, char** argv) {
   predistort_cmd->add_option("--tolerance", predistort.tolerance_mm,
                              "largest path deviation from the exact correction, mm")
       ->capture_default_str();
+  predistort_cmd->add_option("--temperature", predistort.temperatures,
+                             "NAME=VALUE: a temperature input of the machine file, degC (repeatable; default: its reference)");
   predistort_cmd->add_option("--tolerance-rad", predistort.tolerance_rad,
                              "largest tool direction deviation from the exact correction between the written points, "
                              "rad (machines with rotary axes)")

@@ -64,7 +64,20 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
   if (!(args.tolerance_rad > 0.0 && args.tolerance_rad <= 0.01))
     throw std::runtime_error("--tolerance-rad must be in (0, 0.01] rad");
   const machine::WorldConvention world = world_convention(args.world);
-  const machine::Model model = machine::load_machine(args.machine);
+  machine::Model model = machine::load_machine(args.machine);
+  std::string conditions;  // the temperatures the program is made for, for its header
+  for (const std::string& t : args.temperatures) {
+    const auto eq = t.find('=');
+    double value = 0;
+    try {
+      if (eq == std::string::npos) throw std::invalid_argument("");
+      value = std::stod(t.substr(eq + 1));
+    } catch (const std::logic_error&) {
+      throw std::runtime_error("--temperature " + t + ": NAME=VALUE in degC, e.g. x_screw=27.5");
+    }
+    model.set_temperature(t.substr(0, eq), value);
+    conditions += ", " + t.substr(0, eq) + " " + t.substr(eq + 1) + " degC";
+  }
   const ProgramFiles files(args.tool_table, args.var_file);
   const std::optional<predistort::Deflection> deflection = files.deflection(args.process, model);
 
@@ -77,8 +90,8 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
   job.corrector.tolerance_rad = args.tolerance_rad;
   job.corrector.world = world;
   job.deflection = deflection ? &*deflection : nullptr;
-  job.provenance = {{}, args.machine, model.info.name, {}, args.var_file, args.tool_table, args.process, args.world,
-                    args.tolerance_mm};
+  job.provenance = {{}, args.machine, model.info.name + conditions, {}, args.var_file, args.tool_table, args.process,
+                    args.world, args.tolerance_mm};
   for (const auto& t : model.tables) job.provenance.tables.push_back(t.table.path());
 
   // Read in 1 MiB pieces, not the stream's default 8 KiB: a million-line program is then

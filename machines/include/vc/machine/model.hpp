@@ -30,6 +30,15 @@ using Joints = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxAxes, 1>;
 enum class AxisType { Linear, Rotary };
 enum class Chain { Tool, Workpiece };
 
+// A linear axis's thermal expansion (its measuring system, e.g. a ball screw, growing with a
+// temperature input): the axis travels (1 + expansion (T - T_reference)) times as far from its
+// reference point, the extra along its own direction u (an error of its frame's translation).
+struct LinearThermal {
+  int input = -1;                    // index into Model::temperatures; -1: none
+  double expansion_per_K = 0.0;      // 1/K (11.5e-6 for steel)
+  double reference_mm = 0.0;         // the point of the axis that does not move as it grows
+};
+
 struct Axis {
   char letter;                  // 'X', 'Y', 'Z', 'A', 'B', 'C', ...
   AxisType type;
@@ -42,6 +51,17 @@ struct Axis {
   Eigen::Isometry3d real_base;    // T(o + d0) * R(e0)
   std::vector<int> tables;        // indices into Model::tables
   unsigned moved_by = 0;          // bit j set: joint j moves this axis's frame (itself, table variables)
+  LinearThermal thermal;          // linear axes: the expansion with a temperature input
+};
+
+// A temperature input of the machine file's [temperatures] (a sensor: volkins reads it from a
+// HAL pin, predistort takes --temperature NAME=VALUE). `value_degC` is the current value the
+// model is evaluated at (the reference until set); the range is what the model is valid for.
+struct TemperatureInput {
+  std::string name;
+  double reference_degC = 20.0;  // the temperature the tables hold
+  double min_degC = 0.0, max_degC = 50.0;
+  double value_degC = 20.0;
 };
 
 // An error table bound to this machine's joints.
@@ -106,6 +126,7 @@ struct Model {
   SolverOptions solver;
   std::vector<BoundTable> tables;
   std::vector<AxisCompliance> compliance;  // per joint ([stiffness]); all rigid if absent
+  std::vector<TemperatureInput> temperatures;  // [temperatures], in the file's order
   Warnings warnings;                   // found at load time, for `check` and loadrt
 
   int joint_count() const { return static_cast<int>(axes.size()); }
@@ -113,6 +134,10 @@ struct Model {
   double correction_length(double offset_mm) const { return tool_length_reference_mm + offset_mm; }
   int rotary_count() const;
   int joint_of(char letter) const;     // -1 if the machine has no such axis
+  int temperature_of(const std::string& name) const;  // -1 if the machine has no such input
+  // Load time (predistort --temperature): throws std::invalid_argument for an unknown input or a
+  // value outside its range. The servo thread sets temperatures[i].value_degC directly.
+  void set_temperature(const std::string& name, double degC);
   std::string coordinates() const;     // lower-case letters in joint order, e.g. "xyzbc"
 };
 
