@@ -90,7 +90,9 @@ void expect_bounds_hold(const std::string& machine_name) {
     const CorrectionBounds::Bound curvature = bounds.curvature_bound(a, b, ca.joints, cb.joints, L);
     EXPECT_LE(error, slope.mm) << machine_name << " piece " << piece;
     const bool rotary = model.rotary_count() > 0;  // the direction is bounded (corrected) only there
-    if (rotary) EXPECT_LE(error_rad, slope.rad) << machine_name << " piece " << piece;
+    if (rotary) {
+      EXPECT_LE(error_rad, slope.rad) << machine_name << " piece " << piece;
+    }
     worst_slope = std::max(worst_slope, error / slope.mm);
     if (rotary) worst_slope_rad = std::max(worst_slope_rad, error_rad / slope.rad);
     below_slope += slope.mm <= 1.25e-4;
@@ -98,7 +100,9 @@ void expect_bounds_hold(const std::string& machine_name) {
     ++smooth;
     EXPECT_LE(error, curvature.mm) << machine_name << " piece " << piece << " from " << a.transpose() << " to "
                                    << b.transpose();
-    if (rotary) EXPECT_LE(error_rad, curvature.rad) << machine_name << " piece " << piece;
+    if (rotary) {
+      EXPECT_LE(error_rad, curvature.rad) << machine_name << " piece " << piece;
+    }
     worst_curvature = std::max(worst_curvature, error / curvature.mm);
     if (rotary) worst_curvature_rad = std::max(worst_curvature_rad, error_rad / curvature.rad);
     below_curvature += curvature.mm <= 1.25e-4;
