@@ -105,13 +105,9 @@ CircularTest read_circular_test(const std::string& path) {
     if (lower(key) == "radius_mm") t.radius_mm = std::atof(value.c_str());
   }
   const tables::CsvRow& header = rows.front();
-  std::vector<HeaderCell> cells;
-  for (const tables::CsvCell& c : header.cells) cells.push_back(header_cell(path, header.line, c));
-  const auto find = [&](const std::string& name) -> int {
-    for (std::size_t i = 0; i < cells.size(); ++i)
-      if (cells[i].name == name) return static_cast<int>(i);
-    return -1;
-  };
+  const Header columns_read = read_header(path, header);
+  const std::vector<HeaderCell>& cells = columns_read.cells;
+  const auto find = [&](const std::string& name) { return columns_read.column(name); };
   const int angle = find("angle");
   if (angle < 0 || cells[static_cast<std::size_t>(angle)].unit_name != "deg")
     throw LoadError({path, header.line}, "missing column angle[deg]");

@@ -31,6 +31,18 @@ HeaderCell header_cell(const std::string& path, int line, const tables::CsvCell&
   return h;
 }
 
+int Header::column(const std::string& name) const {
+  for (std::size_t i = 0; i < cells.size(); ++i)
+    if (cells[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+Header read_header(const std::string& path, const tables::CsvRow& row) {
+  Header h;
+  for (const tables::CsvCell& c : row.cells) h.cells.push_back(header_cell(path, row.line, c));
+  return h;
+}
+
 std::vector<std::pair<std::string, std::string>> read_metadata(const std::string& path) {
   std::vector<std::pair<std::string, std::string>> out;
   std::ifstream in(path);

@@ -24,6 +24,13 @@ struct HeaderCell {
 // Throws LoadError at the cell for a malformed unit or one that is not a length or an angle.
 HeaderCell header_cell(const std::string& path, int line, const tables::CsvCell& cell);
 
+// A header line's cells read, and the column of a name (-1: none).
+struct Header {
+  std::vector<HeaderCell> cells;
+  int column(const std::string& name) const;
+};
+Header read_header(const std::string& path, const tables::CsvRow& row);
+
 // The "# key: value" lines before the first line that is not a comment.
 std::vector<std::pair<std::string, std::string>> read_metadata(const std::string& path);
 

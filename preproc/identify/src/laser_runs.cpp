@@ -28,14 +28,10 @@ LaserRuns read_laser_runs(const std::string& path) {
   if (rows.empty()) throw LoadError({path}, "no header: target[mm],run,direction,deviation[um] (or target[mm],1+[um],1-[um],...)");
   runs.metadata = read_metadata(path);
   const tables::CsvRow& header = rows.front();
-  std::vector<HeaderCell> cells;
-  for (const tables::CsvCell& c : header.cells) cells.push_back(header_cell(path, header.line, c));
+  const Header columns_read = read_header(path, header);
+  const std::vector<HeaderCell>& cells = columns_read.cells;
 
-  const auto find = [&](const std::string& name) -> int {
-    for (std::size_t i = 0; i < cells.size(); ++i)
-      if (cells[i].name == name) return static_cast<int>(i);
-    return -1;
-  };
+  const auto find = [&](const std::string& name) { return columns_read.column(name); };
   const int target = find("target");
   if (target < 0) throw LoadError({path, header.line}, "missing column target[mm] (or target[deg] for a rotary axis)");
   const HeaderCell& t = cells[static_cast<std::size_t>(target)];

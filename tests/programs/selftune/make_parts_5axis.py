@@ -83,6 +83,20 @@ def fmt(x):
     return f"{x:.4f}"
 
 
+def write_plan(name, title, legend, points):
+    """The CMM plan: (face, point, normal) numbered per face; returns the number of points."""
+    with open(os.path.join(HERE, name + "_points.csv"), "w") as f:
+        f.write(f"# {title}: CMM plan written by make_parts_5axis.py\n# {legend}\n")
+        f.write("# nominal points on the cut surfaces (part frame), unit normals out of the material\n")
+        f.write("id,x[mm],y[mm],z[mm],i,j,k\n")
+        counts = {}
+        for face, p, n in points:
+            counts[face] = counts.get(face, 0) + 1
+            f.write(f"{face}{counts[face]:03d},{fmt(p[0])},{fmt(p[1])},{fmt(p[2])},"
+                    f"{n[0]:.6f},{n[1]:.6f},{n[2]:.6f}\n")
+    return len(points)
+
+
 def write_part(name, title, b_deg, c_deg, centre, half_u, half_v, depth):
     t, u, v = frame(b_deg, c_deg)
     at = lambda a, b, h: add(centre, scale(a, u), scale(b, v), scale(-h, t))  # h: depth below the top
@@ -147,17 +161,8 @@ def write_part(name, title, b_deg, c_deg, centre, half_u, half_v, depth):
                 a = -half_u + CORNER + i * (2 * (half_u - CORNER)) / (n - 1)
                 assert abs(a) <= half_u - RADIUS
                 points.append(("WV" + ("+" if sign_v > 0 else "-"), at(a, sign_v * half_v, h), scale(-sign_v, v)))
-    with open(os.path.join(HERE, name + "_points.csv"), "w") as f:
-        f.write(f"# {title}: CMM plan written by make_parts_5axis.py\n")
-        f.write("# FL: floor (normal: the tool axis); WU+ WU- WV+ WV-: walls at three heights, normals into the pocket\n")
-        f.write("# nominal points on the cut surfaces (part frame), unit normals out of the material\n")
-        f.write("id,x[mm],y[mm],z[mm],i,j,k\n")
-        counts = {}
-        for face, p, n in points:
-            counts[face] = counts.get(face, 0) + 1
-            f.write(f"{face}{counts[face]:03d},{fmt(p[0])},{fmt(p[1])},{fmt(p[2])},"
-                    f"{n[0]:.6f},{n[1]:.6f},{n[2]:.6f}\n")
-    return len(points)
+    return write_plan(name, title, "FL: floor (normal: the tool axis); WU+ WU- WV+ WV-: walls at three heights, "
+                      "normals into the pocket", points)
 
 
 def write_cone(name, title, tilt_deg, floor_radius, depth, step_deg=0.2):
@@ -230,17 +235,8 @@ def write_cone(name, title, tilt_deg, floor_radius, depth, step_deg=0.2):
             normal = (-math.cos(a) * c, -math.cos(a) * s_, math.sin(a))
             assert h / math.cos(a) < 25  # within the flute length above the tip
             points.append(("WALL", (r_at * c, r_at * s_, bottom + h), normal))
-    with open(os.path.join(HERE, name + "_points.csv"), "w") as f:
-        f.write(f"# {title}: CMM plan written by make_parts_5axis.py\n")
-        f.write("# FL: floor (normal +Z); WALL: the conical wall at three heights, normals into the pocket\n")
-        f.write("# nominal points on the cut surfaces (part frame), unit normals out of the material\n")
-        f.write("id,x[mm],y[mm],z[mm],i,j,k\n")
-        counts = {}
-        for face, p, n in points:
-            counts[face] = counts.get(face, 0) + 1
-            f.write(f"{face}{counts[face]:03d},{fmt(p[0])},{fmt(p[1])},{fmt(p[2])},"
-                    f"{n[0]:.6f},{n[1]:.6f},{n[2]:.6f}\n")
-    return len(points)
+    return write_plan(name, title, "FL: floor (normal +Z); WALL: the conical wall at three heights, normals into the pocket",
+                      points)
 
 
 if __name__ == "__main__":

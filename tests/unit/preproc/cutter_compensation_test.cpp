@@ -7,34 +7,15 @@
 #include <cmath>
 #include <sstream>
 
-#include "vc/interpreter/program_reader.hpp"
+#include "program_reader.hpp"
 #include "vc/tables/source_error.hpp"
 
 namespace vc::interpreter {
 namespace {
 
-struct Line {
-  int number;
-  std::vector<Move> moves;
-};
+using Line = test::LineMoves;
 
-std::vector<Line> run(const std::string& program) {
-  gcode::Parameters var;
-  Setup setup;
-  setup.file = "test.ngc";
-  setup.machine_axes = 0b111;
-  setup.var_file = &var;
-  Interpreter interpreter(setup);
-  std::istringstream in(program);
-  ProgramReader reader(in, "test.ngc", interpreter);
-  std::vector<Line> lines;
-  std::string raw;
-  Origin origin;
-  gcode::Block block;
-  Effect effect;
-  while (reader.next(raw, origin, block, effect)) lines.push_back({origin.line, effect.moves});
-  return lines;
-}
+std::vector<Line> run(const std::string& program) { return test::run_lines(program, "test.ngc"); }
 
 void expect_at(const Position& p, double x, double y) {
   EXPECT_NEAR(p[0], x, 1e-9);

@@ -6,34 +6,15 @@
 
 #include <sstream>
 
-#include "vc/interpreter/program_reader.hpp"
+#include "program_reader.hpp"
 #include "vc/tables/source_error.hpp"
 
 namespace vc::interpreter {
 namespace {
 
-struct Line {
-  int number;
-  std::vector<Move> moves;
-};
+using Line = test::LineMoves;
 
-std::vector<Line> run(const std::string& program) {
-  gcode::Parameters var;
-  Setup setup;
-  setup.file = "lathe.ngc";
-  setup.machine_axes = 0b111;
-  setup.var_file = &var;
-  Interpreter interpreter(setup);
-  std::istringstream in(program);
-  ProgramReader reader(in, "lathe.ngc", interpreter);
-  std::vector<Line> lines;
-  std::string raw;
-  Origin origin;
-  gcode::Block block;
-  Effect effect;
-  while (reader.next(raw, origin, block, effect)) lines.push_back({origin.line, effect.moves});
-  return lines;
-}
+std::vector<Line> run(const std::string& program) { return test::run_lines(program, "lathe.ngc"); }
 
 std::string refusal(const std::string& program) {
   try {
