@@ -63,6 +63,8 @@ ToolTable read_tool_table(const std::string& path) {
         tool.z_offset = value;
       } else if (letter == 'D') {
         tool.diameter = value;
+      } else if (std::string_view("XYABCUVW").find(letter) != std::string_view::npos && value != 0.0 && !tool.other_offset) {
+        tool.other_offset = letter;
       }
       skip_spaces(s, pos);
     }

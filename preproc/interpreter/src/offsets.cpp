@@ -28,6 +28,11 @@ void Interpreter::set_tool_length(const Words& w, int line) {
       if (it == tools_->end())
         refuse(line, w.has('H') ? w['H'].offset : g->offset,
                "tool " + std::to_string(tool) + " is not in the tool table");
+      if (it->second.other_offset)
+        refuse(line, w.has('H') ? w['H'].offset : g->offset,
+               "tool " + std::to_string(tool) + " has an offset in " + it->second.other_offset +
+                   " in the tool table, which LinuxCNC's G43 applies too: the pre-distorter takes the Z "
+                   "(length) offset only (not translated yet)");
       tool_length_ = it->second.z_offset;  // machine units: mm
     }
   }

@@ -168,6 +168,9 @@ TEST(Interpreter, RefusesWhatItCannotTranslateWithLineAndColumn) {
   const ToolTable tools{{1, {1, 100.0, 10.0}}};
   EXPECT_NE(refusal(kStart + "G43 H7\n", &tools).find("test.ngc:3:5: error: tool 7 is not in the tool table"),
             std::string::npos);
+  const ToolTable lathe_tool{{2, {2, 10.0, 4.0, 'X'}}};  // an X offset, which G43 would apply too
+  EXPECT_NE(refusal(kStart + "T2 M6 G43\n", &lathe_tool).find("tool 2 has an offset in X in the tool table"),
+            std::string::npos);
   EXPECT_NE(refusal("G1 X1 Y1 F100\n").find("unknown position"), std::string::npos);
   EXPECT_NE(refusal(kStart + "G1 A5 F100\n").find("no A axis"), std::string::npos);
   EXPECT_NE(refusal(kStart + "G2 X1 Y1 I0.2 J0.1\n").find("radius to end of arc differs"), std::string::npos);

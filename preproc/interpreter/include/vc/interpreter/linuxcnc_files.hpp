@@ -14,6 +14,9 @@ struct Tool {
   int number = 0;
   double z_offset = 0.0;   // tool length offset, machine units (mm here)
   double diameter = 0.0;   // D column, machine units; 0 if absent
+  // The first of X Y A B C U V W that holds a non-zero offset (0: none). LinuxCNC's G43 applies
+  // those too (a lathe tool's X); the pre-distorter takes Z only and refuses G43 with others.
+  char other_offset = 0;
 };
 using ToolTable = std::map<int, Tool>;
 
