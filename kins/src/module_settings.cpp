@@ -28,11 +28,15 @@ ModuleSettings settings_from_parameters(const char* machine, const char* coordin
   // A relative path is taken from rtapi_app's working directory (LinuxCNC starts it in the
   // configuration's directory); made absolute here so every message names the file tried.
   s.model = machine::load_machine(std::filesystem::absolute(machine).lexically_normal().string());
-  // Not yet read from HAL: a machine with temperature inputs would be corrected at their
-  // reference temperatures while the user believes it follows the sensors.
-  if (!s.model.temperatures.empty())
-    refuse(s.model.path + " has temperature inputs ([temperatures]), which volkins does not read from HAL yet: "
-           "remove them for volkins (pre-distort with `volcomp predistort --temperature NAME=VALUE` for the thermal case)");
+  // Temperature inputs become HAL pins volkins.temperature.<name>.
+  if (s.model.temperatures.size() > static_cast<std::size_t>(kMaxTemperatureInputs))
+    refuse(s.model.path + " has " + std::to_string(s.model.temperatures.size()) + " temperature inputs; volkins takes " +
+           std::to_string(kMaxTemperatureInputs));
+  for (const machine::TemperatureInput& t : s.model.temperatures)
+    if (t.name.empty() || t.name.size() > 24 ||
+        !std::all_of(t.name.begin(), t.name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'; }))
+      refuse("temperature input '" + t.name + "' of " + s.model.path +
+             ": a HAL pin name needs 1-24 letters, digits, '_' or '-'");
 
   const std::string wanted = s.model.coordinates();
   const std::string given = coordinates && *coordinates ? lower(coordinates) : wanted;

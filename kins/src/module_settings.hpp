@@ -11,6 +11,9 @@
 
 namespace vc::kins {
 
+// Temperature inputs the module takes (a HAL pin each).
+inline constexpr int kMaxTemperatureInputs = 8;
+
 struct ModuleSettings {
   machine::Model model;
   machine::WorldConvention world = machine::WorldConvention::Axes;

@@ -11,7 +11,10 @@
 // ramp and the parameters, and report on output pins). A HAL file without `addf volkins.update`
 // does not leave the machine silently uncorrected: until the function has run, the kinematics
 // apply what volkins.enable asks for in full (no ramp), say so on volkins.gain, volkins.active
-// and volkins.update-missing, and print once how to fix the HAL file.
+// and volkins.update-missing, and print once how to fix the HAL file. Temperature inputs of
+// the machine file are HAL pins volkins.temperature.<name>, low-passed in volkins.update;
+// a missing or out-of-range reading holds the last good value and raises
+// volkins.temperature-fault.
 // Servo thread: no allocation, no locks, no I/O, bounded iterations, no exceptions.
 
 #include <algorithm>
@@ -36,6 +39,7 @@ using vc::machine::Joints;
 namespace vm = vc::machine;
 
 constexpr double kDegPerRad = 57.295779513082320876798154814105;
+constexpr int kMaxTemperatures = vc::kins::kMaxTemperatureInputs;
 
 struct HalData {
   // Pins.
@@ -51,6 +55,9 @@ struct HalData {
   hal_bit_t* out_of_table;                    // out: last inverse beyond a table's grid
   hal_bit_t* limit_exceeded;                  // out: last inverse refused (max correction)
   hal_s32_t* failures;                        // out: inverse and forward calls refused so far
+  hal_float_t* temperature[kMaxTemperatures];           // in: volkins.temperature.<name>, degC
+  hal_float_t* temperature_filtered[kMaxTemperatures];  // out: what the correction uses, degC
+  hal_bit_t* temperature_fault;               // out: an input is missing or out of its range (held)
   // Parameters.
   hal_float_t ramp_time;                      // s: 0 -> 1 (and back) takes this long
   hal_float_t max_correction_mm;              // largest linear joint correction allowed
@@ -58,6 +65,7 @@ struct HalData {
   hal_float_t pole_fade_start_deg;            // phi0 (model.md): no orientation correction below
   hal_float_t pole_fade_full_deg;             // phi1: full orientation correction above
   hal_float_t tool_length_slew_time;          // s: a tool length change reaches the correction in this time
+  hal_float_t temperature_time_constant;      // s: of the low-pass on every temperature input
   // State of the ramp (only volkins.update writes it).
   double phase;
   // Whether volkins.update has run, and whether the kinematics ran before it did (then it
@@ -67,6 +75,8 @@ struct HalData {
   // The tool length offset the correction follows (volkins.update slews it to volkins.tool-length
   // along a smoothstep, so that a G43 does not step the joints by angular error x change of L).
   double offset_from, offset_to, offset_phase, offset_applied;
+  // Each temperature input low-passed (from its reference at load), held while it is faulty.
+  double temperature_state[kMaxTemperatures];
 };
 
 vc::kins::ModuleSettings* settings = nullptr;  // built in rtapi_app_main, read-only afterwards
@@ -136,6 +146,24 @@ void update(void*, long period_ns) {
   hal->offset_applied = hal->offset_from + (hal->offset_to - hal->offset_from) * p * p * (3.0 - 2.0 * p);
   if (p >= 1.0) hal->offset_applied = hal->offset_to;
   *hal->correction_length = settings->model.correction_length(hal->offset_applied);
+
+  // Temperatures: a first-order low-pass (sensor noise never reaches the joints); a reading
+  // that is not a number or lies outside the model's range is not taken: the last good value
+  // is held and volkins.temperature-fault raised while it lasts.
+  bool fault = false;
+  const double dt = period_ns * 1e-9, tau = std::max(0.0, static_cast<double>(hal->temperature_time_constant));
+  for (std::size_t i = 0; i < settings->model.temperatures.size(); ++i) {
+    vm::TemperatureInput& input = settings->model.temperatures[i];
+    const double reading = *hal->temperature[i];
+    if (std::isfinite(reading) && reading >= input.min_degC && reading <= input.max_degC) {
+      hal->temperature_state[i] += (reading - hal->temperature_state[i]) * dt / (tau + dt);
+    } else {
+      fault = true;
+    }
+    input.value_degC = hal->temperature_state[i];
+    *hal->temperature_filtered[i] = hal->temperature_state[i];
+  }
+  *hal->temperature_fault = fault;
 
   const double start = hal->pole_fade_start_deg, full = hal->pole_fade_full_deg;
   if (start >= 0.0 && full > start && full <= 90.0) {
@@ -264,6 +292,13 @@ bool export_hal(const vm::Model& model) {
   r |= hal_param_float_newf(HAL_RW, &hal->max_correction_deg, comp_id, "volkins.max-correction-deg");
   r |= hal_param_float_newf(HAL_RW, &hal->pole_fade_start_deg, comp_id, "volkins.pole-fade-start-deg");
   r |= hal_param_float_newf(HAL_RW, &hal->pole_fade_full_deg, comp_id, "volkins.pole-fade-full-deg");
+  for (std::size_t i = 0; i < model.temperatures.size(); ++i) {
+    const char* name = model.temperatures[i].name.c_str();
+    r |= hal_pin_float_newf(HAL_IN, &hal->temperature[i], comp_id, "volkins.temperature.%s", name);
+    r |= hal_pin_float_newf(HAL_OUT, &hal->temperature_filtered[i], comp_id, "volkins.temperature.%s.filtered", name);
+  }
+  r |= hal_pin_bit_newf(HAL_OUT, &hal->temperature_fault, comp_id, "volkins.temperature-fault");
+  r |= hal_param_float_newf(HAL_RW, &hal->temperature_time_constant, comp_id, "volkins.temperature-time-constant");
   r |= hal_export_funct("volkins.update", update, nullptr, 1 /* uses floating point */, 0, comp_id);
   if (r) return false;
 
@@ -281,6 +316,10 @@ bool export_hal(const vm::Model& model) {
   hal->offset_from = hal->offset_to = hal->offset_applied = *hal->tool_length;
   hal->offset_phase = 1.0;
   *hal->correction_length = model.correction_length(*hal->tool_length);
+  for (std::size_t i = 0; i < model.temperatures.size(); ++i)  // until a sensor says otherwise
+    *hal->temperature[i] = *hal->temperature_filtered[i] = hal->temperature_state[i] = model.temperatures[i].reference_degC;
+  *hal->temperature_fault = 0;
+  hal->temperature_time_constant = 10.0;
   hal->ramp_time = 1.0;
   hal->max_correction_mm = 1.0;
   hal->max_correction_deg = 0.1;

@@ -100,6 +100,45 @@ TEST(Volkins, EnableRampsTheGainInRampTime) {
   EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(bit\s+OUT\s+FALSE\s+volkins\.update-missing)"))) << r.out;
 }
 
+// A temperature input of the machine file is a pin volkins.temperature.<name>: low-passed with
+// volkins.temperature-time-constant (sensor noise never reaches the joints), and a reading
+// outside the model's range (or not a number) holds the last good value and raises
+// volkins.temperature-fault while it lasts.
+TEST(Volkins, TemperaturesAreLowPassedAndAFaultyReadingIsHeld) {
+  const std::string script = loadrt("tests/hal/data/mill3_thermal.toml") +
+                             "loadrt threads name1=servo period1=1000000\n"
+                             "addf volkins.update servo\n"
+                             "setp volkins.temperature-time-constant 0.2\n"
+                             "show pin volkins.temperature.x_screw.filtered\n"  // the reference until a reading
+                             "setp volkins.temperature.x_screw 30\n"
+                             "start\n"
+                             "loadusr -w sleep 0.05\n"
+                             "show pin volkins.temperature.x_screw.filtered\n"   // on its way
+                             "loadusr -w sleep 1.5\n"
+                             "show pin volkins.temperature.x_screw.filtered\n"   // there (7 time constants)
+                             "setp volkins.temperature.x_screw 90\n"             // beyond max_degC 45: a fault
+                             "loadusr -w sleep 0.3\n"
+                             "show pin volkins.temperature.x_screw.filtered\n"
+                             "show pin volkins.temperature-fault\n"
+                             "setp volkins.temperature.x_screw 31\n"
+                             "loadusr -w sleep 0.3\n"
+                             "show pin volkins.temperature-fault\n";
+  const test::CommandResult r = test::halrun("temperature", script);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const std::vector<double> t = shown_values(r.out, "volkins.temperature.x_screw.filtered");
+  ASSERT_EQ(t.size(), 4u) << r.out;
+  EXPECT_EQ(t[0], 20.0) << r.out;
+  EXPECT_GT(t[1], 20.0) << r.out;
+  EXPECT_LT(t[1], 29.0) << r.out;  // not a step
+  EXPECT_NEAR(t[2], 30.0, 0.01) << r.out;
+  EXPECT_NEAR(t[3], 30.0, 0.01) << r.out;  // held while faulty (not on its way to 90)
+  const std::regex fault(R"(bit\s+OUT\s+(TRUE|FALSE)\s+volkins\.temperature-fault\s)");
+  std::vector<std::string> states;
+  for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), fault); it != std::sregex_iterator(); ++it)
+    states.push_back((*it)[1]);
+  EXPECT_EQ(states, (std::vector<std::string>{"TRUE", "FALSE"})) << r.out;
+}
+
 // Every golden bad machine file is refused by loadrt with the loader's message (the .expect
 // twin, with absolute paths), and afterwards no volkins component exists and a good machine
 // loads in the same HAL session.

@@ -30,12 +30,12 @@ inline std::filesystem::path run_folder(const std::string& name) {
   return dir;
 }
 
-// Copies the source folders rtapi_app reads (machine files, tables, golden bad machines) to
+// Copies the source folders rtapi_app reads (machine files, tables, golden bad machines, HAL test data) to
 // <dir>/src, keeping their relative layout; returns <dir>/src.
 inline std::filesystem::path stage_sources(const std::filesystem::path& dir) {
   namespace fs = std::filesystem;
   const fs::path src = dir / "src";
-  for (const char* folder : {"machines/data", "tables/data", "tests/golden/bad_machines"}) {
+  for (const char* folder : {"machines/data", "tables/data", "tests/golden/bad_machines", "tests/hal/data"}) {
     fs::create_directories(src / folder);
     fs::copy(source_path(folder), src / folder, fs::copy_options::recursive);
   }
