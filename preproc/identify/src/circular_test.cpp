@@ -169,7 +169,11 @@ CircularEvaluation evaluate_circular_test(const CircularTest& test) {
   }
   // G(b): both directions about their common least-squares centre (the mean of the two).
   double cx = 0, cy = 0;
-  for (const CircleFit& f : e.fits) cx += f.centre_first_mm / e.fits.size(), cy += f.centre_second_mm / e.fits.size();
+  const auto runs = static_cast<double>(e.fits.size());
+  for (const CircleFit& f : e.fits) {
+    cx += f.centre_first_mm / runs;
+    cy += f.centre_second_mm / runs;
+  }
   for (const CircleRun& run : test.runs)
     for (const auto& [phi, d] : run.points) {
       const double v = d + cx * std::cos(phi) + cy * std::sin(phi);
