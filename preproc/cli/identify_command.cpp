@@ -80,6 +80,9 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
     out << "  " << format_number(t.target) << "  " << format_fixed(t.mean_up * unit, 3) << "  "
         << format_fixed(t.mean_down * unit, 3) << "  " << format_fixed(t.mean * unit, 3) << "  "
         << format_fixed(t.reversal * unit, 3) << "  " << format_fixed(t.r * unit, 3) << "\n";
+  if (runs.rotary && e.targets.size() > 2 && std::abs(e.targets.back().target - e.targets.front().target - 360.0) < 1e-9)
+    out << "One full turn: 0 and 360 deg are one position; the table holds their mean there (periodic), they read "
+        << shown(e.targets.front().mean, q) << " and " << shown(e.targets.back().mean, q) << ".\n";
   out << "The table holds the " << (args.direction == "both" ? "mean bidirectional deviation" : args.direction + " runs' mean")
       << " at each target. The reversal (B = " << shown(e.reversal, q)
       << ") is not part of the geometric model: it stays uncorrected (a backlash compensation in the drive's INI takes "
@@ -96,9 +99,18 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
           << ", accuracy A " << shown(e.accuracy, q) << "\n# error = actual - nominal\n";
       csv << static_cast<char>(std::tolower(symbol->axis)) << (runs.rotary ? "[deg]" : "[mm]") << "," << args.error
           << (q == tables::Quantity::Length ? "[um]" : "[urad]") << "\n";
-      for (const identify::TargetStatistics& t : e.targets) {
-        const double v = args.direction == "up" ? t.mean_up : args.direction == "down" ? t.mean_down : t.mean;
-        csv << format_number(t.target) << "," << format_fixed(v * unit, 4) << "\n";
+      const auto value = [&](const identify::TargetStatistics& t) {
+        return args.direction == "up" ? t.mean_up : args.direction == "down" ? t.mean_down : t.mean;
+      };
+      // A rotary axis measured over exactly one turn: 0 and 360 deg are one position, whose
+      // two readings are averaged (the table is periodic: its first and last rows must agree).
+      const bool full_turn = runs.rotary && e.targets.size() > 2 &&
+                             std::abs(e.targets.back().target - e.targets.front().target - 360.0) < 1e-9;
+      const double seam = full_turn ? (value(e.targets.front()) + value(e.targets.back())) / 2 : 0.0;
+      for (std::size_t k = 0; k < e.targets.size(); ++k) {
+        const bool end = full_turn && (k == 0 || k + 1 == e.targets.size());
+        csv << format_number(e.targets[k].target) << "," << format_fixed((end ? seam : value(e.targets[k])) * unit, 4)
+            << "\n";
       }
     });
     std::string measured_at;

@@ -2,6 +2,7 @@
 // independent MC-300 reference, and file:line:column messages for bad input.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -127,6 +128,26 @@ TEST(VolcompCli, IdentifyLaserWritesATableTheLoaderReads) {
   EXPECT_NE(r.out.find("the deviations are lengths but EAX is a rotation"), std::string::npos) << r.out;
   r = test::run_volcomp("identify laser " + in + " --error ECC");
   EXPECT_NE(r.out.find("the targets are in mm but ECC is an error of the rotary axis C"), std::string::npos) << r.out;
+}
+
+// A rotary axis indexed against a reference over one full turn (ECC, arcsec): 0 and 360 deg are
+// one position, so the table is periodic and loads; their readings are averaged.
+TEST(VolcompCli, IdentifyLaserOnAFullTurnWritesAPeriodicTable) {
+  std::string runs = "target[deg],1+[arcsec],1-[arcsec],2+[arcsec],2-[arcsec]\n";
+  for (int k = 0; k <= 8; ++k) {
+    const double v = 3 * std::sin(k * M_PI / 4) + (k == 8 ? 0.4 : 0.0);  // 360 reads 0.4 arcsec off 0
+    runs += std::to_string(45 * k) + "," + std::to_string(v + 0.5) + "," + std::to_string(v - 0.5) + "," +
+            std::to_string(v + 0.6) + "," + std::to_string(v - 0.4) + "\n";
+  }
+  const std::string in = write_temp("ecc_runs.csv", runs), table = write_temp("ecc.csv", "");
+  std::filesystem::remove(table);
+  const auto r = test::run_volcomp("identify laser " + in + " --error ECC -o " + table);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("One full turn"), std::string::npos) << r.out;
+  const tables::ErrorTable t = tables::load_table(table);
+  ASSERT_TRUE(t.grid()[0].periodic);
+  EXPECT_NEAR(t.value(0, 0), t.value(8, 0), 1e-12);
+  EXPECT_NEAR(t.value(0, 0) / (M_PI / 648000), 0.2 + 0.05, 1e-3);  // the mean of 0.05 and 0.45 arcsec
 }
 
 TEST(VolcompCli, HelpIsEverywhere) {
