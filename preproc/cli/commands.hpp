@@ -78,7 +78,8 @@ struct PredistortArgs {
   std::string input;
   std::string output;              // "-": stdout (AXIS filter)
   std::string var_file;            // LinuxCNC parameter file: work offsets, G28/G30 homes
-  std::string tool_table;          // LinuxCNC tool table: tool lengths (mm)
+  std::string tool_table;          // LinuxCNC tool table: tool lengths
+  std::string machine_units = "mm";  // of the tool table and the .var file: mm or inch
   std::string process;             // cutting conditions per tool: cutting-force deflection
   std::string world = "axes";      // world convention of the uncompensated kinematics
   std::vector<std::string> subroutine_path;  // folders of NAME.ngc subroutine files
@@ -95,6 +96,7 @@ struct SimulateArgs {
   std::string input;
   std::string output;              // tool path CSV
   std::string var_file, tool_table, process;
+  std::string machine_units = "mm";
   std::string compensation;        // machine file volkins corrects with (none: uncompensated)
   std::string world = "axes";
   double step_mm = 0.5;
@@ -118,6 +120,7 @@ struct SelftuneArgs {
   std::string output;              // program P(i+1)
   std::string strategy = "local";  // local or model
   std::string var_file, tool_table, world = "axes";
+  std::string machine_units = "mm";
   bool compensated = false;        // Pi ran with volkins correcting with MACHINE
   std::vector<int> ball_end_tools;
   double flute_length_mm = 30.0;

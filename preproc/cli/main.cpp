@@ -51,7 +51,10 @@ int main(int argc, char** argv) {
       ->required();
   predistort_cmd->add_option("--var", predistort.var_file,
                              "LinuxCNC parameter file (.var): work offsets G54..G59.3, G28/G30 homes");
-  predistort_cmd->add_option("--tool-table", predistort.tool_table, "LinuxCNC tool table (.tbl): tool lengths, mm");
+  predistort_cmd->add_option("--tool-table", predistort.tool_table, "LinuxCNC tool table (.tbl): tool lengths");
+  predistort_cmd->add_option("--machine-units", predistort.machine_units,
+                         "the unit of the tool table and the .var file, LinuxCNC's [TRAJ]LINEAR_UNITS: mm or inch")
+      ->capture_default_str();
   predistort_cmd
       ->add_option("--subroutine-path", predistort.subroutine_path,
                    "folders searched for NAME.ngc when o<name> call or M98 P<n> finds no definition in the program "
@@ -89,7 +92,10 @@ int main(int argc, char** argv) {
   simulate_cmd->add_option("PROGRAM", simulate.input, "part program (RS274/NGC)")->required();
   simulate_cmd->add_option("-o,--output", simulate.output, "tool path CSV")->required();
   simulate_cmd->add_option("--var", simulate.var_file, "LinuxCNC parameter file (.var)");
-  simulate_cmd->add_option("--tool-table", simulate.tool_table, "LinuxCNC tool table (.tbl): lengths and diameters, mm");
+  simulate_cmd->add_option("--tool-table", simulate.tool_table, "LinuxCNC tool table (.tbl): lengths and diameters");
+  simulate_cmd->add_option("--machine-units", simulate.machine_units,
+                         "the unit of the tool table and the .var file, LinuxCNC's [TRAJ]LINEAR_UNITS: mm or inch")
+      ->capture_default_str();
   simulate_cmd->add_option("--process", simulate.process, "cutting conditions per tool (.toml): cutting-force deflection");
   simulate_cmd->add_option("--compensation", simulate.compensation,
                            "machine file the kinematics module corrects with (default: none, uncompensated)");
@@ -131,7 +137,10 @@ int main(int argc, char** argv) {
   selftune_cmd->add_option("--strategy", selftune.strategy, "local (shift the path) or model (tune the tables)")
       ->capture_default_str();
   selftune_cmd->add_option("--var", selftune.var_file, "LinuxCNC parameter file (.var)");
-  selftune_cmd->add_option("--tool-table", selftune.tool_table, "LinuxCNC tool table (.tbl): lengths and diameters, mm");
+  selftune_cmd->add_option("--tool-table", selftune.tool_table, "LinuxCNC tool table (.tbl): lengths and diameters");
+  selftune_cmd->add_option("--machine-units", selftune.machine_units,
+                         "the unit of the tool table and the .var file, LinuxCNC's [TRAJ]LINEAR_UNITS: mm or inch")
+      ->capture_default_str();
   selftune_cmd->add_option("--world", selftune.world, "world convention: axes or tcp")->capture_default_str();
   selftune_cmd->add_flag("--compensated", selftune.compensated,
                          "PROGRAM ran with volkins correcting with MACHINE (not pre-distorted)");

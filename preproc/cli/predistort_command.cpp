@@ -78,14 +78,14 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
     model.set_temperature(t.substr(0, eq), value);
     conditions += ", " + t.substr(0, eq) + " " + t.substr(eq + 1) + " degC";
   }
-  const ProgramFiles files(args.tool_table, args.var_file);
+  const ProgramFiles files(args.tool_table, args.var_file, args.machine_units);
   const std::optional<predistort::Deflection> deflection = files.deflection(args.process, model);
 
   predistort::Job job;
   job.model = &model;
   job.setup = files.setup(args.input, model, world == machine::WorldConvention::Tcp);
   job.setup.subroutine_path = args.subroutine_path;
-  if (!args.start.empty()) job.setup.start_world = start_position(args.start);
+  if (!args.start.empty()) job.setup.start_world = start_position(args.start, files.machine_unit_mm);
   job.corrector.tolerance_mm = args.tolerance_mm;
   job.corrector.tolerance_rad = args.tolerance_rad;
   job.corrector.world = world;

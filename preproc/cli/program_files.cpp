@@ -13,8 +13,15 @@
 
 namespace vc::cli {
 
-ProgramFiles::ProgramFiles(const std::string& tool_table, const std::string& var_file) {
-  if (!tool_table.empty()) tools = interpreter::read_tool_table(tool_table);
+double machine_unit_mm(const std::string& name) {
+  if (name == "mm") return 1.0;
+  if (name == "inch") return 25.4;
+  throw std::runtime_error("--machine-units must be mm or inch (LinuxCNC's [TRAJ]LINEAR_UNITS), not " + name);
+}
+
+ProgramFiles::ProgramFiles(const std::string& tool_table, const std::string& var_file, const std::string& machine_units)
+    : machine_unit_mm(cli::machine_unit_mm(machine_units)) {
+  if (!tool_table.empty()) tools = interpreter::read_tool_table(tool_table, machine_unit_mm);
   if (!var_file.empty()) {
     parameters.emplace();
     interpreter::read_var_file(var_file, *parameters);
@@ -28,6 +35,7 @@ interpreter::Setup ProgramFiles::setup(const std::string& program, const machine
   setup.tools = tools ? &*tools : nullptr;
   setup.var_file = parameters ? &*parameters : nullptr;
   setup.tool_length_in_world = !tcp;
+  setup.machine_unit_mm = machine_unit_mm;
   return setup;
 }
 
@@ -41,7 +49,7 @@ std::optional<predistort::Deflection> ProgramFiles::deflection(const std::string
                                                predistort::load_process(process, tools ? &*tools : nullptr));
 }
 
-interpreter::Position start_position(const std::string& value) {
+interpreter::Position start_position(const std::string& value, double unit_mm) {
   interpreter::Position start{};
   if (!std::filesystem::is_regular_file(value)) {
     std::istringstream list(value);
@@ -79,6 +87,18 @@ interpreter::Position start_position(const std::string& value) {
     };
     entries.try_emplace(section + "." + trim(line.substr(0, equals)), trim(line.substr(equals + 1)), number);
   }
+  // LinuxCNC's LINEAR_UNITS: mm, metric, in, inch, imperial (emcIniLoad's names).
+  double ini_unit_mm = 1.0;
+  if (const auto units = entries.find("TRAJ.LINEAR_UNITS"); units != entries.end()) {
+    const std::string& u = units->second.first;
+    if (u == "in" || u == "inch" || u == "imperial") ini_unit_mm = 25.4;
+    else if (u != "mm" && u != "metric")
+      throw LoadError({value, units->second.second}, "--start: LINEAR_UNITS " + u + " is not mm, metric, in, inch or imperial");
+    if (ini_unit_mm != unit_mm)
+      throw LoadError({value, units->second.second},
+                      "--start: the INI's LINEAR_UNITS is " + u + ": give --machine-units " +
+                          (ini_unit_mm == 1.0 ? "mm" : "inch") + " (the .var file and the tool table are in it)");
+  }
   const auto coordinates = entries.find("TRAJ.COORDINATES");
   if (coordinates == entries.end()) throw LoadError({value}, "--start: no [TRAJ]COORDINATES in the INI file");
   int joint = 0;
@@ -90,7 +110,8 @@ interpreter::Position start_position(const std::string& value) {
     if (home != entries.end()) {
       std::size_t used = 0;
       try {
-        start[static_cast<std::size_t>(axis - interpreter::kAxisLetters)] = std::stod(home->second.first, &used);
+        const int i = static_cast<int>(axis - interpreter::kAxisLetters);
+        start[static_cast<std::size_t>(i)] = std::stod(home->second.first, &used) * (interpreter::is_linear(i) ? unit_mm : 1.0);
       } catch (const std::exception&) {
         used = 0;
       }

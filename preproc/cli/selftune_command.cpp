@@ -61,7 +61,7 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
 
   const machine::WorldConvention world = world_convention(args.world);
   const machine::Model model = machine::load_machine(args.machine);
-  const ProgramFiles files(args.tool_table, args.var_file);
+  const ProgramFiles files(args.tool_table, args.var_file, args.machine_units);
   const bool tcp = world == machine::WorldConvention::Tcp;
 
   shop::FirstPartOptions options;

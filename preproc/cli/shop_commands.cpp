@@ -21,7 +21,7 @@ int run_simulate(const SimulateArgs& args, std::ostream& report) {
   const machine::Model machine = machine::load_machine(args.machine);
   std::optional<machine::Model> compensation;
   if (!args.compensation.empty()) compensation = machine::load_machine(args.compensation);
-  const ProgramFiles files(args.tool_table, args.var_file);
+  const ProgramFiles files(args.tool_table, args.var_file, args.machine_units);
   const std::optional<predistort::Deflection> deflection = files.deflection(args.process, machine);
 
   shop::SimulationOptions options;

@@ -54,10 +54,9 @@ def subroutine_path(program):
 
 
 def write_files(work, program):
-    with open(os.path.join(work, "tools_mm.tbl"), "w") as f:
-        for n in TOOLS:
-            f.write(f"T{n} P{n} Z{10 + n} D{1 + n / 10}\n")
-    with open(os.path.join(work, "tools_inch.tbl"), "w") as f:  # rs274's machine units are inches
+    # rs274's machine units are inches (saicanon.cc); volcomp reads the same files with
+    # --machine-units inch, as it would on a LinuxCNC set up in inches.
+    with open(os.path.join(work, "tools_inch.tbl"), "w") as f:
         for n in TOOLS:
             f.write(f"T{n} P{n} Z{(10 + n) / 25.4!r} D{(1 + n / 10) / 25.4!r}\n")
     zero_var(work)
@@ -448,7 +447,7 @@ def check(program, volcomp, keep=None):
         tolerance = TOLERANCE_INCH_MM if "CANON_UNITS_INCHES" in original[0] else TOLERANCE_MM
         out = os.path.join(work, "out.ngc")
         args = [volcomp, "predistort", MACHINE, program, "-o", out, "--var", "zero.var", "--tool-table",
-                "tools_mm.tbl", "-q", "--start", "0,0,0"]
+                "tools_inch.tbl", "--machine-units", "inch", "-q", "--start", "0,0,0"]
         for folder in subroutine_path(program):
             args += ["--subroutine-path", folder]
         zero_var(work)

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <cstdlib>
 #include <fstream>
+#include <iomanip>
 #include <iterator>
 #include <map>
 
@@ -529,6 +530,60 @@ travel_mm = [0, 500]
             std::string::npos)
       << r.out;
   EXPECT_FALSE(fs::exists(out));
+}
+
+// A LinuxCNC set up in inches ([TRAJ]LINEAR_UNITS = inch) keeps its .var file and tool table in
+// inches: the same machine described so, read with --machine-units inch, gives the same program
+// as in millimetres; an INI in inches without the option is refused.
+TEST(PredistortCli, AMachineSetUpInInchesReadsItsFilesInInches) {
+  const fs::path dir = test::run_folder("predistort_inch_machine");
+  std::ifstream var_mm(program("mill3.var"));
+  std::ofstream var_inch(dir / "mill3_inch.var");
+  int n = 0;
+  double value = 0;
+  while (var_mm >> n >> value) {
+    const int axis = n >= 5221 ? (n - 5221) % 20 : n >= 5211 ? n - 5211 : n >= 5181 ? n - 5181 : n - 5161;
+    const bool length = n != 5220 && n != 5210 && (axis <= 2 || (axis >= 6 && axis <= 8));
+    var_inch << n << "\t" << std::setprecision(17) << (length ? value / 25.4 : value) << "\n";
+  }
+  var_inch.close();
+  std::ofstream(dir / "mill3_inch.tbl") << "T1 P1 Z" << std::setprecision(17) << 100 / 25.4 << " D" << 10 / 25.4
+                                        << "\nT2 P2 Z" << 85.5 / 25.4 << " D" << 6 / 25.4 << "\n";
+  const std::string common = "predistort " + test::machine_path("mill3") + " " + program(kPocket.program) + " -q";
+  const auto mm = test::run_volcomp(common + " -o " + (dir / "mm.ngc").string() + " --var " + program("mill3.var") +
+                                    " --tool-table " + program("mill3.tbl"));
+  const auto inch = test::run_volcomp(common + " -o " + (dir / "inch.ngc").string() + " --var " +
+                                      (dir / "mill3_inch.var").string() + " --tool-table " +
+                                      (dir / "mill3_inch.tbl").string() + " --machine-units inch");
+  ASSERT_EQ(mm.exit_code, 0) << mm.out;
+  ASSERT_EQ(inch.exit_code, 0) << inch.out;
+  const auto body = [](const fs::path& path) {  // the program after its header comments
+    std::ifstream in(path);
+    std::string line, text;
+    while (std::getline(in, line))
+      if (line.rfind("(volcomp", 0) != 0 && line.rfind("(machine:", 0) != 0 && line.rfind("(tolerance:", 0) != 0)
+        text += line + "\n";
+    return text;
+  };
+  const std::string in_mm = body(dir / "mm.ngc");
+  EXPECT_GT(in_mm.size(), 1000u);
+  EXPECT_EQ(body(dir / "inch.ngc"), in_mm);
+  // Read as millimetres, the same files are another machine: the output differs.
+  const auto wrong = test::run_volcomp(common + " -o " + (dir / "wrong.ngc").string() + " --var " +
+                                       (dir / "mill3_inch.var").string() + " --tool-table " +
+                                       (dir / "mill3_inch.tbl").string());
+  EXPECT_NE(body(dir / "wrong.ngc"), in_mm);
+
+  std::ofstream(dir / "inch.ini") << "[TRAJ]\nCOORDINATES = X Y Z\nLINEAR_UNITS = inch\n[JOINT_0]\nHOME = 1\n";
+  const auto refused = test::run_volcomp(common + " -o " + (dir / "start.ngc").string() + " --var " +
+                                         (dir / "mill3_inch.var").string() + " --start " + (dir / "inch.ini").string());
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.out.find("inch.ini:3: error: --start: the INI's LINEAR_UNITS is inch: give --machine-units inch"),
+            std::string::npos)
+      << refused.out;
+  const auto bad = test::run_volcomp(common + " -o " + (dir / "bad.ngc").string() + " --machine-units furlong");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.out.find("--machine-units must be mm or inch"), std::string::npos) << bad.out;
 }
 
 TEST(PredistortCli, WorksAsAnAxisFilter) {

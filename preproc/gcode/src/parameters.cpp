@@ -23,13 +23,13 @@ std::size_t index_of(double n, int offset) {
 
 double Parameters::get(double n, int offset) const {
   const std::size_t i = index_of(n, offset);
-  if (state_ && (i == 5400 || (i >= 5420 && i <= 5428)))
+  if (state_ && (i >= 5400 && i <= 5428 && (i <= 5413 || i >= 5420)))
     if (const auto value = state_->numbered(static_cast<int>(i))) return *value;
   // The controller's state at run time, which a program read offline cannot know.
   if ((i >= 5061 && i <= 5070) || (i >= 5399 && i <= 5428) || i >= 5600)
     throw SyntaxError(offset, "#" + std::to_string(i) +
-                                  " is the controller's state at run time (probe result, input, tool data or current "
-                                  "position): it is not known offline");
+                                  " is the controller's state at run time (probe result, input, tool data before the "
+                                  "program's M6 or after an M61, or the current position): it is not known offline");
   return numbered_[i];
 }
 

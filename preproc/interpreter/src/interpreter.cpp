@@ -38,7 +38,7 @@ Interpreter::Interpreter(Setup setup) : setup_(std::move(setup)) {
     offsets_known_ = true;
     // LinuxCNC restores the G92 offsets at start if they were on (rs274ngc_pre.cc, init).
     if (parameters_[kG92Applied] != 0.0)
-      for (int i = 0; i < kAxes; ++i) g92_[i] = parameters_[kG92 + i];
+      for (int i = 0; i < kAxes; ++i) g92_[i] = parameters_[kG92 + i] * machine_unit(i);
   }
   parameters_.set_state(&state_view_);
   if (setup_.start_world) {
@@ -66,15 +66,17 @@ void Interpreter::read(std::string& raw, int line, gcode::Block& block, Effect& 
 
 Frame Interpreter::frame() const { return frame_for(coordinate_system_); }
 
-Frame Interpreter::frame_for(int system) const {
+Frame Interpreter::frame_for(int system, bool with_g92, bool with_tool_length) const {
   Frame f;
-  for (int i = 0; i < kAxes; ++i) f.offset[i] = parameters_[offset_parameter(system, i)];
+  for (int i = 0; i < kAxes; ++i) f.offset[i] = parameters_[offset_parameter(system, i)] * machine_unit(i);
   f.rotation_deg = parameters_[rotation_parameter(system)];
   // G92/G52 offsets are added to program coordinates before the rotation (LinuxCNC's canon:
   // world = rotate(program + G92) + G5x + tool length).
-  const Position g92 = Frame{{}, f.rotation_deg}.world(g92_);
-  for (int i = 0; i < kAxes; ++i) f.offset[i] += g92[i];
-  if (setup_.tool_length_in_world) f.offset[2] += tool_length_;
+  if (with_g92) {
+    const Position g92 = Frame{{}, f.rotation_deg}.world(g92_);
+    for (int i = 0; i < kAxes; ++i) f.offset[i] += g92[i];
+  }
+  if (with_tool_length && setup_.tool_length_in_world) f.offset[2] += tool_length_;
   return f;
 }
 
@@ -193,10 +195,14 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     selected_tool_ = w.whole('T');
     if (selected_tool_ < 0) refuse(line, w['T'].offset, "T must be a whole number >= 0");
   }
-  if (w.find_m({60})) tool_in_spindle_ = selected_tool_;
+  if (w.find_m({60})) {
+    tool_in_spindle_ = selected_tool_;
+    tool_data_known_ = true;
+  }
   if (const auto* m61 = w.find_m({610})) {
     if (!w.has('Q')) refuse(line, m61->offset, "M61 needs a Q word (tool number)");
     tool_in_spindle_ = w.whole('Q');
+    tool_data_known_ = false;
     if (tool_in_spindle_ < 0) refuse(line, w['Q'].offset, "M61 Q must be a whole number >= 0");
   }
   const bool p_on = !w.has('P') || w.get('P') != 0;  // M50-M53 P0 switches off, P1 or none on
@@ -258,7 +264,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
   if (const auto* store = w.find_g({281, 301})) {
     const Position world = world_position();
     const int base = store->code == 281 ? kG28Home : kG30Home;
-    for (int i = 0; i < kAxes; ++i) parameters_[base + i] = world[i];
+    for (int i = 0; i < kAxes; ++i) parameters_[base + i] = world[i] / machine_unit(i);
   }
   // G80 with a motion code on the same line: the motion code is the mode (rs274 reads it so).
   const Words::Code* motion = w.motion_code();

@@ -34,7 +34,13 @@ void skip_spaces(std::string_view s, std::size_t& pos) {
 
 }  // namespace
 
-ToolTable read_tool_table(const std::string& path) {
+char Tool::other_offset() const {
+  for (std::size_t i = 0; i < offset.size(); ++i)
+    if (i != 2 && offset[i] != 0.0) return kOffsetLetters[i];
+  return 0;
+}
+
+ToolTable read_tool_table(const std::string& path, double machine_unit_mm) {
   std::ifstream in = open(path, "tool table");
   ToolTable table;
   std::string text;
@@ -59,12 +65,20 @@ ToolTable read_tool_table(const std::string& path) {
           throw LoadError({path, line, column}, "tool number must be a whole number >= 0");
         tool.number = static_cast<int>(value);
         has_number = true;
-      } else if (letter == 'Z') {
-        tool.z_offset = value;
+      } else if (const auto axis = std::string_view(Tool::kOffsetLetters).find(letter);
+                 axis != std::string_view::npos) {
+        const bool angle = letter == 'A' || letter == 'B' || letter == 'C';
+        tool.offset[axis] = angle ? value : value * machine_unit_mm;
       } else if (letter == 'D') {
-        tool.diameter = value;
-      } else if (std::string_view("XYABCUVW").find(letter) != std::string_view::npos && value != 0.0 && !tool.other_offset) {
-        tool.other_offset = letter;
+        tool.diameter = value * machine_unit_mm;
+      } else if (letter == 'I') {
+        tool.front_angle = value;
+      } else if (letter == 'J') {
+        tool.back_angle = value;
+      } else if (letter == 'Q') {
+        if (value != std::floor(value) || value < 0 || value > 9)
+          throw LoadError({path, line, column}, "tool orientation Q must be a whole number 0..9");
+        tool.orientation = static_cast<int>(value);
       }
       skip_spaces(s, pos);
     }

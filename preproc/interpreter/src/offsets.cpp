@@ -28,12 +28,12 @@ void Interpreter::set_tool_length(const Words& w, int line) {
       if (it == tools_->end())
         refuse(line, w.has('H') ? w['H'].offset : g->offset,
                "tool " + std::to_string(tool) + " is not in the tool table");
-      if (it->second.other_offset)
+      if (const char other = it->second.other_offset())
         refuse(line, w.has('H') ? w['H'].offset : g->offset,
-               "tool " + std::to_string(tool) + " has an offset in " + it->second.other_offset +
+               "tool " + std::to_string(tool) + " has an offset in " + other +
                    " in the tool table, which LinuxCNC's G43 applies too: the pre-distorter takes the Z "
                    "(length) offset only (not translated yet)");
-      tool_length_ = it->second.z_offset;  // machine units: mm
+      tool_length_ = it->second.z_offset();
     }
   }
   set_world_position(world);  // LinuxCNC keeps the machine still; the program position changes
@@ -49,9 +49,9 @@ void Interpreter::set_offsets(const Words& w, int line) {
   const auto* g10 = w.find_g({100});
   if (!w.has('L')) refuse(line, g10->offset, "G10 needs an L word");
   const int l = w.whole('L');
-  if (l == 1) return set_tool_entry(w, line);
+  if (l == 1 || l == 10 || l == 11) return set_tool_entry(w, l, line);
   if (l != 2 && l != 20)
-    refuse(line, w['L'].offset, "G10 L" + std::to_string(l) + " is not supported (G10 L1, L2 and L20 are)");
+    refuse(line, w['L'].offset, "G10 L" + std::to_string(l) + " is not supported (G10 L1, L2, L10, L11 and L20 are)");
   if (!w.has('P')) refuse(line, g10->offset, "G10 L" + std::to_string(l) + " needs a P word (1..9, or 0)");
   int system = w.whole('P');
   if (system < 0 || system > 9) refuse(line, w['P'].offset, "G10 P must be 0..9");
@@ -71,7 +71,7 @@ void Interpreter::set_offsets(const Words& w, int line) {
     if (!w.has(letter)) continue;
     const double value = w.get(letter) * (is_linear(i) ? scale : 1.0);
     if (l == 2) {
-      parameters_[offset_parameter(system, i)] = value;
+      parameters_[offset_parameter(system, i)] = value / machine_unit(i);
       continue;
     }
     if (!(known_ >> i & 1u))
@@ -83,27 +83,69 @@ void Interpreter::set_offsets(const Words& w, int line) {
     const Position now = rotation.world(current), then = rotation.world(wanted);
     for (int i = 0; i < kAxes; ++i)
       if (w.has(kAxisLetters[i]) || (i < 2 && (w.has('X') || w.has('Y'))))
-        parameters_[offset_parameter(system, i)] += now[i] - then[i];
+        parameters_[offset_parameter(system, i)] += (now[i] - then[i]) / machine_unit(i);
   }
   offsets_set_ |= 1u << system;
   if (system == coordinate_system_) set_world_position(world);
 }
 
-void Interpreter::set_tool_entry(const Words& w, int line) {
-  // G10 L1 P<tool>: the tool table's Z (length) and R (radius) of a tool, in program units; a
-  // later G43 takes them (LinuxCNC's convert_setup_tool). Other columns do not matter here.
+void Interpreter::set_tool_entry(const Words& w, int l, int line) {
+  // G10 L1 / L10 / L11 P<tool> (LinuxCNC's convert_setup_tool) changes the interpreter's copy of
+  // the tool table, for later G43s and #5401..: L1 sets the offsets given; L10 sets them so that
+  // the current point, in the active coordinate system without the tool length offset, has the
+  // coordinates given; L11 the same in G59.3 without G92 (a touch-off fixture). R: radius, I J:
+  // a lathe tool's angles, Q: its orientation. X Y A B C offsets are kept, and a G43 with them
+  // is refused (set_tool_length).
   const auto* g10 = w.find_g({100});
-  if (!w.has('P')) refuse(line, g10->offset, "G10 L1 needs a P word (the tool number)");
-  const int tool = w.whole('P');
-  if (!tools_) refuse(line, g10->offset, "G10 L1 changes the tool table: pass --tool-table FILE (LinuxCNC's .tbl)");
-  const auto it = tools_->find(tool);
-  if (tool < 0 || it == tools_->end())
-    refuse(line, w['P'].offset, "tool " + std::to_string(tool) + " is not in the tool table");
-  for (char c : {'X', 'Y', 'A', 'B', 'C'})
-    if (w.has(c)) refuse(line, w[c].offset, std::string("G10 L1 ") + c + ": only Z (length) and R (radius) are supported");
+  const std::string name = "G10 L" + std::to_string(l);
+  if (!w.has('P')) refuse(line, g10->offset, name + " needs a P word (the tool number)");
+  const int number = w.whole('P');
+  if (!tools_) refuse(line, g10->offset, name + " changes the tool table: pass --tool-table FILE (LinuxCNC's .tbl)");
+  const auto it = tools_->find(number);
+  if (number < 0 || it == tools_->end())
+    refuse(line, w['P'].offset, "tool " + std::to_string(number) + " is not in the tool table");
+  bool any = false;
+  for (char c : {'X', 'Y', 'Z', 'A', 'B', 'C', 'R', 'I', 'J', 'Q'}) any |= w.has(c);
+  if (!any) refuse(line, g10->offset, name + " without offsets has no effect");  // LinuxCNC's words
+  Tool& tool = it->second;
   const double scale = inches_ ? kInch : 1.0;
-  if (w.has('Z')) it->second.z_offset = w.get('Z') * scale;
-  if (w.has('R')) it->second.diameter = 2 * w.get('R') * scale;
+  const auto given = [&](int axis) { return w.get(kAxisLetters[axis]) * (is_linear(axis) ? scale : 1.0); };
+  if (l == 1) {
+    for (int i = 0; i < kAxes; ++i)
+      if (w.has(kAxisLetters[i])) tool.offset[static_cast<std::size_t>(i)] = given(i);
+  } else {
+    if (compensation_.offsets()) refuse(line, g10->offset, name + " with cutter compensation on is not translated");
+    for (int i = 0; i < kAxes; ++i)
+      if (w.has(kAxisLetters[i]) && !(known_ >> i & 1u))
+        refuse(line, w[kAxisLetters[i]].offset, name + std::string(": the current ") + kAxisLetters[i] + " is not known yet");
+    // LinuxCNC's find_current_in_system_without_tlo: where the controlled point is, with the
+    // tool length offset, in the destination system's coordinates without it.
+    const int system = l == 11 ? 9 : coordinate_system_;
+    Position world = world_position();
+    if (!setup_.tool_length_in_world) world[2] += tool_length_;
+    const Frame destination = frame_for(system, /*with_g92=*/l != 11, /*with_tool_length=*/false);
+    Position t = destination.program(world);
+    const Frame rotation{{}, destination.rotation_deg};
+    const auto rotated = [&](double x, double y) { return rotation.world({x, y, 0, 0, 0, 0}); };
+    if (w.has('X') || w.has('Y')) {
+      // X alone keeps the offset's component along the system's (rotated) Y, and Y alone X's.
+      const Position kept = rotation.program({tool.offset[0], tool.offset[1], 0, 0, 0, 0});
+      const double x = w.has('X') ? t[0] - given(0) : kept[0], y = w.has('Y') ? t[1] - given(1) : kept[1];
+      const Position offset = rotated(x, y);
+      tool.offset[0] = offset[0];
+      tool.offset[1] = offset[1];
+    }
+    for (int i = 2; i < kAxes; ++i)
+      if (w.has(kAxisLetters[i])) tool.offset[static_cast<std::size_t>(i)] = t[i] - given(i);
+  }
+  if (w.has('R')) tool.diameter = 2 * w.get('R') * scale;
+  if (w.has('I')) tool.front_angle = w.get('I');
+  if (w.has('J')) tool.back_angle = w.get('J');
+  if (w.has('Q')) {
+    const double q = w.get('Q');
+    if (q != std::floor(q) || q < 0 || q > 9) refuse(line, w['Q'].offset, "invalid tool orientation (Q 0..9)");
+    tool.orientation = static_cast<int>(q);
+  }
 }
 
 void Interpreter::set_axis_offsets(const Words& w, int code, int line) {
@@ -128,7 +170,7 @@ void Interpreter::set_axis_offsets(const Words& w, int code, int line) {
     }
     if (!any) refuse(line, w.find_g({code})->offset, g_name(code) + " needs at least one axis word");
     parameters_[kG92Applied] = 1.0;
-    for (int i = 0; i < kAxes; ++i) parameters_[kG92 + i] = g92_[i];
+    for (int i = 0; i < kAxes; ++i) parameters_[kG92 + i] = g92_[i] / machine_unit(i);
   } else if (code == 921 || code == 922) {
     g92_ = {};
     parameters_[kG92Applied] = 0.0;
@@ -136,7 +178,7 @@ void Interpreter::set_axis_offsets(const Words& w, int code, int line) {
       for (int i = 0; i < kAxes; ++i) parameters_[kG92 + i] = 0.0;
   } else {  // G92.3
     parameters_[kG92Applied] = 1.0;
-    for (int i = 0; i < kAxes; ++i) g92_[i] = parameters_[kG92 + i];
+    for (int i = 0; i < kAxes; ++i) g92_[i] = parameters_[kG92 + i] * machine_unit(i);
   }
   set_world_position(world);
   if (code == 920)  // LinuxCNC's current X Y are then the words as written
@@ -164,7 +206,7 @@ void Interpreter::go_home(const Words& w, int code, int line, Effect& effect) {
   }
   Position world = world_position();
   for (int i = 0; i < kAxes; ++i)
-    if (named >> i & 1u) world[i] = parameters_[base + i];
+    if (named >> i & 1u) world[i] = parameters_[base + i] * machine_unit(i);
   set_world_position(world);
   known_ |= named;
   effect.moved_as_written = true;

@@ -1,7 +1,7 @@
 // The interpreter's state as LinuxCNC 2.9's read-only parameters show it (interp_namedparams.cc
 // lookup_named_param, #5400 and #5420-#5428): in program units, as the program sees them. What
-// a program cannot know offline (the task, overrides, probe results, the tool data in machine
-// units) is not given, and a line that reads it is refused.
+// a program cannot know offline (the task, overrides, probe results, the tool in the spindle
+// before the program's first M6 or M61) is not given, and a line that reads it is refused.
 #include "words.hpp"
 
 namespace vc::interpreter {
@@ -9,6 +9,7 @@ namespace vc::interpreter {
 std::optional<double> Interpreter::StateView::numbered(int n) const {
   const Interpreter& i = interpreter;
   if (n == 5400) return i.tool_in_spindle_ >= 0 ? std::optional<double>(i.tool_in_spindle_) : std::nullopt;
+  if (n > 5400 && n <= 5413) return i.spindle_tool_parameter(n);
   if (n < 5420 || n > 5428) return std::nullopt;
   // LinuxCNC refuses the position while cutter compensation offsets it.
   if (i.compensation_.offsets() && !i.compensation_.first_move()) return std::nullopt;
@@ -16,6 +17,27 @@ std::optional<double> Interpreter::StateView::numbered(int n) const {
   const int axis = n - 5420;
   if (!(i.known_ >> axis & 1u)) return std::nullopt;  // not set yet (the machine's start is unknown)
   return i.position_[static_cast<std::size_t>(axis)] / (is_linear(axis) && i.inches_ ? kInch : 1.0);
+}
+
+std::optional<double> Interpreter::spindle_tool_parameter(int n) const {
+  // #5401-#5413 (rs274ngc_pre.cc set_tool_parameters): the tool table entry of the tool in the
+  // spindle as it is now (G10 L1 changes it), in the machine's units: X..W offsets, diameter,
+  // front and back angle, orientation. An empty spindle (tool 0) reads zeros.
+  if (tool_in_spindle_ < 0 || !tool_data_known_) return std::nullopt;  // before M6: whatever the machine holds
+  if (tool_in_spindle_ == 0) return 0.0;
+  if (!tools_) return std::nullopt;
+  const auto it = tools_->find(tool_in_spindle_);
+  if (it == tools_->end()) return std::nullopt;
+  const Tool& tool = it->second;
+  if (n <= 5409) {
+    const int axis = n - 5401;
+    const bool angle = axis >= 3 && axis <= 5;
+    return tool.offset[static_cast<std::size_t>(axis)] / (angle ? 1.0 : setup_.machine_unit_mm);
+  }
+  if (n == 5410) return tool.diameter / setup_.machine_unit_mm;
+  if (n == 5411) return tool.front_angle;
+  if (n == 5412) return tool.back_angle;
+  return tool.orientation;
 }
 
 std::optional<double> Interpreter::StateView::named(const std::string& name) const {

@@ -81,7 +81,7 @@ TEST(Interpreter, WorkOffsetsFromTheParameterFileAndG10) {
 }
 
 TEST(Interpreter, ToolLengthKeepsTheMachineStillAndShiftsWorldZ) {
-  ToolTable tools{{1, {1, 100.0, 10.0}}};
+  ToolTable tools{{1, mill_tool(1, 100.0, 10.0)}};
   gcode::Parameters var;
   const Interpreted r = interpret(kStart + "G43 H1\nG1 X1 F100\nG1 Z0\n", &tools, &var);
   ASSERT_EQ(r.moves.size(), 3u);
@@ -165,10 +165,11 @@ TEST(Interpreter, RefusesWhatItCannotTranslateWithLineAndColumn) {
   EXPECT_NE(refusal(kStart + "o100 sub\n").find("O-word"), std::string::npos);
   EXPECT_NE(refusal(kStart + "G92\n").find("needs at least one axis word"), std::string::npos);
   EXPECT_NE(refusal(kStart + "G43 H7\n", nullptr).find("tool table"), std::string::npos);
-  const ToolTable tools{{1, {1, 100.0, 10.0}}};
+  const ToolTable tools{{1, mill_tool(1, 100.0, 10.0)}};
   EXPECT_NE(refusal(kStart + "G43 H7\n", &tools).find("test.ngc:3:5: error: tool 7 is not in the tool table"),
             std::string::npos);
-  const ToolTable lathe_tool{{2, {2, 10.0, 4.0, 'X'}}};  // an X offset, which G43 would apply too
+  ToolTable lathe_tool{{2, mill_tool(2, 10.0, 4.0)}};
+  lathe_tool[2].offset[0] = 1.5;  // an X offset, which G43 would apply too
   EXPECT_NE(refusal(kStart + "T2 M6 G43\n", &lathe_tool).find("tool 2 has an offset in X in the tool table"),
             std::string::npos);
   EXPECT_NE(refusal("G1 X1 Y1 F100\n").find("unknown position"), std::string::npos);
@@ -211,7 +212,7 @@ TEST(Interpreter, ArcToleranceIsLinuxCncs) {
 // After a tool change, LinuxCNC keeps the machine still through a G43 on the same line (as on
 // the next): the tool length words go on a line of their own, where every interpreter agrees.
 TEST(Interpreter, ToolLengthOnAToolChangeLineIsMarkedForALineOfItsOwn) {
-  ToolTable tools{{1, {1, 15.875, 6.0}}};
+  ToolTable tools{{1, mill_tool(1, 15.875, 6.0)}};
   gcode::Parameters var;
   const Interpreted r = interpret(kStart + "G0 Z50\nT1 M6 G43 H1\nG0 X10 Y10\nT1 M6 G43 H1 G0 X0\n", &tools, &var);
   const Effect& change = r.effects[3];
@@ -284,15 +285,118 @@ TEST(Interpreter, StartPositionMakesTheFirstCutKnown) {
 
 // G10 L1 changes a tool's length in the table; the next G43 takes it (checked against rs274).
 TEST(Interpreter, ToolTableChangesTakeEffectAtTheNextG43) {
-  ToolTable tools{{1, {1, 12.7, 6.35}}};
+  ToolTable tools{{1, mill_tool(1, 12.7, 6.35)}};
   gcode::Parameters var;
   const Interpreted r = interpret(kStart + "G43 H1\nG0 X1\nG10 L1 P1 Z20\nG0 X2\nG43 H1\nG0 X3\n", &tools, &var);
   ASSERT_EQ(r.moves.size(), 4u);
   EXPECT_DOUBLE_EQ(r.moves[1].tool_length_mm, 12.7);
   EXPECT_DOUBLE_EQ(r.moves[2].tool_length_mm, 12.7);  // not before the G43
   EXPECT_DOUBLE_EQ(r.moves[3].tool_length_mm, 20.0);
-  EXPECT_DOUBLE_EQ(tools.at(1).z_offset, 12.7);  // the caller's table is not changed
+  EXPECT_DOUBLE_EQ(tools.at(1).z_offset(), 12.7);  // the caller's table is not changed
   EXPECT_NE(refusal(kStart + "G10 L1 P7 Z1\n", &tools).find("tool 7 is not in the tool table"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace vc::interpreter
+
+namespace vc::interpreter {
+namespace {
+
+// A LinuxCNC set up in inches ([TRAJ]LINEAR_UNITS = inch): the .var file, the tool table and the
+// parameters that hold their lengths are in inches; #1..#10 at the end of the program.
+std::array<double, 10> run_on_inch_machine(const std::string& program, const ToolTable& tools, const gcode::Parameters& var,
+                                           std::vector<Move>* moves = nullptr) {
+  Setup setup;
+  setup.file = "test.ngc";
+  setup.machine_axes = kXyzbc;
+  setup.tools = &tools;
+  setup.var_file = &var;
+  setup.machine_unit_mm = 25.4;
+  Interpreter interp(setup);
+  std::istringstream in(program);
+  gcode::Block block;
+  int line = 0;
+  for (std::string text; std::getline(in, text);) {
+    Effect effect;
+    gcode::parse_block(text, block);
+    interp.execute(block, ++line, effect);
+    if (moves) moves->insert(moves->end(), effect.moves.begin(), effect.moves.end());
+  }
+  std::array<double, 10> locals{};
+  for (int i = 1; i <= 10; ++i) locals[static_cast<std::size_t>(i - 1)] = interp.parameters()[i];
+  return locals;
+}
+
+TEST(Interpreter, OnAnInchMachineTheParameterFileAndToolTableAreInInches) {
+  gcode::Parameters var;
+  var[5221] = 1.0;  // G54 X, inches
+  var[5163] = 2.0;  // G28 Z, inches
+  const ToolTable tools{{1, mill_tool(1, 50.8, 6.0)}};  // read from a file in inches: 2 in
+  std::vector<Move> moves;
+  const auto locals = run_on_inch_machine(
+      "G21 G90 G54\nG0 X0 Y0 Z0 B0 C0\n#1 = #5221\nG10 L2 P1 X2.54\n#2 = #5221\nT1 M6 G43\nG0 X0\nG28 Z10\n", tools, var,
+      &moves);
+  EXPECT_DOUBLE_EQ(moves.at(0).frame.world(moves[0].end)[0], 25.4);  // G54 X0 is 1 in
+  EXPECT_DOUBLE_EQ(locals[0], 1.0);                                  // the program reads inches
+  EXPECT_NEAR(locals[1], 0.1, 1e-15);                                // G10 L2 writes them
+  EXPECT_DOUBLE_EQ(moves.at(1).frame.world(moves[1].end)[0], 2.54);
+  EXPECT_DOUBLE_EQ(moves[1].tool_length_mm, 50.8);
+  EXPECT_THROW(run_on_inch_machine("G21 G90\n#1 = #5403\n", tools, var), LoadError);  // no M6 yet
+}
+
+// #5400-#5413 after M6: the spindle's tool table entry, as it is now, in machine units (numbers
+// from rs274 -g on the same program and table).
+TEST(Interpreter, ToolDataParametersReadTheSpindlesToolAfterM6) {
+  gcode::Parameters var;
+  ToolTable tools{{1, mill_tool(1, 11.0, 1.1)}, {2, mill_tool(2, 12.0, 1.2)}};
+  tools[2].front_angle = 30;
+  tools[2].orientation = 2;
+  const auto locals = run_on_inch_machine(
+      "G20 G90\nT1 M6\n#1 = #5400\n#2 = #5403\n#3 = #5410\nG10 L1 P1 Z1\n#4 = #5403\nG10 L1 P2 Z3\n#5 = #5403\n"
+      "T2 M6\n#6 = #5411\n#7 = #5413\n#8 = #5401\n",
+      tools, var);
+  EXPECT_DOUBLE_EQ(locals[0], 1.0);
+  EXPECT_NEAR(locals[1], 0.433071, 1e-6);
+  EXPECT_NEAR(locals[2], 0.043307, 1e-6);
+  EXPECT_DOUBLE_EQ(locals[3], 1.0);  // G10 L1 on the loaded tool changes it at once
+  EXPECT_DOUBLE_EQ(locals[4], 1.0);  // on another tool, not
+  EXPECT_DOUBLE_EQ(locals[5], 30.0);
+  EXPECT_DOUBLE_EQ(locals[6], 2.0);
+  EXPECT_DOUBLE_EQ(locals[7], 0.0);
+  // After M61 LinuxCNC's answer depends on when the task resynchronises the interpreter.
+  EXPECT_THROW(run_on_inch_machine("G20\nT1 M6\nM61 Q2\n#1 = #5403\n", tools, var), LoadError);
+}
+
+// G10 L10 and L11, against the values LinuxCNC's own regression tests state (tests/interp/g10,
+// g10-l1-l10 and g10-l11: "should be ...").
+TEST(Interpreter, G10L10AndL11SetToolOffsetsSoThatThePositionReadsTheValuesGiven) {
+  gcode::Parameters var;
+  const ToolTable tools{{1, mill_tool(1, 0.0, 0.0)}};
+  auto l10 = run_on_inch_machine(
+      "G20 G90 G54\nG10 L1 P1 X0 Y0 Z0\nT1 M6 G43\nG0 X.1 Y.2 Z.3 B0 C0\n"
+      "G10 L10 P1 X1\n#1 = #5401\nG10 L10 P1 Y2\n#2 = #5402\nG10 L10 P1 Z3\n#3 = #5403\n",
+      tools, var);
+  EXPECT_NEAR(l10[0], -0.9, 1e-12);
+  EXPECT_NEAR(l10[1], -1.8, 1e-12);
+  EXPECT_NEAR(l10[2], -2.7, 1e-12);
+  // In a system rotated by 45 deg, X alone keeps the offset's component along the system's Y.
+  l10 = run_on_inch_machine(
+      "G20 G90 G54\nG10 L2 P1 R45\nG0 X0 Y0 Z0 B0 C0\nG10 L10 P1 X0 Y0 Z0\nT1 M6 G43\n"
+      "G10 L10 P1 X1\n#1 = #5401\n#2 = #5402\nG10 L10 P1 Y1\n#3 = #5401\n#4 = #5402\n",
+      tools, var);
+  EXPECT_NEAR(l10[0], -0.70710678, 1e-8);
+  EXPECT_NEAR(l10[1], -0.70710678, 1e-8);
+  EXPECT_NEAR(l10[2], 0.0, 1e-12);
+  EXPECT_NEAR(l10[3], -1.41421356, 1e-8);
+  // L11: in G59.3's coordinates, without G92 (a touch-off fixture).
+  const auto l11 = run_on_inch_machine(
+      "G20 G90\nG10 L2 P1 X1 Y2 Z-3 R10\nG10 L2 P2 X4 Y5 Z-6 R20\nG10 L2 P9 X25 Y26 Z-27 R0\nG54\n"
+      "G0 G53 X0 Y0 Z-30 B0 C0\nG10 L11 P1 Z0\nT1 M6\n#1 = #5403\nG55\nG0 G53 Z-30\nG10 L11 P1 Z1\n#2 = #5403\n"
+      "G92 X33 Y44 Z55\nG54\nG0 G53 Z-30\nG10 L11 P1 Z0\n#3 = #5403\n",
+      tools, var);
+  EXPECT_NEAR(l11[0], -3.0, 1e-12);
+  EXPECT_NEAR(l11[1], -4.0, 1e-12);
+  EXPECT_NEAR(l11[2], -3.0, 1e-12);
 }
 
 }  // namespace

@@ -214,7 +214,7 @@ TEST(Splines, RefusesWhatLinuxCncRefusesWithLineAndColumn) {
             std::string::npos);
   EXPECT_NE(refusal(kStart + "G53 G5.1 X1 Y1 I1 J0\n").find("test.ngc:4:1: error: G53 on a line with G5.1"),
             std::string::npos);
-  const ToolTable tools{{1, {1, 10.0, 6.0}}};
+  const ToolTable tools{{1, mill_tool(1, 10.0, 6.0)}};
   EXPECT_NE(refusal(kStart + "G41 D1 G1 X5\nG5.1 X7 Y1 I1 J0\n", &tools).find("test.ngc:5:1: error: G5.1 spline with "
                                                                              "cutter radius compensation on"),
             std::string::npos);

@@ -28,7 +28,7 @@ std::vector<std::string> motion(const Practice& p) {
   machine::Model model = machine::load_machine(test::machine_path("mill3"));
   model.tool_length_reference_mm = p.reference_mm;
   interpreter::ToolTable tools;
-  if (p.table_z) tools[1] = {1, *p.table_z, 10.0};
+  if (p.table_z) tools[1] = interpreter::mill_tool(1, *p.table_z, 10.0);
   gcode::Parameters parameters;
   interpreter::read_var_file(test::source_path("tests/programs/mill3.var"), parameters);
   parameters[5223] = p.g54_z;

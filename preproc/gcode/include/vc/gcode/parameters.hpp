@@ -29,7 +29,8 @@ class Parameters {
 
   // Throws SyntaxError(offset) if n is not an integer in 1..5601, or if it is one of the
   // controller's run-time values (#5061-#5070 probe, #5399 input, #5400-#5413 tool data,
-  // #5420-#5428 current position, #5600-#5601 tool changer), unknown offline.
+  // #5420-#5428 current position, #5600-#5601 tool changer), unknown offline unless the state
+  // (set_state) knows them.
   double get(double n, int offset) const;
   void set(double n, double value, int offset);
   // Unset named parameters: get throws SyntaxError(offset), "unknown parameter #<name>".

@@ -40,6 +40,11 @@ struct Setup {
   // the INI's home or a position the user gives. Unknown (the default): a cutting move before
   // every axis is set is refused.
   std::optional<Position> start_world;
+  // The length of the machine's unit in mm: 1, or 25.4 for a LinuxCNC set up in inches
+  // ([TRAJ]LINEAR_UNITS). The tool table (read already in mm) and the parameter file hold
+  // lengths in it, and so do the parameters a program reads (#5161.., #5211.., #5221..,
+  // #5401..), as in LinuxCNC.
+  double machine_unit_mm = 1.0;
 };
 
 // A NURBS control point (G5.2, and the points LinuxCNC makes for G5 and G5.1): program units,
@@ -152,7 +157,7 @@ class Interpreter {
   void set_tool_length(const Words& w, int line);
   void set_coordinate_system(int index);
   void set_offsets(const Words& w, int line);  // G10 L2 / L20
-  void set_tool_entry(const Words& w, int line);  // G10 L1
+  void set_tool_entry(const Words& w, int l, int line);  // G10 L1, L10, L11
   void set_axis_offsets(const Words& w, int code, int line);  // G92, G92.1-G92.3, G52
   void go_home(const Words& w, int code, int line, Effect& effect);
   void move(const Words& w, int line, Effect& effect);
@@ -211,7 +216,12 @@ class Interpreter {
   void require_known_offsets(int line, int offset) const;
   bool no_motion_mode() const { return motion_ == 800 || motion_ == -1; }
   Position world_position() const;
-  Frame frame_for(int system) const;  // frame() in coordinate system 1..9
+  // frame() in coordinate system 1..9; without G92/G52 or the tool length offset on request.
+  Frame frame_for(int system, bool with_g92 = true, bool with_tool_length = true) const;
+  // The mm (or deg) of one unit of a parameter that holds a length of this axis (#5161..,
+  // #5211.., #5221.., #5401..: the machine's units, as in LinuxCNC).
+  std::optional<double> spindle_tool_parameter(int n) const;  // #5401..#5413
+  double machine_unit(int axis) const { return is_linear(axis) ? setup_.machine_unit_mm : 1.0; }
   void set_world_position(const Position& world);  // after a frame change, as LinuxCNC does
   Position end_point(const Words& w, int line) const;
   std::array<double, 2> program_xy() const;  // the current X Y in program units (program_xy_)
@@ -255,6 +265,10 @@ class Interpreter {
   bool constant_surface_speed_ = false;                  // G96 (G97: off)
   int selected_tool_ = -1;     // T word
   int tool_in_spindle_ = -1;   // after M6 / M61
+  // #5401-#5413 read the spindle's tool table entry: known after M6, when LinuxCNC synchronises
+  // the interpreter with the tool changer; after M61 they depend on when the task does (the
+  // standalone rs274 keeps the previous tool's), so they are not given then.
+  bool tool_data_known_ = false;
   double tool_length_ = 0.0;   // mm, G43
   int coordinate_system_ = 1;  // 1..9: G54..G59.3
   bool offsets_known_ = false; // the active system's offsets came from the .var file or G10
