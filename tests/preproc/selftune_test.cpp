@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -246,6 +247,80 @@ TEST_F(VirtualShop, ReportsThatDoNotFitTheProgramAreRefused) {
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.out.find("the program cuts nothing: no feed move runs with the spindle on"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(next));
+}
+
+// The report as CMM software exports it (cmm_export.hpp): a preamble, a units line in inches,
+// semicolons and decimal commas, the columns in another order with their usual names, the
+// actual point and the deviation (sign stated) beside tolerances. Written from our report to
+// 7 decimals of an inch (2.5 nm), it must give the same next program as our CSV.
+std::string as_cmm_export(const std::vector<shop::CmmPoint>& points, const std::string& out) {
+  std::ofstream file(out);
+  file << "Part: part A, first part\nUnits: inch\n"
+       << "Point Name;X Nom;Y Nom;Z Nom;X Act;Y Act;Z Act;I;J;K;Dev;Tol+;Tol-\n";
+  const auto number = [](double v, int decimals) {
+    char buffer[40];
+    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, v);
+    std::string text = buffer;
+    std::replace(text.begin(), text.end(), '.', ',');
+    return text;
+  };
+  for (const shop::CmmPoint& p : points) {
+    const Eigen::Vector3d actual = p.nominal + *p.deviation_mm * p.normal;
+    file << '"' << p.id << '"';
+    for (int a = 0; a < 3; ++a) file << ';' << number(p.nominal[a] / 25.4, 7);
+    for (int a = 0; a < 3; ++a) file << ';' << number(actual[a] / 25.4, 7);
+    for (int a = 0; a < 3; ++a) file << ';' << number(p.normal[a], 9);
+    file << ';' << number(*p.deviation_mm / 25.4, 7) << ";0,001;-0,001\n";
+  }
+  return out;
+}
+
+// The numbers of a program, in order (words' values and comments' numbers alike).
+std::vector<double> numbers_of(const std::string& program) {
+  std::ifstream in(program);
+  std::vector<double> numbers;
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (std::size_t at = 0; at < text.size();) {
+    const std::size_t start = text.find_first_of("-0123456789", at);
+    if (start == std::string::npos) break;
+    std::size_t used = 1;
+    if (std::isdigit(static_cast<unsigned char>(text[start + (text[start] == '-')])))
+      numbers.push_back(std::stod(text.substr(start, 40), &used));
+    at = start + used;
+  }
+  return numbers;
+}
+
+TEST_F(VirtualShop, ACmmExportInInchesGivesTheSamePartAsOurCsv) {
+  const std::string plan = part("part_a_points.csv");
+  run("predistort " + test::machine_path("mill3") + " " + part("part_a.ngc") + " -o " + path("export_p1.ngc") + files());
+  const std::string ours = path("export_r1.csv");
+  const double part1 = machine_and_measure(path("export_p1.ngc"), plan, ours, 51);
+  const std::string exported = as_cmm_export(shop::read_cmm_points(ours, true), path("export_r1.txt"));
+  const std::string tune = "selftune " + test::machine_path("mill3") + " " + path("export_p1.ngc") + " ";
+  run(tune + ours + " -o " + path("export_ours_p2.ngc") + files());
+  // Without the options the file needs, it is refused and nothing is written.
+  const test::CommandResult r = test::run_volcomp(tune + exported + " -o " + path("export_p2.ngc") + files());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.out.find(exported + ":4:"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("has a comma: give --decimal-comma"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(path("export_p2.ngc")));
+  const std::string summary = run(tune + exported + " -o " + path("export_p2.ngc") + files() +
+                                  " --decimal-comma --deviation-sign actual-minus-nominal");
+  std::cout << summary;
+  EXPECT_NE(summary.find("read as a CMM export, semicolon-separated, header on line 3"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("[inch]"), std::string::npos) << summary;
+  // The same program, to the last digit or one more (the report's inches round at 2.5 nm).
+  const std::vector<double> a = numbers_of(path("export_ours_p2.ngc")), b = numbers_of(path("export_p2.ngc"));
+  ASSERT_EQ(a.size(), b.size());
+  double largest = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) largest = std::max(largest, std::abs(a[i] - b[i]));
+  EXPECT_LE(largest, 2e-4);
+  const double ours2 = machine_and_measure(path("export_ours_p2.ngc"), plan, path("export_ours_r2.csv"), 52);
+  const double export2 = machine_and_measure(path("export_p2.ngc"), plan, path("export_r2.csv"), 52);
+  std::cout << "part 1 " << part1 << " um; part 2 from our CSV " << ours2 << " um, from the CMM export in inches "
+            << export2 << " um (programs differ by at most " << largest << " mm)\n";
+  EXPECT_NEAR(export2, ours2, 0.05);
 }
 
 // A report always has points near edges or on faces the program does not cut: they are left

@@ -341,7 +341,8 @@ class ExportReader {
     for (int a = 0; a < 3; ++a) p.nominal[a] = length(nominal_[a]), n[a] = number(line, row, normal_[a].index);
     if (std::abs(n.norm() - 1) > 1e-3)
       throw LoadError({path_, line.number, row[static_cast<std::size_t>(normal_[0].index)].column},
-                      "the normal (I, J, K) is not a unit vector (length " + std::to_string(n.norm()) + ")");
+                      "the normal (I, J, K) is not a unit vector (length " + std::to_string(n.norm()) + ")" +
+                          (std::abs(n.norm() - 1) < 0.01 ? ": export it with 4 decimals or more" : ""));
     p.normal = n.normalized();
     if (!report_) return p;
     const double sign = format_.sign == DeviationSign::NominalMinusActual ? -1.0 : 1.0;
