@@ -26,9 +26,9 @@ struct Line {
   int number;
 };
 
-std::vector<Line> read_lines(const std::string& path) {
+std::vector<Line> read_lines(const std::string& path, bool report) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw LoadError({path}, "cannot open the CMM report");
+  if (!in) throw LoadError({path}, report ? "cannot open the CMM report" : "cannot open the CMM plan");
   std::vector<Line> lines;
   std::string text;
   for (int number = 1; std::getline(in, text); ++number) {
@@ -100,7 +100,7 @@ class ExportReader {
       : path_(path), report_(report), format_(format) {}
 
   std::vector<CmmPoint> read(std::string* layout) {
-    const std::vector<Line> lines = read_lines(path_);
+    const std::vector<Line> lines = read_lines(path_, report_);
     std::size_t at = find_header(lines);
     assign_columns();
     resolve_units();
