@@ -144,7 +144,7 @@ class ExportReader {
       if (const auto u = unit_line(lines[i].text)) {
         if (unit_line_ && unit_line_->name != u->name)
           throw LoadError({path_, lines[i].number}, "this units line says " + u->name + ", the one on line " +
-                                                        std::to_string(unit_line_number_) + " " + unit_line_->name);
+                                                        std::to_string(unit_line_number_) + " says " + unit_line_->name);
         unit_line_ = u, unit_line_number_ = lines[i].number;
       } else if (std::any_of(names.begin(), names.end(),
                              [](const ColumnName& n) { return n.role == ColumnRole::LongLayout; })) {

@@ -92,6 +92,13 @@ TEST_F(CmmExport, TabsUnitsInTheHeaderAndTheDeviationWithItsStatedSign) {
   const auto b = read(text, sign(DeviationSign::NominalMinusActual));
   EXPECT_NEAR(*b.at(0).deviation_mm, 0.0045, 1e-15);
   EXPECT_NE(layout_.find("deviation 'Deviation [um]' [um] as nominal - actual"), std::string::npos) << layout_;
+  // Tabs with decimal commas, a unit given for the whole file.
+  ReportFormat format = sign(DeviationSign::ActualMinusNominal, "um");
+  format.decimal_comma = true;
+  const auto c = read("X\tY\tZ\tI\tJ\tK\tDev\n1000,5\t0\t0\t1\t0\t0\t-2,5\n", format);
+  EXPECT_NEAR(c.at(0).nominal.x(), 1.0005, 1e-15);
+  EXPECT_NEAR(*c.at(0).deviation_mm, -0.0025, 1e-15);
+  EXPECT_NE(layout_.find("tab-separated"), std::string::npos) << layout_;
 }
 
 TEST_F(CmmExport, ColumnsInAnyOrderWithTheCommonSpellings) {
@@ -156,6 +163,11 @@ TEST_F(CmmExport, AmbiguousOrIncompleteFilesAreRefusedWithTheWayOut) {
   refused("Units: mm\nX Nom,Y Nom [in],Z Nom,I,J,K,X Act,Y Act,Z Act\n0,0,0,0,0,1,0,0,0\n", none, "2:7",
           "the header says inch, the units line (line 1) says mm");
   refused("X [deg],Y,Z,I,J,K,Dev\n", mm, "1:1", "'deg' is not a length unit");
+  refused("Units: mm\nUnits: inch\nX,Y,Z,I,J,K,Dev\n", stated, "2", "this units line says inch, the one on line 1 says mm");
+  ReportFormat comma = stated;
+  comma.decimal_comma = true;
+  refused("X,Y,Z,I,J,K,Dev\n0,0,0,0,0,1,0\n", comma, "1", "--decimal-comma, but the header is separated by commas");
+  refused("X;Y;Z;I;J;K;Dev\n0;0;0.5;0;0;1;0\n", comma, "2:5", "'0.5' has a decimal point, but --decimal-comma");
   // The sign of a deviation column, when it is what the deviation comes from.
   refused("X,Y,Z,I,J,K,Dev\n0,0,0,0,0,1,0.001\n", mm, "1:13", "the sign of 'Dev' is not stated: give --deviation-sign");
   // Which column is what.
