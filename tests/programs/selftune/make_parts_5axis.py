@@ -15,6 +15,7 @@ floor on a grid 2 mm inside the walls (normal: the tool axis), the walls at thre
   pocket_32_b: B-25 C235, 50 x 50, 6 deep, centred 30 mm off it (another shape and pose)
   head_pocket_a: the same kind of pocket on the head-table test machine bc_head
     (tests/unit/machines/data/bc_head.toml: B turns the head, C the table), B-40 C60, 60 x 40 x 8
+  head_pocket_b: on bc_head, B30 C200, 50 x 50 x 6, centred 30 mm off the part zero
 
 The tool axis in the part frame for B C is R_C(C)^T R_B(B)^T z with R_B the rotation about +Y
 and R_C about -Z (checked against `volcomp simulate`, which writes it). Before writing,
@@ -23,7 +24,7 @@ depth, every wall point 5 mm (the radius) from the wall pass's axis, and the ras
 the floor (stepover below the diameter).
 
 Run: python3 make_parts_5axis.py (writes pocket_32_a.ngc, pocket_32_a_points.csv,
-pocket_32_b.ngc, pocket_32_b_points.csv beside itself). Standard library only,
+pocket_32_b.ngc, pocket_32_b_points.csv, the head_pocket_* and cone_* parts beside itself). Standard library only,
 deterministic."""
 import math
 import os
@@ -256,6 +257,8 @@ if __name__ == "__main__":
                      25, 25, 6))
     print(write_part("head_pocket_a", "3+2 pocket at B-40 C60 on bc_head, head-table, 60 x 40 x 8", -40, 60,
                      (0.0, 0.0, 0.0), 30, 20, 8, machine="bc_head"))
+    print(write_part("head_pocket_b", "3+2 pocket at B30 C200 on bc_head, head-table, 50 x 50 x 6", 30, 200,
+                     (30.0, -20.0, 0.0), 25, 25, 6, machine="bc_head"))
     print(write_cone("cone_a", "5-axis swarf: a conical pocket, wall tilted 40 deg, C turning 360 deg, and its floor",
                      40, 30, 15))
     print(write_cone("cone_b", "5-axis swarf: a conical pocket, wall tilted 28 deg, C turning 360 deg, and its floor",
