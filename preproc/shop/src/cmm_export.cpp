@@ -297,7 +297,12 @@ class ExportReader {
                     std::to_string(header_line_) + ": nominal " + columns(nominal_, true) + ", normal " +
                     columns(normal_, false);
     if (report_ && actual_[0].index >= 0) {
-      s += ", actual " + columns(actual_, true) + " (deviation = n . (actual - nominal))";
+      s += ", actual " + columns(actual_, true) + " (deviation = n . (actual - nominal)";
+      if (deviation_.index >= 0)
+        s += format_.sign == DeviationSign::Unstated ? "; " + quoted(deviation_.index) + " not used, its sign not stated)"
+                                                     : ", checked against " + quoted(deviation_.index) + ")";
+      else
+        s += ")";
     } else if (report_) {
       const std::string sign = format_.sign == DeviationSign::ActualMinusNominal ? "actual - nominal" : "nominal - actual";
       s += deviation_.index >= 0 ? ", deviation " + quoted(deviation_.index) + " [" + deviation_.unit + "] as " + sign

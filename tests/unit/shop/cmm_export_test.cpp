@@ -80,6 +80,7 @@ TEST_F(CmmExport, SemicolonsDecimalCommasAndAUnitsLineInInches) {
   EXPECT_NEAR(*p[1].deviation_mm, 0.002 * kInch, 1e-12);
   EXPECT_NE(layout_.find("semicolon-separated, header on line 4"), std::string::npos) << layout_;
   EXPECT_NE(layout_.find("'X Act','Y Act','Z Act' [inch]"), std::string::npos) << layout_;
+  EXPECT_NE(layout_.find("checked against 'Dev'"), std::string::npos) << layout_;
 }
 
 TEST_F(CmmExport, TabsUnitsInTheHeaderAndTheDeviationWithItsStatedSign) {
