@@ -117,6 +117,9 @@ struct SelftuneArgs {
   std::string machine;             // the model (machine file) the program was made for
   std::string input;               // program Pi that machined the measured part
   std::string report;              // CMM report Ri
+  std::string report_unit;         // for a CMM export whose file states no unit: mm, um or inch
+  std::string deviation_sign;      // of a CMM export's deviation column: actual-minus-nominal or nominal-minus-actual
+  bool decimal_comma = false;      // a CMM export writes 12,5
   std::string output;              // program P(i+1)
   std::string strategy = "local";  // local or model
   std::string var_file, tool_table, world = "axes";

@@ -131,8 +131,17 @@ int main(int argc, char** argv) {
       "selftune", "Program of the next part from the measured deviations of this one (local or model strategy)");
   selftune_cmd->add_option("MACHINE", selftune.machine, "machine file the program was made for (.toml)")->required();
   selftune_cmd->add_option("PROGRAM", selftune.input, "program Pi that machined the measured part")->required();
-  selftune_cmd->add_option("REPORT", selftune.report, "CMM report Ri: id,x[mm],y[mm],z[mm],i,j,k,deviation[um]")
+  selftune_cmd->add_option("REPORT", selftune.report,
+                           "CMM report Ri: id,x[mm],y[mm],z[mm],i,j,k,deviation[um], or a CMM software's table "
+                           "export (nominal X Y Z, normal I J K out of the material, actual X Y Z or deviation)")
       ->required();
+  selftune_cmd->add_option("--report-unit", selftune.report_unit,
+                           "CMM export: the unit of the columns whose header names none (mm, um, inch)");
+  selftune_cmd->add_option("--deviation-sign", selftune.deviation_sign,
+                           "CMM export: what its deviation column is: actual-minus-nominal (+ = material left, along "
+                           "an outward normal) or nominal-minus-actual")
+      ->check(CLI::IsMember({"actual-minus-nominal", "nominal-minus-actual"}));
+  selftune_cmd->add_flag("--decimal-comma", selftune.decimal_comma, "CMM export: numbers are written 12,5");
   selftune_cmd->add_option("-o,--output", selftune.output, "program P(i+1)");
   selftune_cmd->add_option("--strategy", selftune.strategy, "local (shift the path) or model (tune the tables)")
       ->capture_default_str();

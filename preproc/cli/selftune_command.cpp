@@ -71,7 +71,14 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
   options.surface.flute_length_mm = args.flute_length_mm;
   options.cutoff_mm = args.cutoff_mm;
   options.outlier_sigmas = args.outlier_sigmas;
-  const std::vector<shop::CmmPoint> measured = shop::read_cmm_points(args.report, true);
+  shop::ReportFormat format;
+  format.unit = args.report_unit;
+  format.decimal_comma = args.decimal_comma;
+  if (args.deviation_sign == "actual-minus-nominal") format.sign = shop::DeviationSign::ActualMinusNominal;
+  if (args.deviation_sign == "nominal-minus-actual") format.sign = shop::DeviationSign::NominalMinusActual;
+  std::string layout;
+  const std::vector<shop::CmmPoint> measured = shop::read_cmm_points(args.report, true, format, &layout);
+  report << "volcomp selftune: " << args.report << " read as " << layout << "\n";
   shop::FirstPart part;
   {
     std::ifstream in = open_program(args.input);

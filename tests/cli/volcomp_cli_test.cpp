@@ -150,6 +150,38 @@ TEST(VolcompCli, IdentifyLaserOnAFullTurnWritesAPeriodicTable) {
   EXPECT_NEAR(t.value(0, 0) / (M_PI / 648000), 0.2 + 0.05, 1e-3);  // the mean of 0.05 and 0.45 arcsec
 }
 
+// A CMM export selftune cannot read for sure is refused at its line and column, with the way
+// out, and no program is written.
+TEST(VolcompCli, SelftuneRefusesAnAmbiguousCmmExportAndWritesNothing) {
+  const std::string program = test::source_path("tests/programs/selftune/part_a.ngc");
+  const std::string files = " --var " + test::source_path("tests/programs/mill3.var") + " --tool-table " +
+                            test::source_path("tests/programs/mill3.tbl");
+  const std::string next = write_temp("selftune_next.ngc", "");
+  const std::string report = write_temp("export.txt", "Units: mm\nPoint;X Nom;Y Nom;Z Nom;I;J;K;Dev\nP1;100;0;-5;1;0;0;0.004\n");
+  const auto run = [&](const std::string& options) {
+    std::filesystem::remove(next);
+    return test::run_volcomp("selftune " + test::machine_path("mill3") + " " + program + " " + report + " -o " + next +
+                             files + options);
+  };
+  auto r = run("");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.out.find(report + ":2:31: error: the sign of 'Dev' is not stated: give --deviation-sign"),
+            std::string::npos) << r.out;
+  EXPECT_FALSE(std::filesystem::exists(next));
+  r = run(" --deviation-sign actual-minus-nominal --report-unit inch");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.out.find(report + ":1:1: error: this units line says mm, --report-unit says inch"), std::string::npos)
+      << r.out;
+  r = run(" --deviation-sign plus");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.out.find("--deviation-sign"), std::string::npos) << r.out;
+  // Read: one point is too few for the program, which is the next refusal.
+  r = run(" --deviation-sign actual-minus-nominal");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.out.find("read as a CMM export, semicolon-separated, header on line 2"), std::string::npos) << r.out;
+  EXPECT_FALSE(std::filesystem::exists(next));
+}
+
 TEST(VolcompCli, HelpIsEverywhere) {
   for (const char* sub : {"", "check ", "error ", "correct ", "balance ", "identify laser ", "identify circle ", "identify sphere "}) {
     const auto r = test::run_volcomp(std::string(sub) + "--help");

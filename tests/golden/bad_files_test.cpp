@@ -1,5 +1,6 @@
-// Golden bad inputs: every file in tests/golden/bad_tables (*.csv) and tests/golden/bad_machines
-// (*.toml) must be refused with a vc::LoadError whose text is exactly the content of the file's
+// Golden bad inputs: every file in tests/golden/bad_tables (*.csv), tests/golden/bad_machines
+// (*.toml) and tests/golden/bad_reports (*.csv: CMM reports, read as selftune reads them without
+// options) must be refused with a vc::LoadError whose text is exactly the content of the file's
 // .expect twin (trimmed), with the source tree's absolute path removed so that paths read
 // relative to the repository root:
 //     tests/golden/bad_tables/nan_cell.csv:3:4: error: 'nan' is not a finite number
@@ -25,6 +26,7 @@
 
 #include "test_support.hpp"
 #include "vc/machine/load_machine.hpp"
+#include "vc/shop/cmm.hpp"
 #include "vc/tables/load_table.hpp"
 
 namespace vc {
@@ -106,6 +108,10 @@ TEST(BadFiles, EveryBadTableIsRefusedWithItsMessage) {
 
 TEST(BadFiles, EveryBadMachineIsRefusedWithItsMessage) {
   check_folder("tests/golden/bad_machines", ".toml", [](const fs::path& p) { machine::load_machine(p.string()); });
+}
+
+TEST(BadFiles, EveryBadCmmReportIsRefusedWithItsMessage) {
+  check_folder("tests/golden/bad_reports", ".csv", [](const fs::path& p) { shop::read_cmm_points(p.string(), true); });
 }
 
 // The catalogue itself: the machine the bad machines are made from, and the good tables they

@@ -1,10 +1,12 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <fstream>
 #include <map>
 #include <random>
 
 #include "vc/shop/cmm.hpp"
+#include "vc/shop/cmm_export.hpp"
 #include "vc/tables/csv.hpp"
 #include "vc/tables/source_error.hpp"
 #include "vc/tables/units.hpp"
@@ -43,9 +45,19 @@ void put(std::ostream& out, double v) {
   out.write(buffer, std::to_chars(buffer, buffer + sizeof buffer, v).ptr - buffer);
 }
 
-}  // namespace
+// Our CSV: the first line that is neither blank nor a comment starts with the cell "id".
+bool is_volcomp_csv(const std::string& path) {
+  std::ifstream in(path);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);
+    const std::size_t first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    return tables::split_csv_line(line).front().text == "id";
+  }
+  return false;
+}
 
-std::vector<CmmPoint> read_cmm_points(const std::string& path, bool report) {
+std::vector<CmmPoint> read_volcomp_csv(const std::string& path, bool report) {
   const std::vector<tables::CsvRow> rows = tables::read_csv_rows(path, report ? "CMM report" : "CMM plan");
   if (rows.empty()) throw LoadError({path}, "no header: id,x[mm],y[mm],z[mm],i,j,k" + std::string(report ? ",deviation[um]" : ""));
   const tables::CsvRow& header = rows.front();
@@ -115,6 +127,19 @@ std::vector<CmmPoint> read_cmm_points(const std::string& path, bool report) {
   }
   if (points.empty()) throw LoadError({path}, "no points");
   return points;
+}
+
+}  // namespace
+
+std::vector<CmmPoint> read_cmm_points(const std::string& path, bool report, const ReportFormat& format,
+                                      std::string* layout) {
+  if (!is_volcomp_csv(path)) return read_cmm_export(path, report, format, layout);
+  if (!format.unit.empty() || format.decimal_comma || format.sign == DeviationSign::NominalMinusActual)
+    throw std::runtime_error(path + " is volcomp's CSV (header id,x[mm],...): its units and sign are in its header "
+                             "(deviation + = material left); --report-unit, --decimal-comma and --deviation-sign are "
+                             "for other CMM exports");
+  if (layout) *layout = "volcomp's CSV";
+  return read_volcomp_csv(path, report);
 }
 
 void write_cmm_report(std::ostream& out, const std::vector<CmmPoint>& points, const std::vector<std::string>& comments) {

@@ -13,6 +13,9 @@ floor on a grid 2 mm inside the walls (normal: the tool axis), the walls at thre
 
   pocket_32_a: B-45 C120, 60 x 40, 8 deep, centred on the part zero
   pocket_32_b: B-25 C235, 50 x 50, 6 deep, centred 30 mm off it (another shape and pose)
+  head_pocket_a: the same kind of pocket on the head-table test machine bc_head
+    (tests/unit/machines/data/bc_head.toml: B turns the head, C the table), B-40 C60, 60 x 40 x 8
+  head_pocket_b: on bc_head, B30 C200, 50 x 50 x 6, centred 30 mm off the part zero
 
 The tool axis in the part frame for B C is R_C(C)^T R_B(B)^T z with R_B the rotation about +Y
 and R_C about -Z (checked against `volcomp simulate`, which writes it). Before writing,
@@ -21,7 +24,7 @@ depth, every wall point 5 mm (the radius) from the wall pass's axis, and the ras
 the floor (stepover below the diameter).
 
 Run: python3 make_parts_5axis.py (writes pocket_32_a.ngc, pocket_32_a_points.csv,
-pocket_32_b.ngc, pocket_32_b_points.csv beside itself). Standard library only,
+pocket_32_b.ngc, pocket_32_b_points.csv, the head_pocket_* and cone_* parts beside itself). Standard library only,
 deterministic."""
 import math
 import os
@@ -32,6 +35,7 @@ STEPOVER = 6.0
 SAFE = 25.0    # retract distance above the pocket's top, along the tool axis
 FEED = 1000.0
 PLUNGE = 200.0
+BC_HEAD_FIXTURE_DEG = 15.0  # tests/unit/machines/data/bc_head.toml [fixture] rotation_deg about z
 CORNER = 7.0   # wall points stay this far from the pocket's corners (rounded to the tool radius, 5)
 
 
@@ -70,10 +74,17 @@ def unit(v):
     return tuple(c / n for c in v)
 
 
-def frame(b_deg, c_deg):
-    """Tool axis t (tip into the spindle) and two directions u, v in the plane square to it."""
-    m = mul(rot_y(math.radians(b_deg)), rot_z(-math.radians(c_deg)))  # part -> machine
-    t = (m[2][0], m[2][1], m[2][2])  # third row: machine z in the part frame
+def frame(b_deg, c_deg, machine="mc300"):
+    """Tool axis t (tip into the spindle) and two directions u, v in the plane square to it.
+    mc300: B and C both turn the table. bc_head: B (about +y) turns the head, C (about -z)
+    the table, and the fixture is turned 15 deg about z: t = R_z(C - 15) (sin B, 0, cos B)."""
+    if machine == "mc300":
+        m = mul(rot_y(math.radians(b_deg)), rot_z(-math.radians(c_deg)))  # part -> machine
+        t = (m[2][0], m[2][1], m[2][2])  # third row: machine z in the part frame
+    else:
+        b = math.radians(b_deg)
+        m = rot_z(math.radians(c_deg - BC_HEAD_FIXTURE_DEG))
+        t = tuple(dot(row, (math.sin(b), 0.0, math.cos(b))) for row in m)
     u = unit(add((1.0, 0.0, 0.0), scale(-t[0], t)))
     v = cross(t, u)
     return t, u, v
@@ -97,8 +108,8 @@ def write_plan(name, title, legend, points):
     return len(points)
 
 
-def write_part(name, title, b_deg, c_deg, centre, half_u, half_v, depth):
-    t, u, v = frame(b_deg, c_deg)
+def write_part(name, title, b_deg, c_deg, centre, half_u, half_v, depth, machine="mc300"):
+    t, u, v = frame(b_deg, c_deg, machine)
     at = lambda a, b, h: add(centre, scale(a, u), scale(b, v), scale(-h, t))  # h: depth below the top
     lines = ["%", f"({title})",
              "(tcp world: X Y Z are the tool tip in the part frame; written by make_parts_5axis.py)",
@@ -244,6 +255,10 @@ if __name__ == "__main__":
                      30, 20, 8))
     print(write_part("pocket_32_b", "3+2 pocket at B-25 C235 on the MC-300, 50 x 50 x 6", -25, 235, (30.0, -20.0, 0.0),
                      25, 25, 6))
+    print(write_part("head_pocket_a", "3+2 pocket at B-40 C60 on bc_head, head-table, 60 x 40 x 8", -40, 60,
+                     (0.0, 0.0, 0.0), 30, 20, 8, machine="bc_head"))
+    print(write_part("head_pocket_b", "3+2 pocket at B30 C200 on bc_head, head-table, 50 x 50 x 6", 30, 200,
+                     (30.0, -20.0, 0.0), 25, 25, 6, machine="bc_head"))
     print(write_cone("cone_a", "5-axis swarf: a conical pocket, wall tilted 40 deg, C turning 360 deg, and its floor",
                      40, 30, 15))
     print(write_cone("cone_b", "5-axis swarf: a conical pocket, wall tilted 28 deg, C turning 360 deg, and its floor",
