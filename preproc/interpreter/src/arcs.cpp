@@ -100,4 +100,20 @@ Position point_at(const Move& m, double s) {
   return p;
 }
 
+double feed_length(const Move& m) {
+  if (m.kind == MoveKind::Arc) {
+    const Arc& a = m.arc;
+    const double radius = std::hypot(m.start[a.first] - a.center_first, m.start[a.second] - a.center_second);
+    const double along = radius * std::abs(a.sweep_rad), rise = m.end[a.normal] - m.start[a.normal];
+    return rise == 0.0 ? along : std::hypot(along, rise);
+  }
+  const auto distance = [&](int from) {
+    double sum = 0;
+    for (int i = from; i < from + 3; ++i) sum += (m.end[i] - m.start[i]) * (m.end[i] - m.start[i]);
+    return std::sqrt(sum);
+  };
+  const double linear = distance(0);
+  return linear > 0.0 ? linear : distance(3);
+}
+
 }  // namespace vc::interpreter

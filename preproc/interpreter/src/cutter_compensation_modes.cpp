@@ -2,6 +2,7 @@
 // and G41.1/G42.1 (diameter in D), LinuxCNC's convert_cutter_compensation_on/off; what LinuxCNC
 // refuses while compensation is on; and the compensated moves, whose geometry is
 // CutterCompensation's (cutter_compensation.cpp).
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <functional>
@@ -37,7 +38,6 @@ void Interpreter::compensation_rules(const gcode::Block& block, const Words& w, 
     else if (is_frame_or_cycle(g)) what = "use " + g_name(g);
     else if ((g == 170 || g == 180 || g == 190) && g != plane_) what = "change the plane";
     else if ((g == 200 && !inches_) || (g == 210 && inches_)) what = "change units";
-    else if (g == 930) what = "use inverse time feed (G93)";
     if (!what.empty()) refuse(line, c.offset, "cannot " + what + " with cutter radius compensation on (turn it off with G40)");
   }
   if (const auto* m = w.find_m({60, 610}))
@@ -65,6 +65,8 @@ Position Interpreter::take_move_start(const Frame& in, const Position& otherwise
 
 void Interpreter::take_released(std::vector<ReleasedMove>& out, Effect& effect) {
   for (ReleasedMove& r : out) {
+    if (r.move.compensated_rate_mm_per_min > 0.0)  // G93: the move's own inverse time
+      r.move.feed = r.move.compensated_rate_mm_per_min / std::max(feed_length(r.move), 1e-9);
     if (r.sequence == sequence_) effect.moves.push_back(r.move);
     else released_.push_back(r);
   }
@@ -130,10 +132,20 @@ void Interpreter::set_compensation(const Words& w, int line, Effect& effect) {
 }
 
 void Interpreter::compensated_move(const Words& w, Move& m, int line, Effect& effect) {
-  if (inverse_time_)
-    refuse(line, w.first_motion_offset(), "inverse time feed (G93) with cutter radius compensation is not translated");
   // The compensation works from the programmed start; the tool may be elsewhere (after G40).
   const Position tool_at = take_move_start(m.frame, m.start);
+  if (inverse_time_ && m.kind != MoveKind::Rapid) {
+    // LinuxCNC (interp_inverse.cc): the feed rate is the programmed move's length x F (the
+    // first move's from where the tool is), whatever length the compensated path has.
+    const bool from_tool = compensation_.first_move() || !compensation_.offsets();
+    if (from_tool && compensation_.offsets() && m.kind == MoveKind::Arc)
+      refuse(line, w.first_motion_offset(),
+             "an arc as the first move under cutter compensation in inverse time (G93) is not translated");
+    Move programmed = m;
+    if (from_tool) programmed.start = tool_at;
+    const double unit = inches_ ? kInch : 1.0;
+    m.compensated_rate_mm_per_min = std::max(0.1, feed_length(programmed) / unit * m.feed) * unit;
+  }
   compensating(line, w.first_motion_offset(), effect, [&] {
     if (m.kind == MoveKind::Arc) compensation_.arc(m, m.start, tool_at, sequence_, own_);
     else compensation_.straight(m, m.start, tool_at, sequence_, own_);

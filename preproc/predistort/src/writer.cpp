@@ -228,7 +228,11 @@ void Writer::translated(std::string_view raw, const gcode::Block& block, const i
   std::size_t count = 0;
   for (const auto& p : pieces) count += p.size();
   const bool split = count > 1;
-  const bool per_piece_feed = split && effect.moves.front().inverse_time;
+  // In G93 each piece gets an F for its own time: when a move is split, and for the moves of
+  // cutter compensation (their F is not the programmed move's).
+  const interpreter::Move* first_move = effect.moves.empty() ? nullptr : &effect.moves.front();
+  const bool per_piece_feed =
+      first_move && first_move->inverse_time && (split || first_move->compensated_rate_mm_per_min > 0.0);
 
   // Words replaced by the pieces: motion code, axes and arc words; when split, also the
   // stop codes (they go after the last piece) and an inverse-time F (one per piece).

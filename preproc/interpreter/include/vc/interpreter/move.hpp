@@ -72,6 +72,10 @@ struct Move {
   // Feed: units/min in program units (G94), or 1/min (G93 inverse time).
   bool inverse_time = false;
   double feed = 0.0;
+  // G93 under cutter compensation: LinuxCNC runs the compensated moves (and the corner arc
+  // before them) at the programmed move's length x F, in mm/min; `feed` is made from it for
+  // each move once its geometry is final (Interpreter::take_released). 0: not such a move.
+  double compensated_rate_mm_per_min = 0.0;
   bool spindle_on = false;
   double spindle_rpm = 0.0;
   int line = 0;                 // 1-based line in the source file
@@ -82,5 +86,9 @@ struct Move {
 // radius changing linearly from start to end for arcs (LinuxCNC's spiral for a small radius
 // mismatch) with the other axes linear in s.
 Position point_at(const Move& move, double s);
+
+// The length LinuxCNC divides by for feed (interp_inverse.cc find_straight_length,
+// find_arc_length): X Y Z if they move, else the rotary axes; an arc's radius at its start.
+double feed_length(const Move& move);
 
 }  // namespace vc::interpreter
