@@ -131,6 +131,12 @@ void Interpreter::set_compensation(const Words& w, int line, Effect& effect) {
   compensation_.start(side, radius, plane_, orientation, inches_);
 }
 
+double Interpreter::inverse_time_rate(const Move& programmed) const {
+  // interp_inverse.cc inverse_time_rate_straight/_arc: length x F in program units, at least 0.1.
+  const double unit = inches_ ? kInch : 1.0;
+  return std::max(0.1, feed_length(programmed) / unit * programmed.feed) * unit;
+}
+
 void Interpreter::compensated_move(const Words& w, Move& m, int line, Effect& effect) {
   // The compensation works from the programmed start; the tool may be elsewhere (after G40).
   const Position tool_at = take_move_start(m.frame, m.start);
@@ -143,8 +149,7 @@ void Interpreter::compensated_move(const Words& w, Move& m, int line, Effect& ef
              "an arc as the first move under cutter compensation in inverse time (G93) is not translated");
     Move programmed = m;
     if (from_tool) programmed.start = tool_at;
-    const double unit = inches_ ? kInch : 1.0;
-    m.compensated_rate_mm_per_min = std::max(0.1, feed_length(programmed) / unit * m.feed) * unit;
+    m.compensated_rate_mm_per_min = inverse_time_rate(programmed);
   }
   compensating(line, w.first_motion_offset(), effect, [&] {
     if (m.kind == MoveKind::Arc) compensation_.arc(m, m.start, tool_at, sequence_, own_);

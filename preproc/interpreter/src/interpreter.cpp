@@ -445,7 +445,15 @@ void Interpreter::move(const Words& w, int line, Effect& effect) {
     motion_words(w, m, effect);
     return;
   }
+  const Position programmed_start = m.start;
   m.start = take_move_start(m.frame, m.start);  // the first move after G40 starts where the tool is
+  if (inverse_time_ && m.kind != MoveKind::Rapid && m.start != programmed_start) {
+    // LinuxCNC times it from the programmed point the compensation left, not from the tool.
+    Move programmed = m;
+    programmed.start = programmed_start;
+    m.compensated_rate_mm_per_min = inverse_time_rate(programmed);
+    m.feed = m.compensated_rate_mm_per_min / std::max(feed_length(m), 1e-9);
+  }
   if (!end_known || (m.kind != MoveKind::Rapid && !start_known)) {
     if (m.kind != MoveKind::Rapid) {
       std::string missing;

@@ -162,7 +162,7 @@ bool pin_line_number(std::string& raw, int line, const gcode::Parameters& parame
 }
 
 std::string evaluated_line(std::string_view raw, const gcode::Block& block, const gcode::Parameters& parameters,
-                           int line, bool numbered_shared) {
+                           int line, bool numbered_shared, bool in_main_program) {
   struct Edit {
     int begin, end;
     std::string text;
@@ -178,7 +178,8 @@ std::string evaluated_line(std::string_view raw, const gcode::Block& block, cons
     const double value = gcode::evaluate(a.value, parameters, a.begin);
     std::string text;
     if (const auto* named = boost::get<gcode::ast::NamedParameter>(&a.target)) {
-      if (gcode::Parameters::is_global(named->name)) text = "#<" + named->name + ">=" + number_text(value);
+      if (gcode::Parameters::is_global(named->name) || in_main_program)
+        text = "#<" + named->name + ">=" + number_text(value);
     } else {
       const auto& numbered = boost::get<boost::spirit::x3::forward_ast<gcode::ast::NumberedParameter>>(a.target).get();
       const double n = std::round(gcode::evaluate(numbered.index, parameters, a.begin));

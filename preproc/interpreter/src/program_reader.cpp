@@ -159,13 +159,15 @@ bool ProgramReader::execute_next(std::string& raw, Origin& origin, gcode::Block&
       original_ = block;
       try {
         raw = evaluated_line(raw, block, interpreter_.parameters(), origin.line,
-                             std::all_of(frames_.begin(), frames_.end(), [](const Frame& f) { return f.m98; }));
+                             std::all_of(frames_.begin(), frames_.end(), [](const Frame& f) { return f.m98; }),
+                             frames_.empty());
         gcode::parse_block(raw, block);
       } catch (const gcode::SyntaxError& e) {
         refuse(origin, e.offset, e.what());
       }
+      const bool writes_assignments = !block.assignments.empty();
       block.assignments.clear();  // the parameters take the original line's assignments, once
-      if (block.words.empty() && block.comments.empty() && !block.percent) {  // only local assignments
+      if (!writes_assignments && block.words.empty() && block.comments.empty() && !block.percent) {  // only local ones
         apply_original_assignments(origin);
         continue;
       }

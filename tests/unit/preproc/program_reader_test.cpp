@@ -134,6 +134,17 @@ TEST(ProgramReader, MessagesInACallAreExpandedAndTheLineNumberIsTheSources) {
   EXPECT_EQ(e.texts[0], "(DEBUG, depth 2.50 at 2.00)");
 }
 
+// A main-program line that reads the interpreter's state is written with its values; its
+// assignments to the main program's own parameters stay in it (later lines read them), while a
+// call's own are left out.
+TEST(ProgramReader, MainProgramAssignmentsFromTheStateAreKept) {
+  const Executed e = run("G0 X3 Y0 Z0\n#<home> = #<_x>\nG1 X#<home> F100\no1 sub\n#<own> = #<_x>\no1 endsub\no1 call\nM2\n");
+  ASSERT_GE(e.texts.size(), 3u);
+  EXPECT_EQ(e.texts[1], "#<home>=3");
+  EXPECT_EQ(e.texts[2], "G1 X#<home> F100");
+  for (const std::string& text : e.texts) EXPECT_EQ(text.find("own"), std::string::npos) << text;
+}
+
 // M70-M73: the state is restored by the G-code LinuxCNC writes for it (F with one decimal, the
 // G and M codes that differ), run as lines of the flat program; M73's on the return.
 TEST(ProgramReader, SavedModalStateIsRestoredByTheLinesLinuxCncRuns) {

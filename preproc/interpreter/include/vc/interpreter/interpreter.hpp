@@ -221,6 +221,8 @@ class Interpreter {
   // The mm (or deg) of one unit of a parameter that holds a length of this axis (#5161..,
   // #5211.., #5221.., #5401..: the machine's units, as in LinuxCNC).
   std::optional<double> spindle_tool_parameter(int n) const;  // #5401..#5413
+  // G93: the feed rate LinuxCNC gives a move from its programmed start and end, mm/min.
+  double inverse_time_rate(const Move& programmed) const;
   double machine_unit(int axis) const { return is_linear(axis) ? setup_.machine_unit_mm : 1.0; }
   void set_world_position(const Position& world);  // after a frame change, as LinuxCNC does
   Position end_point(const Words& w, int line) const;

@@ -28,12 +28,13 @@ bool pin_line_number(std::string& raw, int line, const gcode::Parameters& parame
 // The line `raw` (parsed into `block`, line `line` of its file) as it reads outside the
 // subroutine call it is executed in: each word whose value is an expression or a parameter
 // gets the value (with the parameters from before the line), assignments to the call's own
-// parameters (names without '_', and #1..#30 unless the call shares them: `numbered_shared`)
-// are dropped and the others get their values, and DEBUG/PRINT/LOG messages are expanded.
+// parameters (names without '_' unless the line is the main program's: `in_main_program`, and
+// #1..#30 unless the call shares them: `numbered_shared`) are dropped and the others get their
+// values, and DEBUG/PRINT/LOG messages are expanded.
 // Numbers are written as the shortest decimals that read back as the same double. Throws
 // gcode::SyntaxError(offset) for what cannot be evaluated or written.
 std::string evaluated_line(std::string_view raw, const gcode::Block& block, const gcode::Parameters& parameters,
-                           int line, bool numbered_shared);
+                           int line, bool numbered_shared, bool in_main_program);
 
 // The shortest fixed-point decimal that reads back as `value` (G-code has no exponents).
 std::string number_text(double value);

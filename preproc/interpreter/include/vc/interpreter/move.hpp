@@ -73,8 +73,9 @@ struct Move {
   bool inverse_time = false;
   double feed = 0.0;
   // G93 under cutter compensation: LinuxCNC runs the compensated moves (and the corner arc
-  // before them) at the programmed move's length x F, in mm/min; `feed` is made from it for
-  // each move once its geometry is final (Interpreter::take_released). 0: not such a move.
+  // before them), and the move after G40, at the programmed move's length x F, in mm/min;
+  // `feed` is made from it for each move once its geometry is final (Interpreter::
+  // take_released), and the writer gives each such move an F of its own. 0: not such a move.
   double compensated_rate_mm_per_min = 0.0;
   bool spindle_on = false;
   double spindle_rpm = 0.0;
