@@ -1,6 +1,6 @@
 // Golden bad inputs: every file in tests/golden/bad_tables (*.csv), tests/golden/bad_machines
-// (*.toml) and tests/golden/bad_reports (*.csv: CMM reports, read as selftune reads them without
-// options) must be refused with a vc::LoadError whose text is exactly the content of the file's
+// (*.toml), tests/golden/bad_reports (*.csv: CMM reports, read as selftune reads them without
+// options), tests/golden/bad_laser_runs and bad_circular_tests (*.csv) must be refused with a vc::LoadError whose text is exactly the content of the file's
 // .expect twin (trimmed), with the source tree's absolute path removed so that paths read
 // relative to the repository root:
 //     tests/golden/bad_tables/nan_cell.csv:3:4: error: 'nan' is not a finite number
@@ -25,6 +25,9 @@
 #include <vector>
 
 #include "test_support.hpp"
+#include "vc/identify/circular_test.hpp"
+#include "vc/identify/iso230_2.hpp"
+#include "vc/identify/laser_runs.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/shop/cmm.hpp"
 #include "vc/tables/load_table.hpp"
@@ -112,6 +115,18 @@ TEST(BadFiles, EveryBadMachineIsRefusedWithItsMessage) {
 
 TEST(BadFiles, EveryBadCmmReportIsRefusedWithItsMessage) {
   check_folder("tests/golden/bad_reports", ".csv", [](const fs::path& p) { shop::read_cmm_points(p.string(), true); });
+}
+
+// The instruments' files, read and evaluated as `volcomp identify laser` and `identify circle`
+// do: what cannot be read, and what cannot give the evaluation (too few runs, a part of a turn).
+TEST(BadFiles, EveryBadLaserRunIsRefusedWithItsMessage) {
+  check_folder("tests/golden/bad_laser_runs", ".csv",
+               [](const fs::path& p) { identify::evaluate_iso230_2(identify::read_laser_runs(p.string())); });
+}
+
+TEST(BadFiles, EveryBadCircularTestIsRefusedWithItsMessage) {
+  check_folder("tests/golden/bad_circular_tests", ".csv",
+               [](const fs::path& p) { identify::evaluate_circular_test(identify::read_circular_test(p.string())); });
 }
 
 // The catalogue itself: the machine the bad machines are made from, and the good tables they

@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 
 #include "instrument_csv.hpp"
@@ -99,10 +100,22 @@ CircularTest read_circular_test(const std::string& path) {
   t.path = path;
   const std::vector<tables::CsvRow> rows = tables::read_csv_rows(path, "circular test");
   if (rows.empty()) throw LoadError({path}, "no header: angle[deg],direction,deviation[um] (or angle[deg],ccw[um],cw[um])");
-  t.metadata = read_metadata(path);
-  for (const auto& [key, value] : t.metadata) {
-    if (lower(key) == "plane") t.plane = value;
-    if (lower(key) == "radius_mm") t.radius_mm = std::atof(value.c_str());
+  std::vector<int> metadata_lines;
+  t.metadata = read_metadata(path, &metadata_lines);
+  for (std::size_t i = 0; i < t.metadata.size(); ++i) {
+    const auto& [key, value] = t.metadata[i];
+    if (lower(key) == "plane") {
+      t.plane = value;
+      for (char& c : t.plane) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+      if (t.plane != "XY" && t.plane != "YZ" && t.plane != "ZX")
+        throw LoadError({path, metadata_lines[i]}, "plane '" + value + "': XY, YZ or ZX");
+    }
+    if (lower(key) == "radius_mm") {
+      char* end = nullptr;
+      t.radius_mm = std::strtod(value.c_str(), &end);
+      if (value.empty() || *end != '\0' || !(t.radius_mm > 0) || !std::isfinite(t.radius_mm))
+        throw LoadError({path, metadata_lines[i]}, "radius_mm '" + value + "': the ballbar's nominal radius, a positive number of mm");
+    }
   }
   const tables::CsvRow& header = rows.front();
   const Header columns_read = read_header(path, header);
@@ -153,7 +166,7 @@ CircularTest read_circular_test(const std::string& path) {
 
 CircularEvaluation evaluate_circular_test(const CircularTest& test) {
   if (!(test.radius_mm > 0))
-    throw std::runtime_error(test.path + ": the circle's radius is not known: a '# radius_mm: 150' line, or --radius");
+    throw LoadError({test.path}, "the circle's radius is not known: a '# radius_mm: 150' line, or --radius");
   if (test.plane != "XY" && test.plane != "YZ" && test.plane != "ZX")
     throw std::runtime_error(test.path + ": plane '" + test.plane + "': XY, YZ or ZX");
   CircularEvaluation e;
@@ -162,7 +175,7 @@ CircularEvaluation evaluate_circular_test(const CircularTest& test) {
     try {
       e.fits.push_back(fit(run, test.radius_mm));
     } catch (const std::runtime_error& err) {
-      throw std::runtime_error(test.path + ": " + err.what());
+      throw LoadError({test.path}, err.what());
     }
     e.squareness_rad += e.fits.back().squareness_rad / static_cast<double>(test.runs.size());
     e.scale_mismatch += e.fits.back().scale_mismatch / static_cast<double>(test.runs.size());

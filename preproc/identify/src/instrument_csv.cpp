@@ -43,19 +43,23 @@ Header read_header(const std::string& path, const tables::CsvRow& row) {
   return h;
 }
 
-std::vector<std::pair<std::string, std::string>> read_metadata(const std::string& path) {
+std::vector<std::pair<std::string, std::string>> read_metadata(const std::string& path, std::vector<int>* lines) {
   std::vector<std::pair<std::string, std::string>> out;
   std::ifstream in(path);
   auto trim = [](const std::string& s) {
     const auto b = s.find_first_not_of(" \t#"), e = s.find_last_not_of(" \t");
     return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
   };
+  int number = 0;
   for (std::string line; std::getline(in, line);) {
+    ++number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty()) continue;
     if (line[0] != '#') break;
     const auto colon = line.find(':');
-    if (colon != std::string::npos) out.emplace_back(trim(line.substr(0, colon)), trim(line.substr(colon + 1)));
+    if (colon == std::string::npos) continue;
+    out.emplace_back(trim(line.substr(0, colon)), trim(line.substr(colon + 1)));
+    if (lines) lines->push_back(number);
   }
   return out;
 }

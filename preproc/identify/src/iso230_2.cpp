@@ -1,5 +1,7 @@
 #include "vc/identify/iso230_2.hpp"
 
+#include "vc/tables/source_error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -17,7 +19,6 @@ std::string text(double v) {
   return out.str();
 }
 
-std::string where(const LaserRuns& runs, int line) { return runs.path + ":" + std::to_string(line); }
 
 // Readings by run and direction, each a map target -> deviation (a target read twice: refused).
 std::map<RunKey, std::map<double, double>> by_run(const LaserRuns& runs, const std::set<RunKey>& left_out) {
@@ -27,9 +28,8 @@ std::map<RunKey, std::map<double, double>> by_run(const LaserRuns& runs, const s
     const RunKey key{r.run, r.direction};
     if (left_out.count(key)) continue;
     if (const auto [it, fresh] = lines[key].emplace(r.target, r.line); !fresh)
-      throw std::runtime_error(where(runs, r.line) + ": run " + std::to_string(r.run) + name(r.direction) +
-                               " reads target " + text(r.target) + " again (first on line " +
-                               std::to_string(it->second) + ")");
+      throw LoadError({runs.path, r.line}, "run " + std::to_string(r.run) + name(r.direction) + " reads target " +
+                                               text(r.target) + " again (first on line " + std::to_string(it->second) + ")");
     out[key][r.target] = r.deviation;
   }
   return out;
@@ -111,26 +111,26 @@ std::vector<SuspiciousRun> suspicious_runs(const LaserRuns& runs) {
 Iso230_2 evaluate_iso230_2(const LaserRuns& runs, const std::set<RunKey>& left_out) {
   const auto all = by_run(runs, left_out);
   // The targets: those of the first run; every run must read exactly these.
-  if (all.empty()) throw std::runtime_error(runs.path + ": no runs left");
+  if (all.empty()) throw LoadError({runs.path}, "no runs left");
   std::vector<double> targets;
   for (const auto& [t, x] : all.begin()->second) targets.push_back(t);
   for (const auto& [key, readings] : all) {
     for (double t : targets)
       if (!readings.count(t))
-        throw std::runtime_error(runs.path + ": run " + std::to_string(key.first) + name(key.second) +
-                                 " has no reading at target " + text(t) + " (every run reads every target)");
+        throw LoadError({runs.path}, "run " + std::to_string(key.first) + name(key.second) +
+                                         " has no reading at target " + text(t) + " (every run reads every target)");
     if (readings.size() != targets.size())
       for (const auto& [t, x] : readings)
         if (!std::binary_search(targets.begin(), targets.end(), t))
-          throw std::runtime_error(runs.path + ": run " + std::to_string(key.first) + name(key.second) +
-                                   " reads target " + text(t) + ", which run " +
+          throw LoadError({runs.path}, "run " + std::to_string(key.first) + name(key.second) +
+                                           " reads target " + text(t) + ", which run " +
                                    std::to_string(all.begin()->first.first) + name(all.begin()->first.second) +
                                    " does not");
   }
   Iso230_2 e;
   for (const auto& [key, r] : all) (key.second == Direction::Up ? e.runs_up : e.runs_down)++;
   if (e.runs_up < 2 || e.runs_down < 2)
-    throw std::runtime_error(runs.path + ": ISO 230-2 needs at least 2 runs in each direction (it asks for 5); " +
+    throw LoadError({runs.path}, "ISO 230-2 needs at least 2 runs in each direction (it asks for 5); " +
                              std::to_string(e.runs_up) + " up and " + std::to_string(e.runs_down) +
                              " down remain: the repeatability and accuracy would be unsupported");
 

@@ -147,7 +147,7 @@ TEST(LaserRuns, BadFilesAreRefusedWithTheirPlace) {
             std::string::npos);
   EXPECT_NE(message("target[mm],1+[um],1-[um],2+[um],2-[um]\n0,1,1,1,1\n100,1,1,,1\n").find("run 2+ has no reading at target 100"),
             std::string::npos);
-  EXPECT_NE(message("target[mm],run,direction,deviation[um]\n0,1,+,1\n0,1,+,2\n").find("refused.csv:3: run 1+ reads target 0 again"),
+  EXPECT_NE(message("target[mm],run,direction,deviation[um]\n0,1,+,1\n0,1,+,2\n").find("refused.csv:3: error: run 1+ reads target 0 again"),
             std::string::npos);
 }
 
