@@ -139,6 +139,32 @@ TEST(Volkins, TemperaturesAreLowPassedAndAFaultyReadingIsHeld) {
   EXPECT_EQ(states, (std::vector<std::string>{"TRUE", "FALSE"})) << r.out;
 }
 
+// The tool-length rule in the module: the correction is computed for L = the machine file's
+// tool_length_reference_mm + the tool length offset motion gives volkins.tool-length (here a
+// table of lengths relative to a 90 mm reference tool); before any offset, the file's L.
+TEST(Volkins, CorrectionLengthIsTheReferencePlusTheOffset) {
+  const std::string script = loadrt("tests/hal/data/mill3_reference.toml") +
+                             "loadrt threads name1=servo period1=1000000\n"
+                             "addf volkins.update servo\n"
+                             "setp volkins.tool-length-slew-time 0\n"
+                             "start\n"
+                             "loadusr -w sleep 0.05\n"
+                             "show pin volkins.correction-length\n"
+                             "setp volkins.tool-length 25\n"
+                             "loadusr -w sleep 0.05\n"
+                             "show pin volkins.correction-length\n"
+                             "setp volkins.tool-length -12.5\n"
+                             "loadusr -w sleep 0.05\n"
+                             "show pin volkins.correction-length\n";
+  const test::CommandResult r = test::halrun("reference", script);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const std::vector<double> L = shown_values(r.out, "volkins.correction-length");
+  ASSERT_EQ(L.size(), 3u) << r.out;
+  EXPECT_DOUBLE_EQ(L[0], 100.0) << r.out;  // tool_length_mm of the file
+  EXPECT_DOUBLE_EQ(L[1], 115.0) << r.out;
+  EXPECT_DOUBLE_EQ(L[2], 77.5) << r.out;
+}
+
 // Every golden bad machine file is refused by loadrt with the loader's message (the .expect
 // twin, with absolute paths), and afterwards no volkins component exists and a good machine
 // loads in the same HAL session.
