@@ -61,6 +61,24 @@ double tilt_significance(const std::vector<Anchor>& anchors, const std::vector<s
   return tilt.dot(covariance.bottomRightCorner(k, k).ldlt().solve(tilt));
 }
 
+// v from its normal equations, in the directions the normals see: those with less than 1 %
+// of the weight (normals within some 6 deg of a plane) stay at zero. Normals spread by a few
+// degrees (the cuts of one pass next to a point, their tool frames turned by a few degrees
+// of C) do not tell a shift along the surface; a least-squares answer there is noise, tens
+// of um along the path.
+Eigen::Vector3d seen_shift(const Eigen::Matrix3d& nvv, const Eigen::Vector3d& right, double weight) {
+  constexpr double kSeenShare = 1e-2;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(nvv);
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 3; ++i) {
+    const double lambda = eigen.eigenvalues()[i];
+    if (lambda < kSeenShare * weight) continue;
+    const Eigen::Vector3d e = eigen.eigenvectors().col(i);
+    v += e * (e.dot(right) / lambda);
+  }
+  return v;
+}
+
 }  // namespace
 
 LocalFit fit_tool_displacement(const std::vector<Anchor>& anchors, const Eigen::Vector3d& tip,
@@ -83,10 +101,10 @@ LocalFit fit_tool_displacement(const std::vector<Anchor>& anchors, const Eigen::
   LocalFit fit;
   fit.covered = weight > 1e-6;
   if (!fit.covered) return fit;
-  // A small ridge keeps the directions of v no measured normal sees at zero.
+  // (For the tilt's fit, a small ridge keeps the directions of v no normal sees at zero.)
   const Eigen::Matrix3d nvv = normal_matrix.topLeftCorner<3, 3>() + 1e-6 * weight * Eigen::Matrix3d::Identity();
   const auto nvv_solver = nvv.ldlt();
-  fit.shift_mm = nvv_solver.solve(right.head<3>());
+  fit.shift_mm = seen_shift(normal_matrix.topLeftCorner<3, 3>(), right.head<3>(), weight);
   if (!options.with_tilt) return fit;
   // What the points say about w once v has taken what it can: the Schur complement. Its
   // eigenvalues are (weight x) the heights' spread squared in each direction of w.

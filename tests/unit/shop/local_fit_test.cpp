@@ -65,7 +65,7 @@ TEST(LocalFit, ASwarfWallTellsTheTiltTowardsItFromAShiftOfTheTip) {
   EXPECT_EQ(fit.tilt_rad.y(), 0.0) << "the tilt along the wall moves no point of it";
   EXPECT_NEAR(fit.shift_mm.y(), y0, 2e-5);
   EXPECT_NEAR(fit.shift_mm.z(), z0, 2e-5);
-  EXPECT_EQ(fit.shift_mm.x(), 0.0) << "no normal sees x: the ridge keeps it at zero";
+  EXPECT_EQ(fit.shift_mm.x(), 0.0) << "no normal sees x: it stays at zero";
 
   // The same points fitted with a shift alone: the tilt's mean over the heights is taken as a
   // shift, the rest is left.
@@ -121,6 +121,25 @@ TEST(LocalFit, ATiltWithinItsNoiseIsNotKept) {
       EXPECT_EQ(refused, 0);
     }
   }
+}
+
+// The cuts of one pass next to a wall point, their tool frames turned by a few degrees: the
+// point's normal in them spreads by +-3 deg, which does not tell a shift along the wall.
+TEST(LocalFit, NormalsAFewDegreesApartDoNotTellAShiftAlongTheSurface) {
+  std::vector<shop::Anchor> a;
+  for (int point = 0; point < 20; ++point)
+    for (int cut = -3; cut <= 3; ++cut) {
+      const double turn = (cut + 0.3 * (point % 3)) * M_PI / 180;  // not symmetric about the point
+      const double deviation = 0.010 + 0.001 * ((point * 7) % 5 - 2);  // 10 um, +-2 um of scatter
+      a.push_back({Eigen::Vector3d(0.5 * cut, 2.0 * point - 20, 0), Eigen::Vector3d(std::cos(turn), std::sin(turn), 0),
+                   5.0, deviation, Eigen::Matrix3d::Identity(), point});
+    }
+  const shop::LocalFit fit =
+      shop::fit_tool_displacement(a, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), {40.0, 0.0, false, 1.0, 0.0});
+  EXPECT_NEAR(fit.shift_mm.x(), 0.010, 0.002);
+  // Along the mean normal (turned by 0.3 deg: 0.05 um of y), not the least-squares answer.
+  EXPECT_LT(std::abs(fit.shift_mm.y()), 1e-4);
+  EXPECT_EQ(fit.shift_mm.z(), 0.0);
 }
 
 TEST(LocalFit, TwoWallsAtACornerTellBothComponentsOfTheTilt) {
