@@ -129,7 +129,8 @@ struct SelftuneArgs {
   double flute_length_mm = 30.0;
   double cutoff_mm = 10.0, outlier_sigmas = 4.0;
   // local
-  double gain = 1.0, radius_mm = 40.0, step_mm = 1.0, tolerance_mm = 0.0005;
+  double gain = 1.0, radius_mm = 40.0, angle_deg = 20.0, step_mm = 1.0, tolerance_mm = 0.0005;
+  bool no_tilt = false;            // keep the program's tool axis (tip shifted only)
   // model
   std::string tables_out;          // folder of the updated machine file and tables
   std::string nominal;             // the original program P0 (default: PROGRAM)

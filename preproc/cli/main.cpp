@@ -163,6 +163,10 @@ int main(int argc, char** argv) {
   selftune_cmd->add_option("--gain", selftune.gain, "local: share of the deviation taken off")->capture_default_str();
   selftune_cmd->add_option("--radius", selftune.radius_mm, "local: deviations reach the path within this, mm")
       ->capture_default_str();
+  selftune_cmd->add_option("--angle", selftune.angle_deg,
+                           "local: deviations reach path points whose tool frame is turned less than this from the cut's, deg")
+      ->capture_default_str();
+  selftune_cmd->add_flag("--no-tilt", selftune.no_tilt, "local: keep the program's tool axis on 5-axis moves (shift the tip only)");
   selftune_cmd->add_option("--step", selftune.step_mm, "local: longest piece of a shifted move, mm")->capture_default_str();
   selftune_cmd->add_option("--tolerance", selftune.tolerance_mm, "chord and blending tolerance, mm")->capture_default_str();
   selftune_cmd->add_option("--tables-out", selftune.tables_out, "model: folder for the updated machine file and tables");

@@ -45,6 +45,34 @@ void print_first_part(const shop::FirstPart& part, std::ostream& report) {
              << um(*m.point.deviation_mm) << ", its face around it " << um(m.filtered_mm) << "\n";
 }
 
+// What the local strategy did with the tool axis, and where it could not see it.
+void print_tilt(const shop::TiltSummary& t, std::ostream& report) {
+  if (!t.asked) {
+    report << "  tool axis: kept as programmed (--no-tilt)\n";
+    return;
+  }
+  if (!t.machine_tilts) {
+    report << "  tool axis: not corrected: the machine has no rotary axis (a tilt error is left; a 3-axis path "
+              "cannot turn the tool)\n";
+    return;
+  }
+  report << "  tool axis: turned on " << t.tilted << " pieces of 5-axis moves (largest "
+         << format_fixed(t.largest_rad * 1e6, 2) << " urad)";
+  if (t.unseen > 0)
+    report << "; not estimated on " << t.unseen
+           << " (the points near them lie at one height along the tool: a tilt cannot be told from a shift of the tip)";
+  if (t.below_noise > 0)
+    report << "; not turned on " << t.below_noise
+           << " (the tilt the points tell is within one standard error of zero: noise; elsewhere it is shrunk by "
+              "its noise)";
+  if (t.singular > 0) report << "; not turned on " << t.singular << " (the rotary axes cannot give it there: a pole)";
+  if (t.rotary_held > 0)
+    report << "; " << t.rotary_held
+           << " pieces of moves that hold the rotary axes (3+2; pre-distorted: turned by less than 0.01 deg) keep their "
+              "tool axis (tip shifted only)";
+  report << "\n";
+}
+
 }  // namespace
 
 int run_selftune(const SelftuneArgs& args, std::ostream& report) {
@@ -55,8 +83,8 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
   if (args.output.empty() && !(args.strategy == "model" && args.compensated))
     throw std::runtime_error("-o/--output is required (the program of the next part)");
   if (!(args.gain > 0 && args.gain <= 1.5)) throw std::runtime_error("--gain must be in (0, 1.5]");
-  if (!(args.radius_mm > 0) || !(args.step_mm > 0) || !(args.cutoff_mm > 0))
-    throw std::runtime_error("--radius, --step and --cutoff must be positive");
+  if (!(args.radius_mm > 0) || !(args.step_mm > 0) || !(args.cutoff_mm > 0) || !(args.angle_deg > 0))
+    throw std::runtime_error("--radius, --angle, --step and --cutoff must be positive");
   if (!(args.tolerance_mm > 0.0 && args.tolerance_mm <= 0.1)) throw std::runtime_error("--tolerance must be in (0, 0.1] mm");
 
   const machine::WorldConvention world = world_convention(args.world);
@@ -97,8 +125,10 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
                                     args.world, args.tolerance_mm};
   if (args.strategy == "local") {
     provenance.title = "volcomp selftune (local): " + args.input + " shifted against the deviations of " + args.report +
-                       " (gain " + format_number(args.gain) + ", radius " + format_number(args.radius_mm) + " mm)";
-    shop::LocalOptions local{args.gain, args.radius_mm, args.step_mm, args.tolerance_mm, world};
+                       " (gain " + format_number(args.gain) + ", radius " + format_number(args.radius_mm) + " mm, angle " +
+                       format_number(args.angle_deg) + " deg)";
+    shop::LocalOptions local{args.gain, args.radius_mm, args.step_mm, args.tolerance_mm, world, args.angle_deg};
+    local.tilt = !args.no_tilt;
     shop::LocalSummary summary;
     std::ifstream in = open_program(args.input);
     write_atomically(args.output, [&](std::ostream& out) {
@@ -107,6 +137,7 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
     report << "  local: " << summary.moves_shifted << " moves shifted (" << summary.pieces << " pieces), coverage "
            << format_fixed(summary.covered_fraction * 100, 1) << " % of " << format_fixed(summary.cutting_length_mm, 1)
            << " mm of cutting path, largest shift " << um(summary.largest_shift_mm) << "\n";
+    print_tilt(summary.tilt, report);
     return 0;
   }
 

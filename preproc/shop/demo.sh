@@ -4,7 +4,8 @@
 # part A is machined, measured with 1 um noise and tuned, three parts per strategy; then a
 # different part (B) is machined with the tuned tables. MC-300 (5-axis, tcp world): a swarf
 # part (a conical pocket cut while C turns 360 deg) tunes the tables and the rotary axes'
-# location errors, which then serve a 3+2 pocket at another pose. Prints the form errors.
+# location errors, which then serve a 3+2 pocket at another pose; the local strategy on the
+# same part. Prints the form errors.
 #
 #   preproc/shop/demo.sh [BUILD_DIR] [WORK_DIR]      (default build, a temporary folder)
 set -euo pipefail
@@ -55,6 +56,9 @@ echo "MC-300 swarf cone, part 1: form error $(form5 "$work/cone-p1.ngc" "$parts/
 "$volcomp" selftune "$model" "$work/cone-p1.ngc" "$work/cone-part1.report.csv" -o "$work/cone-p2.ngc" --strategy model \
   --nominal "$parts/cone_a.ngc" --tables-out "$work/tables5" "${files[@]}" 2>&1 | sed 's/^/    /'
 echo "MC-300 swarf cone, part 2: form error $(form5 "$work/cone-p2.ngc" "$parts/cone_a_points.csv" cone-part2)"
+"$volcomp" selftune "$model" "$work/cone-p1.ngc" "$work/cone-part1.report.csv" -o "$work/cone-local-p2.ngc" \
+  --strategy local "${files[@]}" 2>&1 | sed 's/^/    /'
+echo "MC-300 swarf cone, part 2 (local strategy, the tool axis turned too): form error $(form5 "$work/cone-local-p2.ngc" "$parts/cone_a_points.csv" cone-local-part2)"
 "$volcomp" predistort "$model" "$parts/pocket_32_b.ngc" -o "$work/pocket-model.ngc" "${files[@]}" -q
 "$volcomp" predistort "$work/tables5/mc300.toml" "$parts/pocket_32_b.ngc" -o "$work/pocket-tuned.ngc" "${files[@]}" -q
 echo "MC-300 3+2 pocket, raw machine:     form error $(form5 "$parts/pocket_32_b.ngc" "$parts/pocket_32_b_points.csv" pocket-raw)"

@@ -16,6 +16,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
+#include <map>
 #include <sstream>
 
 #include "test_support.hpp"
@@ -434,13 +436,16 @@ TEST_F(VirtualShop5Axis, SwarfPartTunesTablesThatCarryOverToOtherParts) {
   EXPECT_LE(model.rms_um, 0.7);
   EXPECT_LE(model.pv_um, 3.0);
 
-  // The local strategy shifts the tool tip, not its axis: along a swarf wall a tilt error
-  // changes with the height on the tool, which a shift of the tip cannot take off.
+  // The local strategy: the cone's error changes along the wall with C (the cuts' tool
+  // frames turn): the window's angle keeps to the cuts of nearby C. Its tilt here (some 30
+  // urad, 0.3 um over the wall's height) is within the noise of the few points near each
+  // piece: the printout says where it was turned.
   std::cout << run_ok("selftune " + test::machine_path("mc300") + " " + path("cone_p1.ngc") + " " + path("cone_r1.csv") +
                       " -o " + path("cone_local_p2.ngc") + files());
   const Form local = measured(path("cone_local_p2.ngc"), plan, path("cone_local_r2.csv"), 13);
   std::cout << "local strategy, part 2: PV " << local.pv_um << " um, RMS " << local.rms_um << " um\n";
-  EXPECT_LT(local.rms_um, 0.5 * part1.rms_um);
+  EXPECT_LE(local.rms_um, 0.7);
+  EXPECT_LE(local.pv_um, 3.0);
 
   for (const std::string other : {"pocket_32_b", "cone_b"}) {
     const std::string plan_b = part(other + "_points.csv"), b0 = part(other + ".ngc");
@@ -457,6 +462,71 @@ TEST_F(VirtualShop5Axis, SwarfPartTunesTablesThatCarryOverToOtherParts) {
     EXPECT_LE(tuned.pv_um, 0.3 * shipped.pv_um) << other;
     EXPECT_LE(tuned.pv_um, 0.1 * raw.pv_um) << other;
   }
+}
+
+// How a swarf wall leans: the mean deviation of its lowest row of points minus its highest
+// (WALL points of make_parts_5axis.py's cones, measured without noise), um.
+double wall_lean_um(const std::string& exact_report) {
+  std::map<double, std::pair<double, int>> rows;  // z -> sum, count
+  for (const shop::CmmPoint& p : shop::read_cmm_points(exact_report, true))
+    if (p.id.rfind("WALL", 0) == 0) {
+      auto& row = rows[std::round(p.nominal.z() * 1e3) / 1e3];
+      row.first += *p.deviation_mm;
+      ++row.second;
+    }
+  if (rows.size() < 2) return 0.0;
+  const auto mean = [](const std::pair<double, int>& r) { return r.first / r.second; };
+  return (mean(rows.begin()->second) - mean(rows.rbegin()->second)) * 1e3;
+}
+
+// The tool-axis correction of the local strategy (issue 22): the true machine's spindle
+// tilted by 50" and -40" (310 urad), which the model does not know: on the swarf cone the
+// wall then leans with the height on the tool (about 2 um over its rows), which no shift of
+// the tip takes off. The local strategy turns the tool axis (B and C) where the points tell
+// the tilt; with --no-tilt the lean stays.
+TEST_F(VirtualShop5Axis, LocalStrategyTurnsTheToolOnASwarfWall) {
+  run_ok("perturb " + test::machine_path("mc300") + " -o " + path("tilted") + " --seed 5");
+  {
+    const std::string file = path("tilted/mc300.toml");
+    std::ifstream in(file);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::size_t spindle = text.find("[spindle]");
+    ASSERT_NE(spindle, std::string::npos);
+    text.insert(text.find("\n[", spindle) + 1, "[spindle.location]\nEA0S_arcsec = 50.0\nEB0S_arcsec = -40.0\n");
+    std::ofstream(file) << text;
+  }
+  const auto measured_on_tilted = [&](const std::string& program, const std::string& report, unsigned seed) {
+    return test_part(path("tilted/mc300.toml"), files(), program, part("cone_a_points.csv"), report, seed);
+  };
+  run_ok("predistort " + test::machine_path("mc300") + " " + part("cone_a.ngc") + " -o " + path("lean_p1.ngc") + files());
+  const Form part1 = measured_on_tilted(path("lean_p1.ngc"), path("lean_r1.csv"), 21);
+  const double lean1 = wall_lean_um(path("lean_r1.csv.exact.csv"));
+  std::cout << "tilted spindle, part 1: PV " << part1.pv_um << " um, RMS " << part1.rms_um << " um, wall lean " << lean1
+            << " um\n";
+  ASSERT_GT(std::abs(lean1), 1.5) << "the tilted spindle should lean the wall";
+
+  const std::string tilt_run = run_ok("selftune " + test::machine_path("mc300") + " " + path("lean_p1.ngc") + " " +
+                                      path("lean_r1.csv") + " -o " + path("lean_tilt_p2.ngc") + files());
+  std::cout << tilt_run;
+  EXPECT_EQ(tilt_run.find("tool axis: turned on 0 pieces"), std::string::npos);
+  const Form tilted = measured_on_tilted(path("lean_tilt_p2.ngc"), path("lean_tilt_r2.csv"), 22);
+  const double lean2 = wall_lean_um(path("lean_tilt_r2.csv.exact.csv"));
+  std::cout << "local strategy, part 2: PV " << tilted.pv_um << " um, RMS " << tilted.rms_um << " um, wall lean "
+            << lean2 << " um\n";
+
+  run_ok("selftune " + test::machine_path("mc300") + " " + path("lean_p1.ngc") + " " + path("lean_r1.csv") + " -o " +
+         path("lean_tip_p2.ngc") + " --no-tilt" + files());
+  const Form tip_only = measured_on_tilted(path("lean_tip_p2.ngc"), path("lean_tip_r2.csv"), 22);
+  const double lean_tip = wall_lean_um(path("lean_tip_r2.csv.exact.csv"));
+  std::cout << "local strategy --no-tilt, part 2: PV " << tip_only.pv_um << " um, RMS " << tip_only.rms_um
+            << " um, wall lean " << lean_tip << " um\n";
+
+  EXPECT_GT(std::abs(lean_tip), 0.7 * std::abs(lean1)) << "a shift of the tip leaves the lean";
+  // Most of it: the tilt is shrunk by its noise, and each piece's comes from some 25 points
+  // at 1 um noise (with noise seeds 11, 31, 41, 51 the lean left was 0.05-0.57 um).
+  EXPECT_LT(std::abs(lean2), 0.4 * std::abs(lean1)) << "turning the tool takes most of it off";
+  EXPECT_LT(tilted.rms_um, tip_only.rms_um);
+  EXPECT_LE(tilted.rms_um, 0.7);
 }
 
 // The head-table case (issue 22): bc_head, the test machine whose B turns the head (a rotary

@@ -32,6 +32,11 @@ class ProgramPoints {
     return machine::tool_pose(model_, machine::Machine::Ideal, nominal(m, world(m, program)),
                              model_.correction_length(m.tool_length_mm)).tip_mm;
   }
+  // The ideal machine's tool frame in the part frame (z: the tool axis, tip into the spindle).
+  Eigen::Isometry3d ideal_pose(const interpreter::Move& m, const interpreter::Position& program) const {
+    return machine::part_T_tool(model_, machine::Machine::Ideal, nominal(m, world(m, program)),
+                                model_.correction_length(m.tool_length_mm));
+  }
 
  private:
   const machine::Model& model_;
