@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "test_support.hpp"
 #include "vc/machine/correct.hpp"
@@ -132,6 +133,31 @@ TEST(TemperatureTable, TheToolTipMovesByTheTablesAtTheCurrentTemperatures) {
         EXPECT_NEAR(c.joints[2] - q[2], -ezz_by_hand(spindle), 1e-12);
       }
     }
+}
+
+// The linear case on an axis without any table (Y of the plain machine): the expansion alone
+// is its component error.
+TEST(TemperatureTable, AThermalExpansionNeedsNoTable) {
+  std::string text;
+  {
+    std::ifstream in(plain_machine());
+    std::stringstream s;
+    s << in.rdbuf();
+    text = s.str();
+  }
+  const std::string y = "travel_mm = [0, 400]";
+  text.insert(text.find(y) + y.size(), "\nthermal = { input = \"x_screw\", expansion_um_per_m_K = 11.5, reference_mm = 100 }");
+  std::ofstream(scratch("y_thermal.toml")) << text;
+  Model model = load_machine(scratch("y_thermal.toml").string());
+  ASSERT_TRUE(model.axes[1].tables.empty());
+  model.set_temperature("x_screw", 30.0);
+  Joints q(3);
+  q << 0.0, 350.0, -100.0;
+  const VolumetricError e = volumetric_error(model, q, 100.0);
+  EXPECT_NEAR(e.position_mm.y(), 11.5e-6 * 10 * (350 - 100), 1e-12);  // 28.75 um
+  EXPECT_NEAR(e.position_mm.x(), exx_by_hand(0.0, 30.0), 1e-12);
+  const Correction c = correct(model, q, 100.0);
+  EXPECT_LT(c.residual_mm, 1e-9) << "the correction sees the expansion's slope too";
 }
 
 // The shipped example: mc300.toml plus example thermal tables (tables/data/mc300/thermal).
