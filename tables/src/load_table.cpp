@@ -54,9 +54,12 @@ class TableReader {
     for (const CsvCell& cell : header.cells) {
       const HeaderCell h = parse_header_cell(path_, header.line, cell);
       const SourceLocation where{path_, header.line, cell.column};
-      // A temperature input (its name, longer than an axis letter, or anything in degC).
+      // A temperature input: anything in degC, or a lower-case name longer than an axis letter
+      // whose unit is none of the lengths and angles (x_screw[C]: a temperature in the wrong unit,
+      // not an unknown error symbol).
       const bool is_temperature =
-          h.unit == "degC" || (h.name.size() > 1 && std::islower(static_cast<unsigned char>(h.name[0])));
+          h.unit == "degC" || (h.name.size() > 1 && std::islower(static_cast<unsigned char>(h.name[0])) &&
+                               !find_unit(h.unit));
       if (is_temperature) {
         read_temperature_variable(h, where);
         continue;
