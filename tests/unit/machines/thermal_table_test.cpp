@@ -188,6 +188,12 @@ TEST(TemperatureTable, TheMc300ExampleIsMc300AtItsReferenceAndMovesByItsTablesWh
   EXPECT_NEAR(change.y(), -1.3125e-3, 1e-5);
   EXPECT_NEAR(change.z(), -53.6e-3, 1e-5);
   EXPECT_THROW(warm.set_temperature("coolant", 26.5), std::invalid_argument);  // beyond its range
+  // volcomp check: usable, and it lists the inputs and the temperature grids.
+  const auto r = test::run_volcomp("check " + test::machine_path("mc300_thermal"));
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("temperature inputs (degC; surveyed at the reference): coolant 19 (18 .. 26) spindle 19 (18 .. 28)"),
+            std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("grid spindle: 3 nodes 18 .. 28 degC"), std::string::npos) << r.out;
 }
 
 // predistort --temperature on a temperature table: the program is made for the warm spindle,
