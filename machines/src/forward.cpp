@@ -85,7 +85,7 @@ Frame walk_real_chain(const Model& model, const std::vector<int>& chain, const J
   AxisErrors err;
   for (int i : chain) {
     const Axis& axis = model.axes[i];
-    const bool has_errors = !axis.tables.empty();
+    const bool has_errors = axis.has_component_errors();
     if (has_errors) axis_errors(model, i, q, err, true);
     const Vector3d delta = has_errors ? err.delta_mm : Vector3d::Zero();
     Matrix3d r_eps = Matrix3d::Identity(), eps_rate = Matrix3d::Zero();
@@ -169,7 +169,7 @@ class CarriedPose {
     Vector3d motion_origin = axis.type == AxisType::Linear ? Vector3d(q[i] * axis.direction) : Vector3d::Zero();
     Matrix3d motion_rotation;
     bool turns = false;  // else the rotation is the identity
-    if (real && !axis.tables.empty()) {
+    if (real && axis.has_component_errors()) {
       AxisErrors err;
       axis_errors(model, i, q, err, false);
       motion_origin += err.delta_mm;
@@ -350,8 +350,11 @@ void axis_errors(const Model& model, int joint, const Joints& q, AxisErrors& out
   for (int t : model.axes[joint].tables) {
     const BoundTable& bound = model.tables[t];
     const auto& grid = bound.table.grid();
+    // Grid variables: joint positions, or temperatures at their current (volkins: filtered) value.
     std::array<double, tables::ErrorTable::kMaxVariables> at{};
-    for (std::size_t v = 0; v < grid.size(); ++v) at[v] = q[bound.joint[v]];
+    for (std::size_t v = 0; v < grid.size(); ++v)
+      at[v] = bound.joint[v] >= 0 ? q[bound.joint[v]]
+                                  : model.temperatures[static_cast<std::size_t>(bound.input[v])].value_degC;
     if (!with_slopes) {  // the pose alone: the table adds its values by component
       bound.table.add_components(at.data(), sum);
       continue;
@@ -361,7 +364,7 @@ void axis_errors(const Model& model, int joint, const Joints& q, AxisErrors& out
     for (std::size_t c = 0; c < columns.size(); ++c) sum[static_cast<std::size_t>(columns[c].symbol.component)] += sample.value[c];
     for (std::size_t c = 0; c < columns.size(); ++c)
       for (std::size_t v = 0; v < grid.size(); ++v)
-        out.slope(columns[c].symbol.component, bound.joint[v]) += sample.slope[c][v];
+        if (bound.joint[v] >= 0) out.slope(columns[c].symbol.component, bound.joint[v]) += sample.slope[c][v];
   }
   // Thermal expansion of a linear axis: it travels (1 + strain) times as far from its reference
   // point, along its own direction u (a table axis then carries the part the other way).

@@ -461,7 +461,8 @@ class MachineReader {
       if (const toml::node* m = t.get("measured_at_mm"))
         rereference(bound, axis, vec3(t, "measured_at_mm", true, context), where(*m));
       warn_if_short(bound);
-      for (std::size_t v = 0; v < bound.table.grid().size(); ++v) axis.moved_by |= 1u << bound.joint[v];
+      for (std::size_t v = 0; v < bound.table.grid().size(); ++v)
+        if (bound.joint[v] >= 0) axis.moved_by |= 1u << bound.joint[v];
       axis.tables.push_back(static_cast<int>(model_.tables.size()));
       model_.tables.push_back(std::move(bound));
     }
@@ -473,6 +474,11 @@ class MachineReader {
     const std::string listed = " (table listed at " + listed_at.to_string() + ")";
     const auto& grid = bound.table.grid();
     for (std::size_t v = 0; v < grid.size(); ++v) {
+      if (grid[v].is_temperature()) {
+        bound.joint[v] = -1;
+        bound.input[v] = bind_temperature(grid[v], listed);
+        continue;
+      }
       const int j = model_.joint_of(grid[v].axis);
       if (j < 0)
         throw LoadError(grid[v].where, std::string("grid variable ") + static_cast<char>(std::tolower(grid[v].axis)) +
@@ -487,6 +493,27 @@ class MachineReader {
       if (c.symbol.axis != axis.letter)
         throw LoadError(c.where, c.symbol.name() + " is an error of axis " + c.symbol.axis +
                                      ", but this table is listed under axis " + axis.letter + listed);
+  }
+
+  // A temperature grid variable names an input of [temperatures], and its grid covers the
+  // input's range: the model must hold wherever the input may be (volkins holds the last good
+  // value outside it), and a table does not extrapolate (it would hold its end value).
+  int bind_temperature(const tables::GridVariable& g, const std::string& listed) const {
+    const int i = model_.temperature_of(g.temperature);
+    if (i < 0) {
+      std::string names;
+      for (const TemperatureInput& t : model_.temperatures) names += (names.empty() ? "" : ", ") + t.name;
+      throw LoadError(g.where, "temperature '" + g.temperature + "' is not an input of the machine file's [temperatures] (" +
+                                   (names.empty() ? "it has none" : "it has: " + names) + ")" + listed);
+    }
+    const TemperatureInput& t = model_.temperatures[static_cast<std::size_t>(i)];
+    if (g.nodes.front() > t.min_degC || g.nodes.back() < t.max_degC)
+      throw LoadError(g.where, "the table covers " + g.temperature + " = " + number(g.nodes.front()) + " .. " +
+                                   number(g.nodes.back()) + " degC but the input's range is " + number(t.min_degC) +
+                                   " .. " + number(t.max_degC) +
+                                   " degC: a temperature grid must cover min_degC .. max_degC (extend the table or "
+                                   "narrow the range)" + listed);
+    return i;
   }
 
   // A table measured at p_meas instead of the pole, node by node (model.md, exact):
@@ -527,7 +554,7 @@ class MachineReader {
   void warn_if_short(const BoundTable& bound) {
     const auto& grid = bound.table.grid();
     for (std::size_t v = 0; v < grid.size(); ++v) {
-      if (grid[v].periodic) continue;
+      if (grid[v].periodic || bound.joint[v] < 0) continue;  // (a temperature grid covers its range: bind_temperature)
       const Axis& a = model_.axes[bound.joint[v]];
       const double lo = grid[v].nodes.front(), hi = grid[v].nodes.back();
       if (a.travel_min < lo - 1e-9 || a.travel_max > hi + 1e-9) {

@@ -38,7 +38,7 @@ bool outside_tables(const Model& model, const Joints& q) noexcept {
   for (const BoundTable& bound : model.tables) {
     const auto& grid = bound.table.grid();
     for (std::size_t v = 0; v < grid.size(); ++v) {
-      if (grid[v].periodic) continue;
+      if (grid[v].periodic || bound.joint[v] < 0) continue;  // (temperatures: their range is checked where set)
       const double x = q[bound.joint[v]];
       if (x < grid[v].nodes.front() || x > grid[v].nodes.back()) return true;
     }

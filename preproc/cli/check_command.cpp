@@ -63,9 +63,8 @@ double print_tables(const Model& model, std::ostream& out) {
     const tables::ErrorTable& t = bound.table;
     out << "  " << t.path() << "\n     grid";
     for (const auto& g : t.grid())
-      out << ' ' << static_cast<char>(std::tolower(g.axis)) << ": " << g.nodes.size() << " nodes "
-          << format_number(g.nodes.front()) << " .. " << format_number(g.nodes.back())
-          << (g.rotary ? " deg" : " mm") << (g.periodic ? " (periodic)" : "");
+      out << ' ' << g.name() << ": " << g.nodes.size() << " nodes " << format_number(g.nodes.front()) << " .. "
+          << format_number(g.nodes.back()) << ' ' << g.unit() << (g.periodic ? " (periodic)" : "");
     out << "; " << (t.interpolation() == tables::Interpolation::Cubic ? "cubic" : "linear") << "; columns";
     for (const auto& c : t.columns())
       out << ' ' << c.symbol.name();
@@ -147,6 +146,13 @@ int run_check(const CheckArgs& args, std::ostream& out) {
       << format_number(model.fade.start_rad * 180.0 / M_PI) << " .. "
       << format_number(model.fade.full_rad * 180.0 / M_PI) << " deg\n";
   print_axes(model, out);
+  if (!model.temperatures.empty()) {  // the survey below is at their references
+    out << "temperature inputs (degC; surveyed at the reference):";
+    for (const machine::TemperatureInput& t : model.temperatures)
+      out << ' ' << t.name << ' ' << format_number(t.reference_degC) << " (" << format_number(t.min_degC) << " .. "
+          << format_number(t.max_degC) << ')';
+    out << '\n';
+  }
   const double steepest = print_tables(model, out);
   for (const Warning& w : model.warnings) out << w.to_string() << '\n';
 

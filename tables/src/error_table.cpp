@@ -1,6 +1,7 @@
 #include "vc/tables/error_table.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include "spline.hpp"
@@ -38,6 +39,11 @@ inline Cell locate(const GridVariable& g, double x) noexcept {
 }
 
 }  // namespace
+
+std::string GridVariable::name() const {
+  if (is_temperature()) return temperature;
+  return std::string(1, static_cast<char>(std::tolower(static_cast<unsigned char>(axis))));
+}
 
 ErrorTable::ErrorTable(std::string path, std::vector<GridVariable> grid,
                        std::vector<Column> columns, std::vector<double> values,

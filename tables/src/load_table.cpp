@@ -54,6 +54,16 @@ class TableReader {
     for (const CsvCell& cell : header.cells) {
       const HeaderCell h = parse_header_cell(path_, header.line, cell);
       const SourceLocation where{path_, header.line, cell.column};
+      // A temperature input: anything in degC, or a lower-case name longer than an axis letter
+      // whose unit is none of the lengths and angles (x_screw[C]: a temperature in the wrong unit,
+      // not an unknown error symbol).
+      const bool is_temperature =
+          h.unit == "degC" || (h.name.size() > 1 && std::islower(static_cast<unsigned char>(h.name[0])) &&
+                               !find_unit(h.unit));
+      if (is_temperature) {
+        read_temperature_variable(h, where);
+        continue;
+      }
       const bool is_variable = h.name.size() == 1 && std::islower(static_cast<unsigned char>(h.name[0]));
       if (is_variable) {
         const char axis = static_cast<char>(std::toupper(static_cast<unsigned char>(h.name[0])));
@@ -68,7 +78,7 @@ class TableReader {
         for (const GridVariable& g : grid_)
           if (g.axis == axis) throw LoadError(where, "grid column '" + h.name + "' appears twice");
         if (grid_.size() == ErrorTable::kMaxVariables)
-          throw LoadError(where, "more than 3 grid columns: a table depends on at most 3 axes");
+          throw LoadError(where, "more than 3 grid columns: a table depends on at most 3 axes and temperatures");
         GridVariable& g = grid_.emplace_back();
         g.axis = axis;
         g.rotary = h.unit == "deg";
@@ -105,6 +115,32 @@ class TableReader {
                       "the first column must be a grid position, as in x[mm] or b[deg]");
     if (columns_.empty())
       throw LoadError({path_, header.line, 1}, "the table has no error column (EXX[um], ...)");
+  }
+
+  // A grid column over a temperature input of the machine file, "x_screw[degC]" (the machine
+  // file binds the name; here only its form).
+  void read_temperature_variable(const HeaderCell& h, const SourceLocation& where) {
+    if (h.unit != "degC")
+      throw LoadError(where, "unit '" + h.unit + "' of temperature column '" + h.name +
+                                 "': temperatures are in degC, as in " + h.name + "[degC]");
+    const bool name_ok = !h.name.empty() && std::all_of(h.name.begin(), h.name.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+    });
+    if (!name_ok)
+      throw LoadError(where, "temperature column '" + h.name +
+                                 "': the name of a temperature input is letters, digits, '_' or '-'");
+    if (!columns_.empty())
+      throw LoadError(where, "grid column '" + h.name + "' after an error column: grid positions and temperatures come first");
+    for (const GridVariable& g : grid_)
+      if (g.temperature == h.name) throw LoadError(where, "grid column '" + h.name + "' appears twice");
+    if (grid_.size() == ErrorTable::kMaxVariables)
+      throw LoadError(where, "more than 3 grid columns: a table depends on at most 3 axes and temperatures");
+    GridVariable& g = grid_.emplace_back();
+    g.axis = 0;
+    g.rotary = false;
+    g.periodic = false;
+    g.temperature = h.name;
+    g.where = where;
   }
 
   void read_values() {
@@ -175,7 +211,7 @@ class TableReader {
       for (std::size_t d = 0; d < dims; ++d) {
         const double expected = grid_[d].nodes[(r / stride[d]) % size[d]];
         if (positions_[r][d] != expected)
-          throw LoadError(cell_at(r, d), "expected " + std::string(1, static_cast<char>(std::tolower(grid_[d].axis))) +
+          throw LoadError(cell_at(r, d), "expected " + grid_[d].name() +
                                              " = " + format(expected) +
                                              " here: the rows must list the full grid, first "
                                              "column slowest");

@@ -31,6 +31,7 @@ double max_spline_slope(double h, double y0, double y1, double m0, double m1) {
 SteepestSlope steepest_slope(const ErrorTable& table, const SlopeLimits& limits) {
   SteepestSlope steepest;
   if (table.interpolation() == Interpolation::Cubic) {
+    if (table.grid()[0].is_temperature()) return steepest;  // (see below)
     const std::vector<double>& x = table.grid()[0].nodes;
     for (int c = 0; c < static_cast<int>(table.columns().size()); ++c)
       for (int i = 0; i + 1 < static_cast<int>(x.size()); ++i) {
@@ -49,7 +50,9 @@ SteepestSlope steepest_slope(const ErrorTable& table, const SlopeLimits& limits)
     for (int d = dims - 1; d >= 0; --d) {
       const int size = static_cast<int>(grid[d].nodes.size());
       const int i = (node / stride) % size;
-      if (i + 1 < size) {
+      // Along a temperature there is no limit: the correction is solved for the joints at the
+      // temperature of the moment, so only the slopes along axis positions must keep it invertible.
+      if (i + 1 < size && !grid[d].is_temperature()) {
         const double dx = grid[d].nodes[i + 1] - grid[d].nodes[i];
         for (int c = 0; c < static_cast<int>(columns.size()); ++c) {
           const double f =

@@ -12,7 +12,9 @@ Settings: the [DRIVER] section of the INI, each overridable by an environment va
 toggle mode: volkins.enable flips this often while the program runs), TRACE (CSV written),
 TRACE_COLUMNS (names of the sampler's pins, in its cfg order), RESULT (a file that receives
 "ok" or "error: ..." last, so a caller knows how the session ended), TIMEOUT (s), EXPECT_MESSAGE
-(an operator message containing this text must come, and is then no error).
+(an operator message containing this text must come, and is then no error), SCHEDULE (pins set
+while the program runs: "TIME:PIN=VALUE ...", TIME in s after the program starts, e.g. a sensor's
+reading or a ramp's target; every entry must come before the program ends).
 Must run with Debian's /usr/bin/python3 (the linuxcnc and hal modules live there).
 """
 import os
@@ -84,6 +86,17 @@ class Session:
         target = 1.0 if on else 0.0
         self.wait_for(lambda: hal.get_value("volkins.gain") == target, "the compensation ramp")
 
+    def schedule(self):
+        """SCHEDULE as a list of (seconds after the program starts, pin, value), in time order."""
+        entries = []
+        for entry in setting(self.ini, "SCHEDULE", "").split():
+            when, _, assignment = entry.partition(":")
+            pin, _, value = assignment.partition("=")
+            if not pin or not value:
+                raise RuntimeError("SCHEDULE entry %r is not TIME:PIN=VALUE" % entry)
+            entries.append((float(when), pin, value))
+        return sorted(entries, key=lambda e: e[0])
+
     def run(self):
         program = self.path("PROGRAM", "program.ngc")
         mode = setting(self.ini, "COMPENSATION", "on")
@@ -91,6 +104,7 @@ class Session:
             raise RuntimeError("COMPENSATION must be on, off or toggle, not " + mode)
         toggle_period = float(setting(self.ini, "TOGGLE_PERIOD", "1.5"))
         columns = setting(self.ini, "TRACE_COLUMNS", "").split()
+        schedule = self.schedule()
 
         self.start_machine()
         self.settle_compensation(mode != "off")
@@ -103,10 +117,13 @@ class Session:
         rows = []
         hal.set_p("sampler.0.enable", "1")
         self.command.auto(linuxcnc.AUTO_RUN, 0)
-        last_toggle = time.time()
+        last_toggle = started = time.time()
         self.wait_for(lambda: self.stat.interp_state != linuxcnc.INTERP_IDLE, "the program to start")
         enabled = True
         while True:
+            while schedule and time.time() - started >= schedule[0][0]:
+                _, pin, value = schedule.pop(0)
+                hal.set_p(pin, value)
             sample = stream.read()
             if sample is not None:
                 rows.append(sample)
@@ -129,6 +146,8 @@ class Session:
             if sample is None:
                 break
             rows.append(sample)
+        if schedule:
+            raise RuntimeError("the program ended before the schedule's entry at %g s" % schedule[0][0])
         if stream.num_overruns:
             raise RuntimeError("the sampler overran %d times: samples are missing" % stream.num_overruns)
         expected = setting(self.ini, "EXPECT_MESSAGE", "")

@@ -35,6 +35,7 @@ CorrectionBounds::CorrectionBounds(const machine::Model& model, Shared* shared) 
   for (const machine::BoundTable& bound : model.tables) {
     const auto& grid = bound.table.grid();
     for (std::size_t v = 0; v < grid.size(); ++v) {
+      if (bound.joint[v] < 0) continue;  // a temperature: constant while a program is made
       Kinks k{grid[v].periodic ? 360.0 : 0.0, {}};
       if (bound.table.interpolation() == tables::Interpolation::Linear)
         k.at = grid[v].nodes;

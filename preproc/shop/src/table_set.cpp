@@ -100,7 +100,7 @@ void write_table_csv(const tables::ErrorTable& table, const std::string& path, c
   for (const std::string& c : comments) out << "# " << c << '\n';
   const auto& grid = table.grid();
   for (std::size_t v = 0; v < grid.size(); ++v)
-    out << (v ? "," : "") << static_cast<char>(std::tolower(grid[v].axis)) << (grid[v].rotary ? "[deg]" : "[mm]");
+    out << (v ? "," : "") << grid[v].name() << '[' << grid[v].unit() << ']';
   for (const auto& c : table.columns())
     out << ',' << c.symbol.name() << (c.symbol.quantity() == tables::Quantity::Length ? "[um]" : "[urad]");
   out << '\n';

@@ -41,8 +41,15 @@ SessionTrace read_session_trace(const std::string& path, const machine::Model& m
   for (std::size_t c = 0; c < header.cells.size(); ++c)
     if (header.cells[c].text == "correction_length") correction_length = static_cast<int>(c);
 
+  // Optional: the filtered temperature each input had (the trace of a machine with [temperatures]).
+  std::vector<int> temperature_column(model.temperatures.size(), -1);
+  for (std::size_t c = 0; c < header.cells.size(); ++c)
+    for (std::size_t i = 0; i < model.temperatures.size(); ++i)
+      if (header.cells[c].text == "temperature_" + model.temperatures[i].name) temperature_column[i] = static_cast<int>(c);
+
   SessionTrace t;
   t.path = path;
+  t.temperature_degC.resize(model.temperatures.size());
   for (std::size_t r = 1; r < rows.size(); ++r) {
     const tables::CsvRow& row = rows[r];
     if (row.cells.size() != header.cells.size())
@@ -61,6 +68,9 @@ SessionTrace read_session_trace(const std::string& path, const machine::Model& m
     t.controller_ticks.push_back(value(2 * n + 2));
     if (correction_length >= 0)
       t.correction_length_mm.push_back(tables::csv_number(path, row.line, row.cells[correction_length]));
+    for (std::size_t i = 0; i < temperature_column.size(); ++i)
+      if (temperature_column[i] >= 0)
+        t.temperature_degC[i].push_back(tables::csv_number(path, row.line, row.cells[temperature_column[i]]));
   }
   return t;
 }
@@ -69,11 +79,18 @@ Joints interpolated(const std::vector<Joints>& p, std::size_t n) {
   return (p[n - 3] + 4.0 * p[n - 2] + p[n - 1]) / 6.0;
 }
 
-TraceSummary check_trace(const machine::Model& model, machine::WorldConvention convention,
+TraceSummary check_trace(const machine::Model& machine_model, machine::WorldConvention convention,
                          const SessionTrace& trace) {
   using machine::Machine;
   TraceSummary out;
   const std::size_t count = trace.size();
+  // The model at each sample's temperatures (as the module filtered them; the reference where
+  // the trace has no column).
+  machine::Model model = machine_model;
+  const auto at_temperatures_of = [&](std::size_t k) {
+    for (std::size_t i = 0; i < trace.temperature_degC.size(); ++i)
+      if (trace.temperature_degC[i].size() == count) model.temperatures[i].value_degC = trace.temperature_degC[i][k];
+  };
   // Kinematics outputs per sample. Cycle k's inverse ran with that cycle's gain and L (volkins.update
   // runs first) and the tool length of cycle k-1 (motion writes tooloffset.z at its end).
   const bool recorded_L = trace.correction_length_mm.size() == count;
@@ -86,6 +103,7 @@ TraceSummary check_trace(const machine::Model& model, machine::WorldConvention c
     const double offset = trace.tool_length_mm[k == 0 ? 0 : k - 1];
     const double L = correction_length(k);  // the tool-length rule (slewed)
     const Joints world = core_world(model, convention, trace.world[k], offset);
+    at_temperatures_of(k);
     machine::nominal_inverse(model, convention, world, L, nominal[k]);
     machine::joints_from_world(model, convention, world, L, machine::Applied{trace.gain[k], nullptr}, expected[k],
                                &corrections[k]);
@@ -103,6 +121,7 @@ TraceSummary check_trace(const machine::Model& model, machine::WorldConvention c
       continue;
     }
     const double L = correction_length(n);
+    at_temperatures_of(n);
     SampleCheck s;
     s.sample = n;
     const machine::ToolPose real = machine::tool_pose(model, Machine::Real, trace.joints[n], L);

@@ -52,6 +52,9 @@ struct Axis {
   std::vector<int> tables;        // indices into Model::tables
   unsigned moved_by = 0;          // bit j set: joint j moves this axis's frame (itself, table variables)
   LinearThermal thermal;          // linear axes: the expansion with a temperature input
+
+  // The axis has component errors (delta, eps): tables or a thermal expansion.
+  bool has_component_errors() const { return !tables.empty() || thermal.input >= 0; }
 };
 
 // A temperature input of the machine file's [temperatures] (a sensor: volkins reads it from a
@@ -64,10 +67,13 @@ struct TemperatureInput {
   double value_degC = 20.0;
 };
 
-// An error table bound to this machine's joints.
+// An error table bound to this machine's joints and temperature inputs.
 struct BoundTable {
   tables::ErrorTable table;
-  std::array<int, tables::ErrorTable::kMaxVariables> joint{};  // joint of each grid variable
+  // Of each grid variable: its joint (an axis position), or -1 for a temperature, read from
+  // Model::temperatures[input[v]] (else input[v] is -1).
+  std::array<int, tables::ErrorTable::kMaxVariables> joint{};
+  std::array<int, tables::ErrorTable::kMaxVariables> input{-1, -1, -1};
 };
 
 // The spindle line: the gauge point in the last tool-chain frame and its own location errors

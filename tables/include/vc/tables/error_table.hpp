@@ -1,4 +1,5 @@
-// One error table: component errors of one axis sampled on a grid of 1 to 3 axis positions.
+// One error table: component errors of one axis sampled on a grid of 1 to 3 variables: axis
+// positions and temperatures (a temperature input of the machine file, in degC).
 //
 // Errors are stored as error = actual - nominal (ISO 230-1), in core units (mm, rad), after
 // the unit conversion and scale factors of the loader. Grid positions are in the variable's
@@ -13,6 +14,7 @@
 
 #include <array>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "vc/tables/source_error.hpp"
@@ -23,15 +25,21 @@ namespace vc::tables {
 enum class Interpolation { Linear, Cubic };
 
 struct GridVariable {
-  char axis;                  // upper-case axis letter whose position this is
+  char axis;                  // upper-case axis letter whose position this is; 0 for a temperature
   bool rotary;                // positions in deg (else mm)
   bool periodic;              // rotary grid spanning exactly 360 deg
+  std::string temperature;    // a temperature (degC): the input's name, as in the header; else empty
   std::vector<double> nodes;  // strictly increasing, size >= 2
   SourceLocation where;       // header cell
   double uniform_step = 0.0;  // > 0 if the nodes are equally spaced (lookup without search)
   // 1 / uniform_step and 1 / (width of each cell): lookups multiply, they do not divide.
   double inverse_step = 0.0;
   std::vector<double> inverse_width;
+
+  bool is_temperature() const { return !temperature.empty(); }
+  // The header's name: "x" for an axis position, the input's name for a temperature.
+  std::string name() const;
+  std::string_view unit() const { return is_temperature() ? "degC" : rotary ? "deg" : "mm"; }
 };
 
 struct Column {

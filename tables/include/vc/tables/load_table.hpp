@@ -5,7 +5,8 @@
 //     0,0,0,0,0,0,0
 //     -10,0.4,...
 // The first columns are grid variables: lower-case axis letters with their unit (mm for a
-// linear axis, deg for a rotary one), up to three of them for a cross-axis table. The other
+// linear axis, deg for a rotary one) or temperature inputs by name in degC ("x_screw[degC]",
+// bound to the machine file's [temperatures] by the machine loader), up to three of them. The other
 // columns are ISO 230-1 component errors (EXX, EYX, ...) with a length or angle unit
 // (units.hpp). On a grid of several variables the rows list every node, first variable
 // slowest. Each variable's positions are strictly increasing or strictly decreasing, any step.

@@ -1,5 +1,6 @@
 // Table slopes against the limits that keep the correction map invertible (model.md,
 // Correction): |d delta/dq| <= 0.01 mm per mm or per deg, |d eps/dq| <= 1e-4 rad per mm or deg.
+// Only along axis positions: a temperature grid variable has no slope limit.
 #pragma once
 
 #include "vc/tables/error_table.hpp"

@@ -26,11 +26,16 @@ struct SessionTrace {
   std::vector<double> correction_length_mm;  // volkins.correction-length: the L applied (the offset's,
                                              // slewed); empty in a trace without the column
   std::vector<double> controller_ticks; // motion-controller.time (CPU clock ticks)
+  // Per temperature input of the model (its order), per sample: volkins.temperature.<name>.filtered,
+  // the value the cycle's kinematics used (column "temperature_<name>"); empty for an input
+  // without the column (its reference is taken).
+  std::vector<std::vector<double>> temperature_degC;
   std::size_t size() const { return world.size(); }
 };
 
 // Reads a trace CSV: header with the machine's axis letters (x,y,z,b,c), joints j0.., gain,
-// tool_length and controller_time. Throws LoadError naming file, line and column.
+// tool_length and controller_time; optional correction_length and temperature_<name>. Throws
+// LoadError naming file, line and column.
 SessionTrace read_session_trace(const std::string& path, const machine::Model& model);
 
 // LinuxCNC's joint interpolation of kinematics outputs p at sample n >= 3.
