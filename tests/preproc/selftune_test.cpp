@@ -603,27 +603,34 @@ TEST_F(VirtualShopHeadTable, BothStrategiesTakeA32PocketToTheNoise) {
 // corners whose walls are drafted 35 deg, cut by the tool's side lying on them, the head
 // tilted to B35 while the table turns C through 360 deg (the linear axes carry the tool along
 // the straight walls, C turns in the corners), and its floor cut by the vertical tool
-// (make_parts_5axis.py: head_draft_a, 173 points). The head's B tilts the tool in the C frame,
-// not the part as the MC-300's table B does: C faces each wall to the tool (C = the wall's
-// azimuth + 15 deg, the fixture's turn). The model strategy's tables carried to parts of
-// another shape: the 3+2 pocket at another pose (head_pocket_b) and a cone of 22 deg
-// elsewhere on the part (head_cone_b).
+// (make_parts_5axis.py: head_draft_a). The head's B tilts the tool in the C frame, not the
+// part as the MC-300's table B does: C faces each wall to the tool (C = the wall's azimuth +
+// 15 deg, the fixture's turn), so every swarf wall is touched on the machine's +x side and
+// none shows an error along the machine's y; beside the pocket a slot whose vertical walls
+// face the machine's y, cut by the tool's side with the head leaning B20 along it (C15).
+// 205 points. The model strategy's tables carried to parts of another shape: the 3+2 pocket
+// at another pose (head_pocket_b) and a cone of 22 deg elsewhere on the part (head_cone_b).
 TEST_F(VirtualShopHeadTable, SwarfContourTunesTablesThatCarryOverToOtherParts) {
   const std::string plan = source("tests/programs/selftune/head_draft_a_points.csv");
   const std::string p0 = source("tests/programs/selftune/head_draft_a.ngc");
 
   // The program's kinematics, independently of the generator: run on the model compensated
-  // by itself (the ideal machine), the tool axis on the walls is their line of steepest
-  // slope, (sin 35 n, cos 35) with n the pocket's outward normal in the plane at the tip
-  // (a rounded rectangle round X20 Y10: straight walls at |x - 20| = 35, |y - 10| = 25,
-  // corners of R15).
+  // by itself (the ideal machine), the tool axis on the pocket's walls is their line of
+  // steepest slope, (sin 35 n, cos 35) with n the pocket's outward normal in the plane at the
+  // tip (a rounded rectangle round X20 Y10: straight walls at |x - 20| = 35, |y - 10| = 25,
+  // corners of R15); in the slot (y < -40) it leans along the slot, (sin 20, 0, cos 20).
   run_ok("simulate " + machine() + " " + p0 + " -o " + path("draft_ideal.csv") + " --compensation " + machine() +
          files());
-  int on_wall = 0;
+  int on_wall = 0, in_slot = 0;
   double worst = 0;
-  const double tilt = 35 * M_PI / 180;
+  const double tilt = 35 * M_PI / 180, lean = 20 * M_PI / 180;
   for (const shop::PathSample& s : shop::read_tool_path(path("draft_ideal.csv"))) {
     if (!s.cutting || s.axis.z() > 0.99) continue;  // the floor raster: the tool vertical
+    if (s.tip.y() < -40) {
+      worst = std::max(worst, (s.axis - Eigen::Vector3d(std::sin(lean), 0, std::cos(lean))).norm());
+      ++in_slot;
+      continue;
+    }
     const Eigen::Vector2d p(s.tip.x() - 20, s.tip.y() - 10);
     const Eigen::Vector2d beyond(std::abs(p.x()) - 20, std::abs(p.y()) - 10);  // past the corners' centres
     Eigen::Vector2d n = beyond.cwiseMax(0.0);
@@ -634,7 +641,8 @@ TEST_F(VirtualShopHeadTable, SwarfContourTunesTablesThatCarryOverToOtherParts) {
     ++on_wall;
   }
   EXPECT_GT(on_wall, 1000);
-  EXPECT_LT(worst, 1e-5) << "the tool axis on the walls is not their slope";
+  EXPECT_GT(in_slot, 100);
+  EXPECT_LT(worst, 1e-5) << "the tool axis on the walls is not their slope, or in the slot not along it";
 
   const Form raw = measured(p0, plan, path("draft_r0.csv"), 11);
   run_ok("predistort " + machine() + " " + p0 + " -o " + path("draft_p1.ngc") + files());
@@ -681,13 +689,12 @@ TEST_F(VirtualShopHeadTable, SwarfContourTunesTablesThatCarryOverToOtherParts) {
     std::cout << other << ": RMS raw " << b_raw.rms_um << " um, with the shipped model " << b_shipped.rms_um
               << " um, with the tuned tables " << b_tuned.rms_um << " um\n";
     // Issue 22's targets are 90 % below raw and 70 % below the shipped model. Met: the 3+2
-    // pocket against raw (95 %), the cone against the shipped model (75 %). Missed, and why
-    // (preproc/shop/README.md): the swarf contour touches its walls on the +x side of the
-    // machine only (the head tilts in the machine's XZ plane and C faces every wall to it),
-    // so it sees no error along the machine's y, which the 3+2 pocket's walls face (61 %
-    // below the shipped model); and a swarf part's raw error is mostly one offset of all its
-    // walls (the tip error, the same in the machine wherever C has turned the part), which a
-    // PV does not count: the cone's raw PV is 9 um for an RMS of 15 um (82 % below raw).
+    // pocket against raw (96 %), the cone against the shipped model (74 %). Missed, and why
+    // (preproc/shop/README.md): the 3+2 pocket against the shipped model by a hair (69.9 %;
+    // what is left is its floor, at another B and Z than anything part A cuts), and the
+    // cone against raw (80 %): a swarf part's raw error is mostly one offset of all its
+    // walls (the tip error, the same in the machine wherever C has turned the part), which
+    // a PV does not count: the cone's raw PV is 9 um for an RMS of 15 um.
     EXPECT_LT(b_tuned.pv_um, 0.5 * b_shipped.pv_um) << other;
     EXPECT_LT(b_tuned.pv_um, 0.25 * b_raw.pv_um) << other;
     EXPECT_LT(b_tuned.rms_um, 0.6 * b_shipped.rms_um) << other;

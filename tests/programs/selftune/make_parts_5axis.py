@@ -21,7 +21,9 @@ floor on a grid 2 mm inside the walls (normal: the tool axis), the walls at thre
 floor raster of the vertical tool): on the MC-300, cone_a (wall 40 deg) and cone_b (28 deg),
 conical pockets round the part zero; on bc_head, head_draft_a (a 70 x 50 pocket with R15
 corners, walls drafted 35 deg: the linear axes carry the tool along the straight walls, C turns
-in the corners) and head_cone_b (a cone of 22 deg centred at X-30 Y-25). On bc_head the head
+in the corners; beside it an 80 x 14 slot whose vertical walls face the machine's y, cut by the
+tool's side with the head leaning B20 along the slot, which a swarf wall on this machine never
+shows: cut_leaning_slot) and head_cone_b (a cone of 22 deg centred at X-30 Y-25). On bc_head the head
 tilts the tool towards +x of the C frame, so C faces the wall to the tool: B = +tilt, C = the
 wall's azimuth + 15 deg (the fixture's turn); on the MC-300 B = -tilt, C = the azimuth
 (swarf_pose). Checked by assertions: the tool axis from frame() is the wall's slope at every
@@ -286,7 +288,7 @@ def write_cone(name, title, tilt_deg, floor_radius, depth, step_deg=0.2, machine
 
 
 def write_drafted_pocket(name, title, tilt_deg, half_u, half_v, corner, depth, centre, machine="bc_head",
-                         step_deg=0.2):
+                         step_deg=0.2, slot=None):
     """A pocket with drafted walls: its foot a rectangle 2 half_u x 2 half_v with corners of
     radius `corner` (above the tool's radius), round `centre` (x, y in the part frame), every
     wall tilted outward by `tilt_deg` (straight walls are planes, corners are cones). The floor
@@ -411,7 +413,12 @@ def write_drafted_pocket(name, title, tilt_deg, half_u, half_v, corner, depth, c
         first = False
     assert c_deg == 360.0
     up = add(p, scale(SAFE, frame(b_deg, 360.0, machine)[0]))
-    lines += [f"G0 X{fmt(up[0])} Y{fmt(up[1])} Z{fmt(up[2])}", "M5", "M2", "%"]
+    lines.append(f"G0 X{fmt(up[0])} Y{fmt(up[1])} Z{fmt(up[2])}")
+    slot_points = []
+    if slot is not None:
+        lines.append(f"G0 Z{fmt(up[2] + SAFE)}")
+        lines += cut_leaning_slot(slot, machine, slot_points)
+    lines += ["M5", "M2", "%"]
     with open(os.path.join(HERE, name + ".ngc"), "w") as f:
         f.write("\n".join(lines) + "\n")
 
@@ -433,7 +440,38 @@ def write_drafted_pocket(name, title, tilt_deg, half_u, half_v, corner, depth, c
             out = h * math.tan(a)
             points.append(("WALL", (cx + foot[0] + out * c, cy + foot[1] + out * s_, bottom + h), inward(phi)))
     return write_plan(name, title, "FL: floor (normal +Z); WALL: the drafted walls at three heights, normals into the "
-                      "pocket", points)
+                      "pocket" + ("; SL: the leaning slot's walls at two heights" if slot else ""), points + slot_points)
+
+
+def cut_leaning_slot(slot, machine, points):
+    """A straight slot along the part's x with vertical walls, cut by the tool's side leaning
+    along the slot (one pass along each wall, C and B held): with bc_head at C = 15 (the
+    fixture's turn undone) the machine's axes are the part's, the head tilts the tool in the
+    XZ plane, so the walls (normals +-y) contain the tool axis and the side touches them
+    along a line; they face the machine's y, which a swarf wall on this machine never does.
+    The tilted flat end leaves no flat floor (not measured). `slot`: (B, y of the slot's
+    middle, half its length, width, depth of the tip). Returns the program lines; the plan's
+    wall points (2 heights above the tip, 10 mm clear of the ends) go to `points`."""
+    b_deg, y_mid, half_len, width, tip_depth = slot
+    c_deg = BC_HEAD_FIXTURE_DEG
+    assert machine == "bc_head"
+    t = frame(b_deg, c_deg, machine)[0]
+    assert abs(t[1]) < 1e-12, "the tool does not lie in the slot's walls"
+    lines = []
+    x0, x1 = -half_len, half_len
+    for k, side in enumerate((-1, 1)):
+        y = y_mid + side * (width / 2 - RADIUS)  # the pass touching the wall at y_mid + side * width / 2
+        a_from, a_to = (x0, x1) if k == 0 else (x1, x0)
+        lines += [f"G0 X{fmt(a_from)} Y{fmt(y)} Z{fmt(SAFE)} B{fmt(b_deg)} C{fmt(c_deg)}",
+                  f"G1 Z{fmt(-tip_depth)} F{PLUNGE:.0f}", f"G1 X{fmt(a_to)} F{FEED:.0f}", f"G0 Z{fmt(SAFE)}"]
+        for h in (tip_depth - 2.0, tip_depth - 4.5):
+            assert h < tip_depth - 1.0 and h > 0.5
+            n = 8
+            for i in range(n):
+                x = -half_len + 10 + i * (2 * half_len - 20) / (n - 1)
+                points.append(("SL" + ("+" if side > 0 else "-"), (x, y_mid + side * width / 2, -h),
+                               (0.0, -float(side), 0.0)))
+    return lines
 
 if __name__ == "__main__":
     print(write_part("pocket_32_a", "3+2 pocket at B-45 C120 on the MC-300, 60 x 40 x 8", -45, 120, (0.0, 0.0, 0.0),
@@ -449,8 +487,9 @@ if __name__ == "__main__":
     print(write_cone("cone_b", "5-axis swarf: a conical pocket, wall tilted 28 deg, C turning 360 deg, and its floor",
                      28, 24, 12))
     print(write_drafted_pocket("head_draft_a", "5-axis swarf on bc_head, head B35 and table C: a 70 x 50 pocket, corners "
-                               "R15, walls drafted 35 deg, 15 deep, C turning 360 deg, and its floor", 35, 35, 25, 15, 15,
-                               (20.0, 10.0)))
+                               "R15, walls drafted 35 deg, 15 deep, C turning 360 deg, and its floor; a slot cut by the "
+                               "tool leaning 20 deg along it", 35, 35, 25, 15, 15, (20.0, 10.0), slot=(20.0, -50.0, 40.0,
+                                                                                                     14.0, 6.0)))
     print(write_cone("head_cone_b", "5-axis swarf on bc_head, head B22 and table C: a conical pocket, wall tilted 22 deg, "
                      "centred at X-30 Y-25, C turning 360 deg, and its floor", 22, 24, 12, machine="bc_head",
                      centre=(-30.0, -25.0)))
