@@ -390,8 +390,8 @@ def write_drafted_pocket(name, title, tilt_deg, half_u, half_v, corner, depth, c
     first = True
     s_mm, c_deg = s0, 0.0
     while s_mm < s0 + perimeter - 1e-9:
-        here = (s_mm - 0.0) % perimeter
-        # the element under s and where it ends
+        here = s_mm % perimeter
+        # the element under s (the last one if s is at its end) and where it ends
         acc = 0.0
         for e in elements:
             if here < acc + e[1] - 1e-9:
