@@ -17,6 +17,18 @@ floor on a grid 2 mm inside the walls (normal: the tool axis), the walls at thre
     (tests/unit/machines/data/bc_head.toml: B turns the head, C the table), B-40 C60, 60 x 40 x 8
   head_pocket_b: on bc_head, B30 C200, 50 x 50 x 6, centred 30 mm off the part zero
 
+5-axis swarf parts (the tool's side lying on a wall tilted outward, C turning 360 deg, and a
+floor raster of the vertical tool): on the MC-300, cone_a (wall 40 deg) and cone_b (28 deg),
+conical pockets round the part zero; on bc_head, head_draft_a (a 70 x 50 pocket with R15
+corners, walls drafted 35 deg: the linear axes carry the tool along the straight walls, C turns
+in the corners; beside it an 80 x 14 slot whose vertical walls face the machine's y, cut by the
+tool's side with the head leaning B20 along the slot, which a swarf wall on this machine never
+shows: cut_leaning_slot) and head_cone_b (a cone of 22 deg centred at X-30 Y-25). On bc_head the head
+tilts the tool towards +x of the C frame, so C faces the wall to the tool: B = +tilt, C = the
+wall's azimuth + 15 deg (the fixture's turn); on the MC-300 B = -tilt, C = the azimuth
+(swarf_pose). Checked by assertions: the tool axis from frame() is the wall's slope at every
+point of the pass.
+
 The tool axis in the part frame for B C is R_C(C)^T R_B(B)^T z with R_B the rotation about +Y
 and R_C about -Z (checked against `volcomp simulate`, which writes it). Before writing,
 checks (assertions): every floor point lies under the flat end of a raster pass at the floor
@@ -24,8 +36,8 @@ depth, every wall point 5 mm (the radius) from the wall pass's axis, and the ras
 the floor (stepover below the diameter).
 
 Run: python3 make_parts_5axis.py (writes pocket_32_a.ngc, pocket_32_a_points.csv,
-pocket_32_b.ngc, pocket_32_b_points.csv, the head_pocket_* and cone_* parts beside itself). Standard library only,
-deterministic."""
+pocket_32_b.ngc, pocket_32_b_points.csv, the head_pocket_*, cone_*, head_draft_a and head_cone_b
+parts beside itself). Standard library only, deterministic."""
 import math
 import os
 
@@ -176,19 +188,35 @@ def write_part(name, title, b_deg, c_deg, centre, half_u, half_v, depth, machine
                       "normals into the pocket", points)
 
 
-def write_cone(name, title, tilt_deg, floor_radius, depth, step_deg=0.2):
+def swarf_pose(tilt_deg, c_deg, machine):
+    """B and the azimuth (deg, in the part frame) of the tool axis for a swarf pass whose tool
+    leans outward by `tilt_deg` at table angle C: the axis must be the cone's generatrix
+    (sin a cos theta, sin a sin theta, cos a) at the azimuth theta of the tip.
+    mc300: t = (-sin B cos C, -sin B sin C, cos B): B = -tilt, theta = C.
+    bc_head: t = R_z(C - 15) (sin B, 0, cos B) (frame() above; the head tilts towards +x of
+    the C frame, the fixture is turned 15 deg): B = +tilt, theta = C - 15."""
+    if machine == "mc300":
+        return -tilt_deg, c_deg
+    return tilt_deg, c_deg - BC_HEAD_FIXTURE_DEG
+
+
+def write_cone(name, title, tilt_deg, floor_radius, depth, step_deg=0.2, machine="mc300", centre=(0.0, 0.0)):
     """A conical pocket round the part's Z axis, wider at the top (the wall tilted outward by
     `tilt_deg`): the floor by a raster of the vertical tool (B0 C0), the wall by one swarf
-    pass of the tool's side lying on it (B = -tilt, C turning 360 deg with the tool's azimuth).
-    The tool axis for B C is (-sin B cos C, -sin B sin C, cos B) in the part frame: along the
-    cone's generatrix at azimuth C. The tip sits r off the wall along its normal, its flat end's
-    lowest point on the wall's foot: the side touches the wall along the generatrix."""
+    pass of the tool's side lying on it (C turning 0 -> 360 deg, B and the tip's azimuth
+    from swarf_pose: the tool axis along the cone's generatrix at the tip's azimuth, checked
+    against frame()). The tip sits r off the wall along its normal, its flat end's lowest
+    point on the wall's foot: the side touches the wall along the generatrix. `centre`: the
+    cone's axis in the part frame (x, y); off the table's axis, the linear axes move while C
+    turns (on the table's axis the tip stands still in the machine while the part turns)."""
     a = math.radians(tilt_deg)
+    cx, cy = centre
+    b_deg, _ = swarf_pose(tilt_deg, 0.0, machine)
     bottom = -depth
     lines = ["%", f"({title})",
              "(tcp world: X Y Z are the tool tip in the part frame; written by make_parts_5axis.py)",
              "G21 G90 G17 G40 G49 G54 G94", "T1 M6", "G43 H1", "S8000 M3",
-             f"G0 X0.0000 Y0.0000 Z{fmt(SAFE)} B0.0000 C0.0000"]
+             f"G0 X{fmt(cx)} Y{fmt(cy)} Z{fmt(SAFE)} B0.0000 C0.0000"]
     # Floor raster (tool vertical), inside the circle of the tool centre r from the wall's foot.
     reach = floor_radius - RADIUS
     rows, y = [], -reach + 1.0
@@ -202,29 +230,37 @@ def write_cone(name, title, tilt_deg, floor_radius, depth, step_deg=0.2):
         half = math.sqrt(reach * reach - y * y)
         x0, x1 = (-half, half) if k % 2 == 0 else (half, -half)
         if first:
-            lines += [f"G0 X{fmt(x0)} Y{fmt(y)} Z{fmt(2.0)}", f"G1 Z{fmt(bottom)} F{PLUNGE:.0f}"]
+            lines += [f"G0 X{fmt(x0 + cx)} Y{fmt(y + cy)} Z{fmt(2.0)}", f"G1 Z{fmt(bottom)} F{PLUNGE:.0f}"]
             first = False
         else:
-            lines.append(f"G1 X{fmt(x0)} Y{fmt(y)}")
-        lines.append(f"G1 X{fmt(x1)} Y{fmt(y)} F{FEED:.0f}")
+            lines.append(f"G1 X{fmt(x0 + cx)} Y{fmt(y + cy)}")
+        lines.append(f"G1 X{fmt(x1 + cx)} Y{fmt(y + cy)} F{FEED:.0f}")
         passes.append((y, -half, half))
     lines.append(f"G0 Z{fmt(SAFE)}")
 
     def tip(theta):
         c, s_ = math.cos(theta), math.sin(theta)
-        foot = (floor_radius * c, floor_radius * s_, bottom)
+        foot = (cx + floor_radius * c, cy + floor_radius * s_, bottom)
         inward = (-math.cos(a) * c, -math.cos(a) * s_, math.sin(a))  # wall normal, into the pocket
         return add(foot, scale(RADIUS, inward))
 
+    def azimuth(c_deg):
+        b, theta_deg = swarf_pose(tilt_deg, c_deg, machine)
+        theta = math.radians(theta_deg)
+        generatrix = (math.sin(a) * math.cos(theta), math.sin(a) * math.sin(theta), math.cos(a))
+        t = frame(b, c_deg, machine)[0]
+        assert max(abs(x - y) for x, y in zip(t, generatrix)) < 1e-12, "the tool axis is not the generatrix"
+        return theta
+
     steps = int(round(360 / step_deg))
-    p = tip(0.0)
-    lines += [f"G0 X{fmt(p[0])} Y{fmt(p[1])} Z{fmt(SAFE)} B{fmt(-tilt_deg)} C0.0000",
+    p = tip(azimuth(0.0))
+    lines += [f"G0 X{fmt(p[0])} Y{fmt(p[1])} Z{fmt(SAFE)} B{fmt(b_deg)} C0.0000",
               f"G1 X{fmt(p[0])} Y{fmt(p[1])} Z{fmt(p[2])} F{PLUNGE:.0f}"]
     for k in range(1, steps + 1):
-        theta = 2 * math.pi * k / steps
+        theta = azimuth(k * step_deg)
         p = tip(theta)
         lines.append(f"G1 X{fmt(p[0])} Y{fmt(p[1])} Z{fmt(p[2])} C{k * step_deg:.4f}" + (f" F{FEED:.0f}" if k == 1 else ""))
-    g = (math.sin(a), 0.0, math.cos(a))
+    g = frame(b_deg, 360.0, machine)[0]
     up = add(p, scale(SAFE, g))
     lines += [f"G0 X{fmt(up[0])} Y{fmt(up[1])} Z{fmt(up[2])}", "M5", "M2", "%"]
     with open(os.path.join(HERE, name + ".ngc"), "w") as f:
@@ -237,7 +273,7 @@ def write_cone(name, title, tilt_deg, floor_radius, depth, step_deg=0.2):
             if math.hypot(x, y) > reach - 3:
                 continue
             assert any(abs(y - row) <= RADIUS and lo - RADIUS <= x <= hi + RADIUS for row, lo, hi in passes)
-            points.append(("FL", (x, y, bottom), (0.0, 0.0, 1.0)))
+            points.append(("FL", (cx + x, cy + y, bottom), (0.0, 0.0, 1.0)))
     for h in (3.0, depth / 2, depth - 3.0):
         for k in range(36):
             theta = 2 * math.pi * (k + 0.5) / 36
@@ -245,10 +281,197 @@ def write_cone(name, title, tilt_deg, floor_radius, depth, step_deg=0.2):
             r_at = floor_radius + h * math.tan(a)
             normal = (-math.cos(a) * c, -math.cos(a) * s_, math.sin(a))
             assert h / math.cos(a) < 25  # within the flute length above the tip
-            points.append(("WALL", (r_at * c, r_at * s_, bottom + h), normal))
+            points.append(("WALL", (cx + r_at * c, cy + r_at * s_, bottom + h), normal))
     return write_plan(name, title, "FL: floor (normal +Z); WALL: the conical wall at three heights, normals into the pocket",
                       points)
 
+
+
+def write_drafted_pocket(name, title, tilt_deg, half_u, half_v, corner, depth, centre, machine="bc_head",
+                         step_deg=0.2, slot=None):
+    """A pocket with drafted walls: its foot a rectangle 2 half_u x 2 half_v with corners of
+    radius `corner` (above the tool's radius), round `centre` (x, y in the part frame), every
+    wall tilted outward by `tilt_deg` (straight walls are planes, corners are cones). The floor
+    by a raster of the vertical tool (B0 C0); the walls by one swarf pass of the tool's side
+    lying on them, counter-clockwise, the tool axis along the wall's line of steepest slope:
+    B and C from swarf_pose (C = the wall's azimuth + 15 deg on bc_head, 0 -> 360 once round).
+    Along a straight wall C stands and the linear axes carry the tool along it; round a
+    corner C turns 90 deg. The tip sits r off the wall along its normal, its flat end's lowest
+    point on the wall's foot (as in write_cone)."""
+    a = math.radians(tilt_deg)
+    cx, cy = centre
+    bottom = -depth
+    assert corner > RADIUS / math.cos(a), "the tool's side would not fit the corners"
+    su, sv = half_u - corner, half_v - corner  # the corners' centres at (+-su, +-sv)
+    b_deg, theta0 = swarf_pose(tilt_deg, 0.0, machine)
+    theta0 %= 360.0
+
+    # The foot contour, counter-clockwise from (half_u, -sv): (kind, length, ...) elements.
+    elements = []
+    for q in range(4):
+        phi = 90.0 * q  # outward normal's azimuth along the straight wall
+        n = (math.cos(math.radians(phi)), math.sin(math.radians(phi)))
+        along = (-n[1], n[0])
+        half_len = sv if q % 2 == 0 else su
+        reach = half_u if q % 2 == 0 else half_v
+        start = (reach * n[0] - half_len * along[0], reach * n[1] - half_len * along[1])
+        elements.append(("wall", 2 * half_len, phi, start, along))
+        cc = ((su if q in (0, 3) else -su), (sv if q in (0, 1) else -sv))
+        elements.append(("corner", corner * math.pi / 2, phi, cc))
+    perimeter = sum(e[1] for e in elements)
+
+    def foot_at(s_mm):
+        """Foot point and outward normal azimuth (deg) at arc length s from (half_u, -sv)."""
+        s_mm %= perimeter
+        for e in elements:
+            if s_mm <= e[1] + 1e-12:
+                if e[0] == "wall":
+                    _, _, phi, start, along = e
+                    return (start[0] + s_mm * along[0], start[1] + s_mm * along[1]), phi
+                _, _, phi0, cc = e
+                phi = phi0 + math.degrees(s_mm / corner)
+                return (cc[0] + corner * math.cos(math.radians(phi)), cc[1] + corner * math.sin(math.radians(phi))), phi
+            s_mm -= e[1]
+        raise AssertionError(s_mm)
+
+    def inward(phi):  # wall normal at a foot of outward azimuth phi, into the pocket
+        c, s_ = math.cos(math.radians(phi)), math.sin(math.radians(phi))
+        return (-math.cos(a) * c, -math.cos(a) * s_, math.sin(a))
+
+    def tip(foot, phi):
+        return add((cx + foot[0], cy + foot[1], bottom), scale(RADIUS, inward(phi)))
+
+    def check_axis(c_deg, phi):
+        b, theta = swarf_pose(tilt_deg, c_deg, machine)
+        assert abs((theta - phi + 180.0) % 360.0 - 180.0) < 1e-9, "C does not face the tool to the wall"
+        t = frame(b, c_deg, machine)[0]
+        c, s_ = math.cos(math.radians(phi)), math.sin(math.radians(phi))
+        generatrix = (math.sin(a) * c, math.sin(a) * s_, math.cos(a))
+        assert max(abs(x - y) for x, y in zip(t, generatrix)) < 1e-12, "the tool axis is not the wall's slope"
+
+    lines = ["%", f"({title})",
+             "(tcp world: X Y Z are the tool tip in the part frame; written by make_parts_5axis.py)",
+             "G21 G90 G17 G40 G49 G54 G94", "T1 M6", "G43 H1", "S8000 M3",
+             f"G0 X{fmt(cx)} Y{fmt(cy)} Z{fmt(SAFE)} B0.0000 C0.0000"]
+    # Floor raster (tool vertical): rows along x inside the tool centre's reach, the foot
+    # inset by the radius (a rounded rectangle with corners corner - r).
+    def half_width(y, inset):
+        r_in = corner - inset
+        if abs(y) <= sv:
+            return half_u - inset
+        return su + math.sqrt(max(r_in * r_in - (abs(y) - sv) ** 2, 0.0))
+    reach_v = half_v - RADIUS - 1.0
+    rows, y = [], -reach_v
+    while y < reach_v - 1e-9:
+        rows.append(y)
+        y += STEPOVER
+    rows.append(reach_v)
+    passes = []
+    for k, y in enumerate(rows):
+        half = half_width(y, RADIUS) - 1.0
+        x0, x1 = (-half, half) if k % 2 == 0 else (half, -half)
+        if k == 0:
+            lines += [f"G0 X{fmt(cx + x0)} Y{fmt(cy + y)} Z{fmt(2.0)}", f"G1 Z{fmt(bottom)} F{PLUNGE:.0f}"]
+        else:
+            lines.append(f"G1 X{fmt(cx + x0)} Y{fmt(cy + y)}")
+        lines.append(f"G1 X{fmt(cx + x1)} Y{fmt(cy + y)} F{FEED:.0f}")
+        passes.append((y, -half, half))
+    lines.append(f"G0 Z{fmt(SAFE)}")
+
+    # The swarf pass: from the foot point whose azimuth is theta0 (C = 0) round once to C = 360.
+    quarter = int(theta0 // 90)
+    assert theta0 - 90 * quarter > 1e-6, "C = 0 should face a corner, not a straight wall"
+    s0 = sum(e[1] for e in elements[:2 * quarter + 1]) + corner * math.radians(theta0 - 90 * quarter)
+    foot, phi = foot_at(s0)
+    check_axis(0.0, phi)
+    p = tip(foot, phi)
+    lines += [f"G0 X{fmt(p[0])} Y{fmt(p[1])} Z{fmt(SAFE)} B{fmt(b_deg)} C0.0000",
+              f"G1 X{fmt(p[0])} Y{fmt(p[1])} Z{fmt(p[2])} F{PLUNGE:.0f}"]
+    first = True
+    s_mm, c_deg = s0, 0.0
+    while s_mm < s0 + perimeter - 1e-9:
+        here = s_mm % perimeter
+        # the element under s (the last one if s is at its end) and where it ends
+        acc = 0.0
+        for e in elements:
+            if here < acc + e[1] - 1e-9:
+                break
+            acc += e[1]
+        end_of_element = s_mm + (acc + e[1] - here)
+        if e[0] == "wall":
+            s_mm = min(end_of_element, s0 + perimeter)
+            foot, phi = foot_at(s_mm)
+        else:
+            s_mm = min(s_mm + corner * math.radians(step_deg), end_of_element, s0 + perimeter)
+            foot, phi = foot_at(s_mm)
+            c_deg = (phi - theta0) % 360.0
+            if s_mm >= s0 + perimeter - 1e-9:
+                c_deg = 360.0
+        check_axis(c_deg, phi)
+        p = tip(foot, phi)
+        lines.append(f"G1 X{fmt(p[0])} Y{fmt(p[1])} Z{fmt(p[2])} C{c_deg:.4f}" + (f" F{FEED:.0f}" if first else ""))
+        first = False
+    assert c_deg == 360.0
+    up = add(p, scale(SAFE, frame(b_deg, 360.0, machine)[0]))
+    lines.append(f"G0 X{fmt(up[0])} Y{fmt(up[1])} Z{fmt(up[2])}")
+    slot_points = []
+    if slot is not None:
+        lines.append(f"G0 Z{fmt(up[2] + SAFE)}")
+        lines += cut_leaning_slot(slot, machine, slot_points)
+    lines += ["M5", "M2", "%"]
+    with open(os.path.join(HERE, name + ".ngc"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+    # CMM plan: the floor on a grid 8 mm inside the walls' feet (as the cones'), the walls at
+    # three heights, 36 points each, equally spaced along the contour.
+    points = []
+    for ix in range(-5, 6):
+        for iy in range(-3, 4):
+            x, y = ix * (half_u - 8) / 5, iy * (half_v - 8) / 3
+            if abs(x) > half_width(y, 8.0) + 1e-9:
+                continue
+            assert any(abs(y - row) <= RADIUS and lo - RADIUS <= x <= hi + RADIUS for row, lo, hi in passes)
+            points.append(("FL", (cx + x, cy + y, bottom), (0.0, 0.0, 1.0)))
+    for h in (3.0, depth / 2, depth - 3.0):
+        assert h / math.cos(a) < 25  # within the flute length above the tip
+        for k in range(36):
+            foot, phi = foot_at((k + 0.5) * perimeter / 36)
+            c, s_ = math.cos(math.radians(phi)), math.sin(math.radians(phi))
+            out = h * math.tan(a)
+            points.append(("WALL", (cx + foot[0] + out * c, cy + foot[1] + out * s_, bottom + h), inward(phi)))
+    return write_plan(name, title, "FL: floor (normal +Z); WALL: the drafted walls at three heights, normals into the "
+                      "pocket" + ("; SL: the leaning slot's walls at two heights" if slot else ""), points + slot_points)
+
+
+def cut_leaning_slot(slot, machine, points):
+    """A straight slot along the part's x with vertical walls, cut by the tool's side leaning
+    along the slot (one pass along each wall, C and B held): with bc_head at C = 15 (the
+    fixture's turn undone) the machine's axes are the part's, the head tilts the tool in the
+    XZ plane, so the walls (normals +-y) contain the tool axis and the side touches them
+    along a line; they face the machine's y, which a swarf wall on this machine never does.
+    The tilted flat end leaves no flat floor (not measured). `slot`: (B, y of the slot's
+    middle, half its length, width, depth of the tip). Returns the program lines; the plan's
+    wall points (2 heights above the tip, 10 mm clear of the ends) go to `points`."""
+    b_deg, y_mid, half_len, width, tip_depth = slot
+    c_deg = BC_HEAD_FIXTURE_DEG
+    assert machine == "bc_head"
+    t = frame(b_deg, c_deg, machine)[0]
+    assert abs(t[1]) < 1e-12, "the tool does not lie in the slot's walls"
+    lines = []
+    x0, x1 = -half_len, half_len
+    for k, side in enumerate((-1, 1)):
+        y = y_mid + side * (width / 2 - RADIUS)  # the pass touching the wall at y_mid + side * width / 2
+        a_from, a_to = (x0, x1) if k == 0 else (x1, x0)
+        lines += [f"G0 X{fmt(a_from)} Y{fmt(y)} Z{fmt(SAFE)} B{fmt(b_deg)} C{fmt(c_deg)}",
+                  f"G1 Z{fmt(-tip_depth)} F{PLUNGE:.0f}", f"G1 X{fmt(a_to)} F{FEED:.0f}", f"G0 Z{fmt(SAFE)}"]
+        for h in (tip_depth - 2.0, tip_depth - 4.5):
+            assert h < tip_depth - 1.0 and h > 0.5
+            n = 8
+            for i in range(n):
+                x = -half_len + 10 + i * (2 * half_len - 20) / (n - 1)
+                points.append(("SL" + ("+" if side > 0 else "-"), (x, y_mid + side * width / 2, -h),
+                               (0.0, -float(side), 0.0)))
+    return lines
 
 if __name__ == "__main__":
     print(write_part("pocket_32_a", "3+2 pocket at B-45 C120 on the MC-300, 60 x 40 x 8", -45, 120, (0.0, 0.0, 0.0),
@@ -263,3 +486,10 @@ if __name__ == "__main__":
                      40, 30, 15))
     print(write_cone("cone_b", "5-axis swarf: a conical pocket, wall tilted 28 deg, C turning 360 deg, and its floor",
                      28, 24, 12))
+    print(write_drafted_pocket("head_draft_a", "5-axis swarf on bc_head, head B35 and table C: a 70 x 50 pocket, corners "
+                               "R15, walls drafted 35 deg, 15 deep, C turning 360 deg, and its floor; a slot cut by the "
+                               "tool leaning 20 deg along it", 35, 35, 25, 15, 15, (20.0, 10.0), slot=(20.0, -50.0, 40.0,
+                                                                                                     14.0, 6.0)))
+    print(write_cone("head_cone_b", "5-axis swarf on bc_head, head B22 and table C: a conical pocket, wall tilted 22 deg, "
+                     "centred at X-30 Y-25, C turning 360 deg, and its floor", 22, 24, 12, machine="bc_head",
+                     centre=(-30.0, -25.0)))
