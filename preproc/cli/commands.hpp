@@ -141,6 +141,7 @@ struct PerturbArgs {
   std::string folder;
   double low = 0.2, high = 0.5;
   unsigned seed = 1;
+  std::vector<std::string> locations;  // "EX0C=15um": only these location errors, changed by these
 };
 
 int run_perturb(const PerturbArgs& args, std::ostream& report);

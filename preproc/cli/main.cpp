@@ -119,6 +119,9 @@ int main(int argc, char** argv) {
   perturb_cmd->add_option("--low", perturb.low, "smallest relative change")->capture_default_str();
   perturb_cmd->add_option("--high", perturb.high, "largest relative change")->capture_default_str();
   perturb_cmd->add_option("--seed", perturb.seed, "seed of the shapes")->capture_default_str();
+  perturb_cmd->add_option("--location", perturb.locations,
+                          "change only this location error by this much, tables kept, e.g. --location EX0C=15um "
+                          "--location EA0C=-3arcsec (um, mm, arcsec, urad; repeatable)");
 
   vc::cli::SelftuneArgs selftune;
   CLI::App* selftune_cmd = app.add_subcommand(

@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "test_support.hpp"
+#include "vc/machine/load_machine.hpp"
 #include "vc/tables/load_table.hpp"
 
 namespace vc {
@@ -148,6 +149,34 @@ TEST(VolcompCli, IdentifyLaserOnAFullTurnWritesAPeriodicTable) {
   ASSERT_TRUE(t.grid()[0].periodic);
   EXPECT_NEAR(t.value(0, 0), t.value(8, 0), 1e-12);
   EXPECT_NEAR(t.value(0, 0) / (M_PI / 648000), 0.2 + 0.05, 1e-3);  // the mean of 0.05 and 0.45 arcsec
+}
+
+// perturb --location: a true machine differing in the named location errors only, by the
+// amounts given (the tables kept); a component error or a change without its unit refused.
+TEST(VolcompCli, PerturbLocationChangesOnlyTheNamedLocationErrors) {
+  const std::string folder = (std::filesystem::temp_directory_path() / "vc_cli_perturb_location").string();
+  std::filesystem::remove_all(folder);
+  auto r = test::run_volcomp("perturb " + test::machine_path("mc300") + " -o " + folder +
+                             " --location EX0C=15um --location EA0C=-3arcsec --location EZ0B=0.008mm");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("3 location errors changed, tables kept"), std::string::npos) << r.out;
+  const machine::Model before = machine::load_machine(test::machine_path("mc300"));
+  const machine::Model after = machine::load_machine(folder + "/mc300.toml");
+  const auto& b0 = before.axes[before.joint_of('B')], & b1 = after.axes[after.joint_of('B')];
+  const auto& c0 = before.axes[before.joint_of('C')], & c1 = after.axes[after.joint_of('C')];
+  EXPECT_NEAR(c1.location_mm[0] - c0.location_mm[0], 0.015, 1e-12);
+  EXPECT_NEAR(c1.location_rad[0] - c0.location_rad[0], -3 * M_PI / 648000, 1e-12);
+  EXPECT_NEAR(b1.location_mm[2] - b0.location_mm[2], 0.008, 1e-12);
+  EXPECT_EQ(b1.location_rad, b0.location_rad);  // the rest as it was
+  EXPECT_EQ(c1.location_mm[1], c0.location_mm[1]);
+  ASSERT_EQ(after.tables.size(), before.tables.size());
+  r = test::run_volcomp("perturb " + test::machine_path("mc300") + " -o " + folder + " --location EXC=15um");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.out.find("--location EXC=15um: a location error of MC-300"), std::string::npos) << r.out;
+  r = test::run_volcomp("perturb " + test::machine_path("mc300") + " -o " + folder + " --location EA0C=3um");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.out.find("the change needs its unit (arcsec or urad)"), std::string::npos) << r.out;
+  std::filesystem::remove_all(folder);
 }
 
 TEST(VolcompCli, HelpIsEverywhere) {
