@@ -179,8 +179,22 @@ TEST(VolcompCli, PerturbLocationChangesOnlyTheNamedLocationErrors) {
   std::filesystem::remove_all(folder);
 }
 
+// probe-plan's touch: a back-off that leaves no room before the surface, or no feed, is refused.
+TEST(VolcompCli, ProbePlanRefusesATouchThatCannotWork) {
+  const std::string plan = "probe-plan " + test::machine_path("mc300") + " --centre -300,-160,-200 --grid B=0,-90 --grid C=0,180";
+  auto r = test::run_volcomp(plan);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("G38.2 Z-0.6000 F10.0000"), std::string::npos) << "the measuring touch";
+  for (const char* bad : {" --back-off 3", " --touch-feed 0", " --back-off -0.1"}) {
+    r = test::run_volcomp(plan + bad);
+    EXPECT_NE(r.exit_code, 0) << bad;
+    EXPECT_NE(r.out.find("the feeds must be positive and the back-off between 0 and the clearance"), std::string::npos)
+        << bad << "\n" << r.out;
+  }
+}
+
 TEST(VolcompCli, HelpIsEverywhere) {
-  for (const char* sub : {"", "check ", "error ", "correct ", "balance ", "identify laser ", "identify circle ", "identify sphere "}) {
+  for (const char* sub : {"", "check ", "error ", "correct ", "balance ", "identify laser ", "identify circle ", "identify sphere ", "probe-plan ", "perturb "}) {
     const auto r = test::run_volcomp(std::string(sub) + "--help");
     EXPECT_EQ(r.exit_code, 0) << sub;
     EXPECT_NE(r.out.find("Usage"), std::string::npos) << sub;
