@@ -47,12 +47,9 @@ std::string probe_plan(const machine::Model& model, const ProbePlanOptions& o) {
   // the position of the servo cycle in which the probe input is seen: the trip lies up to
   // touch feed x servo period past the contact (10 mm/min, 1 ms: 0.17 um), where a single
   // touch at the search feed would be 1.7 um off.
-  const auto touch = [&](const std::string& plane, int dx, int dy, int dz) {
+  const auto touch = [&](int dx, int dy, int dz) {  // the approach direction
     const auto move = [&](double length) {
-      std::string words;
-      if (plane == "Z") words = " Z" + number(dz * length);
-      else words = " X" + number(dx * length) + " Y" + number(dy * length);
-      return words;
+      return dz != 0 ? " Z" + number(dz * length) : " X" + number(dx * length) + " Y" + number(dy * length);
     };
     return "G91 G38.2" + move(2 * o.clearance_mm) + " F" + number(o.probe_feed_mm_min) + "\n" + "G0" +
            move(-o.back_off_mm) + "\n" + "G38.2" + move(2 * o.back_off_mm) + " F" + number(o.touch_feed_mm_min) + "\nG90\n";
@@ -102,14 +99,14 @@ std::string probe_plan(const machine::Model& model, const ProbePlanOptions& o) {
     out += "G53 G0" + rotary_words + "\n";
     out += "G53 G0 X" + within(x, cx, pose) + " Y" + within(y, cy, pose) + "\n";
     out += "G53 G0 Z" + within(z, above, pose) + "\n";
-    out += touch("Z", 0, 0, -1) + log;
+    out += touch(0, 0, -1) + log;
     out += "G91 G0 Z" + number(o.clearance_mm) + "\nG90\n";
     for (const auto& [sx, sy] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
       const double px = cx + sx * (reach + o.clearance_mm), py = cy + sy * (reach + o.clearance_mm);
       out += "G53 G0 Z" + within(z, above, pose) + "\n";
       out += "G53 G0 X" + within(x, px, pose) + " Y" + within(y, py, pose) + "\n";
       out += "G53 G1 Z" + within(z, cz, pose) + " F" + number(o.rapid_feed_mm_min) + "\n";
-      out += touch("XY", -sx, -sy, 0) + log;
+      out += touch(-sx, -sy, 0) + log;
       out += "G91 G0 X" + number(sx * o.clearance_mm) + " Y" + number(sy * o.clearance_mm) + "\nG90\n";
     }
     out += "G53 G0 Z" + number(above) + "\n";
