@@ -5,20 +5,22 @@
 #   run_headless.sh CONFIG.ini RUN_DIR [--kinematics "volkins machine=... world=tcp"]
 #                   [--without-volkins] [--without-update] [--expect-message TEXT] [--program FILE]
 #                   [--compensation on|off|toggle]
-#                   [--set SECTION.KEY=VALUE]...
+#                   [--set SECTION.KEY=VALUE]... [--halfile FILE]...
 #
 # The configuration folder and kins/configs/common are copied to RUN_DIR/kins/configs, with with the
 # machine files and tables (machines/data, tables/data): rtapi_app runs as another user
 # (RTAPI_UID, when run as root) and must be able to read them wherever the checkout is. The
 # machine= path of [KINS] KINEMATICS is kept relative to the copied configuration, LinuxCNC
 # writes its files (parameter file, tool table map via HOME) only inside RUN_DIR, and the trace
-# lands in RUN_DIR/kins/configs/<name>/trace.csv. Exit 0 if the program ran cleanly.
+# lands in RUN_DIR/kins/configs/<name>/trace.csv (--set DRIVER.TRACE=none: no trace). --halfile
+# copies FILE into the configuration folder and adds it to [HAL] after the others (e.g. a
+# simulated probe, kins/sim). Exit 0 if the program ran cleanly.
 set -euo pipefail
 
-usage() { echo "usage: $0 CONFIG.ini RUN_DIR [--kinematics LINE] [--without-volkins] [--without-update] [--expect-message TEXT] [--program FILE] [--compensation on|off|toggle] [--set SECTION.KEY=VALUE]..." >&2; exit 2; }
+usage() { echo "usage: $0 CONFIG.ini RUN_DIR [--kinematics LINE] [--without-volkins] [--without-update] [--expect-message TEXT] [--program FILE] [--compensation on|off|toggle] [--set SECTION.KEY=VALUE]... [--halfile FILE]..." >&2; exit 2; }
 [ $# -ge 2 ] || usage
 ini_src=$(realpath "$1"); run_dir=$2; shift 2
-kinematics="" ; without_volkins=0; without_update=0; program=""; compensation=""; settings=()
+kinematics="" ; without_volkins=0; without_update=0; program=""; compensation=""; settings=(); halfiles=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --kinematics) kinematics=$2; shift 2 ;;
@@ -28,6 +30,7 @@ while [ $# -gt 0 ]; do
     --program) program=$(realpath "$2"); shift 2 ;;
     --compensation) compensation=$2; shift 2 ;;
     --set) settings+=("$2"); shift 2 ;;
+    --halfile) halfiles+=("$(realpath "$2")"); shift 2 ;;
     *) usage ;;
   esac
 done
@@ -53,6 +56,14 @@ for setting in "${settings[@]}"; do  # SECTION.KEY=VALUE: replaces KEY's line in
     in_section && $1 == k && $2 == "=" { $0 = k " = " v; done = 1 }
     { print }
     END { if (!done) { print "run_headless.sh: no " k " in " s > "/dev/stderr"; exit 1 } }' "$ini" > "$ini.new"
+  mv "$ini.new" "$ini"
+done
+for halfile in "${halfiles[@]}"; do  # after the [HAL] section's last HALFILE
+  cp "$halfile" "$(dirname "$ini")/"
+  awk -v f="$(basename "$halfile")" '
+    /^\[/ { if (in_hal && !done) { print "HALFILE = " f; done = 1 } in_hal = ($0 == "[HAL]") }
+    { if (in_hal && !done && $0 ~ /^[[:space:]]*$/) { print "HALFILE = " f; done = 1 } print }
+    END { if (in_hal && !done) print "HALFILE = " f }' "$ini" > "$ini.new"
   mv "$ini.new" "$ini"
 done
 if [ "$without_volkins" = 1 ]; then

@@ -55,6 +55,10 @@ struct ProbePlanArgs {
   std::optional<double> probe_length_mm;  // default: the machine file's tool length
   std::vector<std::string> grid;         // "B=0,-30,-60" "C=0,90,180,270"
   std::string log_file = "volcomp_sphere_probe.txt";
+  double clearance_mm = 3.0;             // the search starts this far off the surface
+  double probe_feed_mm_min = 100.0;      // the search
+  double back_off_mm = 0.3;
+  double touch_feed_mm_min = 10.0;       // the measuring touch
   std::string output;                    // the program (default: stdout)
 };
 
@@ -144,6 +148,7 @@ struct PerturbArgs {
   std::string folder;
   double low = 0.2, high = 0.5;
   unsigned seed = 1;
+  std::vector<std::string> locations;  // "EX0C=15um": only these location errors, changed by these
 };
 
 int run_perturb(const PerturbArgs& args, std::ostream& report);

@@ -242,6 +242,10 @@ int run_probe_plan(const ProbePlanArgs& args, std::ostream& out) {
   o.ball_diameter_mm = args.ball_diameter_mm;
   o.probe_length_mm = args.probe_length_mm.value_or(0.0);
   o.log_file = args.log_file;
+  o.clearance_mm = args.clearance_mm;
+  o.probe_feed_mm_min = args.probe_feed_mm_min;
+  o.back_off_mm = args.back_off_mm;
+  o.touch_feed_mm_min = args.touch_feed_mm_min;
   if (!(o.sphere_diameter_mm > 0) || !(o.ball_diameter_mm >= 0)) throw std::runtime_error("the diameters must be positive");
   // --grid B=0,-30,-60 --grid C=0,90,180,270: every combination, in joint order.
   std::vector<std::vector<double>> axes;

@@ -125,6 +125,9 @@ int main(int argc, char** argv) {
   perturb_cmd->add_option("--low", perturb.low, "smallest relative change")->capture_default_str();
   perturb_cmd->add_option("--high", perturb.high, "largest relative change")->capture_default_str();
   perturb_cmd->add_option("--seed", perturb.seed, "seed of the shapes")->capture_default_str();
+  perturb_cmd->add_option("--location", perturb.locations,
+                          "change only this location error by this much, tables kept, e.g. --location EX0C=15um "
+                          "--location EA0C=-3arcsec (um, mm, arcsec, urad; repeatable)");
 
   vc::cli::SelftuneArgs selftune;
   CLI::App* selftune_cmd = app.add_subcommand(
@@ -229,6 +232,13 @@ int main(int argc, char** argv) {
   plan_cmd->add_option("--ball-diameter", plan.ball_diameter_mm, "the stylus ball, mm")->capture_default_str();
   plan_cmd->add_option("--probe-length", plan.probe_length_mm, "gauge point to ball centre, mm (default: the machine file's)");
   plan_cmd->add_option("--grid", plan.grid, "rotary positions, e.g. --grid B=0,-30,-60,-90 --grid C=0,90,180,270")->required();
+  plan_cmd->add_option("--clearance", plan.clearance_mm, "the search starts this far off the surface, mm")
+      ->capture_default_str();
+  plan_cmd->add_option("--probe-feed", plan.probe_feed_mm_min, "the search for the surface, mm/min")->capture_default_str();
+  plan_cmd->add_option("--back-off", plan.back_off_mm, "back-off after the search, mm")->capture_default_str();
+  plan_cmd->add_option("--touch-feed", plan.touch_feed_mm_min,
+                       "the measuring touch, mm/min (its trip is logged: LinuxCNC latches it up to feed x servo period late)")
+      ->capture_default_str();
   plan_cmd->add_option("--log", plan.log_file, "the log file LinuxCNC writes (LOGOPEN)")->capture_default_str();
   plan_cmd->add_option("-o,--output", plan.output, "the program (default: stdout)");
 

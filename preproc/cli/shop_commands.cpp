@@ -1,6 +1,8 @@
 // volcomp simulate and volcomp measure: the virtual shop. A program runs on a "true"
 // machine and leaves a tool path; a virtual CMM measures the surface that path machined.
+#include <cmath>
 #include <fstream>
+#include <map>
 #include <optional>
 
 #include "atomic_output.hpp"
@@ -12,6 +14,7 @@
 #include "vc/shop/machined_surface.hpp"
 #include "vc/shop/table_set.hpp"
 #include "vc/tables/source_error.hpp"
+#include "vc/tables/symbols.hpp"
 
 namespace vc::cli {
 
@@ -87,10 +90,56 @@ int run_measure(const MeasureArgs& args, std::ostream& report) {
   return 0;
 }
 
+namespace {
+
+// --location EX0C=15um ...: a true machine that differs from the file in these location errors
+// only (by these amounts), e.g. to prove an identification of them on it.
+int perturb_locations(const machine::Model& model, const PerturbArgs& args, std::ostream& report) {
+  std::vector<shop::LocationValue> values;
+  std::string changed;
+  for (const std::string& spec : args.locations) {
+    const std::size_t eq = spec.find('=');
+    const auto symbol = tables::parse_error_symbol(spec.substr(0, eq));
+    if (eq == std::string::npos || !symbol || !symbol->location || model.joint_of(symbol->axis) < 0)
+      throw std::runtime_error("--location " + spec + ": a location error of " + model.info.name +
+                               " and its change, e.g. EX0C=15um or EA0C=-3arcsec");
+    std::size_t used = 0;
+    const std::string amount = spec.substr(eq + 1);
+    double v = 0;
+    try {
+      v = std::stod(amount, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    const std::string unit = amount.substr(used);
+    const bool length = symbol->component < 3;
+    const std::map<std::string, double> scale = length
+        ? std::map<std::string, double>{{"um", 1e-3}, {"mm", 1.0}}
+        : std::map<std::string, double>{{"arcsec", M_PI / 648000.0}, {"urad", 1e-6}};
+    if (used == 0 || !scale.count(unit))
+      throw std::runtime_error("--location " + spec + ": the change needs its unit (" +
+                               (length ? "um or mm" : "arcsec or urad") + ")");
+    const int joint = model.joint_of(symbol->axis);
+    const machine::Axis& a = model.axes[static_cast<std::size_t>(joint)];
+    const double before = length ? a.location_mm[symbol->component] : a.location_rad[symbol->component - 3];
+    values.push_back({joint, symbol->component, before + v * scale.at(unit)});
+    changed += (changed.empty() ? "" : ", ") + spec;
+  }
+  const std::string written =
+      shop::write_machine_with_tables(model, args.folder, {}, "a true machine: location errors changed by " + changed +
+                                                                 " (volcomp perturb --location)", values);
+  machine::load_machine(written);  // it loads
+  report << "volcomp perturb: " << written << " (" << values.size() << " location errors changed, tables kept)\n";
+  return 0;
+}
+
+}  // namespace
+
 int run_perturb(const PerturbArgs& args, std::ostream& report) {
   if (!(args.low >= 0 && args.low <= args.high && args.high <= 2))
     throw std::runtime_error("need 0 <= --low <= --high <= 2");
   const machine::Model model = machine::load_machine(args.machine);
+  if (!args.locations.empty()) return perturb_locations(model, args, report);
   const std::vector<shop::ExtraTable> extras = shop::perturbation_tables(model, args.low, args.high, args.seed);
   const std::vector<shop::LocationValue> locations = shop::perturbation_locations(model, args.low, args.high, args.seed);
   const std::string written = shop::write_machine_with_tables(

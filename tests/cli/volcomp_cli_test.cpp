@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "test_support.hpp"
+#include "vc/machine/load_machine.hpp"
 #include "vc/tables/load_table.hpp"
 
 namespace vc {
@@ -182,8 +183,50 @@ TEST(VolcompCli, SelftuneRefusesAnAmbiguousCmmExportAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(next));
 }
 
+// perturb --location: a true machine differing in the named location errors only, by the
+// amounts given (the tables kept); a component error or a change without its unit refused.
+TEST(VolcompCli, PerturbLocationChangesOnlyTheNamedLocationErrors) {
+  const std::string folder = (std::filesystem::temp_directory_path() / "vc_cli_perturb_location").string();
+  std::filesystem::remove_all(folder);
+  auto r = test::run_volcomp("perturb " + test::machine_path("mc300") + " -o " + folder +
+                             " --location EX0C=15um --location EA0C=-3arcsec --location EZ0B=0.008mm");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("3 location errors changed, tables kept"), std::string::npos) << r.out;
+  const machine::Model before = machine::load_machine(test::machine_path("mc300"));
+  const machine::Model after = machine::load_machine(folder + "/mc300.toml");
+  const auto& b0 = before.axes[before.joint_of('B')], & b1 = after.axes[after.joint_of('B')];
+  const auto& c0 = before.axes[before.joint_of('C')], & c1 = after.axes[after.joint_of('C')];
+  EXPECT_NEAR(c1.location_mm[0] - c0.location_mm[0], 0.015, 1e-12);
+  EXPECT_NEAR(c1.location_rad[0] - c0.location_rad[0], -3 * M_PI / 648000, 1e-12);
+  EXPECT_NEAR(b1.location_mm[2] - b0.location_mm[2], 0.008, 1e-12);
+  EXPECT_EQ(b1.location_rad, b0.location_rad);  // the rest as it was
+  EXPECT_EQ(c1.location_mm[1], c0.location_mm[1]);
+  ASSERT_EQ(after.tables.size(), before.tables.size());
+  r = test::run_volcomp("perturb " + test::machine_path("mc300") + " -o " + folder + " --location EXC=15um");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.out.find("--location EXC=15um: a location error of MC-300"), std::string::npos) << r.out;
+  r = test::run_volcomp("perturb " + test::machine_path("mc300") + " -o " + folder + " --location EA0C=3um");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.out.find("the change needs its unit (arcsec or urad)"), std::string::npos) << r.out;
+  std::filesystem::remove_all(folder);
+}
+
+// probe-plan's touch: a back-off that leaves no room before the surface, or no feed, is refused.
+TEST(VolcompCli, ProbePlanRefusesATouchThatCannotWork) {
+  const std::string plan = "probe-plan " + test::machine_path("mc300") + " --centre -300,-160,-200 --grid B=0,-90 --grid C=0,180";
+  auto r = test::run_volcomp(plan);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("G38.2 Z-0.6000 F10.0000"), std::string::npos) << "the measuring touch";
+  for (const char* bad : {" --back-off 3", " --touch-feed 0", " --back-off -0.1"}) {
+    r = test::run_volcomp(plan + bad);
+    EXPECT_NE(r.exit_code, 0) << bad;
+    EXPECT_NE(r.out.find("the feeds must be positive and the back-off between 0 and the clearance"), std::string::npos)
+        << bad << "\n" << r.out;
+  }
+}
+
 TEST(VolcompCli, HelpIsEverywhere) {
-  for (const char* sub : {"", "check ", "error ", "correct ", "balance ", "identify laser ", "identify circle ", "identify sphere "}) {
+  for (const char* sub : {"", "check ", "error ", "correct ", "balance ", "identify laser ", "identify circle ", "identify sphere ", "probe-plan ", "perturb "}) {
     const auto r = test::run_volcomp(std::string(sub) + "--help");
     EXPECT_EQ(r.exit_code, 0) << sub;
     EXPECT_NE(r.out.find("Usage"), std::string::npos) << sub;

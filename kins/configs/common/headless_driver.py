@@ -10,7 +10,8 @@ full precision (repr), which stock halsampler (printf %f, 1e-6) cannot.
 Settings: the [DRIVER] section of the INI, each overridable by an environment variable
 (VOLKINS_<KEY>): PROGRAM (G-code file), COMPENSATION (on | off | toggle), TOGGLE_PERIOD (s,
 toggle mode: volkins.enable flips this often while the program runs), TRACE (CSV written),
-TRACE_COLUMNS (names of the sampler's pins, in its cfg order), RESULT (a file that receives
+TRACE_COLUMNS (names of the sampler's pins, in its cfg order; TRACE none: no trace, for long
+programs whose trace is not wanted), RESULT (a file that receives
 "ok" or "error: ..." last, so a caller knows how the session ended), TIMEOUT (s), EXPECT_MESSAGE
 (an operator message containing this text must come, and is then no error), SCHEDULE (pins set
 while the program runs: "TIME:PIN=VALUE ...", TIME in s after the program starts, e.g. a sensor's
@@ -106,16 +107,20 @@ class Session:
         columns = setting(self.ini, "TRACE_COLUMNS", "").split()
         schedule = self.schedule()
 
-        self.start_machine()
+        # Before homing: a session without compensation homes without it too, so the axes sit
+        # exactly on the joints (a compensated home switched off later leaves them up to the
+        # correction beyond a limit at 0, and the first move is refused).
         self.settle_compensation(mode != "off")
+        self.start_machine()
         self.command.mode(linuxcnc.MODE_AUTO)
         self.command.wait_complete()
         self.command.program_open(program)
         self.command.wait_complete()
 
+        tracing = setting(self.ini, "TRACE", "trace.csv") != "none"
         stream = hal.stream(self.comp, SAMPLER_KEY)
         rows = []
-        hal.set_p("sampler.0.enable", "1")
+        hal.set_p("sampler.0.enable", "1" if tracing else "0")
         self.command.auto(linuxcnc.AUTO_RUN, 0)
         last_toggle = started = time.time()
         self.wait_for(lambda: self.stat.interp_state != linuxcnc.INTERP_IDLE, "the program to start")
@@ -157,6 +162,8 @@ class Session:
         if self.stat.task_state != linuxcnc.STATE_ON or unexpected:
             raise RuntimeError("the program did not run cleanly: " + "; ".join(unexpected))
 
+        if not tracing:
+            return 0
         with open(self.path("TRACE", "trace.csv"), "w") as out:
             out.write(",".join(columns) + "\n")
             for row in rows:

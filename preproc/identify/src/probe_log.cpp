@@ -5,6 +5,7 @@
 #include <map>
 #include <sstream>
 
+#include "vc/machine/forward.hpp"
 #include "vc/tables/source_error.hpp"
 
 namespace vc::identify {
@@ -68,20 +69,42 @@ ProbeLog read_probe_log(const std::string& path, const machine::Model& model, do
     throw LoadError({path}, "the header gives no sphere_diameter_mm and ball_diameter_mm");
   const double radius = (log.sphere_diameter_mm + log.ball_diameter_mm) / 2;
 
+  const double length = log.probe_length_mm > 0 ? log.probe_length_mm : model.tool_length_mm;
+  const auto joints_at = [&](const Pose& p, const Eigen::Vector3d& xyz) {
+    machine::Joints q = machine::Joints::Zero(model.joint_count());
+    q[x] = xyz.x(), q[y] = xyz.y(), q[z] = xyz.z();
+    int r_index = 0;
+    for (int j = 0; j < model.joint_count(); ++j)
+      if (model.axes[static_cast<std::size_t>(j)].type == machine::AxisType::Rotary) q[j] = p.rotary[static_cast<std::size_t>(r_index++)];
+    return q;
+  };
+  const auto tip = [&](const Pose& p, const Eigen::Vector3d& xyz) {
+    return machine::tool_pose(model, machine::Machine::Real, joints_at(p, xyz), length).tip_mm;
+  };
+
   for (const auto& [index, p] : poses) {
     if (p.points.size() < 4)
       throw LoadError({path, p.line}, "pose " + std::to_string(index) + " has " + std::to_string(p.points.size()) +
                                           " points: a sphere of known radius needs 4 (the plan probes 5)");
-    // The centre of the sphere of the known radius through the points (Gauss-Newton).
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (const Eigen::Vector3d& q : p.points) c += q;
-    c /= static_cast<double>(p.points.size());
-    c.z() -= radius / 2;  // the plan's points are the top and the equator: start below their mean
-    Eigen::VectorXd r(static_cast<Eigen::Index>(p.points.size()));
+    // The sphere is round where the ball touched it, in the part frame, not in the joints: the
+    // trips are carried through the model's real machine (its linear axes' errors bend a 27 mm
+    // sphere by up to a few um in joint space), the sphere of the known radius fitted there
+    // (Gauss-Newton), and its centre carried back to the joints. The rotary axes' location
+    // errors move the trips and the centre rigidly at a pose, so the joints found do not
+    // depend on them (they are what identify_from_sphere fits).
+    std::vector<Eigen::Vector3d> at;
+    for (const Eigen::Vector3d& q : p.points) at.push_back(tip(p, q));
+    // Start: below the points' mean in the joints (the plan probes the top and the equator).
+    Eigen::Vector3d joint_mean = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d& q : p.points) joint_mean += q;
+    joint_mean /= static_cast<double>(p.points.size());
+    joint_mean.z() -= radius / 2;
+    Eigen::Vector3d c = tip(p, joint_mean);
+    Eigen::VectorXd r(static_cast<Eigen::Index>(at.size()));
     for (int step = 0; step < 30; ++step) {
-      Eigen::MatrixXd j(static_cast<Eigen::Index>(p.points.size()), 3);
-      for (std::size_t i = 0; i < p.points.size(); ++i) {
-        const Eigen::Vector3d d = p.points[i] - c;
+      Eigen::MatrixXd j(static_cast<Eigen::Index>(at.size()), 3);
+      for (std::size_t i = 0; i < at.size(); ++i) {
+        const Eigen::Vector3d d = at[i] - c;
         r[static_cast<Eigen::Index>(i)] = d.norm() - radius;
         j.row(static_cast<Eigen::Index>(i)) = -d.transpose() / d.norm();
       }
@@ -89,21 +112,30 @@ ProbeLog read_probe_log(const std::string& path, const machine::Model& model, do
       c += dc;
       if (dc.norm() < 1e-10) break;
     }
-    for (std::size_t i = 0; i < p.points.size(); ++i) {
-      const double off = std::abs((p.points[i] - c).norm() - radius);
+    for (std::size_t i = 0; i < at.size(); ++i) {
+      const double off = std::abs((at[i] - c).norm() - radius);
       log.largest_residual_um = std::max(log.largest_residual_um, off * 1e3);
       if (off > tolerance_mm)
         throw LoadError({path, p.line}, "pose " + std::to_string(index) + ": a point lies " + std::to_string(off * 1e3) +
                                             " um off the sphere of diameter " + std::to_string(log.sphere_diameter_mm) +
                                             " (+ the ball) through the others: a wrong diameter, another sphere or a bad trip?");
     }
+    // The joints X Y Z that put the model's real tip on the centre (Newton on the linear axes).
+    Eigen::Vector3d xyz = joint_mean;
+    for (int step = 0; step < 20; ++step) {
+      const Eigen::Vector3d rr = tip(p, xyz) - c;
+      if (rr.norm() < 1e-12) break;
+      Eigen::Matrix3d jac;
+      for (int i = 0; i < 3; ++i) {
+        Eigen::Vector3d h = xyz;
+        h[i] += 1e-3;
+        jac.col(i) = (tip(p, h) - c - rr) / 1e-3;
+      }
+      xyz -= jac.lu().solve(rr);
+    }
     SpherePose s;
     s.line = p.line;
-    s.joints = machine::Joints::Zero(model.joint_count());
-    s.joints[x] = c.x(), s.joints[y] = c.y(), s.joints[z] = c.z();
-    int r_index = 0;
-    for (int j = 0; j < model.joint_count(); ++j)
-      if (model.axes[static_cast<std::size_t>(j)].type == machine::AxisType::Rotary) s.joints[j] = p.rotary[static_cast<std::size_t>(r_index++)];
+    s.joints = joints_at(p, xyz);
     log.centres.push_back(s);
   }
   if (log.centres.empty()) throw LoadError({path}, "no points");

@@ -40,6 +40,20 @@ std::string probe_plan(const machine::Model& model, const ProbePlanOptions& o) {
                                " is outside the travel " + number(a.travel_min) + " .. " + number(a.travel_max));
     return number(v);
   };
+  if (!(o.back_off_mm > 0) || !(o.back_off_mm < o.clearance_mm) || !(o.probe_feed_mm_min > 0) || !(o.touch_feed_mm_min > 0))
+    throw std::runtime_error("the feeds must be positive and the back-off between 0 and the clearance");
+  // One probed point: a search at the probe feed from `clearance` off the surface, a back-off,
+  // and the measuring touch at the touch feed (its trip is the one logged). LinuxCNC latches
+  // the position of the servo cycle in which the probe input is seen: the trip lies up to
+  // touch feed x servo period past the contact (10 mm/min, 1 ms: 0.17 um), where a single
+  // touch at the search feed would be 1.7 um off.
+  const auto touch = [&](int dx, int dy, int dz) {  // the approach direction
+    const auto move = [&](double length) {
+      return dz != 0 ? " Z" + number(dz * length) : " X" + number(dx * length) + " Y" + number(dy * length);
+    };
+    return "G91 G38.2" + move(2 * o.clearance_mm) + " F" + number(o.probe_feed_mm_min) + "\n" + "G0" +
+           move(-o.back_off_mm) + "\n" + "G38.2" + move(2 * o.back_off_mm) + " F" + number(o.touch_feed_mm_min) + "\nG90\n";
+  };
   std::string out;
   out += "(volcomp probe-plan: " + model.info.name + ", a sphere of " + number(o.sphere_diameter_mm) + " mm probed with a " +
          number(o.ball_diameter_mm) + " mm ball at " + std::to_string(o.rotary_positions.size()) + " rotary positions)\n";
@@ -85,15 +99,14 @@ std::string probe_plan(const machine::Model& model, const ProbePlanOptions& o) {
     out += "G53 G0" + rotary_words + "\n";
     out += "G53 G0 X" + within(x, cx, pose) + " Y" + within(y, cy, pose) + "\n";
     out += "G53 G0 Z" + within(z, above, pose) + "\n";
-    out += "G91 G38.2 Z-" + number(2 * o.clearance_mm) + " F" + number(o.probe_feed_mm_min) + "\nG90\n" + log;
+    out += touch(0, 0, -1) + log;
     out += "G91 G0 Z" + number(o.clearance_mm) + "\nG90\n";
     for (const auto& [sx, sy] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
       const double px = cx + sx * (reach + o.clearance_mm), py = cy + sy * (reach + o.clearance_mm);
       out += "G53 G0 Z" + within(z, above, pose) + "\n";
       out += "G53 G0 X" + within(x, px, pose) + " Y" + within(y, py, pose) + "\n";
       out += "G53 G1 Z" + within(z, cz, pose) + " F" + number(o.rapid_feed_mm_min) + "\n";
-      out += "G91 G38.2 X" + number(-sx * 2 * o.clearance_mm) + " Y" + number(-sy * 2 * o.clearance_mm) + " F" +
-             number(o.probe_feed_mm_min) + "\nG90\n" + log;
+      out += touch(-sx, -sy, 0) + log;
       out += "G91 G0 X" + number(sx * o.clearance_mm) + " Y" + number(sy * o.clearance_mm) + "\nG90\n";
     }
     out += "G53 G0 Z" + number(above) + "\n";

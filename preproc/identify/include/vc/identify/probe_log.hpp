@@ -2,7 +2,9 @@
 //     POINT <pose> <rotary positions...> <#5061> <#5062> <#5063> <G54 X> <G54 Y> <G54 Z>
 // after a header "# volcomp probe log: ..." with the sphere's and the ball's diameters and the
 // probe length. The trips of one pose lie on a sphere of radius (sphere + ball) / 2 about the
-// centre: fitted by least squares (Gauss-Newton), its residual per point reported, a pose
+// centre, in the part frame: the trips are carried there through the model's real machine
+// (with its linear axes' errors, at the probe length), the sphere fitted by least squares
+// (Gauss-Newton) and its centre carried back to the joints; its residual per point reported, a pose
 // whose points do not lie on that sphere (another sphere, a wrong diameter, a bad trip: a
 // residual over `tolerance`) refused with its line.
 #pragma once
