@@ -48,8 +48,8 @@ std::string probe_plan(const machine::Model& model, const ProbePlanOptions& o) {
   // touch feed x servo period past the contact (10 mm/min, 1 ms: 0.17 um), where a single
   // touch at the search feed would be 1.7 um off.
   const auto touch = [&](int dx, int dy, int dz) {  // the approach direction
-    const auto move = [&](double length) {
-      return dz != 0 ? " Z" + number(dz * length) : " X" + number(dx * length) + " Y" + number(dy * length);
+    const auto move = [&](double distance) {
+      return dz != 0 ? " Z" + number(dz * distance) : " X" + number(dx * distance) + " Y" + number(dy * distance);
     };
     return "G91 G38.2" + move(2 * o.clearance_mm) + " F" + number(o.probe_feed_mm_min) + "\n" + "G0" +
            move(-o.back_off_mm) + "\n" + "G38.2" + move(2 * o.back_off_mm) + " F" + number(o.touch_feed_mm_min) + "\nG90\n";
