@@ -1,8 +1,8 @@
 #include "vc/machine/invert_correction.hpp"
 
+#include <Eigen/LU>
 #include <cmath>
 
-#include "small_lu.hpp"
 #include "vc/machine/correction_equations.hpp"
 
 namespace vc::machine {
@@ -14,6 +14,44 @@ struct IdealPose {
   PoseDerivatives d;
 };
 
+// One Newton step of the ideal machine's equations, by blocks. The ideal machine's linear axes
+// only translate, so the direction rows do not depend on the linear joints: the rotary steps
+// solve the direction rows alone (1 x 1 or 2 x 2), then the linear steps the position rows
+// less what the rotary steps do to the tip (3 x 3). The same step as the full system's, at a
+// fraction of a 5 x 5 LU's cost. False if a block is singular (the pole; degenerate axes).
+bool block_step(const CorrectionTarget& target, const PoseDerivatives& d, const Joints& residual,
+                const std::array<int, 3>& linear, const std::array<int, 2>& rotary, Joints& q) noexcept {
+  const int n = target.direction_equations;
+  double dr[2] = {0.0, 0.0};  // rotary steps
+  if (n > 0) {
+    double a[2][2];
+    for (int c = 0; c < n; ++c) {
+      const Eigen::Vector3d rate = target.direction.cross(d.direction.col(rotary[c]));
+      for (int m = 0; m < n; ++m) a[m][c] = target.basis[m].dot(rate);
+    }
+    if (n == 1) {
+      if (!(std::abs(a[0][0]) > 0.0)) return false;
+      dr[0] = -residual[3] / a[0][0];
+    } else {
+      const double det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+      if (!(std::abs(det) > 0.0)) return false;
+      dr[0] = (-residual[3] * a[1][1] + residual[4] * a[0][1]) / det;
+      dr[1] = (-residual[4] * a[0][0] + residual[3] * a[1][0]) / det;
+    }
+  }
+  Eigen::Vector3d b = -residual.head<3>();
+  for (int c = 0; c < n; ++c) b -= d.tip.col(rotary[c]) * dr[c];
+  Eigen::Matrix3d t;
+  for (int c = 0; c < 3; ++c) t.col(c) = d.tip.col(linear[c]);
+  const Eigen::PartialPivLU<Eigen::Matrix3d> lu(t);
+  if (!(std::abs(lu.determinant()) > 0.0)) return false;
+  const Eigen::Vector3d dl = lu.solve(b);
+  if (!dl.allFinite() || !std::isfinite(dr[0]) || !std::isfinite(dr[1])) return false;
+  for (int c = 0; c < 3; ++c) q[linear[c]] += dl[c];
+  for (int c = 0; c < n; ++c) q[rotary[c]] += dr[c];
+  return true;
+}
+
 // Newton on the ideal machine: its tip onto target.tip_mm and, with direction equations, its
 // tool direction parallel to target.direction (the real machine's pose at q_c). The unknowns
 // are all joints (with direction equations) or the linear ones (without: the rotary joints
@@ -23,25 +61,28 @@ struct IdealPose {
 Status ideal_newton(const Model& model, const CorrectionTarget& target, double tool_length_mm, Joints& q,
                     int& iterations, IdealPose& ideal, bool evaluated = false) noexcept {
   const SolverOptions& opt = model.solver;
-  const bool all = target.direction_equations > 0;
-  int unknowns = 0;
-  std::array<int, kMaxAxes> index{};
-  for (int j = 0; j < model.joint_count(); ++j)
-    if (all || model.axes[j].type == AxisType::Linear) index[unknowns++] = j;
-  if (unknowns != 3 + target.direction_equations) return Status::Singular;  // not a square system
+  std::array<int, 3> linear{};
+  std::array<int, 2> rotary{};
+  int linear_count = 0, rotary_count = 0;
+  for (int j = 0; j < model.joint_count(); ++j) {
+    if (model.axes[j].type == AxisType::Linear) {
+      if (linear_count == 3) return Status::Singular;  // not a square system
+      linear[linear_count++] = j;
+    } else if (rotary_count < target.direction_equations) {
+      rotary[rotary_count++] = j;
+    }
+  }
+  if (linear_count != 3 || rotary_count != target.direction_equations) return Status::Singular;
+  const int equations = 3 + target.direction_equations;
   for (int step = 0;; ++step) {
     if (step > 0 || !evaluated) ideal.pose = tool_pose(model, Machine::Ideal, q, tool_length_mm, ideal.d);
-    const Joints residual = correction_residual(target, ideal.pose, unknowns);
+    const Joints residual = correction_residual(target, ideal.pose, equations);
     if (!residual.allFinite()) return Status::NonFinite;
     const double position = residual.head(3).norm();
     const double direction = std::sqrt(direction_squared_norm(residual));
     if (position <= opt.position_tolerance_mm && direction <= opt.direction_tolerance_rad) return Status::Ok;
     if (step == opt.max_iterations) return Status::NotConverged;
-    SmallLu lu;
-    if (!lu.compute(correction_jacobian(target, ideal.d, index, unknowns))) return Status::Singular;
-    const Joints step_vector = lu.solve(-residual);
-    if (!step_vector.allFinite()) return Status::Singular;
-    for (int c = 0; c < unknowns; ++c) q[index[c]] += step_vector[c];
+    if (!block_step(target, ideal.d, residual, linear, rotary, q)) return Status::Singular;
     ++iterations;
   }
 }

@@ -5,7 +5,7 @@
 //   Tcp:  linear world coordinates are the ideal tool tip in the part frame, rotary ones the
 //         rotary joints (tool-centre-point control, as LinuxCNC's xyzbc-trt-kins).
 // Inverse:  world -> nominal joints q_n -> corrected joints q_c = correct(q_n).
-// Forward:  its exact inverse, q_c -> q_n = uncorrect(q_c) -> world, so FK(IK(w)) = w.
+// Forward:  its exact inverse, q_c -> q_n = invert_correction(q_c) -> world, so FK(IK(w)) = w.
 // Real-time: no allocation, no locks, bounded iterations.
 #pragma once
 
