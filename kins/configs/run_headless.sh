@@ -4,7 +4,7 @@
 #
 #   run_headless.sh CONFIG.ini RUN_DIR [--kinematics "volkins machine=... world=tcp"]
 #                   [--without-volkins] [--without-update] [--expect-message TEXT] [--program FILE]
-#                   [--compensation on|off|toggle]
+#                   [--compensation on|off|toggle] [--halfile FILE]
 #                   [--set SECTION.KEY=VALUE]...
 #
 # The configuration folder and kins/configs/common are copied to RUN_DIR/kins/configs, with with the
@@ -15,10 +15,10 @@
 # lands in RUN_DIR/kins/configs/<name>/trace.csv. Exit 0 if the program ran cleanly.
 set -euo pipefail
 
-usage() { echo "usage: $0 CONFIG.ini RUN_DIR [--kinematics LINE] [--without-volkins] [--without-update] [--expect-message TEXT] [--program FILE] [--compensation on|off|toggle] [--set SECTION.KEY=VALUE]..." >&2; exit 2; }
+usage() { echo "usage: $0 CONFIG.ini RUN_DIR [--kinematics LINE] [--without-volkins] [--without-update] [--expect-message TEXT] [--program FILE] [--compensation on|off|toggle] [--halfile FILE] [--set SECTION.KEY=VALUE]..." >&2; exit 2; }
 [ $# -ge 2 ] || usage
 ini_src=$(realpath "$1"); run_dir=$2; shift 2
-kinematics="" ; without_volkins=0; without_update=0; program=""; compensation=""; settings=()
+kinematics="" ; without_volkins=0; without_update=0; program=""; compensation=""; halfile=""; settings=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --kinematics) kinematics=$2; shift 2 ;;
@@ -27,6 +27,7 @@ while [ $# -gt 0 ]; do
     --expect-message) export VOLKINS_EXPECT_MESSAGE=$2; shift 2 ;;
     --program) program=$(realpath "$2"); shift 2 ;;
     --compensation) compensation=$2; shift 2 ;;
+    --halfile) halfile=$2; shift 2 ;;  # one more HAL file of the configuration folder, loaded last
     --set) settings+=("$2"); shift 2 ;;
     *) usage ;;
   esac
@@ -57,6 +58,10 @@ for setting in "${settings[@]}"; do  # SECTION.KEY=VALUE: replaces KEY's line in
 done
 if [ "$without_volkins" = 1 ]; then
   sed -i '/^HALFILE = ..\/common\/volkins.hal/d' "$ini"
+fi
+if [ -n "$halfile" ]; then  # after the last HALFILE line of [HAL]
+  line=$(grep -n '^HALFILE = ' "$ini" | tail -1 | cut -d: -f1)
+  sed -i "${line}a HALFILE = $halfile" "$ini"
 fi
 if [ "$without_update" = 1 ]; then
   sed -i '/^addf volkins.update/d' "$run_dir/kins/configs/common/volkins.hal"
