@@ -4,11 +4,12 @@
 //
 // The thin shell over vc_machine: rtapi_app_main reads and validates the machine file and its
 // tables (any problem fails loadrt with file:line:problem, before anything is created in HAL);
-// kinematicsInverse applies the correction, kinematicsForward is its exact inverse, so the DRO,
-// homing and probing see nominal coordinates. The HAL function volkins.update (servo thread,
-// before motion-controller) ramps the correction in and out when volkins.enable changes, so
-// switching never jumps; the kinematics functions keep no state between calls (they read the
-// ramp and the parameters, and report on output pins). A HAL file without `addf volkins.update`
+// kinematicsInverse applies the correction, kinematicsForward is its exact inverse (Newton on
+// the real pose, invert_correction), so the DRO, homing and probing see nominal coordinates.
+// The HAL function volkins.update (servo thread, before motion-controller) ramps the
+// correction in and out when volkins.enable changes, so switching never jumps; the kinematics
+// functions keep no state between calls (they read the ramp and the parameters, and report on
+// output pins). A HAL file without `addf volkins.update`
 // does not leave the machine silently uncorrected: until the function has run, the kinematics
 // apply what volkins.enable asks for in full (no ramp), say so on volkins.gain, volkins.active
 // and volkins.update-missing, and print once how to fix the HAL file. Temperature inputs of
@@ -51,7 +52,7 @@ struct HalData {
   hal_float_t* correction_length;             // out: L the correction is computed for now (mm)
   hal_float_t* correction[vm::kMaxAxes];      // out: joint - nominal joint of the last inverse
   hal_s32_t* iterations;                      // out: Newton steps of the last inverse
-  hal_s32_t* forward_iterations;              // out: corrections evaluated by the last forward
+  hal_s32_t* forward_iterations;              // out: Newton steps (and band corrections) of the last forward
   hal_bit_t* out_of_table;                    // out: last inverse beyond a table's grid
   hal_bit_t* limit_exceeded;                  // out: last inverse refused (max correction)
   hal_s32_t* failures;                        // out: inverse and forward calls refused so far

@@ -1,10 +1,10 @@
 #include "vc/machine/correct.hpp"
 
-#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "small_lu.hpp"
 #include "vc/machine/correction_equations.hpp"
 
 namespace vc::machine {
@@ -24,7 +24,8 @@ Status newton(const Model& model, const CorrectionTarget& target, double tool_le
   std::array<int, kMaxAxes> index{};
   for (int j = 0; j < model.joint_count(); ++j)
     if (free[j]) index[unknowns++] = j;
-  Eigen::PartialPivLU<SquareMatrix> lu(correction_jacobian(target, ideal, index, unknowns));
+  SmallLu lu;
+  lu.compute(correction_jacobian(target, ideal, index, unknowns));
   double previous_norm = std::numeric_limits<double>::infinity();
   for (int step = 0;; ++step) {
     pose = tool_pose(model, Machine::Real, q, tool_length_mm);
@@ -41,7 +42,7 @@ Status newton(const Model& model, const CorrectionTarget& target, double tool_le
       lu.compute(correction_jacobian(target, exact, index, unknowns));
     }
     previous_norm = norm;
-    if (!(std::abs(lu.determinant()) > 0.0)) return Status::Singular;
+    if (!lu.ok()) return Status::Singular;
     const Joints step_vector = lu.solve(-residual);
     if (!step_vector.allFinite()) return Status::Singular;
     for (int c = 0; c < unknowns; ++c) q[index[c]] += step_vector[c];

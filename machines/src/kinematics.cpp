@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 
+
 namespace vc::machine {
 
 Status nominal_inverse(const Model& model, WorldConvention convention, const Joints& world,
@@ -98,7 +99,7 @@ Status world_from_joints(const Model& model, WorldConvention convention, const J
         near(&from_seed, joints))
       nominal_seed = from_seed;
   }
-  const Uncorrection u = uncorrect(model, joints, tool_length_mm, applied.gain, nominal_seed);
+  const Uncorrection u = invert_correction(model, joints, tool_length_mm, applied.gain, nominal_seed);
   if (iterations) *iterations = u.iterations;
   if (u.status != Status::Ok) return u.status;
   world = nominal_forward(model, convention, u.nominal, tool_length_mm);

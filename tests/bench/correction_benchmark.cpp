@@ -1,7 +1,8 @@
-// Cost per pose of the volumetric error, the correction and the forward (uncorrect)
-// kinematics on each shipped machine (MC-300: all 41 deviations), over 4096 random poses in
-// the travel, cycled. Run: build/tests/bench/correction_benchmark --benchmark_repetitions=5
-// The worst-case counters time each call separately (steady_clock), since the servo thread's
+// Cost per pose of the volumetric error, the correction, its fixed-point inverse (uncorrect),
+// the forward kinematics and one servo cycle's pair of kinematics calls on each shipped machine
+// (MC-300: all 41 deviations), over 4096 random poses in the travel, cycled.
+// Run: build/tests/bench/correction_benchmark --benchmark_repetitions=5
+// The percentile counters time each call separately (steady_clock), since the servo thread's
 // budget is set by the slowest cycle.
 #include <benchmark/benchmark.h>
 
@@ -16,24 +17,39 @@
 namespace vc::machine {
 namespace {
 
+// The servo thread's view of pose i: the world position one and two cycles before (a step of
+// at most 0.1 mm and 0.06 deg per joint: 100 mm/s and 60 deg/s at 1 kHz), and the joints the
+// previous cycle's inverse gave.
+struct ServoCycle {
+  Joints world, before, before_before;  // nominal joints (world = axes)
+  Joints previous_joints;               // joints_from_world(before)
+};
+
 struct Fixture {
   Model model;
   std::vector<Joints> poses;
   std::vector<Joints> corrected;
+  std::vector<ServoCycle> cycles;
 };
 
 const Fixture& fixture(const std::string& name) {
   static std::map<std::string, Fixture> cache;
   auto it = cache.find(name);
   if (it != cache.end()) return it->second;
-  Fixture f{load_machine(test::machine_path(name)), {}, {}};
+  Fixture f{load_machine(test::machine_path(name)), {}, {}, {}};
   std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
   for (int k = 0; k < 4096; ++k) {
-    Joints q(f.model.joint_count());
-    for (int j = 0; j < f.model.joint_count(); ++j)
+    Joints q(f.model.joint_count()), step(f.model.joint_count());
+    for (int j = 0; j < f.model.joint_count(); ++j) {
       q[j] = std::uniform_real_distribution<double>(f.model.axes[j].travel_min, f.model.axes[j].travel_max)(rng);
+      step[j] = unit(rng) * (f.model.axes[j].type == AxisType::Linear ? 0.1 : 0.06);
+    }
     f.poses.push_back(q);
     f.corrected.push_back(correct(f.model, q, f.model.tool_length_mm).joints);
+    ServoCycle c{q, q - step, q - 2 * step, {}};
+    joints_from_world(f.model, WorldConvention::Axes, c.before, f.model.tool_length_mm, c.previous_joints);
+    f.cycles.push_back(c);
   }
   return cache.emplace(name, std::move(f)).first->second;
 }
@@ -46,7 +62,7 @@ void run(benchmark::State& state, const std::string& machine, Call call) {
     benchmark::DoNotOptimize(call(f, i));
     i = (i + 1) % f.poses.size();
   }
-  // Worst and 99.9th percentile of single calls over one pass through the poses.
+  // Median, 99th and 99.9th percentile and worst of single calls over one pass through the poses.
   std::vector<double> ns;
   for (std::size_t k = 0; k < f.poses.size(); ++k) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -55,6 +71,7 @@ void run(benchmark::State& state, const std::string& machine, Call call) {
   }
   std::sort(ns.begin(), ns.end());
   state.counters["median_ns"] = ns[ns.size() / 2];
+  state.counters["p99_ns"] = ns[ns.size() * 99 / 100];
   state.counters["p999_ns"] = ns[ns.size() * 999 / 1000];
   state.counters["max_ns"] = ns.back();
 }
@@ -99,12 +116,41 @@ void BM_Uncorrect(benchmark::State& state, const std::string& machine) {
   });
 }
 
+// The forward as volkins calls it (invert_correction: Newton on the real pose), seeded with
+// the previous cycle's world position.
+void BM_ForwardSeeded(benchmark::State& state, const std::string& machine) {
+  run(state, machine, [](const Fixture& f, std::size_t i) {
+    const ServoCycle& c = f.cycles[i];
+    Joints world;
+    world_from_joints(f.model, WorldConvention::Axes, c.previous_joints, f.model.tool_length_mm,
+                      Applied{1.0, &c.before_before}, world);
+    return world[0];
+  });
+}
+
+// One servo cycle's kinematics as motion-controller calls them (control.c: the forward of the
+// joint feedback, seeded with the previous world position, then the inverse of the new
+// command, seeded with the previous joints): the pair the 2.5 us target is for.
+void BM_ServoCycle(benchmark::State& state, const std::string& machine) {
+  run(state, machine, [](const Fixture& f, std::size_t i) {
+    const ServoCycle& c = f.cycles[i];
+    const double L = f.model.tool_length_mm;
+    Joints world, joints;
+    world_from_joints(f.model, WorldConvention::Axes, c.previous_joints, L, Applied{1.0, &c.before_before}, world);
+    joints_from_world(f.model, WorldConvention::Axes, c.world, L, Applied{1.0, &c.previous_joints}, joints);
+    return world[0] + joints[0];
+  });
+}
+
 BENCHMARK_CAPTURE(BM_VolumetricError, mc300, std::string("mc300"));
 BENCHMARK_CAPTURE(BM_RealPose, mc300, std::string("mc300"));
 BENCHMARK_CAPTURE(BM_IdealPoseDerivatives, mc300, std::string("mc300"));
 BENCHMARK_CAPTURE(BM_Correct, mc300, std::string("mc300"));
 BENCHMARK_CAPTURE(BM_CorrectSeeded, mc300, std::string("mc300"));
 BENCHMARK_CAPTURE(BM_Uncorrect, mc300, std::string("mc300"));
+BENCHMARK_CAPTURE(BM_ForwardSeeded, mc300, std::string("mc300"));
+BENCHMARK_CAPTURE(BM_ServoCycle, mc300, std::string("mc300"));
+BENCHMARK_CAPTURE(BM_ServoCycle, ac_trunnion, std::string("ac_trunnion"));
 BENCHMARK_CAPTURE(BM_Correct, mill3, std::string("mill3"));
 BENCHMARK_CAPTURE(BM_Correct, ac_trunnion, std::string("ac_trunnion"));
 

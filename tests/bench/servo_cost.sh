@@ -1,8 +1,13 @@
 #!/usr/bin/env bash
 # The cost of volkins in the servo thread: motion-controller.time (CPU clock ticks, it contains
-# the kinematics calls) over the same program with trivkins and with volkins, in alternating
-# sessions (medians vary up to 2x between runs on a shared machine, so one run of each is not
-# enough). Prints each run's median and p99 and the ratio of the medians of all samples.
+# the kinematics calls: one forward and one inverse per cycle) over the same program with
+# trivkins, with LinuxCNC's own 5-axis table kinematics xyzbc-trt-kins (the MC-300's pivot
+# geometry, kins/configs/mc300/xyzbc_trt.hal: what a user would run without volkins) and with
+# volkins, in alternating sessions (medians vary up to 2x between runs on a shared machine, so
+# one run of each is not enough). xyzbc-trt-kins runs the program rewritten for its world (the
+# tool tip in the table frame, tests/bench/xyzbc_trt_program.py), so that the joints pass the
+# same points. Prints each run's median, p99 and worst, then each kinematics' figures over all
+# its samples and the ratios of the medians (the issue 21 target: volkins <= 2 x xyzbc-trt-kins).
 #
 #   tests/bench/servo_cost.sh [ROUNDS] [PROGRAM]     (default 3 rounds, the 5-axis contour)
 # Needs the module installed (cmake --install build --component volkins) and no other session.
@@ -13,27 +18,45 @@ program=${2:-kins/configs/mc300/nc/contour_5axis.ngc}
 ini=kins/configs/mc300/mc300.ini
 runs=$(mktemp -d /tmp/volcomp-servo-cost.XXXXXX)
 chmod 755 "$runs"
+# The pivot of xyzbc_trt.hal and mc300.tbl's tool 1 (G43 H1), for the rewritten program.
+python3 tests/bench/xyzbc_trt_program.py "$program" "$runs/program_trt.ngc" \
+  --rot-point -300 -150 -230 --offset 0 0 --tool-offset 100
+chmod 644 "$runs/program_trt.ngc"
 ticks() {  # the controller_time column of a trace
   awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "controller_time") c = i; next } { print $c }' "$1"
 }
-stats() {  # median and p99 of a column of numbers
-  sort -n "$1" | awk '{ v[NR] = $1 } END { printf "%d %d", v[int(NR * 0.5) + 1], v[int(NR * 0.99) + 1] }'
+stats() {  # median, p99 and worst of a column of numbers
+  sort -n "$1" | awk '{ v[NR] = $1 } END { printf "%d %d %d", v[int(NR * 0.5) + 1], v[int(NR * 0.99) + 1], v[NR] }'
 }
+kinematics=(trivkins xyzbc-trt-kins volkins)
 for r in $(seq "$rounds"); do
-  for kins in trivkins volkins; do
-    if [ "$kins" = trivkins ]; then
-      kins/configs/run_headless.sh "$ini" "$runs/$kins-$r" --program "$program" --without-volkins \
-        --kinematics "trivkins coordinates=xyzbc kinstype=B" >/dev/null
-    else
-      kins/configs/run_headless.sh "$ini" "$runs/$kins-$r" --program "$program" --compensation on >/dev/null
-    fi
+  for kins in "${kinematics[@]}"; do
+    case "$kins" in
+      trivkins)
+        kins/configs/run_headless.sh "$ini" "$runs/$kins-$r" --program "$program" --without-volkins \
+          --kinematics "trivkins coordinates=xyzbc kinstype=B" >/dev/null ;;
+      xyzbc-trt-kins)
+        kins/configs/run_headless.sh "$ini" "$runs/$kins-$r" --program "$runs/program_trt.ngc" --without-volkins \
+          --kinematics "xyzbc-trt-kins coordinates=xyzbc" --halfile kins/configs/mc300/xyzbc_trt.hal >/dev/null ;;
+      volkins)
+        kins/configs/run_headless.sh "$ini" "$runs/$kins-$r" --program "$program" --compensation on >/dev/null ;;
+    esac
     ticks "$runs/$kins-$r/kins/configs/mc300/trace.csv" > "$runs/$kins-$r.ticks"
-    read -r median p99 <<< "$(stats "$runs/$kins-$r.ticks")"
-    echo "$kins run $r: motion-controller.time median $median ticks, p99 $p99 ticks"
+    read -r median p99 worst <<< "$(stats "$runs/$kins-$r.ticks")"
+    printf "%-15s run %d: motion-controller.time median %6d ticks, p99 %6d, worst %7d (%d samples)\n" \
+      "$kins" "$r" "$median" "$p99" "$worst" "$(wc -l < "$runs/$kins-$r.ticks")"
     cat "$runs/$kins-$r.ticks" >> "$runs/$kins.all"
   done
 done
-read -r m_triv _ <<< "$(stats "$runs/trivkins.all")"
-read -r m_vol _ <<< "$(stats "$runs/volkins.all")"
-awk -v a="$m_vol" -v b="$m_triv" 'BEGIN { printf "median over all samples: volkins %d ticks, trivkins %d ticks, ratio %.2f\n", a, b, a / b }'
+ghz=$(awk '/^cpu MHz/ { print $4 / 1000; exit }' /proc/cpuinfo)
+echo "all samples (ticks; the CPU's clock is ${ghz:-?} GHz):"
+declare -A all
+for kins in "${kinematics[@]}"; do
+  all[$kins]=$(stats "$runs/$kins.all")
+  read -r median p99 worst <<< "${all[$kins]}"
+  printf "  %-15s median %6d, p99 %6d, worst %7d\n" "$kins" "$median" "$p99" "$worst"
+done
+echo "${all[volkins]} ${all[xyzbc-trt-kins]} ${all[trivkins]}" | awk '{
+  printf "ratios of the medians: volkins / xyzbc-trt-kins %.2f (target <= 2), volkins / trivkins %.2f, xyzbc-trt-kins / trivkins %.2f\n", $1 / $4, $1 / $7, $4 / $7
+  printf "volkins / xyzbc-trt-kins: p99 %.2f, worst %.2f\n", $2 / $5, $3 / $6 }'
 rm -rf "$runs"

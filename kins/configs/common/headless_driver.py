@@ -5,7 +5,10 @@ LinuxCNC starts it as its DISPLAY (`DISPLAY = ../common/headless_driver.py` star
 `headless_driver.py -ini <file>`); when it exits, LinuxCNC shuts down. It takes the machine out of
 estop, homes it, sets the compensation, runs the program and, at the same time, reads the HAL
 sampler stream that the configuration's trace.hal feeds at servo rate, writing every sample with
-full precision (repr), which stock halsampler (printf %f, 1e-6) cannot.
+full precision (repr), which stock halsampler (printf %f, 1e-6) cannot. When the program has
+ended and the machine rests, it checks that LinuxCNC's feedback position (kinematicsForward of
+the joint feedback: the DRO, what probing reads) is the commanded position to 1e-9 mm: the
+forward kinematics are the exact inverse of the inverse.
 
 Settings: the [DRIVER] section of the INI, each overridable by an environment variable
 (VOLKINS_<KEY>): PROGRAM (G-code file), COMPENSATION (on | off | toggle), TOGGLE_PERIOD (s,
@@ -98,6 +101,22 @@ class Session:
             entries.append((float(when), pin, value))
         return sorted(entries, key=lambda e: e[0])
 
+    def check_forward_kinematics(self):
+        """At rest, the feedback position (carte_pos_fb, kinematicsForward of the joint feedback,
+        seeded with its previous value) equals the commanded one (carte_pos_cmd, whose inverse
+        gave the joints) to 1e-9 mm. The joints may still settle for a moment after the program
+        (a compensation ramp, a tool length slew after M2): the check waits up to 2 s for it."""
+        deadline = time.time() + 2.0
+        while True:
+            self.stat.poll()
+            error = max(abs(a - b) for a, b in zip(self.stat.actual_position, self.stat.position))
+            if error <= 1e-9:
+                return
+            if time.time() > deadline:
+                raise RuntimeError("at rest the feedback position (kinematicsForward) is %s, the commanded "
+                                   "one %s: %g apart" % (self.stat.actual_position, self.stat.position, error))
+            time.sleep(0.01)
+
     def run(self):
         program = self.path("PROGRAM", "program.ngc")
         mode = setting(self.ini, "COMPENSATION", "on")
@@ -155,6 +174,7 @@ class Session:
             raise RuntimeError("the program ended before the schedule's entry at %g s" % schedule[0][0])
         if stream.num_overruns:
             raise RuntimeError("the sampler overran %d times: samples are missing" % stream.num_overruns)
+        self.check_forward_kinematics()
         expected = setting(self.ini, "EXPECT_MESSAGE", "")
         unexpected = [m for m in self.messages if not (expected and expected in m)]
         if expected and len(unexpected) == len(self.messages):

@@ -1,8 +1,9 @@
-// Correction and kinematics on every shipped machine and on bc_head (tests only: a rotary
-// axis in the tool chain, tests/unit/machines/data), over random poses in the travel:
-// residuals below 1e-9 mm / 1e-9 rad, FK(IK(w)) = w in both world conventions, the analytic
-// Jacobian against central differences, the chain against a naive 4x4 product, and the pole
-// fade. Seeded; VC_RANDOM_POSES overrides the pose count.
+// Correction and kinematics on every shipped machine and on the test machines bc_head (a
+// rotary axis in the tool chain) and xyza_table (one rotary axis), tests/unit/machines/data,
+// over random poses in the travel: residuals below 1e-9 mm / 1e-9 rad, FK(IK(w)) = w in both
+// world conventions, the forward against the fixed point uncorrect, the analytic Jacobian
+// against central differences, the chain against a naive 4x4 product, and the pole fade.
+// Seeded; VC_RANDOM_POSES overrides the pose count.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -41,7 +42,7 @@ std::string text(const Joints& q) {
 }
 
 // The machines only the tests use.
-const std::vector<std::string> kTestMachines{"bc_head"};
+const std::vector<std::string> kTestMachines{"bc_head", "xyza_table"};
 
 class EveryMachine : public ::testing::TestWithParam<std::string> {
  protected:
@@ -120,6 +121,33 @@ TEST_P(EveryMachine, PartialCorrectionWithAnySeedRoundTrips) {
       Joints joints;
       ASSERT_EQ(joints_from_world(model_, convention, world, L, Applied{0.0, nullptr}, joints), Status::Ok);
       EXPECT_EQ(joints, nominal);
+    }
+  }
+}
+
+// kinematicsForward's call (gain 1, seeded with the previous cycle's world position: one step
+// of 0.1 mm / 0.06 deg per joint before) against the core's fixed point uncorrect, which
+// evaluates whole corrections only (another code path), to 1e-9 in both conventions.
+TEST_P(EveryMachine, ForwardAgreesWithTheFixedPointUncorrect) {
+  std::mt19937_64 rng(7);
+  const double L = model_.tool_length_mm;
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (WorldConvention convention : {WorldConvention::Axes, WorldConvention::Tcp}) {
+    for (int k = 0; k < pose_count() / 5; ++k) {
+      const Joints nominal = random_pose(model_, rng);
+      Joints before = nominal;
+      for (int j = 0; j < model_.joint_count(); ++j)
+        before[j] += unit(rng) * (model_.axes[j].type == AxisType::Linear ? 0.1 : 0.06);
+      const Joints world = nominal_forward(model_, convention, nominal, L);
+      const Joints previous_world = nominal_forward(model_, convention, before, L);
+      Joints joints, back;
+      ASSERT_EQ(joints_from_world(model_, convention, world, L, joints), Status::Ok) << text(world);
+      ASSERT_EQ(world_from_joints(model_, convention, joints, L, Applied{1.0, &previous_world}, back), Status::Ok);
+      const Uncorrection reference = uncorrect(model_, joints, L);
+      ASSERT_EQ(reference.status, Status::Ok) << text(joints);
+      ASSERT_LT((back - nominal_forward(model_, convention, reference.nominal, L)).cwiseAbs().maxCoeff(), 1e-9)
+          << text(world);
+      ASSERT_LT((back - world).cwiseAbs().maxCoeff(), 1e-9) << text(world);
     }
   }
 }

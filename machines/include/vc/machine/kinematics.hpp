@@ -5,11 +5,11 @@
 //   Tcp:  linear world coordinates are the ideal tool tip in the part frame, rotary ones the
 //         rotary joints (tool-centre-point control, as LinuxCNC's xyzbc-trt-kins).
 // Inverse:  world -> nominal joints q_n -> corrected joints q_c = correct(q_n).
-// Forward:  its exact inverse, q_c -> q_n = uncorrect(q_c) -> world, so FK(IK(w)) = w.
+// Forward:  its exact inverse, q_c -> q_n = invert_correction(q_c) -> world, so FK(IK(w)) = w.
 // Real-time: no allocation, no locks, bounded iterations.
 #pragma once
 
-#include "vc/machine/correct.hpp"
+#include "vc/machine/invert_correction.hpp"
 
 namespace vc::machine {
 
@@ -34,7 +34,7 @@ Status world_from_joints(const Model& model, WorldConvention convention, const J
 struct Applied {
   double gain = 1.0;                  // 0: nominal kinematics, 1: full correction
   const Joints* seed = nullptr;       // joints (inverse) or world position (forward), or none
-  static constexpr double kSeedRadius = 1.0;
+  static constexpr double kSeedRadius = machine::kSeedRadius;
 };
 // q = q_n + gain * (correct(q_n) - q_n).
 Status joints_from_world(const Model& model, WorldConvention convention, const Joints& world,

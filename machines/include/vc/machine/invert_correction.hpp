@@ -1,0 +1,33 @@
+// The inverse of the correction map for the servo thread's forward kinematics: the nominal
+// joints q_n whose correction is the given q_c, by Newton on the real machine's pose.
+//
+// Where the correction is full (pole fade f = 1), q_c = correct(q_n) says that the real
+// machine at q_c puts the tool where the ideal machine puts it at q_n (model.md, Correction):
+//     pos P'(q_n) = pos P(q_c),   dir P'(q_n) || dir P(q_c)   (one rotary axis: a . (k' x k) = 0)
+// So q_n is the ideal machine's inverse of one real pose: P(q_c) is evaluated once, then
+// Newton runs on the ideal machine (cheap derivatives, exact Jacobian, quadratic), where the
+// fixed point `uncorrect` evaluates whole corrections (each a Newton on the real machine) until
+// they stop moving. At the pole (f = 0) the rotary joints are not corrected: q_n's are q_c's and
+// the linear joints solve the position alone. The side is judged at the seed and confirmed at
+// the solution (the fade at q_n is what correct() uses). In the band between (0 < f < 1) the
+// rotary joints took f of a full correction found by another solve: the two Newton solves above
+// give q_n to ~1e-7 and `uncorrect` polishes it (two corrections). A partial gain (the enable
+// ramp) is the fixed point's.
+// Real-time: no allocation, no locks, no exceptions; at most 3 Newton solves of
+// max_iterations steps and one bounded `uncorrect`.
+#pragma once
+
+#include "vc/machine/correct.hpp"
+
+namespace vc::machine {
+
+inline constexpr double kSeedRadius = 1.0;
+
+// q_n with q_c = q_n + gain * (correct(q_n) - q_n), the answer of `uncorrect` (to the solver
+// tolerances), Newton started at `nominal_seed` (the previous answer), or at q_c where the seed
+// is farther than kSeedRadius (mm or deg, any joint) from it.
+// `iterations` counts the ideal machine's Newton steps plus the corrections evaluated.
+Uncorrection invert_correction(const Model& model, const Joints& corrected, double tool_length_mm, double gain,
+                               const Joints& nominal_seed) noexcept;
+
+}  // namespace vc::machine

@@ -1,0 +1,165 @@
+#include "vc/machine/invert_correction.hpp"
+
+#include <Eigen/LU>
+#include <cmath>
+
+#include "vc/machine/correction_equations.hpp"
+
+namespace vc::machine {
+namespace {
+
+// The ideal machine at the current guess, with the derivatives Newton and the pole angle need.
+struct IdealPose {
+  ToolPose pose;
+  PoseDerivatives d;
+};
+
+// One Newton step of the ideal machine's equations, by blocks. The ideal machine's linear axes
+// only translate, so the direction rows do not depend on the linear joints: the rotary steps
+// solve the direction rows alone (1 x 1 or 2 x 2), then the linear steps the position rows
+// less what the rotary steps do to the tip (3 x 3). The same step as the full system's, at a
+// fraction of a 5 x 5 LU's cost. False if a block is singular (the pole; degenerate axes).
+bool block_step(const CorrectionTarget& target, const PoseDerivatives& d, const Joints& residual,
+                const std::array<int, 3>& linear, const std::array<int, 2>& rotary, Joints& q) noexcept {
+  const int n = target.direction_equations;
+  double dr[2] = {0.0, 0.0};  // rotary steps
+  if (n > 0) {
+    double a[2][2];
+    for (int c = 0; c < n; ++c) {
+      const Eigen::Vector3d rate = target.direction.cross(d.direction.col(rotary[c]));
+      for (int m = 0; m < n; ++m) a[m][c] = target.basis[m].dot(rate);
+    }
+    if (n == 1) {
+      if (!(std::abs(a[0][0]) > 0.0)) return false;
+      dr[0] = -residual[3] / a[0][0];
+    } else {
+      const double det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+      if (!(std::abs(det) > 0.0)) return false;
+      dr[0] = (-residual[3] * a[1][1] + residual[4] * a[0][1]) / det;
+      dr[1] = (-residual[4] * a[0][0] + residual[3] * a[1][0]) / det;
+    }
+  }
+  Eigen::Vector3d b = -residual.head<3>();
+  for (int c = 0; c < n; ++c) b -= d.tip.col(rotary[c]) * dr[c];
+  Eigen::Matrix3d t;
+  for (int c = 0; c < 3; ++c) t.col(c) = d.tip.col(linear[c]);
+  const Eigen::PartialPivLU<Eigen::Matrix3d> lu(t);
+  if (!(std::abs(lu.determinant()) > 0.0)) return false;
+  const Eigen::Vector3d dl = lu.solve(b);
+  if (!dl.allFinite() || !std::isfinite(dr[0]) || !std::isfinite(dr[1])) return false;
+  for (int c = 0; c < 3; ++c) q[linear[c]] += dl[c];
+  for (int c = 0; c < n; ++c) q[rotary[c]] += dr[c];
+  return true;
+}
+
+// Newton on the ideal machine: its tip onto target.tip_mm and, with direction equations, its
+// tool direction parallel to target.direction (the real machine's pose at q_c). The unknowns
+// are all joints (with direction equations) or the linear ones (without: the rotary joints
+// stay). Exact Jacobian at every step: the ideal machine's derivatives are cheap, and the
+// rotary joints' trigonometry makes a frozen one converge slowly. `ideal` holds the pose at q
+// if `evaluated`, and returns the pose at the final q.
+Status ideal_newton(const Model& model, const CorrectionTarget& target, double tool_length_mm, Joints& q,
+                    int& iterations, IdealPose& ideal, bool evaluated = false) noexcept {
+  const SolverOptions& opt = model.solver;
+  std::array<int, 3> linear{};
+  std::array<int, 2> rotary{};
+  int linear_count = 0, rotary_count = 0;
+  for (int j = 0; j < model.joint_count(); ++j) {
+    if (model.axes[j].type == AxisType::Linear) {
+      if (linear_count == 3) return Status::Singular;  // not a square system
+      linear[linear_count++] = j;
+    } else if (rotary_count < target.direction_equations) {
+      rotary[rotary_count++] = j;
+    }
+  }
+  if (linear_count != 3 || rotary_count != target.direction_equations) return Status::Singular;
+  const int equations = 3 + target.direction_equations;
+  for (int step = 0;; ++step) {
+    if (step > 0 || !evaluated) ideal.pose = tool_pose(model, Machine::Ideal, q, tool_length_mm, ideal.d);
+    const Joints residual = correction_residual(target, ideal.pose, equations);
+    if (!residual.allFinite()) return Status::NonFinite;
+    const double position = residual.head(3).norm();
+    const double direction = std::sqrt(direction_squared_norm(residual));
+    if (position <= opt.position_tolerance_mm && direction <= opt.direction_tolerance_rad) return Status::Ok;
+    if (step == opt.max_iterations) return Status::NotConverged;
+    if (!block_step(target, ideal.d, residual, linear, rotary, q)) return Status::Singular;
+    ++iterations;
+  }
+}
+
+double fade_at(const Model& model, const IdealPose& ideal) noexcept {
+  return fade_factor(model.fade, pole_angle_at(model, ideal.pose, ideal.d));
+}
+
+// The rotary joints of `from` copied into `q`.
+void set_rotary(const Model& model, const Joints& from, Joints& q) noexcept {
+  for (int j = 0; j < model.joint_count(); ++j)
+    if (model.axes[j].type == AxisType::Rotary) q[j] = from[j];
+}
+
+}  // namespace
+
+Uncorrection invert_correction(const Model& model, const Joints& corrected, double tool_length_mm, double gain,
+                               const Joints& nominal_seed) noexcept {
+  Uncorrection out;
+  out.nominal = corrected;
+  if (!corrected.allFinite() || !nominal_seed.allFinite() || !std::isfinite(gain) ||
+      !std::isfinite(tool_length_mm)) {
+    out.status = Status::NonFinite;
+    return out;
+  }
+  if (gain == 0.0) return out;  // nothing applied: the joints are the nominal ones
+  if (gain != 1.0) return uncorrect(model, corrected, tool_length_mm, gain, nominal_seed);
+
+  // Newton needs a start near the answer (a far one may lie nearer another turn of a rotary
+  // joint or another branch of the ideal inverse); q_c is always within the correction.
+  const bool near = nominal_seed.size() == corrected.size() &&
+                    (nominal_seed - corrected).cwiseAbs().maxCoeff() <= kSeedRadius;
+  const Joints start = near ? nominal_seed : corrected;
+  const ToolPose real = tool_pose(model, Machine::Real, corrected, tool_length_mm);
+  IdealPose ideal;
+  Joints q = start;
+  CorrectionTarget position{real.tip_mm, real.direction, {}, 0};
+  if (model.rotary_count() == 0) {
+    out.status = ideal_newton(model, position, tool_length_mm, q, out.iterations, ideal);
+    out.nominal = q;
+    return out;
+  }
+
+  // Which side of the fade band: judged at the seed, confirmed at the solution.
+  ideal.pose = tool_pose(model, Machine::Ideal, q, tool_length_mm, ideal.d);
+  // Basis perpendicular to the real direction (two rotary axes), or the rotary axis line (one:
+  // the same in the part frame at every q, only linear axes move it).
+  const CorrectionTarget full = full_target(model, real, ideal.d);
+  bool evaluated = true;  // `ideal` holds the pose at q
+  if (fade_at(model, ideal) == 0.0) {  // at the pole: the rotary joints are not corrected
+    set_rotary(model, corrected, q);
+    const Status s = ideal_newton(model, position, tool_length_mm, q, out.iterations, ideal);
+    if (s == Status::Ok && fade_at(model, ideal) == 0.0) {
+      out.nominal = q;
+      return out;
+    }
+    q = start;
+    evaluated = false;
+  }
+  // Full correction (and the fade band's first estimate).
+  Status s = ideal_newton(model, full, tool_length_mm, q, out.iterations, ideal, evaluated);
+  double fade = s == Status::Ok ? fade_at(model, ideal) : 0.0;
+  if (s == Status::Ok && fade == 1.0) {
+    out.nominal = q;
+    return out;
+  }
+  if (s != Status::Ok) q = corrected;  // near the pole the full system may be singular: no estimate
+  // The fade band: q_c's rotary joints are q_n's plus f(q_n) times their full correction, which
+  // at q_n is nearly what it is at the full solution q (slopes ~1e-4).
+  Joints estimate = start;
+  for (int j = 0; j < model.joint_count(); ++j)
+    if (model.axes[j].type == AxisType::Rotary) estimate[j] = corrected[j] - fade * (corrected[j] - q[j]);
+  s = ideal_newton(model, position, tool_length_mm, estimate, out.iterations, ideal);
+  if (s != Status::Ok) estimate = corrected;
+  Uncorrection polished = uncorrect(model, corrected, tool_length_mm, 1.0, estimate);
+  polished.iterations += out.iterations;
+  return polished;
+}
+
+}  // namespace vc::machine

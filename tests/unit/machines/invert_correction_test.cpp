@@ -1,0 +1,154 @@
+// invert_correction (the forward kinematics' Newton on the real pose) against two independent
+// computations: the nominal joints the corrected ones were made from (correct() of known q_n),
+// and the fixed point `uncorrect`, which only ever evaluates whole corrections. To 1e-9 on every
+// shipped machine and the test machines (a rotary head; one rotary axis), with the seeds the
+// servo thread gives (the previous cycle's answer, q_c itself, a far one), through the MC-300's
+// pole fade band, and for a partial gain. Seeded; VC_RANDOM_POSES overrides the pose count.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "test_support.hpp"
+#include "vc/machine/invert_correction.hpp"
+#include "vc/machine/load_machine.hpp"
+
+namespace vc::machine {
+namespace {
+
+int pose_count() {
+  const char* env = std::getenv("VC_RANDOM_POSES");
+  return env ? std::atoi(env) : 4000;
+}
+
+Joints random_pose(const Model& model, std::mt19937_64& rng) {
+  Joints q(model.joint_count());
+  for (int j = 0; j < model.joint_count(); ++j)
+    q[j] = std::uniform_real_distribution<double>(model.axes[j].travel_min, model.axes[j].travel_max)(rng);
+  return q;
+}
+
+std::string text(const Joints& q) {
+  std::ostringstream s;
+  s.precision(17);
+  s << q.transpose();
+  return s.str();
+}
+
+double max_difference(const Joints& a, const Joints& b) { return (a - b).cwiseAbs().maxCoeff(); }
+
+Model load(const std::string& name) {
+  for (const char* test_only : {"bc_head", "xyza_table"})
+    if (name == test_only) return load_machine(test::source_path("tests/unit/machines/data/" + name + ".toml"));
+  return load_machine(test::machine_path(name));
+}
+
+std::vector<std::string> machines() {
+  std::vector<std::string> all = test::shipped_machines();
+  all.push_back("bc_head");
+  all.push_back("xyza_table");
+  return all;
+}
+
+class EveryMachine : public ::testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override { model_ = load(GetParam()); }
+  Model model_;
+};
+
+// The servo thread's seeds: the previous cycle's answer (one cycle at 100 mm/s and 60 deg/s
+// at 1 kHz before), the corrected joints themselves, and one too far to help.
+TEST_P(EveryMachine, FindsTheNominalJointsAndAgreesWithTheFixedPoint) {
+  std::mt19937_64 rng(21);
+  const double L = model_.tool_length_mm;
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int newton_only = 0;
+  for (int k = 0; k < pose_count(); ++k) {
+    const Joints nominal = random_pose(model_, rng);
+    const Correction c = correct(model_, nominal, L);
+    ASSERT_EQ(c.status, Status::Ok) << text(nominal);
+    Joints previous = nominal;
+    for (int j = 0; j < model_.joint_count(); ++j)
+      previous[j] += unit(rng) * (model_.axes[j].type == AxisType::Linear ? 0.1 : 0.06);
+    const Uncorrection reference = uncorrect(model_, c.joints, L);
+    ASSERT_EQ(reference.status, Status::Ok) << text(nominal);
+    ASSERT_LT(max_difference(reference.nominal, nominal), 1e-9) << text(nominal);
+    for (const Joints& seed : {previous, c.joints, random_pose(model_, rng)}) {
+      const Uncorrection u = invert_correction(model_, c.joints, L, 1.0, seed);
+      ASSERT_EQ(u.status, Status::Ok) << describe(u.status) << " at " << text(nominal) << " seed " << text(seed);
+      ASSERT_LT(max_difference(u.nominal, nominal), 1e-9) << text(nominal) << " seed " << text(seed);
+      ASSERT_LT(max_difference(u.nominal, reference.nominal), 1e-9) << text(nominal) << " seed " << text(seed);
+    }
+    // Outside the fade band a near seed needs no correction at all: a few Newton steps.
+    const Uncorrection u = invert_correction(model_, c.joints, L, 1.0, previous);
+    if (c.fade == 0.0 || c.fade == 1.0) {
+      EXPECT_LE(u.iterations, 5) << text(nominal);
+      newton_only += u.iterations <= 5;
+    }
+  }
+  EXPECT_GT(newton_only, pose_count() / 2);
+}
+
+// The enable ramp: a partial correction is the fixed point's business; the answer is the same.
+TEST_P(EveryMachine, PartialGainIsTheFixedPointsAnswer) {
+  std::mt19937_64 rng(22);
+  const double L = model_.tool_length_mm;
+  for (int k = 0; k < pose_count() / 20; ++k) {
+    const Joints nominal = random_pose(model_, rng);
+    const double gain = std::uniform_real_distribution<double>(0.0, 1.0)(rng);
+    const Joints corrected = nominal + gain * (correct(model_, nominal, L).joints - nominal);
+    const Uncorrection u = invert_correction(model_, corrected, L, gain, corrected);
+    ASSERT_EQ(u.status, Status::Ok);
+    ASSERT_LT(max_difference(u.nominal, nominal), 1e-9) << text(nominal) << " gain " << gain;
+  }
+}
+
+TEST_P(EveryMachine, RefusesWhatIsNotANumber) {
+  std::mt19937_64 rng(23);
+  const Joints q = random_pose(model_, rng);
+  Joints nan = q;
+  nan[0] = std::nan("");
+  EXPECT_EQ(invert_correction(model_, nan, 100.0, 1.0, q).status, Status::NonFinite);
+  EXPECT_EQ(invert_correction(model_, q, 100.0, 1.0, nan).status, Status::NonFinite);
+  EXPECT_EQ(invert_correction(model_, q, std::nan(""), 1.0, q).status, Status::NonFinite);
+  EXPECT_EQ(invert_correction(model_, q, 100.0, std::nan(""), q).status, Status::NonFinite);
+  const Uncorrection off = invert_correction(model_, q, 100.0, 0.0, q);
+  EXPECT_EQ(off.status, Status::Ok);
+  EXPECT_EQ(off.nominal, q);
+}
+
+INSTANTIATE_TEST_SUITE_P(Machines, EveryMachine, ::testing::ValuesIn(machines()),
+                         [](const auto& param_info) { return param_info.param; });
+
+// The MC-300's pole is at B = 0 (phi = |B|): a sweep of B through the pole and both fade bands
+// (2 to 10 deg), seeded as the servo thread seeds it, with the previous cycle's answer.
+TEST(PoleFade, Mc300SweepThroughThePoleAgreesWithTheFixedPoint) {
+  const Model model = load_machine(test::machine_path("mc300"));
+  const double L = model.tool_length_mm;
+  Joints nominal(5);
+  nominal << -320.0, -170.0, -140.0, -15.0, 37.0;
+  Joints previous = nominal;
+  int band = 0, pole = 0;
+  for (double b = -15.0; b <= 15.0; b += 0.01) {
+    nominal[3] = b;
+    nominal[4] += 0.005;
+    const Correction c = correct(model, nominal, L);
+    ASSERT_EQ(c.status, Status::Ok) << "b = " << b;
+    band += c.fade > 0.0 && c.fade < 1.0;
+    pole += c.fade == 0.0;
+    const Uncorrection u = invert_correction(model, c.joints, L, 1.0, previous);
+    ASSERT_EQ(u.status, Status::Ok) << describe(u.status) << " at b = " << b;
+    ASSERT_LT(max_difference(u.nominal, nominal), 1e-9) << "b = " << b;
+    ASSERT_LT(max_difference(u.nominal, uncorrect(model, c.joints, L).nominal), 1e-9) << "b = " << b;
+    previous = u.nominal;
+  }
+  EXPECT_GT(band, 1500);
+  EXPECT_GT(pole, 350);
+}
+
+}  // namespace
+}  // namespace vc::machine
