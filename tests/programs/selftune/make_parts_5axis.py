@@ -23,7 +23,10 @@ conical pockets round the part zero; on bc_head, head_draft_a (a 70 x 50 pocket 
 corners, walls drafted 35 deg: the linear axes carry the tool along the straight walls, C turns
 in the corners; beside it an 80 x 14 slot whose vertical walls face the machine's y, cut by the
 tool's side with the head leaning B20 along the slot, which a swarf wall on this machine never
-shows: cut_leaning_slot) and head_cone_b (a cone of 22 deg centred at X-30 Y-25). On bc_head the head
+shows: cut_leaning_slot; and a 24 x 24 x 5 3+2 pocket at B35 C105 (cut_pocket), whose floor,
+cut by the flat end at the swarf's B, shows the errors along the tilted tool that no swarf
+wall or vertical floor does, and whose walls face the machine's y at another C than the
+slot's) and head_cone_b (a cone of 22 deg centred at X-30 Y-25). On bc_head the head
 tilts the tool towards +x of the C frame, so C faces the wall to the tool: B = +tilt, C = the
 wall's azimuth + 15 deg (the fixture's turn); on the MC-300 B = -tilt, C = the azimuth
 (swarf_pose). Checked by assertions: the tool axis from frame() is the wall's slope at every
@@ -121,11 +124,23 @@ def write_plan(name, title, legend, points):
 
 
 def write_part(name, title, b_deg, c_deg, centre, half_u, half_v, depth, machine="mc300"):
-    t, u, v = frame(b_deg, c_deg, machine)
-    at = lambda a, b, h: add(centre, scale(a, u), scale(b, v), scale(-h, t))  # h: depth below the top
     lines = ["%", f"({title})",
              "(tcp world: X Y Z are the tool tip in the part frame; written by make_parts_5axis.py)",
              "G21 G90 G17 G40 G49 G54 G94", "T1 M6", "G43 H1", "S8000 M3"]
+    cut, points = cut_pocket(b_deg, c_deg, centre, half_u, half_v, depth, machine)
+    lines += cut + ["M5", "M2", "%"]
+    with open(os.path.join(HERE, name + ".ngc"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return write_plan(name, title, "FL: floor (normal: the tool axis); WU+ WU- WV+ WV-: walls at three heights, "
+                      "normals into the pocket", points)
+
+
+def cut_pocket(b_deg, c_deg, centre, half_u, half_v, depth, machine, prefix=""):
+    """A 3+2 pocket (the module's docstring): the program lines from the first rapid to the
+    last retract, and its plan points (face names prefixed with `prefix`)."""
+    t, u, v = frame(b_deg, c_deg, machine)
+    at = lambda a, b, h: add(centre, scale(a, u), scale(b, v), scale(-h, t))  # h: depth below the top
+    lines = []
     top = at(0, 0, -SAFE)
     lines.append(f"G0 X{fmt(top[0])} Y{fmt(top[1])} Z{fmt(top[2])} B{fmt(b_deg)} C{fmt(c_deg)}")
     # Floor: raster along u at the floor depth.
@@ -157,9 +172,7 @@ def write_part(name, title, b_deg, c_deg, centre, half_u, half_v, depth, machine
         p = at(a, b, depth)
         lines.append(f"G1 X{fmt(p[0])} Y{fmt(p[1])} Z{fmt(p[2])}")
     p = at(corners[0][0], corners[0][1], -SAFE)
-    lines += [f"G0 X{fmt(p[0])} Y{fmt(p[1])} Z{fmt(p[2])}", "M5", "M2", "%"]
-    with open(os.path.join(HERE, name + ".ngc"), "w") as f:
-        f.write("\n".join(lines) + "\n")
+    lines.append(f"G0 X{fmt(p[0])} Y{fmt(p[1])} Z{fmt(p[2])}")
 
     # CMM plan.
     points = []
@@ -170,22 +183,21 @@ def write_part(name, title, b_deg, c_deg, centre, half_u, half_v, depth, machine
             b = -half_v + 2 + j * (2 * (half_v - 2)) / (n_v - 1)
             # under the flat end of a raster pass (or of the wall pass, at the same depth)
             assert any(abs(b - row) <= RADIUS and lo - RADIUS <= a <= hi + RADIUS for row, lo, hi in floor_passes)
-            points.append(("FL", at(a, b, depth), t))
+            points.append((prefix + "FL", at(a, b, depth), t))
     for h in (2.0, depth / 2, depth - 2.0):
         for sign_u in (1, -1):  # walls u = +-half_u, normals into the pocket
             n = int((2 * (half_v - CORNER)) // 5) + 1
             for j in range(n):
                 b = -half_v + CORNER + j * (2 * (half_v - CORNER)) / (n - 1)
                 assert abs(b) <= half_v - RADIUS  # across from the wall pass, not in a corner's fillet
-                points.append(("WU" + ("+" if sign_u > 0 else "-"), at(sign_u * half_u, b, h), scale(-sign_u, u)))
+                points.append((prefix + "WU" + ("+" if sign_u > 0 else "-"), at(sign_u * half_u, b, h), scale(-sign_u, u)))
         for sign_v in (1, -1):
             n = int((2 * (half_u - CORNER)) // 5) + 1
             for i in range(n):
                 a = -half_u + CORNER + i * (2 * (half_u - CORNER)) / (n - 1)
                 assert abs(a) <= half_u - RADIUS
-                points.append(("WV" + ("+" if sign_v > 0 else "-"), at(a, sign_v * half_v, h), scale(-sign_v, v)))
-    return write_plan(name, title, "FL: floor (normal: the tool axis); WU+ WU- WV+ WV-: walls at three heights, "
-                      "normals into the pocket", points)
+                points.append((prefix + "WV" + ("+" if sign_v > 0 else "-"), at(a, sign_v * half_v, h), scale(-sign_v, v)))
+    return lines, points
 
 
 def swarf_pose(tilt_deg, c_deg, machine):
@@ -288,7 +300,7 @@ def write_cone(name, title, tilt_deg, floor_radius, depth, step_deg=0.2, machine
 
 
 def write_drafted_pocket(name, title, tilt_deg, half_u, half_v, corner, depth, centre, machine="bc_head",
-                         step_deg=0.2, slot=None):
+                         step_deg=0.2, slot=None, pockets=()):
     """A pocket with drafted walls: its foot a rectangle 2 half_u x 2 half_v with corners of
     radius `corner` (above the tool's radius), round `centre` (x, y in the part frame), every
     wall tilted outward by `tilt_deg` (straight walls are planes, corners are cones). The floor
@@ -418,6 +430,10 @@ def write_drafted_pocket(name, title, tilt_deg, half_u, half_v, corner, depth, c
     if slot is not None:
         lines.append(f"G0 Z{fmt(up[2] + SAFE)}")
         lines += cut_leaning_slot(slot, machine, slot_points)
+    for k, pocket in enumerate(pockets):  # 3+2 pockets (cut_pocket's arguments), faces named P1FL, P1WU+, ...
+        cut, more = cut_pocket(*pocket, machine, prefix=f"P{k + 1}")
+        lines += cut
+        slot_points += more
     lines += ["M5", "M2", "%"]
     with open(os.path.join(HERE, name + ".ngc"), "w") as f:
         f.write("\n".join(lines) + "\n")
@@ -440,7 +456,8 @@ def write_drafted_pocket(name, title, tilt_deg, half_u, half_v, corner, depth, c
             out = h * math.tan(a)
             points.append(("WALL", (cx + foot[0] + out * c, cy + foot[1] + out * s_, bottom + h), inward(phi)))
     return write_plan(name, title, "FL: floor (normal +Z); WALL: the drafted walls at three heights, normals into the "
-                      "pocket" + ("; SL: the leaning slot's walls at two heights" if slot else ""), points + slot_points)
+                      "pocket" + ("; SL: the leaning slot's walls at two heights" if slot else "")
+                      + ("; P1FL, P1WU+, ...: the 3+2 pockets' floors and walls" if pockets else ""), points + slot_points)
 
 
 def cut_leaning_slot(slot, machine, points):
@@ -488,8 +505,8 @@ if __name__ == "__main__":
                      28, 24, 12))
     print(write_drafted_pocket("head_draft_a", "5-axis swarf on bc_head, head B35 and table C: a 70 x 50 pocket, corners "
                                "R15, walls drafted 35 deg, 15 deep, C turning 360 deg, and its floor; a slot cut by the "
-                               "tool leaning 20 deg along it", 35, 35, 25, 15, 15, (20.0, 10.0), slot=(20.0, -50.0, 40.0,
-                                                                                                     14.0, 6.0)))
+                               "tool leaning 20 deg along it; a 3+2 pocket at B35 C105", 35, 35, 25, 15, 15, (20.0, 10.0),
+                               slot=(20.0, -50.0, 40.0, 14.0, 6.0), pockets=[(35, 105, (-65.0, 10.0, 0.0), 12, 12, 5)]))
     print(write_cone("head_cone_b", "5-axis swarf on bc_head, head B22 and table C: a conical pocket, wall tilted 22 deg, "
                      "centred at X-30 Y-25, C turning 360 deg, and its floor", 22, 24, 12, machine="bc_head",
                      centre=(-30.0, -25.0)))
