@@ -2,8 +2,10 @@
 // independent MC-300 reference, and file:line:column messages for bad input.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -203,6 +205,50 @@ TEST(VolcompCli, IdentifyLaserMachineOutReplacesTheErrorOfTheAxis) {
   EXPECT_NE(r.out.find("the machine file's or its table's own folder"), std::string::npos) << r.out;
   std::filesystem::remove_all(folder);
   std::filesystem::remove_all(folder + "_thermal");
+}
+
+// The main job's laser half: a true MC-300 whose X has a pitch error the file lacks (perturb
+// --add-table), the simulated laser (preproc/identify/simulate-laser-runs: 5 runs each way,
+// reversal 1.5 um, noise 0.5 um + 0.5 um/m) on it, identify laser into the nominal file: the
+// identified file's EXX at the tip is the true machine's within 3.5 standard errors of the
+// bidirectional mean at every target, and the reversal comes back.
+TEST(VolcompCli, SimulatedLaserRunsOnATrueMachineGiveItsTableBack) {
+  const std::string folder = (std::filesystem::temp_directory_path() / "vc_cli_simulated_laser").string();
+  std::filesystem::remove_all(folder);
+  std::string pitch = "x[mm],EXX[um]\n";
+  for (int x = -600; x <= 0; x += 25) pitch += std::to_string(x) + "," + std::to_string(4 * std::sin(x / 70.0) + 0.012 * (x + 600)) + "\n";
+  auto r = test::run_volcomp("perturb " + kMc300 + " -o " + folder + "/true --add-table " + write_temp("sim_pitch.csv", pitch));
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  std::string targets;
+  for (int x = -600; x <= 0; x += 50) targets += std::to_string(x) + " ";
+  const std::string runs = folder + "/runs.csv";
+  const std::string command = test::source_path("preproc/identify/simulate-laser-runs") + " " + VC_VOLCOMP + " " + folder +
+                              "/true/mc300.toml EXX x,y,z,b,c 0,-160,-150,0,0 '" + targets + "' 7 > " + runs;
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  r = test::run_volcomp("identify laser " + runs + " --error EXX --machine " + kMc300 + " --machine-out " + folder + "/laser");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const std::size_t at = r.out.find("(mean ", r.out.find("reversal value B"));
+  ASSERT_NE(at, std::string::npos) << r.out;
+  EXPECT_NEAR(std::stod(r.out.substr(at + 6)), 1.5, 0.3) << r.out;  // 13 targets' mean reversal
+
+  std::string poses = "x,y,z,b,c\n";
+  for (int x = -600; x <= 0; x += 50) poses += std::to_string(x) + ",-160,-150,0,0\n";
+  const std::string poses_file = write_temp("sim_poses.csv", poses);
+  const test::CsvTable truth(write_temp("sim_truth.csv", test::run_volcomp("error " + folder + "/true/mc300.toml --poses " +
+                                                                           poses_file + " --only EXX").out));
+  const test::CsvTable got(write_temp("sim_got.csv", test::run_volcomp("error " + folder + "/laser/mc300.toml --poses " +
+                                                                         poses_file + " --only EXX").out));
+  const test::CsvTable nominal(write_temp("sim_nominal.csv", test::run_volcomp("error " + kMc300 + " --poses " +
+                                                                               poses_file + " --only EXX").out));
+  ASSERT_EQ(got.size(), 13u);
+  double off_nominal = 0;
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    const double x = got.at(i, "x"), sigma_um = 0.5 + 0.5 * (x + 600) / 1000;  // the laser's noise there
+    EXPECT_NEAR(got.at(i, "ex") * 1e3, truth.at(i, "ex") * 1e3, 3.5 * sigma_um / std::sqrt(10.0)) << "x = " << x;
+    off_nominal = std::max(off_nominal, std::abs(truth.at(i, "ex") - nominal.at(i, "ex")) * 1e3);
+  }
+  EXPECT_GT(off_nominal, 5.0);  // the truth is far from the file: the check above can fail
+  std::filesystem::remove_all(folder);
 }
 
 // A rotary axis indexed against a reference over one full turn (ECC, arcsec): 0 and 360 deg are
