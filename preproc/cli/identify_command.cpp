@@ -35,7 +35,6 @@ std::string shown(double v, tables::Quantity q) {
                                        : format_fixed(v * 648000.0 / M_PI, 2) + " arcsec (" + format_fixed(v * 1e6, 1) + " urad)";
 }
 
-
 // The text of a table file with one column's cells 0, everything else as it is (comments,
 // units, digits), `comment` first.
 std::string zeroed_copy(const tables::ErrorTable& table, int column, const std::string& comment) {
