@@ -28,6 +28,8 @@ struct IdentifyLaserArgs {
   std::string output;              // error table CSV (optional)
   std::string direction = "both";  // the table's value: both (mean bidirectional), up or down
   bool keep_all = false;           // keep the suspicious runs in the evaluation
+  std::string machine;             // machine file whose axis takes the table (optional)
+  std::string machine_out;         // folder: the table and a copy of the machine file using it
 };
 
 struct IdentifyCircleArgs {
@@ -149,6 +151,7 @@ struct PerturbArgs {
   double low = 0.2, high = 0.5;
   unsigned seed = 1;
   std::vector<std::string> locations;  // "EX0C=15um": only these location errors, changed by these
+  std::vector<std::string> add_tables; // error tables the true machine has in addition (each under its columns' axis)
 };
 
 int run_perturb(const PerturbArgs& args, std::ostream& report);

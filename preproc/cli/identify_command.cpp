@@ -2,8 +2,10 @@
 // cycle) evaluated as ISO 230-2 does, suspicious runs left out with the reason, and the error
 // table written in the project's CSV format with the measurement's metadata
 // (preproc/identify/README.md).
+#include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <set>
@@ -19,6 +21,7 @@
 #include "vc/identify/sphere_centres.hpp"
 #include "vc/identify/laser_runs.hpp"
 #include "vc/machine/load_machine.hpp"
+#include "vc/tables/csv.hpp"
 #include "vc/tables/source_error.hpp"
 #include "vc/shop/table_set.hpp"
 #include "vc/tables/symbols.hpp"
@@ -32,6 +35,72 @@ std::string shown(double v, tables::Quantity q) {
                                        : format_fixed(v * 648000.0 / M_PI, 2) + " arcsec (" + format_fixed(v * 1e6, 1) + " urad)";
 }
 
+// The text of a table file with one column's cells 0, everything else as it is (comments,
+// units, digits), `comment` first.
+std::string zeroed_copy(const tables::ErrorTable& table, int column, const std::string& comment) {
+  const SourceLocation& header = table.columns()[static_cast<std::size_t>(column)].where;
+  std::ifstream in(table.path());
+  if (!in) throw std::runtime_error("cannot read " + table.path());
+  std::string text = "# " + comment + "\n";
+  int cell = -1;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const std::vector<tables::CsvCell> cells = tables::split_csv_line(line);
+    if (number == header.line) {
+      for (std::size_t k = 0; k < cells.size(); ++k)
+        if (cells[k].column == header.column) cell = static_cast<int>(k);
+    } else if (number > header.line && cell >= 0 && static_cast<int>(cells.size()) > cell &&
+               line.find_first_not_of(" \t\r") != std::string::npos && line[line.find_first_not_of(" \t")] != '#') {
+      const std::size_t begin = static_cast<std::size_t>(cells[static_cast<std::size_t>(cell)].column) - 1;
+      const std::size_t end = std::min(line.find(',', begin), line.find_last_not_of("\r \t") + 1);
+      line = line.substr(0, begin) + "0" + line.substr(end);
+    }
+    text += line + "\n";
+  }
+  if (cell < 0) throw std::runtime_error(header.to_string() + ": cannot find this column again");
+  return text;
+}
+
+// The identified table in place of the error's old values on the axis: the axis's table that
+// holds the error's column is copied (under its own file name, so that its entry in the machine
+// file, with its interpolation, scale and measured_at_mm, points at the copy) with that column
+// zero, and the identified table is listed beside it (an axis's tables add up). Several tables
+// holding the error, or one over another axis or a temperature, are refused: which part of the
+// sum the runs replace is the user's call. Returns the tables to write.
+std::vector<shop::ExtraTable> replacing_tables(const machine::Model& model, int joint, const tables::ErrorSymbol& symbol,
+                                               shop::ExtraTable identified, const std::string& folder) {
+  namespace fs = std::filesystem;
+  std::vector<shop::ExtraTable> extras;
+  const tables::ErrorTable* holder = nullptr;
+  int column = -1;
+  for (const int t : model.axes[static_cast<std::size_t>(joint)].tables) {
+    const tables::ErrorTable& table = model.tables[static_cast<std::size_t>(t)].table;
+    for (std::size_t c = 0; c < table.columns().size(); ++c) {
+      if (table.columns()[c].symbol.name() != symbol.name()) continue;
+      if (holder)
+        throw std::runtime_error(symbol.name() + " is in two tables of axis " + std::string(1, symbol.axis) + " (" +
+                                 holder->path() + ", " + table.path() + "): their sum is what the runs measured; " +
+                                 "leave it in one of them");
+      holder = &table;
+      column = static_cast<int>(c);
+    }
+  }
+  if (holder && (holder->grid().size() != 1 || holder->grid()[0].axis != symbol.axis))
+    throw std::runtime_error(holder->path() + " holds " + symbol.name() + " over other grid variables than " +
+                             std::string(1, static_cast<char>(std::tolower(symbol.axis))) +
+                             ": the runs measured it at one of their values; which part they replace is not clear");
+  const std::string name = holder ? fs::path(holder->path()).filename().string() : std::string();
+  fs::create_directories(folder);
+  if (fs::equivalent(folder, fs::path(model.path).parent_path()) ||
+      (holder && fs::equivalent(folder, fs::path(holder->path()).parent_path())))
+    throw std::runtime_error("--machine-out " + folder + ": the machine file's or its table's own folder; give a new one");
+  if (holder && name != identified.file_name)
+    extras.push_back({joint, name, *holder, {},
+                      zeroed_copy(*holder, column, "a copy of " + holder->path() + " with " + symbol.name() + " zero: " +
+                                                       identified.file_name + " holds it (volcomp identify laser)")});
+  extras.push_back(std::move(identified));
+  return extras;
+}
 }  // namespace
 
 int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
@@ -88,34 +157,38 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
       << ") is not part of the geometric model: it stays uncorrected (a backlash compensation in the drive's INI takes "
          "it).\n";
 
+  // The table: one row per target, ascending (a rotary axis over exactly one turn: 0 and 360 deg
+  // are one position, whose two readings are averaged, as the loader requires of a periodic table).
+  const auto value = [&](const identify::TargetStatistics& t) {
+    return args.direction == "up" ? t.mean_up : args.direction == "down" ? t.mean_down : t.mean;
+  };
+  const bool full_turn = runs.rotary && e.targets.size() > 2 &&
+                         std::abs(e.targets.back().target - e.targets.front().target - 360.0) < 1e-9;
+  std::vector<std::pair<double, double>> rows;  // target (mm or deg), value (mm or rad)
+  for (const identify::TargetStatistics& t : e.targets) rows.emplace_back(t.target, value(t));
+  if (full_turn) rows.front().second = rows.back().second = (rows.front().second + rows.back().second) / 2;
+  std::sort(rows.begin(), rows.end());
+  std::vector<std::string> comments = {
+      args.error + " identified by volcomp identify laser from " + args.runs + " (ISO 230-2: " +
+      std::to_string(e.runs_up) + " runs up, " + std::to_string(e.runs_down) + " down" +
+      (left_out.empty() ? "" : ", " + std::to_string(left_out.size()) + " left out") + ")"};
+  for (const auto& [key, text] : runs.metadata) comments.push_back(key + ": " + text);
+  comments.push_back("value: " + (args.direction == "both" ? std::string("mean bidirectional deviation")
+                                                          : args.direction + " runs' mean") +
+                     "; reversal B " + shown(e.reversal, q) + ", repeatability R " + shown(e.repeatability, q) +
+                     ", accuracy A " + shown(e.accuracy, q));
+
   if (!args.output.empty()) {
     write_atomically(args.output, [&](std::ostream& csv) {
-      csv << "# " << args.error << " identified by volcomp identify laser from " << args.runs << " (ISO 230-2: "
-          << e.runs_up << " runs up, " << e.runs_down << " down"
-          << (left_out.empty() ? "" : ", " + std::to_string(left_out.size()) + " left out") << ")\n";
-      for (const auto& [key, value] : runs.metadata) csv << "# " << key << ": " << value << "\n";
-      csv << "# value: " << (args.direction == "both" ? "mean bidirectional deviation" : args.direction + " runs' mean")
-          << "; reversal B " << shown(e.reversal, q) << ", repeatability R " << shown(e.repeatability, q)
-          << ", accuracy A " << shown(e.accuracy, q) << "\n# error = actual - nominal\n";
+      for (const std::string& c : comments) csv << "# " << c << "\n";
+      csv << "# error = actual - nominal\n";
       csv << static_cast<char>(std::tolower(symbol->axis)) << (runs.rotary ? "[deg]" : "[mm]") << "," << args.error
           << (q == tables::Quantity::Length ? "[um]" : "[urad]") << "\n";
-      const auto value = [&](const identify::TargetStatistics& t) {
-        return args.direction == "up" ? t.mean_up : args.direction == "down" ? t.mean_down : t.mean;
-      };
-      // A rotary axis measured over exactly one turn: 0 and 360 deg are one position, whose
-      // two readings are averaged (the table is periodic: its first and last rows must agree).
-      const bool full_turn = runs.rotary && e.targets.size() > 2 &&
-                             std::abs(e.targets.back().target - e.targets.front().target - 360.0) < 1e-9;
-      const double seam = full_turn ? (value(e.targets.front()) + value(e.targets.back())) / 2 : 0.0;
-      for (std::size_t k = 0; k < e.targets.size(); ++k) {
-        const bool end = full_turn && (k == 0 || k + 1 == e.targets.size());
-        csv << format_number(e.targets[k].target) << "," << format_fixed((end ? seam : value(e.targets[k])) * unit, 4)
-            << "\n";
-      }
+      for (const auto& [target, v] : rows) csv << format_number(target) << "," << format_fixed(v * unit, 4) << "\n";
     });
     std::string measured_at;
-    for (const auto& [key, value] : runs.metadata)
-      if (key == "measured_at_mm") measured_at = value;
+    for (const auto& [key, text] : runs.metadata)
+      if (key == "measured_at_mm") measured_at = text;
     out << "table written: " << args.output << "; in the machine file, under axis " << symbol->axis << ":\n"
         << "  [[<workpiece_chain or tool_chain>.tables]]\n  file = \"" << args.output << "\"\n";
     if (!measured_at.empty())
@@ -123,6 +196,36 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
     else
       out << "  # measured_at_mm = [x, y, z] if the optics sat away from the tool (machines/README.md section 5)\n";
   }
+  if (!args.machine_out.empty() && args.machine.empty())
+    throw std::runtime_error("--machine-out needs --machine: the machine file whose axis takes the table");
+  if (args.machine.empty()) return 0;
+  const machine::Model model = machine::load_machine(args.machine);
+  const int joint = model.joint_of(symbol->axis);
+  if (joint < 0)
+    throw std::runtime_error(args.error + " is an error of axis " + std::string(1, symbol->axis) + ", which " +
+                             model.info.name + " (" + args.machine + ") does not have");
+  if (args.machine_out.empty()) return 0;
+  tables::GridVariable grid;
+  grid.axis = symbol->axis;
+  grid.rotary = runs.rotary;
+  grid.periodic = full_turn;
+  std::vector<double> values;
+  for (const auto& [target, v] : rows) {
+    grid.nodes.push_back(target);
+    values.push_back(v);
+  }
+  const std::string name = std::string(1, static_cast<char>(std::tolower(symbol->axis))) + "_" + args.error + "_laser.csv";
+  const std::vector<shop::ExtraTable> extras = replacing_tables(
+      model, joint, *symbol,
+      {joint, name, tables::ErrorTable(name, {grid}, {{*symbol, {name}}}, values, tables::Interpolation::Linear), comments},
+      args.machine_out);
+  const std::string written = shop::write_machine_with_tables(model, args.machine_out, extras,
+                                                              "volcomp identify laser from " + args.runs);
+  machine::load_machine(written);  // it loads
+  out << "machine file written: " << written << " (axis " << symbol->axis << ": " << args.error << " from " << name;
+  if (extras.size() > 1)
+    out << "; in " << extras.front().file_name << ", the copy of the table that held it, " << args.error << " is zero";
+  out << ")\n";
   return 0;
 }
 

@@ -128,6 +128,9 @@ int main(int argc, char** argv) {
   perturb_cmd->add_option("--location", perturb.locations,
                           "change only this location error by this much, tables kept, e.g. --location EX0C=15um "
                           "--location EA0C=-3arcsec (um, mm, arcsec, urad; repeatable)");
+  perturb_cmd->add_option("--add-table", perturb.add_tables,
+                          "an error table the true machine has in addition to the file's, listed under the axis its "
+                          "columns name (repeatable; with or without --location)");
 
   vc::cli::SelftuneArgs selftune;
   CLI::App* selftune_cmd = app.add_subcommand(
@@ -203,6 +206,9 @@ int main(int argc, char** argv) {
   laser_cmd->add_option("--direction", laser.direction, "the table's value: both (mean bidirectional), up or down")
       ->capture_default_str();
   laser_cmd->add_flag("--keep-all", laser.keep_all, "keep the suspicious runs in the evaluation");
+  laser_cmd->add_option("--machine", laser.machine, "machine file whose axis takes the identified table");
+  laser_cmd->add_option("--machine-out", laser.machine_out,
+                        "folder: the table and a copy of the machine file with it in place of the error's old values");
   vc::cli::IdentifyCircleArgs circle;
   CLI::App* circle_cmd = identify_cmd->add_subcommand(
       "circle", "Circular test / ballbar (ISO 230-4): G, H, centre, squareness, scale mismatch, reversal spikes");

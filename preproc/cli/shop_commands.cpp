@@ -1,6 +1,7 @@
 // volcomp simulate and volcomp measure: the virtual shop. A program runs on a "true"
 // machine and leaves a tool path; a virtual CMM measures the surface that path machined.
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -13,6 +14,7 @@
 #include "vc/shop/cmm.hpp"
 #include "vc/shop/machined_surface.hpp"
 #include "vc/shop/table_set.hpp"
+#include "vc/tables/load_table.hpp"
 #include "vc/tables/source_error.hpp"
 #include "vc/tables/symbols.hpp"
 
@@ -92,11 +94,29 @@ int run_measure(const MeasureArgs& args, std::ostream& report) {
 
 namespace {
 
-// --location EX0C=15um ...: a true machine that differs from the file in these location errors
-// only (by these amounts), e.g. to prove an identification of them on it.
-int perturb_locations(const machine::Model& model, const PerturbArgs& args, std::ostream& report) {
-  std::vector<shop::LocationValue> values;
+// --location EX0C=15um ... and --add-table FILE ...: a true machine that differs from the file in
+// these location errors only (by these amounts) and has these tables in addition to its own (each
+// listed under the axis its error columns name, summed with that axis's tables), e.g. to prove an
+// identification of them on it.
+int perturb_named(const machine::Model& model, const PerturbArgs& args, std::ostream& report) {
+  std::vector<shop::ExtraTable> extras;
   std::string changed;
+  for (const std::string& file : args.add_tables) {
+    tables::ErrorTable table = tables::load_table(file);
+    const char letter = table.columns().front().symbol.axis;
+    const int joint = model.joint_of(letter);
+    if (joint < 0)
+      throw std::runtime_error("--add-table " + file + ": its errors are of axis " + std::string(1, letter) + ", which " +
+                               model.info.name + " does not have");
+    const std::string name = std::filesystem::path(file).filename().string();
+    for (const int t : model.axes[static_cast<std::size_t>(joint)].tables)
+      if (std::filesystem::path(model.tables[static_cast<std::size_t>(t)].table.path()).filename() == name)
+        throw std::runtime_error("--add-table " + file + ": axis " + std::string(1, letter) +
+                                 " already lists a table of that name; rename it");
+    extras.push_back({joint, name, std::move(table), {"added by volcomp perturb --add-table " + file}});
+    changed += (changed.empty() ? "" : ", ") + std::string("table ") + name + " added under " + letter;
+  }
+  std::vector<shop::LocationValue> values;
   for (const std::string& spec : args.locations) {
     const std::size_t eq = spec.find('=');
     const auto symbol = tables::parse_error_symbol(spec.substr(0, eq));
@@ -123,13 +143,13 @@ int perturb_locations(const machine::Model& model, const PerturbArgs& args, std:
     const machine::Axis& a = model.axes[static_cast<std::size_t>(joint)];
     const double before = length ? a.location_mm[symbol->component] : a.location_rad[symbol->component - 3];
     values.push_back({joint, symbol->component, before + v * scale.at(unit)});
-    changed += (changed.empty() ? "" : ", ") + spec;
+    changed += (changed.empty() ? "" : ", ") + std::string("location ") + spec;
   }
-  const std::string written =
-      shop::write_machine_with_tables(model, args.folder, {}, "a true machine: location errors changed by " + changed +
-                                                                 " (volcomp perturb --location)", values);
+  const std::string written = shop::write_machine_with_tables(
+      model, args.folder, extras, "a true machine: " + changed + " (volcomp perturb)", values);
   machine::load_machine(written);  // it loads
-  report << "volcomp perturb: " << written << " (" << values.size() << " location errors changed, tables kept)\n";
+  report << "volcomp perturb: " << written << " (" << values.size() << " location errors changed, " << extras.size()
+         << " tables added, the file's tables kept)\n";
   return 0;
 }
 
@@ -139,7 +159,7 @@ int run_perturb(const PerturbArgs& args, std::ostream& report) {
   if (!(args.low >= 0 && args.low <= args.high && args.high <= 2))
     throw std::runtime_error("need 0 <= --low <= --high <= 2");
   const machine::Model model = machine::load_machine(args.machine);
-  if (!args.locations.empty()) return perturb_locations(model, args, report);
+  if (!args.locations.empty() || !args.add_tables.empty()) return perturb_named(model, args, report);
   const std::vector<shop::ExtraTable> extras = shop::perturbation_tables(model, args.low, args.high, args.seed);
   const std::vector<shop::LocationValue> locations = shop::perturbation_locations(model, args.low, args.high, args.seed);
   const std::string written = shop::write_machine_with_tables(

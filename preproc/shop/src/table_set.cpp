@@ -198,9 +198,16 @@ std::string write_machine_with_tables(const machine::Model& model, const std::st
   // one of its sub-tables, and before the comments that lead into that header.
   for (const ExtraTable& e : extras) {
     const char letter = model.axes[static_cast<std::size_t>(e.joint)].letter;
-    write_table_csv(e.table, (out_dir / e.file_name).string(),
-                    {comment, "error = actual - nominal; summed with the axis's other tables",
-                     "units: positions mm or deg, translations um, rotations urad"});
+    std::vector<std::string> comments = {comment, "error = actual - nominal; summed with the axis's other tables",
+                                         "units: positions mm or deg, translations um, rotations urad"};
+    comments.insert(comments.end(), e.comments.begin(), e.comments.end());
+    if (e.text.empty()) {
+      write_table_csv(e.table, (out_dir / e.file_name).string(), comments);
+    } else {
+      std::ofstream copy(out_dir / e.file_name, std::ios::trunc);
+      copy << e.text;
+      if (!copy) throw std::runtime_error("cannot write " + (out_dir / e.file_name).string());
+    }
     if (std::find(existing.begin(), existing.end(), std::pair(letter, e.file_name)) != existing.end()) continue;
     const auto section = std::find_if(sections.begin(), sections.end(), [&](const AxisSection& s) { return s.letter == letter; });
     if (section == sections.end()) throw std::runtime_error("axis " + std::string(1, letter) + " has no section in " + model.path);
