@@ -16,30 +16,16 @@
 
 #include "test_support.hpp"
 #include "vc/machine/kinematics.hpp"
+#include "random_poses.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/tables/units.hpp"
 
 namespace vc::machine {
 namespace {
 
-int pose_count() {
-  const char* env = std::getenv("VC_RANDOM_POSES");
-  return env ? std::atoi(env) : 10000;
-}
-
-Joints random_pose(const Model& model, std::mt19937_64& rng) {
-  Joints q(model.joint_count());
-  for (int j = 0; j < model.joint_count(); ++j)
-    q[j] = std::uniform_real_distribution<double>(model.axes[j].travel_min, model.axes[j].travel_max)(rng);
-  return q;
-}
-
-std::string text(const Joints& q) {
-  std::ostringstream s;
-  s.precision(17);
-  s << q.transpose();
-  return s.str();
-}
+int pose_count() { return test::pose_count(10000); }
+using test::random_pose;
+using test::text;
 
 // The machines only the tests use.
 const std::vector<std::string> kTestMachines{"bc_head", "xyza_table"};
@@ -135,9 +121,9 @@ TEST_P(EveryMachine, ForwardAgreesWithTheFixedPointUncorrect) {
   for (WorldConvention convention : {WorldConvention::Axes, WorldConvention::Tcp}) {
     for (int k = 0; k < pose_count() / 5; ++k) {
       const Joints nominal = random_pose(model_, rng);
-      Joints before = nominal;
+      Joints before(model_.joint_count());
       for (int j = 0; j < model_.joint_count(); ++j)
-        before[j] += unit(rng) * (model_.axes[j].type == AxisType::Linear ? 0.1 : 0.06);
+        before[j] = nominal[j] + unit(rng) * (model_.axes[j].type == AxisType::Linear ? 0.1 : 0.06);
       const Joints world = nominal_forward(model_, convention, nominal, L);
       const Joints previous_world = nominal_forward(model_, convention, before, L);
       Joints joints, back;

@@ -15,29 +15,15 @@
 
 #include "test_support.hpp"
 #include "vc/machine/invert_correction.hpp"
+#include "random_poses.hpp"
 #include "vc/machine/load_machine.hpp"
 
 namespace vc::machine {
 namespace {
 
-int pose_count() {
-  const char* env = std::getenv("VC_RANDOM_POSES");
-  return env ? std::atoi(env) : 4000;
-}
-
-Joints random_pose(const Model& model, std::mt19937_64& rng) {
-  Joints q(model.joint_count());
-  for (int j = 0; j < model.joint_count(); ++j)
-    q[j] = std::uniform_real_distribution<double>(model.axes[j].travel_min, model.axes[j].travel_max)(rng);
-  return q;
-}
-
-std::string text(const Joints& q) {
-  std::ostringstream s;
-  s.precision(17);
-  s << q.transpose();
-  return s.str();
-}
+int pose_count() { return test::pose_count(4000); }
+using test::random_pose;
+using test::text;
 
 double max_difference(const Joints& a, const Joints& b) { return (a - b).cwiseAbs().maxCoeff(); }
 

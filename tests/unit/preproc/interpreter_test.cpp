@@ -21,12 +21,13 @@ struct Interpreted {
 };
 
 Interpreted interpret(const std::string& program, const ToolTable* tools = nullptr,
-              const gcode::Parameters* var = nullptr, unsigned axes = kXyzbc) {
+              const gcode::Parameters* var = nullptr, unsigned axes = kXyzbc, double machine_unit_mm = 1.0) {
   Setup setup;
   setup.file = "test.ngc";
   setup.machine_axes = axes;
   setup.tools = tools;
   setup.var_file = var;
+  setup.machine_unit_mm = machine_unit_mm;
   Interpreter interp(setup);
   std::istringstream in(program);
   Interpreted run;
@@ -296,35 +297,13 @@ TEST(Interpreter, ToolTableChangesTakeEffectAtTheNextG43) {
   EXPECT_NE(refusal(kStart + "G10 L1 P7 Z1\n", &tools).find("tool 7 is not in the tool table"), std::string::npos);
 }
 
-}  // namespace
-}  // namespace vc::interpreter
-
-namespace vc::interpreter {
-namespace {
-
 // A LinuxCNC set up in inches ([TRAJ]LINEAR_UNITS = inch): the .var file, the tool table and the
 // parameters that hold their lengths are in inches; #1..#10 at the end of the program.
 std::array<double, 10> run_on_inch_machine(const std::string& program, const ToolTable& tools, const gcode::Parameters& var,
                                            std::vector<Move>* moves = nullptr) {
-  Setup setup;
-  setup.file = "test.ngc";
-  setup.machine_axes = kXyzbc;
-  setup.tools = &tools;
-  setup.var_file = &var;
-  setup.machine_unit_mm = 25.4;
-  Interpreter interp(setup);
-  std::istringstream in(program);
-  gcode::Block block;
-  int line = 0;
-  for (std::string text; std::getline(in, text);) {
-    Effect effect;
-    gcode::parse_block(text, block);
-    interp.execute(block, ++line, effect);
-    if (moves) moves->insert(moves->end(), effect.moves.begin(), effect.moves.end());
-  }
-  std::array<double, 10> locals{};
-  for (int i = 1; i <= 10; ++i) locals[static_cast<std::size_t>(i - 1)] = interp.parameters()[i];
-  return locals;
+  const Interpreted run = interpret(program, &tools, &var, kXyzbc, 25.4);
+  if (moves) *moves = run.moves;
+  return run.locals;
 }
 
 TEST(Interpreter, OnAnInchMachineTheParameterFileAndToolTableAreInInches) {
