@@ -4,7 +4,8 @@
 // identification's code), with 1 um of noise. The fit must find what the poses can separate
 // within 3 of its standard uncertainties, name what they cannot (the C line's shift along
 // itself and its turn about itself look like the sphere elsewhere on the table), and refuse a
-// plan at one pose.
+// plan at one pose. On an AC trunnion and a head-table machine (bc_head) the identified machine
+// must explain poses it was not fitted to.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -31,10 +32,11 @@ void offset(machine::Model& m, char axis, int component, double by) {
   a.real_base = machine::line_placement(a.pole_mm, a.location_mm, a.location_rad);
 }
 
-// The joints X Y Z at rotary position (b, c) that put the true machine's tip on `centre`.
-machine::Joints probed(const machine::Model& truth, double b, double c, const Eigen::Vector3d& centre, double length) {
+// The joints X Y Z at rotary positions (tilt = b, C = c) that put the true machine's tip on `centre`.
+machine::Joints probed(const machine::Model& truth, char tilt, double b, double c, const Eigen::Vector3d& centre,
+                       double length) {
   machine::Joints q = machine::Joints::Zero(truth.joint_count());
-  q[truth.joint_of('B')] = b;
+  q[truth.joint_of(tilt)] = b;
   q[truth.joint_of('C')] = c;
   const int lin[3] = {truth.joint_of('X'), truth.joint_of('Y'), truth.joint_of('Z')};
   for (int i = 0; i < 3; ++i) q[lin[i]] = (truth.axes[lin[i]].travel_min + truth.axes[lin[i]].travel_max) / 2;
@@ -62,7 +64,7 @@ std::vector<SpherePose> plan(const machine::Model& truth, const std::vector<doub
   for (double b : bs)
     for (double c : cs) {
       SpherePose p;
-      p.joints = probed(truth, b, c, centre, truth.tool_length_mm);
+      p.joints = probed(truth, 'B', b, c, centre, truth.tool_length_mm);
       for (char a : {'X', 'Y', 'Z'}) p.joints[truth.joint_of(a)] += noise(random);
       poses.push_back(p);
     }
@@ -111,6 +113,81 @@ TEST(SphereCentres, FindsTheRotaryLinesWithinTheirUncertainty) {
   }
   EXPECT_GE(fit.estimates.size(), 6u);
 }
+
+// The same on the other kinds of 5-axis machine: an AC trunnion (A tilting the table, C on it)
+// and a head-table machine (B swivelling the head, C turning the table). Whatever the poses
+// cannot separate, the identified machine must explain the truth: at poses it was not fitted
+// to, its tip at the joints that put the true tip on the sphere's centre stays on one point.
+struct OtherKind {
+  std::string path;
+  char tilt;                  // the first rotary axis
+  std::vector<double> tilts;  // its probed positions
+};
+
+class SphereCentresOn : public ::testing::TestWithParam<OtherKind> {};
+
+TEST_P(SphereCentresOn, TheIdentifiedMachineExplainsPosesItWasNotFittedTo) {
+  const OtherKind& kind = GetParam();
+  const machine::Model model = machine::load_machine(kind.path);
+  machine::Model truth = model;
+  offset(truth, 'C', 0, 0.015);
+  offset(truth, 'C', 1, -0.010);
+  offset(truth, 'C', 3, -3 * kArcsec);
+  offset(truth, kind.tilt, 1, 0.012);
+  offset(truth, kind.tilt, 2, -0.008);
+  offset(truth, kind.tilt, 5, 5 * kArcsec);
+  const auto poses_at = [&](const std::vector<double>& tilts, const std::vector<double>& cs, unsigned seed) {
+    std::mt19937 random(seed);
+    std::normal_distribution<double> noise(0.0, 1e-3);  // 1 um
+    std::vector<SpherePose> poses;
+    for (double t : tilts)
+      for (double c : cs) {
+        SpherePose p;
+        p.joints = probed(truth, kind.tilt, t, c, Eigen::Vector3d(30, -20, 40), truth.tool_length_mm);
+        for (char a : {'X', 'Y', 'Z'}) p.joints[truth.joint_of(a)] += noise(random);
+        poses.push_back(p);
+      }
+    return poses;
+  };
+  const SphereFit fit =
+      identify_from_sphere(model, poses_at(kind.tilts, {0, 60, 120, 180, 240, 300}, 5), {}, model.tool_length_mm);
+  EXPECT_GT(fit.rms_before_um, 5.0);
+  EXPECT_LT(fit.rms_after_um, 3.0);
+  machine::Model identified = model;
+  for (const LocationEstimate& e : fit.estimates) offset(identified, model.axes[e.joint].letter, e.component, e.value - e.before);
+  // Poses between the fitted ones, without noise: the tips' spread about their mean.
+  std::vector<double> between;
+  for (std::size_t i = 0; i + 1 < kind.tilts.size(); ++i) between.push_back((kind.tilts[i] + kind.tilts[i + 1]) / 2);
+  const std::vector<SpherePose> check = [&] {
+    std::vector<SpherePose> poses;
+    for (double t : between)
+      for (double c : {30.0, 150.0, 270.0}) {
+        SpherePose p;
+        p.joints = probed(truth, kind.tilt, t, c, Eigen::Vector3d(30, -20, 40), truth.tool_length_mm);
+        poses.push_back(p);
+      }
+    return poses;
+  }();
+  const auto spread_um = [&](const machine::Model& m) {
+    std::vector<Eigen::Vector3d> tips;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const SpherePose& p : check) {
+      tips.push_back(machine::tool_pose(m, machine::Machine::Real, p.joints, m.tool_length_mm).tip_mm);
+      mean += tips.back() / static_cast<double>(check.size());
+    }
+    double worst = 0;
+    for (const Eigen::Vector3d& t : tips) worst = std::max(worst, (t - mean).norm() * 1e3);
+    return worst;
+  };
+  EXPECT_GT(spread_um(model), 10.0);
+  EXPECT_LT(spread_um(identified), 2.0) << "nominal " << spread_um(model);
+  std::cout << "spread " << spread_um(model) << " -> " << spread_um(identified) << " um\n";
+}
+
+INSTANTIATE_TEST_SUITE_P(Kinds, SphereCentresOn,
+                         ::testing::Values(OtherKind{test::machine_path("ac_trunnion"), 'A', {0, -30, -60, -90}},
+                                           OtherKind{test::source_path("tests/unit/machines/data/bc_head.toml"), 'B',
+                                                     {-60, -30, 0, 30, 60}}));
 
 // The uncertainty is honest: over 100 noise draws, the truth lies within 2 standard
 // uncertainties of the estimate in about 95 % of the cases (every estimate of every draw).
