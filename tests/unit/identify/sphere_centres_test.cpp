@@ -277,8 +277,10 @@ TEST(SphereCentres, ProbePlanAndItsLogCloseTheLoop) {
         // linear axes' errors make s differ from the reach by up to a few um).
         const Eigen::Vector3d sphere = machine::tool_pose(truth, machine::Machine::Real, p.joints, 100.0).tip_mm;
         const auto gap = [&](double s) {
-          machine::Joints q = p.joints;
-          q.head<3>() += s * d;  // (an element loop made GCC warn falsely under the profile)
+          // (built from zeros: a copy of p.joints made GCC warn falsely under the profile)
+          machine::Joints q = machine::Joints::Zero(p.joints.size());
+          q += p.joints;
+          q.head<3>() += s * d;
           return (machine::tool_pose(truth, machine::Machine::Real, q, 100.0).tip_mm - sphere).norm() - reach_written;
         };
         double s = reach_written;
