@@ -1,5 +1,7 @@
 // Arcs (G2/G3): the centre from I J K or R, with LinuxCNC 2.9's checks, and the points along
 // a move's nominal path.
+#include <algorithm>
+
 #include "words.hpp"
 
 namespace vc::interpreter {
@@ -114,6 +116,10 @@ double feed_length(const Move& m) {
   };
   const double linear = distance(0);
   return linear > 0.0 ? linear : distance(3);
+}
+
+double inverse_time_feed(const Move& m) {
+  return m.compensated_rate_mm_per_min / std::max(feed_length(m), 1e-9);
 }
 
 }  // namespace vc::interpreter

@@ -66,7 +66,7 @@ Position Interpreter::take_move_start(const Frame& in, const Position& otherwise
 void Interpreter::take_released(std::vector<ReleasedMove>& out, Effect& effect) {
   for (ReleasedMove& r : out) {
     if (r.move.compensated_rate_mm_per_min > 0.0)  // G93: the move's own inverse time
-      r.move.feed = r.move.compensated_rate_mm_per_min / std::max(feed_length(r.move), 1e-9);
+      r.move.feed = inverse_time_feed(r.move);
     if (r.sequence == sequence_) effect.moves.push_back(r.move);
     else released_.push_back(r);
   }

@@ -452,7 +452,7 @@ void Interpreter::move(const Words& w, int line, Effect& effect) {
     Move programmed = m;
     programmed.start = programmed_start;
     m.compensated_rate_mm_per_min = inverse_time_rate(programmed);
-    m.feed = m.compensated_rate_mm_per_min / std::max(feed_length(m), 1e-9);
+    m.feed = inverse_time_feed(m);
   }
   if (!end_known || (m.kind != MoveKind::Rapid && !start_known)) {
     if (m.kind != MoveKind::Rapid) {

@@ -92,4 +92,7 @@ Position point_at(const Move& move, double s);
 // find_arc_length): X Y Z if they move, else the rotary axes; an arc's radius at its start.
 double feed_length(const Move& move);
 
+// A move timed at compensated_rate_mm_per_min, as its own inverse-time feed (1/min).
+double inverse_time_feed(const Move& move);
+
 }  // namespace vc::interpreter
