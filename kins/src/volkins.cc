@@ -8,8 +8,9 @@
 // the real pose, invert_correction), so the DRO, homing and probing see nominal coordinates.
 // The HAL function volkins.update (servo thread, before motion-controller) ramps the
 // correction in and out when volkins.enable changes, so switching never jumps; the kinematics
-// functions keep no state between calls (they read the ramp and the parameters, and report on
-// output pins). A HAL file without `addf volkins.update`
+// functions read the ramp and the parameters, report on output pins and keep only the last
+// two corrections between calls, as their solvers' start (an answer never depends on it).
+// A HAL file without `addf volkins.update`
 // does not leave the machine silently uncorrected: until the function has run, the kinematics
 // apply what volkins.enable asks for in full (no ramp), say so on volkins.gain, volkins.active
 // and volkins.update-missing, and print once how to fix the HAL file. Temperature inputs of
@@ -84,6 +85,27 @@ vc::kins::ModuleSettings* settings = nullptr;  // built in rtapi_app_main, read-
                                                // except model.fade (volkins.update)
 HalData* hal = nullptr;
 int comp_id = -1;
+
+// The full corrections (q_c - q_n) of the last two inverses, servo thread only. The next
+// inverse starts at its nominal joints plus their linear extrapolation (the correction moves
+// smoothly, by the error slopes times the step: this saves the Newton steps that a start at
+// the previous joints, a whole step away, takes); the forward of the feedback, which is the
+// last command plus the following error, at the joints less the last one.
+struct CorrectionSeed {
+  Joints last, before;
+  int kept = 0;  // how many of the two are set
+  void keep(const Joints& correction) {
+    before = last;
+    last = correction;
+    kept = std::min(kept + 1, 2);
+  }
+  const Joints* for_forward() const { return kept > 0 ? &last : nullptr; }
+  const Joints* for_inverse(Joints& extrapolated) const {
+    if (kept < 2) return for_forward();
+    extrapolated = 2.0 * last - before;
+    return &extrapolated;
+  }
+} correction_seed;
 
 char* machine = nullptr;
 char* coordinates = nullptr;
@@ -214,12 +236,14 @@ int kinematicsInverse(const EmcPose* pose, double* joints, const KINEMATICS_INVE
   const double offset = *hal->tool_length;       // LinuxCNC's tool length offset (G43)
   const double L = correction_length();          // the tool-length rule, slewed
   const Joints previous = Eigen::Map<const Joints>(joints, n);  // LinuxCNC's seed
-  const vm::Applied applied{applied_gain(), &previous};
+  Joints extrapolated;
+  const vm::Applied applied{applied_gain(), &previous, correction_seed.for_inverse(extrapolated)};
   Joints q;
   vm::Correction report;
   const vm::Status s = vm::joints_from_world(model, settings->world, world_of(*pose, offset), L, applied, q, &report);
   *hal->iterations = report.iterations;
   if (s != vm::Status::Ok) return refuse();
+  if (applied.gain > 0.0) correction_seed.keep(report.joints - report.nominal);
   bool too_large = false;
   for (int j = 0; j < n; ++j) {
     const double c = q[j] - report.nominal[j];
@@ -245,7 +269,8 @@ int kinematicsForward(const double* joints, EmcPose* pose, const KINEMATICS_FORW
   Joints w;
   int iterations = 0;
   const vm::Status s =
-      vm::world_from_joints(model, settings->world, q, L, vm::Applied{applied_gain(), &seed}, w, &iterations);
+      vm::world_from_joints(model, settings->world, q, L, vm::Applied{applied_gain(), &seed, correction_seed.for_forward()},
+                            w, &iterations);
   *hal->forward_iterations = iterations;
   if (s != vm::Status::Ok) return refuse();
   set_world(*pose, w, offset);

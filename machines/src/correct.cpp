@@ -16,10 +16,13 @@ using FreeJoints = std::array<bool, kMaxAxes>;
 // ideal machine's Jacobian (`ideal`, already computed for the target): the real one differs
 // by the error slopes, ~1e-4, so each step still gains about four digits. Where a step gains
 // less than two, the exact Jacobian of the real machine (table slopes included) replaces it.
-// `pose` returns the real pose at the final joints.
+// `pose` returns the real pose at the final joints. `direction_tolerance_rad` replaces the
+// solver's where given (> 0).
 Status newton(const Model& model, const CorrectionTarget& target, double tool_length_mm, const FreeJoints& free,
-              const PoseDerivatives& ideal, Joints& q, int& iterations, ToolPose& pose) noexcept {
+              const PoseDerivatives& ideal, Joints& q, int& iterations, ToolPose& pose,
+              double direction_tolerance_rad = 0.0) noexcept {
   const SolverOptions& opt = model.solver;
+  const double direction_tolerance = direction_tolerance_rad > 0.0 ? direction_tolerance_rad : opt.direction_tolerance_rad;
   int unknowns = 0;
   std::array<int, kMaxAxes> index{};
   for (int j = 0; j < model.joint_count(); ++j)
@@ -33,7 +36,7 @@ Status newton(const Model& model, const CorrectionTarget& target, double tool_le
     if (!residual.allFinite()) return Status::NonFinite;
     const double position = residual.head(3).norm();
     const double direction = std::sqrt(direction_squared_norm(residual));
-    if (position <= opt.position_tolerance_mm && direction <= opt.direction_tolerance_rad) return Status::Ok;
+    if (position <= opt.position_tolerance_mm && direction <= direction_tolerance) return Status::Ok;
     if (step == opt.max_iterations) return Status::NotConverged;
     const double norm = position + kDirectionLeverMm * direction;
     if (norm > 1e-2 * previous_norm) {
@@ -67,38 +70,84 @@ Correction correct(const Model& model, const Joints& nominal, double tool_length
   return correct(model, nominal, tool_length_mm, nominal);
 }
 
-Correction correct(const Model& model, const Joints& nominal, double tool_length_mm,
-                   const Joints& seed) noexcept {
+namespace {
+
+// Where the full correction's Newton runs: not at all (no rotary joints), everywhere
+// (full_correction), or where correct() will use it (the fade above 0).
+enum class Full { Never, Always, WhereFaded };
+
+// What correct() and full_correction() share: the checks, the ideal pose at q_n with its
+// derivatives, the pole angle and fade, and the full correction's Newton.
+struct Start {
   Correction out;
-  out.nominal = nominal;
-  out.joints = seed;
+  PoseDerivatives d;
+  ToolPose ideal;
+  ToolPose real;  // the real pose at out.joints, set by newton()
+  FreeJoints linear{};
+  bool ok = false;
+};
+
+Start start(const Model& model, const Joints& nominal, double tool_length_mm, const Joints& seed, Full full) noexcept {
+  Start s;
+  s.out.nominal = nominal;
+  s.out.joints = seed;
   if (!nominal.allFinite() || !seed.allFinite() || !std::isfinite(tool_length_mm)) {
-    out.status = Status::NonFinite;
-    return out;
+    s.out.status = Status::NonFinite;
+    return s;
   }
   const int n = model.joint_count();
-  PoseDerivatives d;
-  const ToolPose ideal = tool_pose(model, Machine::Ideal, nominal, tool_length_mm, d);
-  ToolPose real = ideal;  // the real pose at the final joints, set by newton()
-
-  FreeJoints linear{}, all{};
+  s.ideal = tool_pose(model, Machine::Ideal, nominal, tool_length_mm, s.d);
+  s.real = s.ideal;
+  FreeJoints all{};
   for (int j = 0; j < n; ++j) {
-    linear[j] = model.axes[j].type == AxisType::Linear;
+    s.linear[j] = model.axes[j].type == AxisType::Linear;
     all[j] = true;
   }
+  if (model.rotary_count() > 0) {
+    s.out.pole_angle_rad = pole_angle_at(model, s.ideal, s.d);
+    s.out.fade = fade_factor(model.fade, s.out.pole_angle_rad);
+  }
+  if (full == Full::Always || (full == Full::WhereFaded && s.out.fade > 0.0)) {
+    // Near the pole a direction residual e moves the rotary joints by e / sin phi, and in the
+    // fade band the linear joints follow them (the inverse in invert_correction.cpp evaluates
+    // this full correction at q_n again): there the tolerance shrinks with sin phi, so that
+    // the joints are as exact as elsewhere.
+    const double tolerance =
+        s.out.fade < 1.0 ? model.solver.direction_tolerance_rad * std::sin(s.out.pole_angle_rad) : 0.0;
+    s.out.status = newton(model, full_target(model, s.ideal, s.d), tool_length_mm, all, s.d, s.out.joints,
+                          s.out.iterations, s.real, tolerance);
+    if (s.out.status != Status::Ok) return s;
+  }
+  s.ok = true;
+  return s;
+}
+
+void set_residuals(Correction& out, const ToolPose& ideal, const ToolPose& real) noexcept {
+  out.residual_mm = (real.tip_mm - ideal.tip_mm).norm();
+  out.residual_rad = ideal.direction.cross(real.direction).norm();
+}
+
+}  // namespace
+
+Correction full_correction(const Model& model, const Joints& nominal, double tool_length_mm,
+                           const Joints& seed) noexcept {
+  Start s = start(model, nominal, tool_length_mm, seed, model.rotary_count() > 0 ? Full::Always : Full::Never);
+  if (s.ok) set_residuals(s.out, s.ideal, s.real);
+  return s.out;
+}
+
+Correction correct(const Model& model, const Joints& nominal, double tool_length_mm,
+                   const Joints& seed) noexcept {
   const int rotary = model.rotary_count();
-  if (rotary > 0) {
-    out.pole_angle_rad = pole_angle_at(model, ideal, d);
-    out.fade = fade_factor(model.fade, out.pole_angle_rad);
-  }
+  Start s = start(model, nominal, tool_length_mm, seed, rotary > 0 ? Full::WhereFaded : Full::Never);
+  Correction& out = s.out;
+  if (!s.ok) return out;
+  const int n = model.joint_count();
+  const PoseDerivatives& d = s.d;
+  const ToolPose& ideal = s.ideal;
+  ToolPose& real = s.real;
+  const FreeJoints& linear = s.linear;
   CorrectionTarget target = position_target(ideal);
-  if (rotary > 0 && out.fade > 0.0) {
-    // Full correction: position and tool direction.
-    target = full_target(model, ideal, d);
-    out.status = newton(model, target, tool_length_mm, all, d, out.joints, out.iterations, real);
-    if (out.status != Status::Ok) return out;
-    target.direction_equations = 0;
-  }
   if (rotary > 0 && out.fade < 1.0) {
     // Rotary joints take f of their full correction; linear joints make the position exact.
     for (int j = 0; j < n; ++j)
@@ -106,8 +155,7 @@ Correction correct(const Model& model, const Joints& nominal, double tool_length
   }
   if (rotary == 0 || out.fade < 1.0)
     out.status = newton(model, target, tool_length_mm, linear, d, out.joints, out.iterations, real);
-  out.residual_mm = (real.tip_mm - ideal.tip_mm).norm();
-  out.residual_rad = ideal.direction.cross(real.direction).norm();
+  set_residuals(out, ideal, real);
   return out;
 }
 

@@ -1,6 +1,7 @@
 #include "vc/machine/invert_correction.hpp"
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 
 #include "vc/machine/correction_equations.hpp"
@@ -97,6 +98,48 @@ void set_rotary(const Model& model, const Joints& from, Joints& q) noexcept {
     if (model.axes[j].type == AxisType::Rotary) q[j] = from[j];
 }
 
+// The fade band's answer from an estimate q_n (~1e-7 off, the ideal pose at it in `ideal`).
+// The full correction D is evaluated at q_n (first seeded with D at the full solution q_full,
+// q_c - q_full); with D fixed, the rotary joints are set to q_c - f(q_n) D and the linear ones
+// solve the position, until f (ideal machine only) stops moving them. Near the pole D moves by
+// up to ~1e-2 times q_n's change (its rotary part grows as 1/sin phi), so D is evaluated again
+// until q_n has settled within kBandSettledMm of where D was: then D's own error is ~1e-11.
+// False where a solve fails, the pose leaves the band or it does not settle in kBandRounds:
+// the caller polishes with whole corrections.
+constexpr double kBandSettledMm = 1e-10;  // mm or deg
+constexpr int kBandRounds = 4;
+
+bool band_solve(const Model& model, const Joints& corrected, double tool_length_mm, const Joints& q_full,
+                const CorrectionTarget& position, Joints& q, int& iterations, IdealPose& ideal) noexcept {
+  const double f0 = fade_at(model, ideal);
+  if (!(f0 > 0.0 && f0 < 1.0)) return false;  // not in the band: not this solve's case
+  Joints d = corrected - q_full;
+  for (int round = 0; round < kBandRounds; ++round) {
+    const Joints at = q;
+    const Correction full = full_correction(model, q, tool_length_mm, Joints(q + d));
+    iterations += full.iterations + 1;
+    if (full.status != Status::Ok) return false;
+    d = full.joints - q;
+    bool settled = false;
+    for (int pass = 0; pass < model.solver.max_iterations && !settled; ++pass) {
+      const double f = fade_at(model, ideal);
+      if (!(f > 0.0 && f < 1.0)) return false;  // left the band: not this solve's case
+      double moved = 0.0;
+      for (int j = 0; j < model.joint_count(); ++j)
+        if (model.axes[j].type == AxisType::Rotary) {
+          const double r = corrected[j] - f * d[j];
+          moved = std::max(moved, std::abs(r - q[j]));
+          q[j] = r;
+        }
+      if (ideal_newton(model, position, tool_length_mm, q, iterations, ideal) != Status::Ok) return false;
+      settled = moved <= model.solver.position_tolerance_mm;
+    }
+    if (!settled) return false;
+    if ((q - at).cwiseAbs().maxCoeff() <= kBandSettledMm) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 Uncorrection invert_correction(const Model& model, const Joints& corrected, double tool_length_mm, double gain,
@@ -150,12 +193,16 @@ Uncorrection invert_correction(const Model& model, const Joints& corrected, doub
     return out;
   }
   if (s != Status::Ok) q = corrected;  // near the pole the full system may be singular: no estimate
-  // The fade band: q_c's rotary joints are q_n's plus f(q_n) times their full correction, which
-  // at q_n is nearly what it is at the full solution q (slopes ~1e-4).
+  // The fade band: q_c's rotary joints are q_n's plus f(q_n) times their full correction D(q_n),
+  // which at q_n is nearly what it is at the full solution q (slopes ~1e-4): a first estimate.
   Joints estimate = start;
   for (int j = 0; j < model.joint_count(); ++j)
     if (model.axes[j].type == AxisType::Rotary) estimate[j] = corrected[j] - fade * (corrected[j] - q[j]);
   s = ideal_newton(model, position, tool_length_mm, estimate, out.iterations, ideal);
+  if (s == Status::Ok && band_solve(model, corrected, tool_length_mm, q, position, estimate, out.iterations, ideal)) {
+    out.nominal = estimate;
+    return out;
+  }
   if (s != Status::Ok) estimate = corrected;
   Uncorrection polished = uncorrect(model, corrected, tool_length_mm, 1.0, estimate);
   polished.iterations += out.iterations;

@@ -55,6 +55,12 @@ bool near(const Joints* seed, const Joints& point) {
          (*seed - point).cwiseAbs().maxCoeff() <= Applied::kSeedRadius;
 }
 
+// A full correction small enough to shift a seed by (the answer is within it).
+bool usable(const Joints* correction, const Joints& point) {
+  return correction && correction->size() == point.size() && correction->allFinite() &&
+         correction->cwiseAbs().maxCoeff() <= Applied::kSeedRadius;
+}
+
 }  // namespace
 
 Status joints_from_world(const Model& model, WorldConvention convention, const Joints& world,
@@ -81,8 +87,10 @@ Status joints_from_world(const Model& model, WorldConvention convention, const J
     }
     return Status::Ok;
   }
-  const Correction c = near(applied.seed, nominal) ? correct(model, nominal, tool_length_mm, *applied.seed)
-                                                   : correct(model, nominal, tool_length_mm);
+  const Correction c = usable(applied.correction, nominal)
+                           ? correct(model, nominal, tool_length_mm, Joints(nominal + *applied.correction))
+                       : near(applied.seed, nominal) ? correct(model, nominal, tool_length_mm, *applied.seed)
+                                                     : correct(model, nominal, tool_length_mm);
   if (report) *report = c;
   if (c.status != Status::Ok) return c.status;
   joints = nominal + applied.gain * (c.joints - nominal);
@@ -93,7 +101,9 @@ Status world_from_joints(const Model& model, WorldConvention convention, const J
                          double tool_length_mm, const Applied& applied, Joints& world,
                          int* iterations) noexcept {
   Joints nominal_seed = joints;
-  if (applied.seed) {
+  if (usable(applied.correction, joints)) {
+    nominal_seed = joints - applied.gain * *applied.correction;
+  } else if (applied.seed) {
     Joints from_seed;
     if (nominal_inverse(model, convention, *applied.seed, tool_length_mm, from_seed) == Status::Ok &&
         near(&from_seed, joints))

@@ -18,11 +18,14 @@ namespace vc::machine {
 namespace {
 
 // The servo thread's view of pose i: the world position one and two cycles before (a step of
-// at most 0.1 mm and 0.06 deg per joint: 100 mm/s and 60 deg/s at 1 kHz), and the joints the
-// previous cycle's inverse gave.
+// at most 0.1 mm and 0.06 deg per joint: 100 mm/s and 60 deg/s at 1 kHz), the joints the
+// previous cycle's inverse gave, and the seeds volkins keeps: the correction the previous
+// cycle applied (the forward's) and its extrapolation from the two before (the inverse's).
 struct ServoCycle {
   Joints world, before, before_before;  // nominal joints (world = axes)
   Joints previous_joints;               // joints_from_world(before)
+  Joints previous_correction;           // previous_joints - before
+  Joints extrapolated_correction;       // 2 previous_correction - (that of before_before)
 };
 
 struct Fixture {
@@ -47,8 +50,12 @@ const Fixture& fixture(const std::string& name) {
     }
     f.poses.push_back(q);
     f.corrected.push_back(correct(f.model, q, f.model.tool_length_mm).joints);
-    ServoCycle c{q, q - step, q - 2 * step, {}};
+    ServoCycle c{q, q - step, q - 2 * step, {}, {}, {}};
     joints_from_world(f.model, WorldConvention::Axes, c.before, f.model.tool_length_mm, c.previous_joints);
+    c.previous_correction = c.previous_joints - c.before;
+    Joints joints_before;
+    joints_from_world(f.model, WorldConvention::Axes, c.before_before, f.model.tool_length_mm, joints_before);
+    c.extrapolated_correction = 2 * c.previous_correction - (joints_before - c.before_before);
     f.cycles.push_back(c);
   }
   return cache.emplace(name, std::move(f)).first->second;
@@ -116,28 +123,35 @@ void BM_Uncorrect(benchmark::State& state, const std::string& machine) {
   });
 }
 
-// The forward as volkins calls it (invert_correction: Newton on the real pose), seeded with
-// the previous cycle's world position.
+// The forward as volkins calls it (invert_correction: Newton on the real pose) of the joints
+// the last inverse commanded, seeded with the previous cycle's world position and the last
+// correction.
 void BM_ForwardSeeded(benchmark::State& state, const std::string& machine) {
   run(state, machine, [](const Fixture& f, std::size_t i) {
     const ServoCycle& c = f.cycles[i];
     Joints world;
     world_from_joints(f.model, WorldConvention::Axes, c.previous_joints, f.model.tool_length_mm,
-                      Applied{1.0, &c.before_before}, world);
+                      Applied{1.0, &c.before_before, &c.previous_correction}, world);
     return world[0];
   });
 }
 
 // One servo cycle's kinematics as motion-controller calls them (control.c: the forward of the
 // joint feedback, seeded with the previous world position, then the inverse of the new
-// command, seeded with the previous joints): the pair the 2.5 us target is for.
-void BM_ServoCycle(benchmark::State& state, const std::string& machine) {
-  run(state, machine, [](const Fixture& f, std::size_t i) {
+// command, seeded with the previous joints) and as volkins seeds them (with the corrections
+// it keeps): the pair the 2.5 us target is for. With `correction_seeds` false, the
+// seeds LinuxCNC gives alone (volkins before it kept corrections).
+void BM_ServoCycle(benchmark::State& state, const std::string& machine, bool correction_seeds) {
+  run(state, machine, [correction_seeds](const Fixture& f, std::size_t i) {
     const ServoCycle& c = f.cycles[i];
     const double L = f.model.tool_length_mm;
+    const Joints* forward_seed = correction_seeds ? &c.previous_correction : nullptr;
+    const Joints* inverse_seed = correction_seeds ? &c.extrapolated_correction : nullptr;
     Joints world, joints;
-    world_from_joints(f.model, WorldConvention::Axes, c.previous_joints, L, Applied{1.0, &c.before_before}, world);
-    joints_from_world(f.model, WorldConvention::Axes, c.world, L, Applied{1.0, &c.previous_joints}, joints);
+    world_from_joints(f.model, WorldConvention::Axes, c.previous_joints, L,
+                      Applied{1.0, &c.before_before, forward_seed}, world);
+    joints_from_world(f.model, WorldConvention::Axes, c.world, L, Applied{1.0, &c.previous_joints, inverse_seed},
+                      joints);
     return world[0] + joints[0];
   });
 }
@@ -149,8 +163,9 @@ BENCHMARK_CAPTURE(BM_Correct, mc300, std::string("mc300"));
 BENCHMARK_CAPTURE(BM_CorrectSeeded, mc300, std::string("mc300"));
 BENCHMARK_CAPTURE(BM_Uncorrect, mc300, std::string("mc300"));
 BENCHMARK_CAPTURE(BM_ForwardSeeded, mc300, std::string("mc300"));
-BENCHMARK_CAPTURE(BM_ServoCycle, mc300, std::string("mc300"));
-BENCHMARK_CAPTURE(BM_ServoCycle, ac_trunnion, std::string("ac_trunnion"));
+BENCHMARK_CAPTURE(BM_ServoCycle, mc300, std::string("mc300"), true);
+BENCHMARK_CAPTURE(BM_ServoCycle, mc300_joint_seeds, std::string("mc300"), false);
+BENCHMARK_CAPTURE(BM_ServoCycle, ac_trunnion, std::string("ac_trunnion"), true);
 BENCHMARK_CAPTURE(BM_Correct, mill3, std::string("mill3"));
 BENCHMARK_CAPTURE(BM_Correct, ac_trunnion, std::string("ac_trunnion"));
 

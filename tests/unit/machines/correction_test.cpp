@@ -82,7 +82,8 @@ TEST_P(EveryMachine, ForwardIsTheExactInverseOfInverseInBothConventions) {
 }
 
 // The module's case: part of the correction (the enable ramp) and solvers seeded with the
-// previous answer, or with a far or non-finite seed (LinuxCNC's first call, a jump).
+// previous answer, or with a far or non-finite seed (LinuxCNC's first call, a jump), and
+// with a correction seed that is right, nearly right, far too large or not finite.
 TEST_P(EveryMachine, PartialCorrectionWithAnySeedRoundTrips) {
   std::mt19937_64 rng(5);
   const double L = model_.tool_length_mm;
@@ -96,13 +97,22 @@ TEST_P(EveryMachine, PartialCorrectionWithAnySeedRoundTrips) {
       Joints near_seed = full, far_seed = random_pose(model_, rng), nan_seed = full;
       near_seed.array() += 0.01;
       nan_seed[0] = std::nan("");
+      const Joints exact_correction = full - nominal;
+      Joints near_correction = exact_correction, far_correction = exact_correction, nan_correction = exact_correction;
+      near_correction.array() += 2e-4;
+      far_correction.array() += 5.0;
+      nan_correction[1] = std::nan("");
       for (const Joints* seed : std::array<const Joints*, 4>{nullptr, &near_seed, &far_seed, &nan_seed}) {
-        Joints joints, back;
-        ASSERT_EQ(joints_from_world(model_, convention, world, L, Applied{gain, seed}, joints), Status::Ok);
-        ASSERT_LT((joints - (nominal + gain * (full - nominal))).cwiseAbs().maxCoeff(), 1e-9) << text(world);
-        const Joints world_seed = seed ? Joints(world.array() + 0.02) : world;
-        ASSERT_EQ(world_from_joints(model_, convention, joints, L, Applied{gain, &world_seed}, back), Status::Ok);
-        ASSERT_LT((back - world).cwiseAbs().maxCoeff(), 1e-9) << text(world) << " gain " << gain;
+        for (const Joints* correction :
+             std::array<const Joints*, 5>{nullptr, &exact_correction, &near_correction, &far_correction, &nan_correction}) {
+          Joints joints, back;
+          ASSERT_EQ(joints_from_world(model_, convention, world, L, Applied{gain, seed, correction}, joints), Status::Ok);
+          ASSERT_LT((joints - (nominal + gain * (full - nominal))).cwiseAbs().maxCoeff(), 1e-9) << text(world);
+          const Joints world_seed = seed ? Joints(world.array() + 0.02) : world;
+          ASSERT_EQ(world_from_joints(model_, convention, joints, L, Applied{gain, &world_seed, correction}, back),
+                    Status::Ok);
+          ASSERT_LT((back - world).cwiseAbs().maxCoeff(), 1e-9) << text(world) << " gain " << gain;
+        }
       }
       Joints joints;
       ASSERT_EQ(joints_from_world(model_, convention, world, L, Applied{0.0, nullptr}, joints), Status::Ok);
@@ -112,8 +122,9 @@ TEST_P(EveryMachine, PartialCorrectionWithAnySeedRoundTrips) {
 }
 
 // kinematicsForward's call (gain 1, seeded with the previous cycle's world position: one step
-// of 0.1 mm / 0.06 deg per joint before) against the core's fixed point uncorrect, which
-// evaluates whole corrections only (another code path), to 1e-9 in both conventions.
+// of 0.1 mm / 0.06 deg per joint before, and with or without that cycle's correction, as
+// volkins seeds it) against the core's fixed point uncorrect, which evaluates whole
+// corrections only (another code path), to 1e-9 in both conventions.
 TEST_P(EveryMachine, ForwardAgreesWithTheFixedPointUncorrect) {
   std::mt19937_64 rng(7);
   const double L = model_.tool_length_mm;
@@ -126,14 +137,20 @@ TEST_P(EveryMachine, ForwardAgreesWithTheFixedPointUncorrect) {
         before[j] = nominal[j] + unit(rng) * (model_.axes[j].type == AxisType::Linear ? 0.1 : 0.06);
       const Joints world = nominal_forward(model_, convention, nominal, L);
       const Joints previous_world = nominal_forward(model_, convention, before, L);
-      Joints joints, back;
+      Joints joints, previous_joints;
       ASSERT_EQ(joints_from_world(model_, convention, world, L, joints), Status::Ok) << text(world);
-      ASSERT_EQ(world_from_joints(model_, convention, joints, L, Applied{1.0, &previous_world}, back), Status::Ok);
+      ASSERT_EQ(joints_from_world(model_, convention, previous_world, L, previous_joints), Status::Ok);
+      const Joints previous_correction = previous_joints - before;
       const Uncorrection reference = uncorrect(model_, joints, L);
       ASSERT_EQ(reference.status, Status::Ok) << text(joints);
-      ASSERT_LT((back - nominal_forward(model_, convention, reference.nominal, L)).cwiseAbs().maxCoeff(), 1e-9)
-          << text(world);
-      ASSERT_LT((back - world).cwiseAbs().maxCoeff(), 1e-9) << text(world);
+      for (const Joints* correction : {static_cast<const Joints*>(nullptr), &previous_correction}) {
+        Joints back;
+        ASSERT_EQ(world_from_joints(model_, convention, joints, L, Applied{1.0, &previous_world, correction}, back),
+                  Status::Ok);
+        ASSERT_LT((back - nominal_forward(model_, convention, reference.nominal, L)).cwiseAbs().maxCoeff(), 1e-9)
+            << text(world);
+        ASSERT_LT((back - world).cwiseAbs().maxCoeff(), 1e-9) << text(world);
+      }
     }
   }
 }

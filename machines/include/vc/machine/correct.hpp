@@ -31,6 +31,12 @@ Correction correct(const Model& model, const Joints& nominal, double tool_length
 Correction correct(const Model& model, const Joints& nominal, double tool_length_mm,
                    const Joints& seed) noexcept;
 
+// The full correction (position and tool direction, no pole fade) at `nominal`, seeded at
+// `seed`: what correct() fades near a pole. Machines with rotary joints; `fade` reports the
+// f that correct() would apply.
+Correction full_correction(const Model& model, const Joints& nominal, double tool_length_mm,
+                           const Joints& seed) noexcept;
+
 // Pole angle phi and fade factor f at nominal joints (ideal machine, part frame).
 double pole_angle(const Model& model, const Joints& nominal, double tool_length_mm) noexcept;
 double fade_factor(const PoleFade& fade, double pole_angle_rad) noexcept;

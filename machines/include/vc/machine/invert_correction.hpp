@@ -10,11 +10,14 @@
 // they stop moving. At the pole (f = 0) the rotary joints are not corrected: q_n's are q_c's and
 // the linear joints solve the position alone. The side is judged at the seed and confirmed at
 // the solution (the fade at q_n is what correct() uses). In the band between (0 < f < 1) the
-// rotary joints took f of a full correction found by another solve: the two Newton solves above
-// give q_n to ~1e-7 and `uncorrect` polishes it (two corrections). A partial gain (the enable
-// ramp) is the fixed point's.
-// Real-time: no allocation, no locks, no exceptions; at most 3 Newton solves of
-// max_iterations steps and one bounded `uncorrect`.
+// rotary joints took f of a full correction D found by another solve: the two Newton solves above
+// give q_n to ~1e-7, then D is evaluated at q_n (one real Newton, from a start within ~1e-7) and
+// q_n's rotary joints are q_c's less f(q_n) D, its linear ones from the position (ideal machine),
+// with D evaluated again until q_n stays put (two rounds as a rule). Where that fails, `uncorrect`
+// polishes the estimate (two corrections or more). A partial gain (the enable ramp) is the fixed
+// point's.
+// Real-time: no allocation, no locks, no exceptions; bounded: at most 3 + 4 (1 + max_iterations)
+// Newton solves of max_iterations steps and one bounded `uncorrect`.
 #pragma once
 
 #include "vc/machine/correct.hpp"

@@ -31,9 +31,15 @@ Status world_from_joints(const Model& model, WorldConvention convention, const J
 // the answer. LinuxCNC passes the previous joints to the inverse and the previous world
 // position to the forward; a seed farther than kSeedRadius (mm or deg, any joint) from the
 // nominal joints is ignored, so any seed gives the same answer (to the solver tolerance).
+// A nearer start is the last correction the module applied: the correction changes by the
+// error slopes (~1e-4) times the step between cycles, so q_n + that correction is within
+// ~1e-5 mm of this cycle's joints (the previous joints are a whole step, ~0.1 mm, away), and
+// the joints less it within slope x following error of this cycle's nominal joints. Where
+// given, it takes the place of `seed`.
 struct Applied {
   double gain = 1.0;                  // 0: nominal kinematics, 1: full correction
   const Joints* seed = nullptr;       // joints (inverse) or world position (forward), or none
+  const Joints* correction = nullptr;  // a full correction q_c - q_n of a pose nearby, or none
   static constexpr double kSeedRadius = machine::kSeedRadius;
 };
 // q = q_n + gain * (correct(q_n) - q_n).
