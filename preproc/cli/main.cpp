@@ -179,7 +179,7 @@ int main(int argc, char** argv) {
   selftune_cmd->add_option("--nominal", selftune.nominal, "model: the original program P0 (default: PROGRAM)");
   selftune_cmd->add_option("--deviations", selftune.deviations, "model: deviations to tune, e.g. EXX,EX0C (default: every table and the rotary axes' locations)")
       ->delimiter(',');
-  selftune_cmd->add_option("--nodes", selftune.nodes, "model: table nodes over each axis's travel")->capture_default_str();
+  selftune_cmd->add_option("--nodes", selftune.nodes, "model: table nodes over each axis's travel (a full turn: a Fourier series of order (nodes - 1) / 2)")->capture_default_str();
   selftune_cmd->add_option("--regularisation", selftune.regularisation, "model: ridge on scaled unknowns")
       ->capture_default_str();
   selftune_cmd->add_option("--smoothness", selftune.smoothness, "model: penalty on second differences")

@@ -6,9 +6,9 @@
 # part (a conical pocket cut while C turns 360 deg) tunes the tables and the rotary axes'
 # location errors, which then serve a 3+2 pocket at another pose; the local strategy on the
 # same part. bc_head (head-table test machine, tcp world): a swarf part (a drafted pocket cut
-# while C turns, a slot cut with the head leaning, a small 3+2 pocket) tunes the tables, which
-# then serve a 3+2 pocket and a cone of other shapes (issue 22's carry-over, as peak to
-# valley). Prints the form errors.
+# while C turns, a slot cut with the head leaning, a small 3+2 pocket, a swarf ring at another
+# radius about C) tunes the tables, which then serve a 3+2 pocket and a cone of other shapes
+# (issue 22's carry-over, as peak to valley). Prints the form errors.
 #
 #   preproc/shop/demo.sh [BUILD_DIR] [WORK_DIR]      (default build, a temporary folder)
 set -euo pipefail

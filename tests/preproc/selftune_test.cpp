@@ -610,7 +610,13 @@ TEST_F(VirtualShopHeadTable, BothStrategiesTakeA32PocketToTheNoise) {
 // face the machine's y, cut by the tool's side with the head leaning B20 along it (C15);
 // and a small 3+2 pocket at B35 C105, whose floor (the flat end at the swarf's B) shows the
 // errors along the tilted tool that neither the swarf walls nor the vertical floor show, and
-// whose walls face the machine's y at another C than the slot's. 257 points. The model strategy's tables carried to parts of another shape: the 3+2 pocket
+// whose walls face the machine's y at another C than the slot's; and a swarf ring (a conical
+// pocket of 20 deg, 12 mm radius at its foot, 8 deep, B20 while C turns 360 deg) round
+// X-50 Y-25, 56 mm from the C axis where the pocket's centre is 22 mm from it: the swarf
+// walls' error round a turn of C is the table's (the same at any radius) plus the linear
+// axes' change over the circle the feature's centre runs round the C axis (its radius), which
+// one radius cannot tell apart. The pocket's walls at 2 heights, its floor on a 15 x 9 grid:
+// 351 points. The model strategy's tables carried to parts of another shape: the 3+2 pocket
 // at another pose (head_pocket_b) and a cone of 22 deg elsewhere on the part (head_cone_b).
 TEST_F(VirtualShopHeadTable, SwarfContourTunesTablesThatCarryOverToOtherParts) {
   const std::string plan = source("tests/programs/selftune/head_draft_a_points.csv");
@@ -621,14 +627,23 @@ TEST_F(VirtualShopHeadTable, SwarfContourTunesTablesThatCarryOverToOtherParts) {
   // steepest slope, (sin 35 n, cos 35) with n the pocket's outward normal in the plane at the
   // tip (a rounded rectangle round X20 Y10: straight walls at |x - 20| = 35, |y - 10| = 25,
   // corners of R15); in the slot (y < -40) it leans along the slot, (sin 20, 0, cos 20); in
-  // the 3+2 pocket (x < -45) it stands at B35 C105: R_z(105 - 15) (sin 35, 0, cos 35).
+  // the 3+2 pocket (x < -45) it stands at B35 C105: R_z(105 - 15) (sin 35, 0, cos 35); on the
+  // ring round X-50 Y-25 (within 20 mm of it) it is the generatrix of its cone of 20 deg.
   run_ok("simulate " + machine() + " " + p0 + " -o " + path("draft_ideal.csv") + " --compensation " + machine() +
          files());
-  int on_wall = 0, in_slot = 0, in_pocket = 0;
+  int on_wall = 0, in_slot = 0, in_pocket = 0, on_ring = 0;
   double worst = 0;
-  const double tilt = 35 * M_PI / 180, lean = 20 * M_PI / 180;
+  const double tilt = 35 * M_PI / 180, lean = 20 * M_PI / 180, ring = 20 * M_PI / 180;
   for (const shop::PathSample& s : shop::read_tool_path(path("draft_ideal.csv"))) {
-    if (!s.cutting || s.axis.z() > 0.99) continue;  // the floor raster: the tool vertical
+    if (!s.cutting || s.axis.z() > 0.99) continue;  // the floor rasters: the tool vertical
+    const Eigen::Vector2d from_ring(s.tip.x() + 50, s.tip.y() + 25);
+    if (from_ring.norm() < 20) {
+      const Eigen::Vector2d n = from_ring.normalized();
+      worst = std::max(worst, (s.axis - Eigen::Vector3d(std::sin(ring) * n.x(), std::sin(ring) * n.y(), std::cos(ring)))
+                                  .norm());
+      ++on_ring;
+      continue;
+    }
     if (s.tip.y() < -40) {
       worst = std::max(worst, (s.axis - Eigen::Vector3d(std::sin(lean), 0, std::cos(lean))).norm());
       ++in_slot;
@@ -651,8 +666,9 @@ TEST_F(VirtualShopHeadTable, SwarfContourTunesTablesThatCarryOverToOtherParts) {
   EXPECT_GT(on_wall, 1000);
   EXPECT_GT(in_slot, 100);
   EXPECT_GT(in_pocket, 100);
-  EXPECT_LT(worst, 1e-5) << "the tool axis on the walls is not their slope, in the slot not along it, or in the "
-                            "3+2 pocket not at B35 C105";
+  EXPECT_GT(on_ring, 1000);
+  EXPECT_LT(worst, 1e-5) << "the tool axis on the walls is not their slope, in the slot not along it, in the "
+                            "3+2 pocket not at B35 C105, or on the ring not its generatrix";
 
   const Form raw = measured(p0, plan, path("draft_r0.csv"), 11);
   run_ok("predistort " + machine() + " " + p0 + " -o " + path("draft_p1.ngc") + files());
@@ -679,10 +695,6 @@ TEST_F(VirtualShopHeadTable, SwarfContourTunesTablesThatCarryOverToOtherParts) {
   EXPECT_LE(local.rms_um, 0.7);
   EXPECT_LE(local.pv_um, 3.0);
 
-  struct Carried {
-    double raw = 0, shipped = 0, tuned = 0;  // PV, um
-  };
-  std::map<std::string, Carried> carried;
   for (const std::string other : {"head_pocket_b", "head_cone_b"}) {
     const std::string plan_b = source("tests/programs/selftune/" + other + "_points.csv");
     const std::string b0 = source("tests/programs/selftune/" + other + ".ngc");
@@ -691,30 +703,24 @@ TEST_F(VirtualShopHeadTable, SwarfContourTunesTablesThatCarryOverToOtherParts) {
     const Form b_raw = measured(b0, plan_b, path(other + "_raw.csv"), 14);
     const Form b_shipped = measured(path(other + "_model.ngc"), plan_b, path(other + "_model.csv"), 15);
     const Form b_tuned = measured(path(other + "_tuned.ngc"), plan_b, path(other + "_tuned.csv"), 16);
-    carried[other] = {b_raw.pv_um, b_shipped.pv_um, b_tuned.pv_um};
     std::cout << other << ": PV raw " << b_raw.pv_um << " um, with the shipped model " << b_shipped.pv_um
               << " um, with the tables tuned on the drafted pocket " << b_tuned.pv_um << " um ("
               << 100 * (1 - b_tuned.pv_um / b_raw.pv_um) << " % below raw, "
               << 100 * (1 - b_tuned.pv_um / b_shipped.pv_um) << " % below the shipped model)\n";
     std::cout << other << ": RMS raw " << b_raw.rms_um << " um, with the shipped model " << b_shipped.rms_um
               << " um, with the tuned tables " << b_tuned.rms_um << " um\n";
-    // Looser bounds for both parts; issue 22's targets (90 % below raw, 70 % below the
-    // shipped model) are asserted below where they hold.
-    EXPECT_LT(b_tuned.pv_um, 0.5 * b_shipped.pv_um) << other;
-    EXPECT_LT(b_tuned.pv_um, 0.25 * b_raw.pv_um) << other;
+    // Issue 22's targets: 90 % below raw, 70 % below the shipped model.
+    EXPECT_LE(b_tuned.pv_um, 0.1 * b_raw.pv_um) << other;
+    EXPECT_LE(b_tuned.pv_um, 0.3 * b_shipped.pv_um) << other;
     EXPECT_LT(b_tuned.rms_um, 0.6 * b_shipped.rms_um) << other;
   }
-  // The 3+2 pocket: both targets (97 % / 74 % here; 81-84 % below the shipped model with the
-  // part's report drawn with noise seeds 21, 31, 41 or without noise).
-  EXPECT_LE(carried["head_pocket_b"].tuned, 0.1 * carried["head_pocket_b"].raw);
-  EXPECT_LE(carried["head_pocket_b"].tuned, 0.3 * carried["head_pocket_b"].shipped);
-  // The cone: neither target is asserted, as neither holds over noise draws (preproc/shop/
-  // README.md, "Measured"). Here 78 % below raw and 70.3 % below the shipped model; with
-  // noise seeds 21, 31, 41, 63-72 % and 50-63 %. 90 % below raw asks for a PV under 0.91 um
-  // (the raw error is mostly one offset of all walls, which a PV does not count): the true
-  // machine's own file as the model leaves 0.53 um, and the tuned tables leave a shift of
-  // the cone towards the C axis of about 1 um (with or without noise on part A's report).
-  EXPECT_LE(carried["head_cone_b"].tuned, 0.4 * carried["head_cone_b"].shipped);
+  // Here the pocket 98.3 % / 87.5 % and the cone 93.7 % / 91.4 % (0.58 um: the raw error is
+  // mostly one offset of all the walls, which a PV does not count; the true machine's own file
+  // as the model leaves 0.53 um). With part A's report drawn with noise seeds 21, 31, 41: the
+  // pocket 98.0-98.9 % / 84.8-91.9 %, the cone 90.6-92.2 % / 87.3-89.4 % (0.71-0.86 um); over
+  // noise seeds 51-91 the cone missed 90 % below raw twice (1.04, 1.10 um, still 84 % below the
+  // shipped model): the noise of part A's report left a first and second harmonic of 0.2-0.35
+  // um round the cone's walls and moved its floor. preproc/shop/README.md, "Measured".
 }
 
 }  // namespace

@@ -131,8 +131,29 @@ std::optional<double> MachinedSurface::deviation(const Eigen::Vector3d& p, const
   }
   // A point on the edge of a wall parallel to n stays within round-off of a tool's side
   // (f flat near 0): the surface is then where the iteration stopped, to 1 nm.
-  if (!(std::abs(f1) <= 1e-6)) return std::nullopt;
-  return t1;
+  if (std::abs(f1) <= 1e-6) return t1;
+  // The secants can bounce between two tools whose surfaces meet near p (a floor under the
+  // edge of one flat end and the middle of the next): then the sign change of f nearest p
+  // within the reach, halved down.
+  constexpr int kSteps = 64;
+  std::optional<double> found;
+  double t_prev = -2 * options_.reach_mm, f_prev = removed(p + t_prev * n);
+  for (int k = 1; k <= kSteps; ++k) {
+    const double t = -2 * options_.reach_mm + 4 * options_.reach_mm * k / kSteps, f = removed(p + t * n);
+    if (std::isfinite(f) && std::isfinite(f_prev) && (f_prev > 0) != (f > 0)) {
+      double lo = t_prev, hi = t, f_lo = f_prev;
+      for (int i = 0; i < 60; ++i) {
+        const double mid = 0.5 * (lo + hi), f_mid = removed(p + mid * n);
+        ((f_mid > 0) == (f_lo > 0) ? lo : hi) = mid;
+        if ((f_mid > 0) == (f_lo > 0)) f_lo = f_mid;
+      }
+      const double root = 0.5 * (lo + hi);
+      if (std::abs(removed(p + root * n)) <= 1e-6 && (!found || std::abs(root) < std::abs(*found))) found = root;
+    }
+    t_prev = t, f_prev = f;
+  }
+  if (found && std::abs(*found) <= options_.reach_mm) return found;
+  return std::nullopt;
 }
 
 }  // namespace vc::shop

@@ -13,18 +13,39 @@
 namespace vc::shop {
 namespace {
 
-// A tuning table on a copy of the model: its index there and its columns.
+// A full turn's table: rows every 10 deg, so that the written table follows the series.
+constexpr int kFullTurnRows = 37;
+
+// A tuning table on a copy of the model: its index there and its columns. Over a travel its
+// unknowns are the values at `nodes` nodes, linearly interpolated; over a full turn (periodic)
+// they are the coefficients of a Fourier series of order `order` (1, cos, sin of the angle,
+// cos, sin of twice the angle, ...), written into the table's rows.
 struct Probe {
   int joint;
   int table;  // index into the tuned model's tables
   std::vector<tables::ErrorSymbol> columns;
-  bool periodic;  // a full turn: the last node is the first (one unknown)
-  int nodes;
-  int distinct_nodes() const { return periodic ? nodes - 1 : nodes; }
+  bool periodic;
+  int nodes;      // table rows
+  int order = 0;  // periodic: the series' highest harmonic
+  int distinct_nodes() const { return periodic ? 2 * order + 1 : nodes; }  // unknowns per column
 };
 
-// One unknown: a tuning table's value (probe, node, column), or a location error of an axis
-// line (joint, component 0..5: X Y Z in mm, A B C in rad).
+// Term k of a full turn's series (0: 1; 2h - 1: cos h a; 2h: sin h a) at angle `deg`.
+double harmonic(int k, double deg) {
+  if (k == 0) return 1.0;
+  const double h = (k + 1) / 2 * deg * M_PI / 180.0;
+  return k % 2 ? std::cos(h) : std::sin(h);
+}
+
+// The angle of a full turn's row, deg: the last row's is the first's (the rows are equal).
+double turn_angle(const tables::ErrorTable& t, int row) {
+  const auto& nodes = t.grid()[0].nodes;
+  return nodes[static_cast<std::size_t>(row) + 1 == nodes.size() ? 0 : static_cast<std::size_t>(row)];
+}
+
+// One unknown: a tuning table's value (probe, node, column; over a full turn, node is the
+// series' term), or a location error of an axis line (joint, component 0..5: X Y Z in mm,
+// A B C in rad).
 struct Unknown {
   int probe = -1, node = 0, column = 0;
   int joint = -1, component = 0;
@@ -87,14 +108,20 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
   std::vector<Probe> probes;
   for (const auto& [joint, columns] : selection.tables) {
     const char letter = model.axes[static_cast<std::size_t>(joint)].letter;
-    machine::BoundTable bound{zero_table(model, joint, options.nodes, columns, tuning_table_name(letter)), {}};
-    bound.joint[0] = joint;
-    const bool periodic = bound.table.grid()[0].periodic;
+    const bool periodic = zero_table(model, joint, 2, columns, tuning_table_name(letter)).grid()[0].periodic;
     if (periodic && options.nodes < 3)
       throw std::invalid_argument("--nodes must be at least 3 for the full-turn axis " + std::string(1, letter));
+    // A full turn: as many harmonics as the periodic nodes would give (5 nodes, 4 distinct:
+    // order 2). Nodes 90 deg apart cannot hold a harmonic of order 2 (sin 2a is zero on every
+    // node) and leave 29 % of the first between them; a table's errors round a turn are its
+    // first harmonics (run-out, wobble, ovality).
+    const int rows = periodic ? kFullTurnRows : options.nodes;
+    machine::BoundTable bound{zero_table(model, joint, rows, columns, tuning_table_name(letter)), {}};
+    bound.joint[0] = joint;
     tuned.axes[static_cast<std::size_t>(joint)].tables.push_back(static_cast<int>(tuned.tables.size()));
     tuned.axes[static_cast<std::size_t>(joint)].moved_by |= 1u << joint;
-    probes.push_back({joint, static_cast<int>(tuned.tables.size()), columns, periodic, options.nodes});
+    probes.push_back({joint, static_cast<int>(tuned.tables.size()), columns, periodic, rows,
+                      periodic ? (options.nodes - 1) / 2 : 0});
     tuned.tables.push_back(std::move(bound));
   }
   std::vector<Unknown> unknowns;            // probe by probe, node by node, column by column; then locations
@@ -128,8 +155,14 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
     }
     const Probe& pr = probes[static_cast<std::size_t>(x.probe)];
     tables::ErrorTable& t = tuned.tables[static_cast<std::size_t>(pr.table)].table;
-    t.set_value(x.node, x.column, value);
-    if (pr.periodic && x.node == 0) t.set_value(pr.nodes - 1, x.column, value);
+    if (!pr.periodic) {
+      t.set_value(x.node, x.column, value);
+      return;
+    }
+    // one term of the series (the others are zero while the sensitivities are taken); the
+    // last row is the first
+    for (int row = 0; row < pr.nodes; ++row)
+      t.set_value(row, x.column, value * harmonic(x.node, turn_angle(t, row)));
   };
 
   // One equation per kept point: sensitivities by a small value of one unknown at a time.
@@ -175,11 +208,24 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
     if (data(u, u) < 1e-12 * mean_diagonal) ++fit.unobservable;
   Eigen::MatrixXd prior = Eigen::MatrixXd::Zero(cols, cols);
   prior.diagonal().array() += options.regularisation * mean_diagonal;
-  // Second differences of scaled values along each table column: x[i-1] - 2 x[i] + x[i+1]
-  // (round the turn on a periodic table).
+  // A full turn's series weighed as its values on the nodes --nodes would put round the turn
+  // (n = nodes - 1 of them, a apart): the ridge on a term is its sum of squares there (n for
+  // the constant, n / 2 for a harmonic), the smoothness that of its second differences,
+  // n / 2 (2 - 2 cos h a)^2 for harmonic h.
+  const double turn_nodes = options.nodes - 1;
+  for (Eigen::Index u = 0; u < cols; ++u) {
+    const Unknown& x = unknowns[static_cast<std::size_t>(u)];
+    if (x.location() || !probes[static_cast<std::size_t>(x.probe)].periodic) continue;
+    const int h = (x.node + 1) / 2;
+    const double bend = 2 - 2 * std::cos(2 * M_PI * h / turn_nodes);
+    prior(u, u) = (x.node == 0 ? turn_nodes : turn_nodes / 2) *
+                  (options.regularisation + options.smoothness * bend * bend) * mean_diagonal;
+  }
+  // Second differences of scaled values along each table column over a travel:
+  // x[i-1] - 2 x[i] + x[i+1].
   for (std::size_t p = 0; p < probes.size(); ++p)
     for (std::size_t c = 0; c < probes[p].columns.size(); ++c)
-      for (int node = probes[p].periodic ? 0 : 1; node + 1 < options.nodes; ++node) {
+      for (int node = 1; !probes[p].periodic && node + 1 < options.nodes; ++node) {
         const Eigen::Index i[3] = {index(static_cast<int>(p), node - 1, static_cast<int>(c)),
                                    index(static_cast<int>(p), node, static_cast<int>(c)),
                                    index(static_cast<int>(p), node + 1, static_cast<int>(c))};
@@ -235,8 +281,8 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
       for (const auto& c : earlier->table.columns())
         if (std::none_of(columns.begin(), columns.end(), [&](const auto& s) { return s.component == c.symbol.component; }))
           columns.push_back(c.symbol);
-    tables::ErrorTable table = zero_table(model, probe.joint, options.nodes, columns, tuning_table_name(letter));
-    for (int node = 0; node < options.nodes; ++node) {
+    tables::ErrorTable table = zero_table(model, probe.joint, probe.nodes, columns, tuning_table_name(letter));
+    for (int node = 0; node < probe.nodes; ++node) {
       if (earlier) {
         tables::ErrorTable::Sample sample;
         const double at = table.grid()[0].nodes[static_cast<std::size_t>(node)];
@@ -247,7 +293,12 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
               table.set_value(node, static_cast<int>(d), table.value(node, static_cast<int>(d)) + sample.value[c]);
       }
       for (std::size_t c = 0; c < probe.columns.size(); ++c) {
-        const double change = x[index(static_cast<int>(p), node, static_cast<int>(c))];
+        double change = 0;
+        if (!probe.periodic)
+          change = x[index(static_cast<int>(p), node, static_cast<int>(c))];
+        else
+          for (int k = 0; k < probe.distinct_nodes(); ++k)
+            change += x[index(static_cast<int>(p), k, static_cast<int>(c))] * harmonic(k, turn_angle(table, node));
         table.set_value(node, static_cast<int>(c), table.value(node, static_cast<int>(c)) + change);
         if (probe.columns[c].quantity() == tables::Quantity::Length)
           fit.largest_change_mm = std::max(fit.largest_change_mm, std::abs(change));

@@ -26,7 +26,13 @@ tool's side with the head leaning B20 along the slot, which a swarf wall on this
 shows: cut_leaning_slot; and a 24 x 24 x 5 3+2 pocket at B35 C105 (cut_pocket), whose floor,
 cut by the flat end at the swarf's B, shows the errors along the tilted tool that no swarf
 wall or vertical floor does, and whose walls face the machine's y at another C than the
-slot's) and head_cone_b (a cone of 22 deg centred at X-30 Y-25). On bc_head the head
+slot's; and a swarf ring, a conical pocket of 20 deg, 12 mm radius at its foot, 8 deep,
+round X-50 Y-25 (its walls at 2 heights, 36 points each, its floor cut but not measured):
+56 mm from the C axis where the pocket's centre is 22 mm from it, so the walls' error round
+a turn of C, which is the C table's plus the linear axes' change over the circle the
+feature's centre runs round the C axis, is seen at two radii and the two can be told apart;
+the pocket's walls at 2 heights, its floor on a 15 x 9 grid; 351 points) and head_cone_b (a
+cone of 22 deg centred at X-30 Y-25, which head_draft_a's tables are carried to). On bc_head the head
 tilts the tool towards +x of the C frame, so C faces the wall to the tool: B = +tilt, C = the
 wall's azimuth + 15 deg (the fixture's turn); on the MC-300 B = -tilt, C = the azimuth
 (swarf_pose). Checked by assertions: the tool axis from frame() is the wall's slope at every
@@ -221,14 +227,29 @@ def write_cone(name, title, tilt_deg, floor_radius, depth, step_deg=0.2, machine
     point on the wall's foot: the side touches the wall along the generatrix. `centre`: the
     cone's axis in the part frame (x, y); off the table's axis, the linear axes move while C
     turns (on the table's axis the tip stands still in the machine while the part turns)."""
+    lines = ["%", f"({title})",
+             "(tcp world: X Y Z are the tool tip in the part frame; written by make_parts_5axis.py)",
+             "G21 G90 G17 G40 G49 G54 G94", "T1 M6", "G43 H1", "S8000 M3"]
+    cut, points = cut_cone(tilt_deg, floor_radius, depth, step_deg, machine, centre)
+    lines += cut + ["M5", "M2", "%"]
+    with open(os.path.join(HERE, name + ".ngc"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return write_plan(name, title, "FL: floor (normal +Z); WALL: the conical wall at three heights, normals into the pocket",
+                      points)
+
+
+def cut_cone(tilt_deg, floor_radius, depth, step_deg, machine, centre, heights=None, per_ring=36, floor=5,
+             prefix=""):
+    """A conical pocket (write_cone): the program lines from the first rapid to the last
+    retract, and its plan points (face names prefixed with `prefix`): the floor on a
+    (2 floor + 1)^2 grid within 3 mm of the tool's reach (none for floor = 0), the wall at
+    `heights` above the floor (default 3 mm, half the depth and depth - 3 mm), `per_ring`
+    points round each."""
     a = math.radians(tilt_deg)
     cx, cy = centre
     b_deg, _ = swarf_pose(tilt_deg, 0.0, machine)
     bottom = -depth
-    lines = ["%", f"({title})",
-             "(tcp world: X Y Z are the tool tip in the part frame; written by make_parts_5axis.py)",
-             "G21 G90 G17 G40 G49 G54 G94", "T1 M6", "G43 H1", "S8000 M3",
-             f"G0 X{fmt(cx)} Y{fmt(cy)} Z{fmt(SAFE)} B0.0000 C0.0000"]
+    lines = [f"G0 X{fmt(cx)} Y{fmt(cy)} Z{fmt(SAFE)} B0.0000 C0.0000"]
     # Floor raster (tool vertical), inside the circle of the tool centre r from the wall's foot.
     reach = floor_radius - RADIUS
     rows, y = [], -reach + 1.0
@@ -274,33 +295,30 @@ def write_cone(name, title, tilt_deg, floor_radius, depth, step_deg=0.2, machine
         lines.append(f"G1 X{fmt(p[0])} Y{fmt(p[1])} Z{fmt(p[2])} C{k * step_deg:.4f}" + (f" F{FEED:.0f}" if k == 1 else ""))
     g = frame(b_deg, 360.0, machine)[0]
     up = add(p, scale(SAFE, g))
-    lines += [f"G0 X{fmt(up[0])} Y{fmt(up[1])} Z{fmt(up[2])}", "M5", "M2", "%"]
-    with open(os.path.join(HERE, name + ".ngc"), "w") as f:
-        f.write("\n".join(lines) + "\n")
+    lines.append(f"G0 X{fmt(up[0])} Y{fmt(up[1])} Z{fmt(up[2])}")
 
     points = []
-    for ix in range(-5, 6):
-        for iy in range(-5, 6):
-            x, y = ix * (reach - 3) / 5, iy * (reach - 3) / 5
+    for ix in range(-floor, floor + 1) if floor else ():
+        for iy in range(-floor, floor + 1):
+            x, y = ix * (reach - 3) / floor, iy * (reach - 3) / floor
             if math.hypot(x, y) > reach - 3:
                 continue
             assert any(abs(y - row) <= RADIUS and lo - RADIUS <= x <= hi + RADIUS for row, lo, hi in passes)
-            points.append(("FL", (cx + x, cy + y, bottom), (0.0, 0.0, 1.0)))
-    for h in (3.0, depth / 2, depth - 3.0):
-        for k in range(36):
-            theta = 2 * math.pi * (k + 0.5) / 36
+            points.append((prefix + "FL", (cx + x, cy + y, bottom), (0.0, 0.0, 1.0)))
+    for h in (heights or (3.0, depth / 2, depth - 3.0)):
+        for k in range(per_ring):
+            theta = 2 * math.pi * (k + 0.5) / per_ring
             c, s_ = math.cos(theta), math.sin(theta)
             r_at = floor_radius + h * math.tan(a)
             normal = (-math.cos(a) * c, -math.cos(a) * s_, math.sin(a))
             assert h / math.cos(a) < 25  # within the flute length above the tip
-            points.append(("WALL", (cx + r_at * c, cy + r_at * s_, bottom + h), normal))
-    return write_plan(name, title, "FL: floor (normal +Z); WALL: the conical wall at three heights, normals into the pocket",
-                      points)
+            points.append((prefix + "WALL", (cx + r_at * c, cy + r_at * s_, bottom + h), normal))
+    return lines, points
 
 
 
 def write_drafted_pocket(name, title, tilt_deg, half_u, half_v, corner, depth, centre, machine="bc_head",
-                         step_deg=0.2, slot=None, pockets=()):
+                         step_deg=0.2, slot=None, pockets=(), rings=(), wall_heights=None, floor_grid=(5, 3)):
     """A pocket with drafted walls: its foot a rectangle 2 half_u x 2 half_v with corners of
     radius `corner` (above the tool's radius), round `centre` (x, y in the part frame), every
     wall tilted outward by `tilt_deg` (straight walls are planes, corners are cones). The floor
@@ -309,7 +327,13 @@ def write_drafted_pocket(name, title, tilt_deg, half_u, half_v, corner, depth, c
     B and C from swarf_pose (C = the wall's azimuth + 15 deg on bc_head, 0 -> 360 once round).
     Along a straight wall C stands and the linear axes carry the tool along it; round a
     corner C turns 90 deg. The tip sits r off the wall along its normal, its flat end's lowest
-    point on the wall's foot (as in write_cone)."""
+    point on the wall's foot (as in write_cone). Its plan: the floor on a (2 gx + 1) x (2 gy + 1)
+    grid 8 mm inside the walls' feet (`floor_grid` = (gx, gy)), the walls at `wall_heights`
+    above the floor (default 3 mm, half the depth and depth - 3 mm), 36 points round each.
+    Then, on the same part: the leaning slot (`slot`, cut_leaning_slot), the 3+2 pockets
+    (`pockets`, cut_pocket's arguments) and the swarf rings (`rings`: conical pockets,
+    cut_cone's (tilt, floor radius, depth, centre, heights, points per height), their walls
+    measured, not their floors)."""
     a = math.radians(tilt_deg)
     cx, cy = centre
     bottom = -depth
@@ -434,30 +458,37 @@ def write_drafted_pocket(name, title, tilt_deg, half_u, half_v, corner, depth, c
         cut, more = cut_pocket(*pocket, machine, prefix=f"P{k + 1}")
         lines += cut
         slot_points += more
+    for k, (tilt, radius, ring_depth, at, heights, per_ring) in enumerate(rings):  # faces K1WALL, K2WALL, ...
+        cut, more = cut_cone(tilt, radius, ring_depth, step_deg, machine, at, heights, per_ring, floor=0,
+                             prefix=f"K{k + 1}")
+        lines += cut
+        slot_points += more
     lines += ["M5", "M2", "%"]
     with open(os.path.join(HERE, name + ".ngc"), "w") as f:
         f.write("\n".join(lines) + "\n")
 
-    # CMM plan: the floor on a grid 8 mm inside the walls' feet (as the cones'), the walls at
-    # three heights, 36 points each, equally spaced along the contour.
+    # CMM plan (the docstring): the walls' points equally spaced along the contour.
     points = []
-    for ix in range(-5, 6):
-        for iy in range(-3, 4):
-            x, y = ix * (half_u - 8) / 5, iy * (half_v - 8) / 3
+    gx, gy = floor_grid
+    for ix in range(-gx, gx + 1):
+        for iy in range(-gy, gy + 1):
+            x, y = ix * (half_u - 8) / gx, iy * (half_v - 8) / gy
             if abs(x) > half_width(y, 8.0) + 1e-9:
                 continue
             assert any(abs(y - row) <= RADIUS and lo - RADIUS <= x <= hi + RADIUS for row, lo, hi in passes)
             points.append(("FL", (cx + x, cy + y, bottom), (0.0, 0.0, 1.0)))
-    for h in (3.0, depth / 2, depth - 3.0):
+    for h in (wall_heights or (3.0, depth / 2, depth - 3.0)):
         assert h / math.cos(a) < 25  # within the flute length above the tip
         for k in range(36):
             foot, phi = foot_at((k + 0.5) * perimeter / 36)
             c, s_ = math.cos(math.radians(phi)), math.sin(math.radians(phi))
             out = h * math.tan(a)
             points.append(("WALL", (cx + foot[0] + out * c, cy + foot[1] + out * s_, bottom + h), inward(phi)))
-    return write_plan(name, title, "FL: floor (normal +Z); WALL: the drafted walls at three heights, normals into the "
-                      "pocket" + ("; SL: the leaning slot's walls at two heights" if slot else "")
-                      + ("; P1FL, P1WU+, ...: the 3+2 pockets' floors and walls" if pockets else ""), points + slot_points)
+    return write_plan(name, title, "FL: floor (normal +Z); WALL: the drafted walls at "
+                      f"{len(wall_heights or (0, 0, 0))} heights, normals into the pocket"
+                      + ("; SL: the leaning slot's walls at two heights" if slot else "")
+                      + ("; P1FL, P1WU+, ...: the 3+2 pockets' floors and walls" if pockets else "")
+                      + ("; K1WALL, ...: the swarf rings' walls" if rings else ""), points + slot_points)
 
 
 def cut_leaning_slot(slot, machine, points):
@@ -505,8 +536,11 @@ if __name__ == "__main__":
                      28, 24, 12))
     print(write_drafted_pocket("head_draft_a", "5-axis swarf on bc_head, head B35 and table C: a 70 x 50 pocket, corners "
                                "R15, walls drafted 35 deg, 15 deep, C turning 360 deg, and its floor; a slot cut by the "
-                               "tool leaning 20 deg along it; a 3+2 pocket at B35 C105", 35, 35, 25, 15, 15, (20.0, 10.0),
-                               slot=(20.0, -50.0, 40.0, 14.0, 6.0), pockets=[(35, 105, (-65.0, 10.0, 0.0), 12, 12, 5)]))
+                               "tool leaning 20 deg along it; a 3+2 pocket at B35 C105; a swarf ring of 20 deg at X-50 "
+                               "Y-25", 35, 35, 25, 15, 15, (20.0, 10.0), slot=(20.0, -50.0, 40.0, 14.0, 6.0),
+                               pockets=[(35, 105, (-65.0, 10.0, 0.0), 12, 12, 5)],
+                               rings=[(20, 12, 8, (-50.0, -25.0), (3.0, 5.0), 36)], wall_heights=(3.0, 12.0),
+                               floor_grid=(7, 4)))
     print(write_cone("head_cone_b", "5-axis swarf on bc_head, head B22 and table C: a conical pocket, wall tilted 22 deg, "
                      "centred at X-30 Y-25, C turning 360 deg, and its floor", 22, 24, 12, machine="bc_head",
                      centre=(-30.0, -25.0)))
