@@ -9,7 +9,7 @@
 // The HAL function volkins.update (servo thread, before motion-controller) ramps the
 // correction in and out when volkins.enable changes, so switching never jumps; the kinematics
 // functions read the ramp and the parameters, report on output pins and keep only the last
-// two corrections between calls, as their solvers' start (an answer never depends on it).
+// three corrections between calls, as their solvers' start (an answer never depends on it).
 // A HAL file without `addf volkins.update`
 // does not leave the machine silently uncorrected: until the function has run, the kinematics
 // apply what volkins.enable asks for in full (no ramp), say so on volkins.gain, volkins.active
@@ -86,23 +86,25 @@ vc::kins::ModuleSettings* settings = nullptr;  // built in rtapi_app_main, read-
 HalData* hal = nullptr;
 int comp_id = -1;
 
-// The full corrections (q_c - q_n) of the last two inverses, servo thread only. The next
-// inverse starts at its nominal joints plus their linear extrapolation (the correction moves
-// smoothly, by the error slopes times the step: this saves the Newton steps that a start at
-// the previous joints, a whole step away, takes); the forward of the feedback, which is the
-// last command plus the following error, at the joints less the last one.
+// The full corrections (q_c - q_n) of the last three inverses, servo thread only. The next
+// inverse starts at its nominal joints plus their quadratic extrapolation (the correction
+// moves smoothly, by the error slopes times the step: from there one Newton step is left as a
+// rule, where a start at the previous joints, a whole step away, takes three); the forward of
+// the feedback, which is the last command plus the following error, at the joints less the
+// last one.
 struct CorrectionSeed {
-  Joints last, before;
-  int kept = 0;  // how many of the two are set
+  Joints last, before, before_that;
+  int kept = 0;  // how many of the three are set
   void keep(const Joints& correction) {
+    before_that = before;
     before = last;
     last = correction;
-    kept = std::min(kept + 1, 2);
+    kept = std::min(kept + 1, 3);
   }
   const Joints* for_forward() const { return kept > 0 ? &last : nullptr; }
   const Joints* for_inverse(Joints& extrapolated) const {
-    if (kept < 2) return for_forward();
-    extrapolated = 2.0 * last - before;
+    if (kept < 3) return for_forward();
+    extrapolated = 3.0 * (last - before) + before_that;
     return &extrapolated;
   }
 } correction_seed;

@@ -20,12 +20,13 @@ namespace {
 // The servo thread's view of pose i: the world position one and two cycles before (a step of
 // at most 0.1 mm and 0.06 deg per joint: 100 mm/s and 60 deg/s at 1 kHz), the joints the
 // previous cycle's inverse gave, and the seeds volkins keeps: the correction the previous
-// cycle applied (the forward's) and its extrapolation from the two before (the inverse's).
+// cycle applied (the forward's) and its quadratic extrapolation from the three before (the
+// inverse's).
 struct ServoCycle {
   Joints world, before, before_before;  // nominal joints (world = axes)
   Joints previous_joints;               // joints_from_world(before)
   Joints previous_correction;           // previous_joints - before
-  Joints extrapolated_correction;       // 2 previous_correction - (that of before_before)
+  Joints extrapolated_correction;       // from the corrections at world - k step, k = 1, 2, 3
 };
 
 struct Fixture {
@@ -53,9 +54,13 @@ const Fixture& fixture(const std::string& name) {
     ServoCycle c{q, q - step, q - 2 * step, {}, {}, {}};
     joints_from_world(f.model, WorldConvention::Axes, c.before, f.model.tool_length_mm, c.previous_joints);
     c.previous_correction = c.previous_joints - c.before;
-    Joints joints_before;
-    joints_from_world(f.model, WorldConvention::Axes, c.before_before, f.model.tool_length_mm, joints_before);
-    c.extrapolated_correction = 2 * c.previous_correction - (joints_before - c.before_before);
+    const auto correction_at = [&](const Joints& nominal) {
+      Joints joints;
+      joints_from_world(f.model, WorldConvention::Axes, nominal, f.model.tool_length_mm, joints);
+      return Joints(joints - nominal);
+    };
+    c.extrapolated_correction =
+        3 * (c.previous_correction - correction_at(c.before_before)) + correction_at(q - 3 * step);
     f.cycles.push_back(c);
   }
   return cache.emplace(name, std::move(f)).first->second;
