@@ -131,7 +131,8 @@ void set_residuals(Correction& out, const ToolPose& ideal, const ToolPose& real)
 
 Correction full_correction(const Model& model, const Joints& nominal, double tool_length_mm,
                            const Joints& seed) noexcept {
-  Start s = start(model, nominal, tool_length_mm, seed, model.rotary_count() > 0 ? Full::Always : Full::Never);
+  if (model.rotary_count() == 0) return correct(model, nominal, tool_length_mm, seed);  // no fade to leave out
+  Start s = start(model, nominal, tool_length_mm, seed, Full::Always);
   if (s.ok) set_residuals(s.out, s.ideal, s.real);
   return s.out;
 }

@@ -81,6 +81,36 @@ TEST_P(EveryMachine, ForwardIsTheExactInverseOfInverseInBothConventions) {
   }
 }
 
+// full_correction (the forward's band solve evaluates it at q_n): the tool where the ideal
+// machine puts it and pointing its way wherever the machine leaves the pole, the fade band
+// included (where correct() fades it), checked with the 4x4 chain; without rotary joints,
+// correct() itself.
+TEST_P(EveryMachine, FullCorrectionPutsAndPointsTheToolAsTheIdealMachine) {
+  std::mt19937_64 rng(3);
+  const double L = model_.tool_length_mm;
+  int band = 0;
+  for (int k = 0; k < pose_count() / 10; ++k) {
+    const Joints q = random_pose(model_, rng);
+    const Correction c = full_correction(model_, q, L, q);
+    if (model_.rotary_count() == 0) {
+      ASSERT_LT((c.joints - correct(model_, q, L).joints).cwiseAbs().maxCoeff(), 1e-12) << text(q);
+      continue;
+    }
+    if (c.pole_angle_rad < model_.fade.start_rad) continue;  // at the pole the direction is singular
+    ASSERT_EQ(c.status, Status::Ok) << describe(c.status) << " at " << text(q);
+    band += c.fade < 1.0;
+    const Eigen::Isometry3d real = part_T_tool(model_, Machine::Real, c.joints, L);
+    const Eigen::Isometry3d ideal = part_T_tool(model_, Machine::Ideal, q, L);
+    ASSERT_LT((real.translation() - ideal.translation()).norm(), 1e-9) << text(q);
+    if (model_.rotary_count() == 2) {
+      ASSERT_LT(ideal.linear().col(2).cross(real.linear().col(2)).norm(), 1e-9) << text(q);
+    }
+  }
+  if (model_.rotary_count() == 2) {
+    EXPECT_GT(band, 0);
+  }
+}
+
 // The module's case: part of the correction (the enable ramp) and solvers seeded with the
 // previous answer, or with a far or non-finite seed (LinuxCNC's first call, a jump), and
 // with a correction seed that is right, nearly right, far too large or not finite.

@@ -32,8 +32,8 @@ Correction correct(const Model& model, const Joints& nominal, double tool_length
                    const Joints& seed) noexcept;
 
 // The full correction (position and tool direction, no pole fade) at `nominal`, seeded at
-// `seed`: what correct() fades near a pole. Machines with rotary joints; `fade` reports the
-// f that correct() would apply.
+// `seed`: what correct() fades near a pole (without rotary joints, correct() itself); `fade`
+// reports the f that correct() would apply.
 Correction full_correction(const Model& model, const Joints& nominal, double tool_length_mm,
                            const Joints& seed) noexcept;
 
