@@ -42,10 +42,13 @@ class SmallLu {
   Joints solve(const Joints& b) const noexcept {
     double x[kMaxAxes];
     for (int i = 0; i < n_; ++i) x[i] = b[i];
-    for (int c = 0; c < n_; ++c) {
+    // P b first, all swaps in order: compute() swapped whole rows, L's multipliers included,
+    // so L is that of the final row order (swapping while substituting would apply a later
+    // swap to multipliers already used).
+    for (int c = 0; c < n_; ++c)
       if (row_[c] != c) std::swap(x[c], x[row_[c]]);
+    for (int c = 0; c < n_; ++c)
       for (int r = c + 1; r < n_; ++r) x[r] -= m_[r][c] * x[c];
-    }
     for (int r = n_ - 1; r >= 0; --r) {
       double sum = x[r];
       for (int k = r + 1; k < n_; ++k) sum -= m_[r][k] * x[k];
