@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "vc/machine/load_machine.hpp"
 
@@ -59,6 +60,7 @@ ModuleSettings settings_from_parameters(const char* machine, const char* coordin
   static constexpr const char* kPoseOrder = "xyzabcuvw";
   for (int j = 0; j < s.model.joint_count(); ++j)
     s.pose_field[j] = static_cast<int>(std::strchr(kPoseOrder, wanted[j]) - kPoseOrder);
+  s.contraction.emplace(s.model, std::vector<double>(kBoundToolLengthsMm.begin(), kBoundToolLengthsMm.end()), true);
   return s;
 }
 

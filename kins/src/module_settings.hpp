@@ -6,7 +6,9 @@
 #pragma once
 
 #include <array>
+#include <optional>
 
+#include "vc/machine/contraction_bound.hpp"
 #include "vc/machine/kinematics.hpp"
 
 namespace vc::kins {
@@ -23,7 +25,14 @@ struct ModuleSettings {
   // (as with its own TCP kinematics, whose tool-offset pin follows motion.tooloffset.z): the
   // module takes it off before the core sees the tool tip, and adds it back in the forward.
   int z_joint = -1;
+  // The inverse takes a Newton step without evaluating the real machine after it where this
+  // bound proves the step within the solver's tolerance (machine::ContractionBound): sampled
+  // at kBoundToolLengthsMm (the correction length between the first and the last, else every
+  // step is evaluated) with the temperatures drawn over their inputs' ranges.
+  std::optional<machine::ContractionBound> contraction;
 };
+
+inline constexpr std::array<double, 6> kBoundToolLengthsMm{0.0, 100.0, 200.0, 300.0, 400.0, 500.0};
 
 // machine: the machine file (required). coordinates: LinuxCNC's axis letters, one per joint in
 // the machine file's joint order (optional; default the machine's own). world: "axes" (default)

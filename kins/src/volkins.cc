@@ -239,7 +239,8 @@ int kinematicsInverse(const EmcPose* pose, double* joints, const KINEMATICS_INVE
   const double L = correction_length();          // the tool-length rule, slewed
   const Joints previous = Eigen::Map<const Joints>(joints, n);  // LinuxCNC's seed
   Joints extrapolated;
-  const vm::Applied applied{applied_gain(), &previous, correction_seed.for_inverse(extrapolated)};
+  const vm::Applied applied{applied_gain(), &previous, correction_seed.for_inverse(extrapolated),
+                            &*settings->contraction};
   Joints q;
   vm::Correction report;
   const vm::Status s = vm::joints_from_world(model, settings->world, world_of(*pose, offset), L, applied, q, &report);

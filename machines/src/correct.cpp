@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "small_lu.hpp"
+#include "vc/machine/contraction_bound.hpp"
 #include "vc/machine/correction_equations.hpp"
 
 namespace vc::machine {
@@ -12,23 +13,36 @@ namespace {
 
 using FreeJoints = std::array<bool, kMaxAxes>;
 
+// How newton() may stop: the direction tolerance where it is not the solver's (> 0), and the
+// contraction kappa of a step with the ideal Jacobian (0: none; contraction_bound.hpp).
+struct Stopping {
+  double direction_tolerance_rad = 0.0;
+  double kappa = 0.0;
+};
+
 // Newton on the real machine for the free joints; the others stay fixed. It starts with the
 // ideal machine's Jacobian (`ideal`, already computed for the target): the real one differs
 // by the error slopes, ~1e-4, so each step still gains about four digits. Where a step gains
 // less than two, the exact Jacobian of the real machine (table slopes included) replaces it.
-// `pose` returns the real pose at the final joints. `direction_tolerance_rad` replaces the
-// solver's where given (> 0).
+// While the Jacobian is the ideal one, a step whose residual bound kappa |W F| (W: direction
+// rows times kDirectionLeverMm) is within both tolerances ends the solve unevaluated: `pose`
+// is then the real pose before it and `unchecked_bound` that bound (else -1). Otherwise `pose`
+// returns the real pose at the final joints.
 Status newton(const Model& model, const CorrectionTarget& target, double tool_length_mm, const FreeJoints& free,
-              const PoseDerivatives& ideal, Joints& q, int& iterations, ToolPose& pose,
-              double direction_tolerance_rad = 0.0) noexcept {
+              const PoseDerivatives& ideal, Joints& q, int& iterations, ToolPose& pose, double& unchecked_bound,
+              const Stopping& stopping = {}) noexcept {
   const SolverOptions& opt = model.solver;
-  const double direction_tolerance = direction_tolerance_rad > 0.0 ? direction_tolerance_rad : opt.direction_tolerance_rad;
+  const double direction_tolerance =
+      stopping.direction_tolerance_rad > 0.0 ? stopping.direction_tolerance_rad : opt.direction_tolerance_rad;
+  const double unchecked_limit = std::min(opt.position_tolerance_mm, kDirectionLeverMm * direction_tolerance);
+  bool ideal_jacobian = true;
+  unchecked_bound = -1.0;
   int unknowns = 0;
   std::array<int, kMaxAxes> index{};
   for (int j = 0; j < model.joint_count(); ++j)
     if (free[j]) index[unknowns++] = j;
-  SmallLu lu;
-  lu.compute(correction_jacobian(target, ideal, index, unknowns));
+  SmallLu lu;  // factored when a step is first needed (a seed from the servo thread's last
+               // corrections is often within the tolerance already)
   double previous_norm = std::numeric_limits<double>::infinity();
   for (int step = 0;; ++step) {
     pose = tool_pose(model, Machine::Real, q, tool_length_mm);
@@ -39,10 +53,13 @@ Status newton(const Model& model, const CorrectionTarget& target, double tool_le
     if (position <= opt.position_tolerance_mm && direction <= direction_tolerance) return Status::Ok;
     if (step == opt.max_iterations) return Status::NotConverged;
     const double norm = position + kDirectionLeverMm * direction;
-    if (norm > 1e-2 * previous_norm) {
+    if (step == 0) {
+      lu.compute(correction_jacobian(target, ideal, index, unknowns));
+    } else if (norm > 1e-2 * previous_norm) {
       PoseDerivatives exact;
       tool_pose(model, Machine::Real, q, tool_length_mm, exact);
       lu.compute(correction_jacobian(target, exact, index, unknowns));
+      ideal_jacobian = false;
     }
     previous_norm = norm;
     if (!lu.ok()) return Status::Singular;
@@ -50,6 +67,13 @@ Status newton(const Model& model, const CorrectionTarget& target, double tool_le
     if (!step_vector.allFinite()) return Status::Singular;
     for (int c = 0; c < unknowns; ++c) q[index[c]] += step_vector[c];
     ++iterations;
+    if (ideal_jacobian && stopping.kappa > 0.0) {
+      const double bound = stopping.kappa * std::hypot(position, kDirectionLeverMm * direction);
+      if (bound <= unchecked_limit) {
+        unchecked_bound = bound;
+        return Status::Ok;
+      }
+    }
   }
 }
 
@@ -82,12 +106,24 @@ struct Start {
   Correction out;
   PoseDerivatives d;
   ToolPose ideal;
-  ToolPose real;  // the real pose at out.joints, set by newton()
+  ToolPose real;  // the real pose at out.joints, set by newton() (before an unchecked step)
+  double unchecked_bound = -1.0;  // newton()'s bound after an unchecked step, else -1
   FreeJoints linear{};
   bool ok = false;
 };
 
-Start start(const Model& model, const Joints& nominal, double tool_length_mm, const Joints& seed, Full full) noexcept {
+// The contraction a solve at full correction may stop on (0: every step evaluated): the bound's
+// for the pole angle's band, where it covers the tool length and describes the steps at all.
+double kappa_for(const ContractionBound* bound, double tool_length_mm, const Correction& c) noexcept {
+  if (!bound || !bound->covers(tool_length_mm) || c.fade < 1.0) return 0.0;
+  const int band = bound->band_of(c.pole_angle_rad);
+  if (band < 0) return 0.0;
+  const double kappa = bound->kappa(band);
+  return kappa < 1e-2 ? kappa : 0.0;
+}
+
+Start start(const Model& model, const Joints& nominal, double tool_length_mm, const Joints& seed, Full full,
+            const ContractionBound* bound = nullptr) noexcept {
   Start s;
   s.out.nominal = nominal;
   s.out.joints = seed;
@@ -115,16 +151,23 @@ Start start(const Model& model, const Joints& nominal, double tool_length_mm, co
     const double tolerance =
         s.out.fade < 1.0 ? model.solver.direction_tolerance_rad * std::sin(s.out.pole_angle_rad) : 0.0;
     s.out.status = newton(model, full_target(model, s.ideal, s.d), tool_length_mm, all, s.d, s.out.joints,
-                          s.out.iterations, s.real, tolerance);
+                          s.out.iterations, s.real, s.unchecked_bound,
+                          {tolerance, kappa_for(bound, tool_length_mm, s.out)});
     if (s.out.status != Status::Ok) return s;
   }
   s.ok = true;
   return s;
 }
 
-void set_residuals(Correction& out, const ToolPose& ideal, const ToolPose& real) noexcept {
-  out.residual_mm = (real.tip_mm - ideal.tip_mm).norm();
-  out.residual_rad = ideal.direction.cross(real.direction).norm();
+void set_residuals(Correction& out, const Start& s) noexcept {
+  out.unchecked_step = s.unchecked_bound >= 0.0;
+  if (out.unchecked_step) {  // not evaluated: the bound (|W F| <= bound)
+    out.residual_mm = s.unchecked_bound;
+    out.residual_rad = s.unchecked_bound / kDirectionLeverMm;
+    return;
+  }
+  out.residual_mm = (s.real.tip_mm - s.ideal.tip_mm).norm();
+  out.residual_rad = s.ideal.direction.cross(s.real.direction).norm();
 }
 
 }  // namespace
@@ -133,20 +176,24 @@ Correction full_correction(const Model& model, const Joints& nominal, double too
                            const Joints& seed) noexcept {
   if (model.rotary_count() == 0) return correct(model, nominal, tool_length_mm, seed);  // no fade to leave out
   Start s = start(model, nominal, tool_length_mm, seed, Full::Always);
-  if (s.ok) set_residuals(s.out, s.ideal, s.real);
+  if (s.ok) set_residuals(s.out, s);
   return s.out;
 }
 
 Correction correct(const Model& model, const Joints& nominal, double tool_length_mm,
                    const Joints& seed) noexcept {
+  return correct(model, nominal, tool_length_mm, seed, nullptr);
+}
+
+Correction correct(const Model& model, const Joints& nominal, double tool_length_mm, const Joints& seed,
+                   const ContractionBound* bound) noexcept {
   const int rotary = model.rotary_count();
-  Start s = start(model, nominal, tool_length_mm, seed, rotary > 0 ? Full::WhereFaded : Full::Never);
+  Start s = start(model, nominal, tool_length_mm, seed, rotary > 0 ? Full::WhereFaded : Full::Never, bound);
   Correction& out = s.out;
   if (!s.ok) return out;
   const int n = model.joint_count();
   const PoseDerivatives& d = s.d;
   const ToolPose& ideal = s.ideal;
-  ToolPose& real = s.real;
   const FreeJoints& linear = s.linear;
   CorrectionTarget target = position_target(ideal);
   if (rotary > 0 && out.fade < 1.0) {
@@ -155,8 +202,9 @@ Correction correct(const Model& model, const Joints& nominal, double tool_length
       if (!linear[j]) out.joints[j] = nominal[j] + out.fade * (out.joints[j] - nominal[j]);
   }
   if (rotary == 0 || out.fade < 1.0)
-    out.status = newton(model, target, tool_length_mm, linear, d, out.joints, out.iterations, real);
-  set_residuals(out, ideal, real);
+    out.status = newton(model, target, tool_length_mm, linear, d, out.joints, out.iterations, s.real,
+                        s.unchecked_bound, {0.0, rotary == 0 ? kappa_for(bound, tool_length_mm, out) : 0.0});
+  set_residuals(out, s);
   return out;
 }
 

@@ -175,7 +175,8 @@ Uncorrection invert_correction(const Model& model, const Joints& corrected, doub
   // the same in the part frame at every q, only linear axes move it).
   const CorrectionTarget full = full_target(model, real, ideal.d);
   bool evaluated = true;  // `ideal` holds the pose at q
-  if (fade_at(model, ideal) == 0.0) {  // at the pole: the rotary joints are not corrected
+  const double seed_fade = fade_at(model, ideal);
+  if (seed_fade == 0.0) {  // at the pole: the rotary joints are not corrected
     set_rotary(model, corrected, q);
     const Status s = ideal_newton(model, position, tool_length_mm, q, out.iterations, ideal);
     if (s == Status::Ok && fade_at(model, ideal) == 0.0) {
@@ -186,8 +187,11 @@ Uncorrection invert_correction(const Model& model, const Joints& corrected, doub
     evaluated = false;
   }
   // Full correction (and the fade band's first estimate).
+  const int steps_before = out.iterations;
   Status s = ideal_newton(model, full, tool_length_mm, q, out.iterations, ideal, evaluated);
-  double fade = s == Status::Ok ? fade_at(model, ideal) : 0.0;
+  // Where the seed was the answer (no step), the fade is the one judged there.
+  const bool at_seed = evaluated && out.iterations == steps_before;
+  double fade = s != Status::Ok ? 0.0 : at_seed ? seed_fade : fade_at(model, ideal);
   if (s == Status::Ok && fade == 1.0) {
     out.nominal = q;
     return out;

@@ -87,10 +87,10 @@ Status joints_from_world(const Model& model, WorldConvention convention, const J
     }
     return Status::Ok;
   }
-  const Correction c = usable(applied.correction, nominal)
-                           ? correct(model, nominal, tool_length_mm, Joints(nominal + *applied.correction))
-                       : near(applied.seed, nominal) ? correct(model, nominal, tool_length_mm, *applied.seed)
-                                                     : correct(model, nominal, tool_length_mm);
+  const Joints seed = usable(applied.correction, nominal) ? Joints(nominal + *applied.correction)
+                      : near(applied.seed, nominal)        ? *applied.seed
+                                                           : nominal;
+  const Correction c = correct(model, nominal, tool_length_mm, seed, applied.contraction);
   if (report) *report = c;
   if (c.status != Status::Ok) return c.status;
   joints = nominal + applied.gain * (c.joints - nominal);

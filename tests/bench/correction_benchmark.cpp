@@ -8,9 +8,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <random>
 
 #include "test_support.hpp"
+#include "vc/machine/contraction_bound.hpp"
 #include "vc/machine/kinematics.hpp"
 #include "vc/machine/load_machine.hpp"
 
@@ -34,13 +36,16 @@ struct Fixture {
   std::vector<Joints> poses;
   std::vector<Joints> corrected;
   std::vector<ServoCycle> cycles;
+  ContractionBound bound;  // as volkins samples it at load
 };
 
 const Fixture& fixture(const std::string& name) {
   static std::map<std::string, Fixture> cache;
   auto it = cache.find(name);
   if (it != cache.end()) return it->second;
-  Fixture f{load_machine(test::machine_path(name)), {}, {}, {}};
+  Model model = load_machine(test::machine_path(name));
+  ContractionBound bound(model, {0.0, 100.0, 200.0, 300.0, 400.0, 500.0}, true);
+  Fixture f{std::move(model), {}, {}, {}, std::move(bound)};
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   for (int k = 0; k < 4096; ++k) {
@@ -66,17 +71,49 @@ const Fixture& fixture(const std::string& name) {
   return cache.emplace(name, std::move(f)).first->second;
 }
 
+// The MC-300's servo cycles along the 5-axis contour of kins/configs/mc300/nc/contour_5axis.ngc
+// (what servo_cost.sh runs in LinuxCNC): a 60 mm circle round X-360 Y-160 while Z dips 40 mm,
+// B tilts to -60 and back (through the pole fade band at both ends) and C turns once, at
+// F4000 (66.7 mm/s: 0.0637 deg of the circle per 1 ms cycle), seeded as volkins seeds them.
+std::vector<ServoCycle> contour_cycles(const Model& model) {
+  constexpr double kStepDeg = 4000.0 / 60.0 / 60.0 * 1e-3 / (3.14159265358979323846 / 180.0);
+  const int n = static_cast<int>(360.0 / kStepDeg);
+  std::vector<Joints> points, corrections;
+  for (int i = 0; i < n; ++i) {
+    const double theta = i * kStepDeg, rad = theta * 3.14159265358979323846 / 180.0;
+    Joints p(5), joints;
+    p << -360.0 + 60.0 * std::cos(rad), -160.0 + 60.0 * std::sin(rad), -200.0 - 40.0 * std::sin(rad / 2),
+        -60.0 * std::sin(rad / 2), theta;
+    joints_from_world(model, WorldConvention::Axes, p, model.tool_length_mm, joints);
+    points.push_back(p);
+    corrections.push_back(joints - p);
+  }
+  std::vector<ServoCycle> cycles;
+  for (int i = 3; i < n; ++i)
+    cycles.push_back({points[i], points[i - 1], points[i - 2], Joints(points[i - 1] + corrections[i - 1]),
+                      corrections[i - 1], 3 * (corrections[i - 1] - corrections[i - 2]) + corrections[i - 3]});
+  return cycles;
+}
+
+const std::vector<ServoCycle>& contour_of(const std::string& machine) {
+  static std::map<std::string, std::vector<ServoCycle>> cache;
+  auto it = cache.find(machine);
+  if (it == cache.end()) it = cache.emplace(machine, contour_cycles(fixture(machine).model)).first;
+  return it->second;
+}
+
 template <typename Call>
-void run(benchmark::State& state, const std::string& machine, Call call) {
+void run(benchmark::State& state, const std::string& machine, Call call, std::size_t count = 0) {
   const Fixture& f = fixture(machine);
+  if (count == 0) count = f.poses.size();
   std::size_t i = 0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(call(f, i));
-    i = (i + 1) % f.poses.size();
+    i = (i + 1) % count;
   }
   // Median, 99th and 99.9th percentile and worst of single calls over one pass through the poses.
   std::vector<double> ns;
-  for (std::size_t k = 0; k < f.poses.size(); ++k) {
+  for (std::size_t k = 0; k < count; ++k) {
     const auto t0 = std::chrono::steady_clock::now();
     benchmark::DoNotOptimize(call(f, k));
     ns.push_back(std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count());
@@ -144,21 +181,26 @@ void BM_ForwardSeeded(benchmark::State& state, const std::string& machine) {
 // One servo cycle's kinematics as motion-controller calls them (control.c: the forward of the
 // joint feedback, seeded with the previous world position, then the inverse of the new
 // command, seeded with the previous joints) and as volkins seeds them (with the corrections
-// it keeps): the pair the 2.5 us target is for. With `correction_seeds` false, the
-// seeds LinuxCNC gives alone (volkins before it kept corrections).
-void BM_ServoCycle(benchmark::State& state, const std::string& machine, bool correction_seeds) {
-  run(state, machine, [correction_seeds](const Fixture& f, std::size_t i) {
-    const ServoCycle& c = f.cycles[i];
+// it keeps) and stops them (the inverse's last step unchecked where the contraction bound
+// proves it): the pair the 2.5 us target is for. Without `correction_seeds`, the seeds
+// LinuxCNC gives alone (volkins before it kept corrections); without `bound`, every step
+// checked (volkins before the bound).
+void BM_ServoCycle(benchmark::State& state, const std::string& machine, bool correction_seeds, bool bound,
+                   bool contour = false) {
+  static const std::vector<ServoCycle> none;
+  const std::vector<ServoCycle>& along_contour = contour ? contour_of(machine) : none;
+  run(state, machine, [correction_seeds, bound, contour, &along_contour](const Fixture& f, std::size_t i) {
+    const ServoCycle& c = contour ? along_contour[i] : f.cycles[i];
     const double L = f.model.tool_length_mm;
     const Joints* forward_seed = correction_seeds ? &c.previous_correction : nullptr;
     const Joints* inverse_seed = correction_seeds ? &c.extrapolated_correction : nullptr;
     Joints world, joints;
     world_from_joints(f.model, WorldConvention::Axes, c.previous_joints, L,
                       Applied{1.0, &c.before_before, forward_seed}, world);
-    joints_from_world(f.model, WorldConvention::Axes, c.world, L, Applied{1.0, &c.previous_joints, inverse_seed},
-                      joints);
+    joints_from_world(f.model, WorldConvention::Axes, c.world, L,
+                      Applied{1.0, &c.previous_joints, inverse_seed, bound ? &f.bound : nullptr}, joints);
     return world[0] + joints[0];
-  });
+  }, contour ? along_contour.size() : 0);
 }
 
 BENCHMARK_CAPTURE(BM_VolumetricError, mc300, std::string("mc300"));
@@ -168,9 +210,12 @@ BENCHMARK_CAPTURE(BM_Correct, mc300, std::string("mc300"));
 BENCHMARK_CAPTURE(BM_CorrectSeeded, mc300, std::string("mc300"));
 BENCHMARK_CAPTURE(BM_Uncorrect, mc300, std::string("mc300"));
 BENCHMARK_CAPTURE(BM_ForwardSeeded, mc300, std::string("mc300"));
-BENCHMARK_CAPTURE(BM_ServoCycle, mc300, std::string("mc300"), true);
-BENCHMARK_CAPTURE(BM_ServoCycle, mc300_joint_seeds, std::string("mc300"), false);
-BENCHMARK_CAPTURE(BM_ServoCycle, ac_trunnion, std::string("ac_trunnion"), true);
+BENCHMARK_CAPTURE(BM_ServoCycle, mc300, std::string("mc300"), true, true);
+BENCHMARK_CAPTURE(BM_ServoCycle, mc300_every_step_checked, std::string("mc300"), true, false);
+BENCHMARK_CAPTURE(BM_ServoCycle, mc300_joint_seeds, std::string("mc300"), false, false);
+BENCHMARK_CAPTURE(BM_ServoCycle, mc300_contour, std::string("mc300"), true, true, true);
+BENCHMARK_CAPTURE(BM_ServoCycle, mc300_contour_every_step_checked, std::string("mc300"), true, false, true);
+BENCHMARK_CAPTURE(BM_ServoCycle, ac_trunnion, std::string("ac_trunnion"), true, true);
 BENCHMARK_CAPTURE(BM_Correct, mill3, std::string("mill3"));
 BENCHMARK_CAPTURE(BM_Correct, ac_trunnion, std::string("ac_trunnion"));
 

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "test_support.hpp"
+#include "vc/machine/contraction_bound.hpp"
 #include "vc/machine/kinematics.hpp"
 #include "vc/machine/load_machine.hpp"
 
@@ -41,6 +42,7 @@ TEST_P(NoAllocation, RealTimeFunctionsNeverCallMalloc) {
     poses.push_back(q);
   }
   const double L = model.tool_length_mm;
+  const ContractionBound bound(model, {0.0, 2.0 * L}, true);  // as volkins builds it at load
   double sink = 0.0;
   allocations = 0;
   counting = true;
@@ -56,6 +58,9 @@ TEST_P(NoAllocation, RealTimeFunctionsNeverCallMalloc) {
       // The module's calls: seeded, part of the correction.
       const Applied inverse{0.5, &joints}, forward{0.5, &world};
       sink += static_cast<double>(joints_from_world(model, w, q, L, inverse, joints));
+      const Joints correction = c.joints - q;
+      const Applied bounded{1.0, &joints, &correction, &bound};  // the unchecked step's path
+      sink += static_cast<double>(joints_from_world(model, w, q, L, bounded, joints));
       sink += static_cast<double>(world_from_joints(model, w, joints, L, forward, world));
       sink += outside_tables(model, joints);
     }

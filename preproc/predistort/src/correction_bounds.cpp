@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "travel_samples.hpp"
+#include "vc/machine/travel_samples.hpp"
 #include "vc/machine/correct.hpp"
 
 namespace vc::predistort {
@@ -173,7 +173,7 @@ CorrectionBounds::Sampled CorrectionBounds::Shared::sampled(const CorrectionBoun
 CorrectionBounds::Sampled CorrectionBounds::sample_part(double tool_length_mm, int part) const {
   Sampled out{tool_length_mm, {}, PerJoint::Zero(), {}, PerJoint::Zero()};
   const int n = model_.joint_count();
-  TravelSamples samples(model_);
+  machine::TravelSamples samples(model_);
   const double h = kStep;
   // Where the orientation correction fades in, the correction bends the most: that band,
   // a thin shell of the travel, gets samples of its own.

@@ -3,9 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 
-#include "travel_samples.hpp"
 #include "vc/machine/correct.hpp"
 
 namespace vc::predistort {
@@ -15,13 +13,6 @@ using machine::Joints;
 using machine::Machine;
 using machine::SquareMatrix;
 
-constexpr double kMargin = 2.0;
-// Bands of the pole angle, from the angle of full correction (fade = 1) outward: B^-1, and
-// with it kappa, grows towards the pole. Each band is sampled until it has kBandSamples
-// points (or the draws run out: a band the travel hardly reaches takes the largest kappa
-// of all bands).
-constexpr double kBandEdges[] = {1.5, 2.0, 3.0};  // x the full-correction angle
-constexpr int kBandSamples = 100, kMaxDraws = 6000;
 constexpr int kMaxSteps = 3;
 
 }  // namespace
@@ -31,11 +22,6 @@ OneStepCorrection::OneStepCorrection(const machine::Model& model)
       applies_(model.joint_count() == 3 + model.rotary_count()),
       affine_(model.joint_count() == 3 && model.rotary_count() == 0) {
   if (applies_ && !affine_ && model.rotary_count() <= 2) blocks_.emplace(model);
-  for (int e = 0; e < kBands; ++e) {
-    const double edge = (e == 0 ? 1.0 : kBandEdges[e - 1]) * model.fade.full_rad;
-    edge_cos_[e] = std::cos(edge);
-    edge_sin_[e] = std::sin(edge);
-  }
   for (int j = 0; j < machine::kMaxAxes; ++j) all_joints_[j] = j;
 }
 
@@ -43,28 +29,6 @@ OneStepCorrection::OneStepCorrection(const machine::Model& model)
 double OneStepCorrection::weighted_norm(const Joints& residual) const {
   return std::sqrt(residual.head(3).squaredNorm() +
                    machine::kDirectionLeverMm * machine::kDirectionLeverMm * machine::direction_squared_norm(residual));
-}
-
-// Without atan2: the angle between a rotary axis line l and the tool direction k is at least
-// theta (in [0, pi/2]) where |l x k| cos(theta) >= |l . k| sin(theta).
-int OneStepCorrection::pole_band(const machine::ToolPose& ideal, const machine::PoseDerivatives& d) const {
-  int band = kBands;  // the number of edges every line is beyond, less one
-  for (int j = 0; j < model_.joint_count(); ++j) {
-    if (model_.axes[static_cast<std::size_t>(j)].type != machine::AxisType::Rotary) continue;
-    const Eigen::Vector3d line = d.axis_line.col(j);
-    const double across = line.cross(ideal.direction).norm(), along = std::abs(line.dot(ideal.direction));
-    int beyond = 0;
-    while (beyond < kBands && across * edge_cos_[beyond] >= along * edge_sin_[beyond]) ++beyond;
-    band = std::min(band, beyond);
-  }
-  return band - 1;
-}
-
-int OneStepCorrection::band_of(double pole_angle_rad) const {
-  if (affine_) return 0;
-  int band = 0;
-  for (double edge : kBandEdges) band += pole_angle_rad >= edge * model_.fade.full_rad;
-  return band;
 }
 
 bool OneStepCorrection::equations_at(const PerTool& tool, const Joints& target, machine::CorrectionTarget& equations,
@@ -77,7 +41,7 @@ bool OneStepCorrection::equations_at(const PerTool& tool, const Joints& target, 
   }
   machine::PoseDerivatives d;
   const machine::ToolPose ideal = machine::tool_pose(model_, Machine::Ideal, target, tool.tool_length_mm, d);
-  band = pole_band(ideal, d);
+  band = tool.bound.band_at(ideal, d);
   if (band < 0) return false;
   equations = machine::full_target(model_, ideal, d);
   b = machine::correction_jacobian(equations, d, all_joints_, model_.joint_count());
@@ -87,9 +51,7 @@ bool OneStepCorrection::equations_at(const PerTool& tool, const Joints& target, 
 OneStepCorrection::PerTool& OneStepCorrection::for_tool(double tool_length_mm) {
   for (PerTool& t : per_tool_)
     if (t.tool_length_mm == tool_length_mm) return t;
-  const int n = model_.joint_count();
-  PerTool t;
-  t.tool_length_mm = tool_length_mm;
+  PerTool t{tool_length_mm, machine::ContractionBound(model_, {tool_length_mm}), {}, {}, {}};
   if (affine_) {
     const Joints zero = Joints::Zero(3);
     machine::PoseDerivatives d;
@@ -97,37 +59,6 @@ OneStepCorrection::PerTool& OneStepCorrection::for_tool(double tool_length_mm) {
     t.jacobian = d.tip.leftCols<3>();
     t.lu.compute(SquareMatrix(t.jacobian));
   }
-  // kappa: the largest slope of the real machine's equations against B, seen through B^-1,
-  // over the travel where this applies (W: the weights of weighted_norm).
-  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, machine::kMaxAxes, 1> w = Eigen::VectorXd::Ones(n);
-  w.tail(n - 3).setConstant(machine::kDirectionLeverMm);
-  TravelSamples samples(model_);
-  const int bands = affine_ ? 1 : kBands;
-  std::array<int, kBands> count{};
-  std::array<double, kBands> largest{};
-  for (int draw = 0; draw < kMaxDraws; ++draw) {
-    if (*std::min_element(count.begin(), count.begin() + bands) >= kBandSamples) break;
-    const Joints q = samples.next();
-    machine::CorrectionTarget equations;
-    SquareMatrix b;
-    int band;
-    if (!equations_at(t, q, equations, b, band) || count[band] >= kBandSamples) continue;
-    const machine::Correction core = machine::correct(model_, q, tool_length_mm);
-    if (core.status != machine::Status::Ok) continue;
-    machine::PoseDerivatives real;
-    machine::tool_pose(model_, Machine::Real, core.joints, tool_length_mm, real);
-    const SquareMatrix jacobian = machine::correction_jacobian(equations, real, all_joints_, n);
-    const SquareMatrix contraction = (b - jacobian) * b.inverse();
-    largest[band] = std::max(largest[band], (w.asDiagonal() * contraction * w.cwiseInverse().asDiagonal()).norm());
-    ++count[band];
-  }
-  // Too few samples in all (the travel hardly reaches full correction): no bound, so no
-  // unverified step (correct() declines).
-  const int samples_taken = std::accumulate(count.begin(), count.end(), 0);
-  const double overall = samples_taken >= kBandSamples ? *std::max_element(largest.begin(), largest.end())
-                                                        : std::numeric_limits<double>::infinity();
-  for (int band = 0; band < kBands; ++band)
-    t.kappa[band] = kMargin * (count[band] >= kBandSamples ? largest[band] : overall);
   per_tool_.push_back(t);
   return per_tool_.back();
 }
@@ -152,7 +83,7 @@ bool OneStepCorrection::correct(const Joints& target, double tool_length_mm, con
   SquareMatrix b;
   int band;
   if (!equations_at(t, target, equations, b, band)) return false;
-  const double kappa = t.kappa[band];
+  const double kappa = t.bound.kappa(band);
   if (!(kappa < 1e-2) || !factorize(t, b)) return false;
   const machine::SolverOptions& opt = model_.solver;
   const int n = model_.joint_count();

@@ -78,7 +78,7 @@ TEST_P(OneStepCorrectionTest, AgreesWithTheCoreAndItsContractionBoundHolds) {
       } else if (core.fade < 1.0) {
         EXPECT_EQ(one_step.band_at(target, L), -1);
       } else {
-        EXPECT_EQ(one_step.band_at(target, L), one_step.band_of(core.pole_angle_rad)) << core.pole_angle_rad;
+        EXPECT_EQ(one_step.band_at(target, L), one_step.band_of(core.pole_angle_rad, L)) << core.pole_angle_rad;
       }
       Joints corrected;
       if (!one_step.correct(target, L, seed, corrected)) {

@@ -7,6 +7,8 @@
 // Near a kinematic pole (tool axis near a rotary axis line, angle phi) the rotary joints take
 // f(phi) of their full correction and the linear joints then make the position exact.
 // Newton with the exact Jacobian (table slopes included), seeded with q_n or a given seed.
+// With a contraction bound (contraction_bound.hpp), a step that the bound proves lands within
+// the solver's tolerance is taken without evaluating the real machine after it.
 // Real-time: no allocation, no locks, at most 2 * max_iterations Newton steps.
 #pragma once
 
@@ -22,6 +24,7 @@ struct Correction {
   int iterations = 0;         // Newton steps taken
   double residual_mm = 0.0;   // |pos P(q_c) - pos P'(q_n)|
   double residual_rad = 0.0;  // |k'(q_n) x k(q_c)|: tool direction error left (by design > 0 where f < 1)
+  bool unchecked_step = false;  // the last step taken on the contraction bound: the residuals are its bound
   double pole_angle_rad = 0.0;  // phi: ideal tool direction to the nearest rotary axis line
   double fade = 1.0;            // f in [0, 1]
 };
@@ -30,6 +33,11 @@ Correction correct(const Model& model, const Joints& nominal, double tool_length
 // Same, with the Newton iteration seeded at `seed` (e.g. the previous servo cycle's solution).
 Correction correct(const Model& model, const Joints& nominal, double tool_length_mm,
                    const Joints& seed) noexcept;
+// Same, a step taken unevaluated where `bound` (may be null) proves it within the tolerance:
+// at full correction (f = 1), a pole angle and tool length the bound covers.
+class ContractionBound;
+Correction correct(const Model& model, const Joints& nominal, double tool_length_mm, const Joints& seed,
+                   const ContractionBound* bound) noexcept;
 
 // The full correction (position and tool direction, no pole fade) at `nominal`, seeded at
 // `seed`: what correct() fades near a pole (without rotary joints, correct() itself); `fade`

@@ -40,6 +40,9 @@ struct Applied {
   double gain = 1.0;                  // 0: nominal kinematics, 1: full correction
   const Joints* seed = nullptr;       // joints (inverse) or world position (forward), or none
   const Joints* correction = nullptr;  // a full correction q_c - q_n of a pose nearby, or none
+  // The inverse: where it proves a Newton step within the tolerance, the step is taken without
+  // evaluating the real machine after it (contraction_bound.hpp), or none.
+  const ContractionBound* contraction = nullptr;
   static constexpr double kSeedRadius = machine::kSeedRadius;
 };
 // q = q_n + gain * (correct(q_n) - q_n).

@@ -4,17 +4,12 @@
 //
 // The equations F(q) = 0 (correction_equations.hpp, the full correction: every joint free,
 // 3 + rotary joints = joints) are solved by Newton with the ideal machine's Jacobian B at
-// the target q_n, the core's first matrix. One step q+ = q - B^-1 F(q) leaves
-// F(q+) = (B - Jbar) B^-1 F(q) exactly, Jbar the mean real Jacobian between q and q+ (mean
-// value theorem), so |W F(q+)| <= kappa |W F(q)| with kappa = sup |W (B - J_real) B^-1 W^-1|
-// (Frobenius; W weighs direction rows by kDirectionLeverMm), sampled over the travel (J_real
-// at the core's corrected joints there) and doubled for what the sampling may miss. B^-1
-// grows towards a kinematic pole, so kappa is kept per band of the pole angle (full
-// correction angle x [1, 1.5), [1.5, 2), [2, 3), [3, ...), 100 samples each; one band on
-// three linear axes). A step whose bound kappa |W F(q)| is below kAcceptedResidualMm (1e-9 mm, a
-// thousandth of the last digit the pre-distorter writes; 1e-12 rad) is taken unverified:
-// most points then cost one real chain walk instead of two or three. Otherwise Newton goes
-// on with the core's stopping rule.
+// the target q_n, the core's first matrix. One step leaves a residual within kappa times
+// the one before it, kappa sampled over the travel per band of the pole angle, once per tool
+// length (machine::ContractionBound). A step whose bound kappa |W F(q)| is below
+// kAcceptedResidualMm (1e-9 mm, a thousandth of the last digit the pre-distorter writes;
+// 1e-12 rad) is taken unverified: most points then cost one real chain walk instead of two or
+// three. Otherwise Newton goes on with the core's stopping rule.
 //
 // Three linear axes: the ideal tip is affine, tip = A q + b (once per tool length), so B = A
 // and no ideal chain walk is needed. With rotary joints: one ideal walk with derivatives
@@ -26,14 +21,13 @@
 #include <optional>
 #include <vector>
 
+#include "vc/machine/contraction_bound.hpp"
 #include "vc/machine/correction_equations.hpp"
 #include "vc/predistort/ideal_jacobian_solver.hpp"
 
 namespace vc::predistort {
 
 class OneStepCorrection {
-  static constexpr int kBands = 4;
-
  public:
   static constexpr double kAcceptedResidualMm = 1e-9;
 
@@ -49,27 +43,27 @@ class OneStepCorrection {
 
   // kappa for a tool length where the pole angle is phi (tests).
   double contraction(double tool_length_mm, double pole_angle_rad) {
-    return for_tool(tool_length_mm).kappa[band_of(pole_angle_rad)];
+    const machine::ContractionBound& bound = for_tool(tool_length_mm).bound;
+    return bound.kappa(bound.band_of(pole_angle_rad));
   }
-  // The band of a pole angle (x [1, 1.5), [1.5, 2), [2, 3), [3, ...) the full-correction angle).
-  int band_of(double pole_angle_rad) const;
-  // The band of the pole angle at nominal joints, -1 below full correction (tests: as
-  // band_of(machine::pole_angle(...)), without atan2).
-  int band_at(const machine::Joints& target, double tool_length_mm) const {
+  // The band of a pole angle (x [1, 1.5), [1.5, 2), [2, 3), [3, ...) the full-correction
+  // angle), and of the pole angle at nominal joints, -1 below full correction (tests: the two
+  // agree).
+  int band_of(double pole_angle_rad, double tool_length_mm) { return for_tool(tool_length_mm).bound.band_of(pole_angle_rad); }
+  int band_at(const machine::Joints& target, double tool_length_mm) {
     machine::PoseDerivatives d;
-    return pole_band(machine::tool_pose(model_, machine::Machine::Ideal, target, tool_length_mm, d), d);
+    const machine::ToolPose ideal = machine::tool_pose(model_, machine::Machine::Ideal, target, tool_length_mm, d);
+    return for_tool(tool_length_mm).bound.band_at(ideal, d);
   }
 
  private:
   struct PerTool {
     double tool_length_mm;
+    machine::ContractionBound bound;  // kappa per band of the pole angle
     Eigen::Matrix3d jacobian;     // A (three linear axes)
     Eigen::Vector3d tip_at_zero;  // b
     Eigen::PartialPivLU<machine::SquareMatrix> lu;  // of A
-    std::array<double, kBands> kappa;  // per band of the pole angle (band_of)
   };
-  // band_of(pole angle at the ideal pose), -1 below full correction (fade < 1).
-  int pole_band(const machine::ToolPose& ideal, const machine::PoseDerivatives& d) const;
   // The equations at `target`, B and the band of the pole angle; false near
   // a pole.
   bool equations_at(const PerTool& tool, const machine::Joints& target, machine::CorrectionTarget& equations,
@@ -85,7 +79,6 @@ class OneStepCorrection {
   bool affine_;  // three linear axes
   std::array<int, machine::kMaxAxes> all_joints_{};
   std::vector<PerTool> per_tool_;
-  std::array<double, kBands> edge_cos_{}, edge_sin_{};  // of the bands' lower edges
   std::optional<IdealJacobianSolver> blocks_;  // rotary joints: B block triangular
   bool blocks_used_ = false;                    // B at the current point in blocks_ (else point_lu_)
   Eigen::PartialPivLU<machine::SquareMatrix> point_lu_;

@@ -1,26 +1,29 @@
 // Points spread over a machine's travel, the same on every run (a fixed-seed generator), for
-// the bounds that are sampled once at load (correction_bounds.cpp, one_step_correction.cpp).
+// the bounds that are sampled once at load (contraction_bound.cpp; the pre-distorter's
+// correction_bounds.cpp).
 #pragma once
 
 #include <cstdint>
 
 #include "vc/machine/model.hpp"
 
-namespace vc::predistort {
+namespace vc::machine {
 
 class TravelSamples {
  public:
-  explicit TravelSamples(const machine::Model& model) : model_(model) {}
+  explicit TravelSamples(const Model& model) : model_(model) {}
 
   // The next point: each joint uniform over its travel.
-  machine::Joints next() {
-    machine::Joints q(model_.joint_count());
+  Joints next() {
+    Joints q(model_.joint_count());
     for (int j = 0; j < model_.joint_count(); ++j) {
-      const machine::Axis& axis = model_.axes[static_cast<std::size_t>(j)];
+      const Axis& axis = model_.axes[static_cast<std::size_t>(j)];
       q[j] = axis.travel_min + uniform() * (axis.travel_max - axis.travel_min);
     }
     return q;
   }
+  // A number uniform in [lo, hi).
+  double uniform(double lo, double hi) { return lo + uniform() * (hi - lo); }
 
  private:
   double uniform() {  // [0, 1), 53 bits of a 64-bit LCG
@@ -28,8 +31,8 @@ class TravelSamples {
     return static_cast<double>(state_ >> 11) / 9007199254740992.0;
   }
 
-  const machine::Model& model_;
+  const Model& model_;
   std::uint64_t state_ = 0x9E3779B97F4A7C15ull;
 };
 
-}  // namespace vc::predistort
+}  // namespace vc::machine

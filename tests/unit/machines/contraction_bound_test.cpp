@@ -1,0 +1,122 @@
+// correct() with a contraction bound (the servo thread's inverse): where it takes a Newton step
+// without evaluating the real machine after it, the residual it leaves, computed afterwards
+// on another code path (the 4x4 chain, part_T_tool), is within the bound it reports and the
+// solver's tolerance, and the joints are the core's. On every shipped machine, the test
+// machines and the MC-300 with temperature inputs (the bound sampled over their ranges, the
+// correction at temperatures drawn in them), at tool lengths and seeds as volkins sees them.
+// Seeded; VC_RANDOM_POSES overrides the pose count.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "random_poses.hpp"
+#include "test_support.hpp"
+#include "vc/machine/contraction_bound.hpp"
+#include "vc/machine/correct.hpp"
+#include "vc/machine/load_machine.hpp"
+
+namespace vc::machine {
+namespace {
+
+const std::vector<double> kToolLengths{0.0, 100.0, 200.0, 300.0};
+
+Model load(const std::string& name) {
+  if (name == "bc_head" || name == "xyza_table")
+    return load_machine(test::source_path("tests/unit/machines/data/" + name + ".toml"));
+  return load_machine(test::machine_path(name));
+}
+
+class ContractionBoundTest : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ContractionBoundTest, UncheckedStepsLandWithinTheirBoundOnTheCoresJoints) {
+  Model model = load(GetParam());
+  const ContractionBound bound(model, kToolLengths, true);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), exponent(-11.0, -6.0), length(0.0, 300.0);
+  const double tolerance = model.solver.position_tolerance_mm;
+  int unchecked = 0, full = 0;
+  double worst_ratio = 0.0;  // exact residual / reported bound, where the bound is above rounding
+  const int poses = test::pose_count(3000);
+  for (int k = 0; k < poses; ++k) {
+    for (TemperatureInput& t : model.temperatures)
+      t.value_degC = std::uniform_real_distribution<double>(t.min_degC, t.max_degC)(rng);
+    const Joints q = test::random_pose(model, rng);
+    const double L = length(rng);
+    const Correction core = correct(model, q, L);
+    ASSERT_EQ(core.status, Status::Ok) << test::text(q);
+    // A seed as the servo thread's extrapolation gives it: the answer, 1e-11 to 1e-6 off.
+    Joints seed = core.joints;
+    const double scale = std::pow(10.0, exponent(rng));
+    for (int j = 0; j < seed.size(); ++j) seed[j] += scale * unit(rng);
+    const Correction c = correct(model, q, L, seed, &bound);
+    ASSERT_EQ(c.status, Status::Ok) << test::text(q);
+    // Both within the tolerance of the residual; near a pole that leaves the joints ~1e-9 apart.
+    ASSERT_LT((c.joints - core.joints).cwiseAbs().maxCoeff(), 1e-8) << test::text(q);
+    full += core.fade == 1.0;
+    if (!c.unchecked_step) continue;
+    ++unchecked;
+    ASSERT_EQ(core.fade, 1.0) << "an unchecked step in the fade band at " << test::text(q);
+    ASSERT_LE(c.residual_mm, tolerance);
+    const Eigen::Isometry3d real = part_T_tool(model, Machine::Real, c.joints, L);
+    const Eigen::Isometry3d ideal = part_T_tool(model, Machine::Ideal, q, L);
+    const double position = (real.translation() - ideal.translation()).norm();
+    // Rounding of the two chains (~1e-13 mm) on top of the bound.
+    ASSERT_LE(position, c.residual_mm + 1e-12) << test::text(q) << " seed off by " << scale << ", L " << L;
+    if (c.residual_mm > 1e-12) worst_ratio = std::max(worst_ratio, position / c.residual_mm);
+  }
+  std::printf("%s: %d of %d poses at full correction solved with an unchecked step; exact residual / bound (above 1e-12 mm) at most %.3f\n",
+              GetParam().c_str(), unchecked, full, worst_ratio);
+  // Seeds up to 1e-6 off: most at full correction are within reach of the bound.
+  EXPECT_GT(unchecked, full / 2);
+}
+
+TEST_P(ContractionBoundTest, NoUncheckedStepBeyondTheSampledToolLengthsOrInTheFadeBand) {
+  const Model model = load(GetParam());
+  const ContractionBound bound(model, kToolLengths, true);
+  EXPECT_TRUE(bound.covers(0.0) && bound.covers(300.0));
+  EXPECT_FALSE(bound.covers(-0.1) || bound.covers(300.1));
+  std::mt19937_64 rng(8);
+  int faded = 0;
+  for (int k = 0; k < test::pose_count(2000); ++k) {
+    const Joints q = test::random_pose(model, rng);
+    for (const double L : {350.0, 100.0}) {
+      const Correction core = correct(model, q, L);
+      ASSERT_EQ(core.status, Status::Ok);
+      const Correction c = correct(model, q, L, Joints(core.joints.array() + 1e-9), &bound);
+      ASSERT_EQ(c.status, Status::Ok);
+      if (L == 350.0) {
+        ASSERT_FALSE(c.unchecked_step) << "tool length beyond the sampled ones";
+      }
+      if (core.fade < 1.0) {
+        ++faded;
+        ASSERT_FALSE(c.unchecked_step) << "fade " << core.fade << " at " << test::text(q);
+      }
+    }
+  }
+  if (model.rotary_count() == 2) {  // (one rotary axis square to the tool has no pole)
+    EXPECT_GT(faded, 0) << "the fade band was not reached";
+  }
+}
+
+TEST(ContractionBound, NoBoundWhereTheEquationsAreNotSquareOrNotSampled) {
+  const Model model = load("mc300");
+  const ContractionBound none(model, {});
+  for (int band = 0; band < ContractionBound::kBands; ++band) EXPECT_TRUE(std::isinf(none.kappa(band)));
+  EXPECT_FALSE(none.covers(100.0));
+  const ContractionBound bound(model, {100.0});
+  EXPECT_EQ(bound.band_of(0.5 * model.fade.full_rad), -1);
+  for (int band = 0; band < ContractionBound::kBands; ++band) {
+    EXPECT_GT(bound.kappa(band), 0.0);
+    EXPECT_LT(bound.kappa(band), 1e-2);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Machines, ContractionBoundTest,
+                         ::testing::Values("mc300", "mill3", "ac_trunnion", "mc300_thermal", "bc_head", "xyza_table"),
+                         [](const ::testing::TestParamInfo<std::string>& p) { return p.param; });
+
+}  // namespace
+}  // namespace vc::machine
