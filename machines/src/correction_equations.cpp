@@ -16,10 +16,6 @@ std::array<Vector3d, 2> perpendicular_basis(const Vector3d& k) {
   return {b1, k.cross(b1)};
 }
 
-double line_angle(const Vector3d& line, const Vector3d& k) {
-  return std::atan2(line.cross(k).norm(), std::abs(line.dot(k)));
-}
-
 }  // namespace
 
 CorrectionTarget position_target(const ToolPose& ideal) noexcept {
@@ -59,12 +55,21 @@ SquareMatrix correction_jacobian(const CorrectionTarget& target, const PoseDeriv
   return jacobian;
 }
 
+// Each rotary axis line l makes atan2(|l x k|, |l . k|) with the tool direction k, whatever
+// l's length; the smallest is found by comparing the pairs (a1 b2 < a2 b1), so one atan2 is
+// taken for all axes.
 double pole_angle_at(const Model& model, const ToolPose& ideal, const PoseDerivatives& d) noexcept {
-  double phi = 0.5 * 3.14159265358979323846;
-  for (int j = 0; j < model.joint_count(); ++j)
-    if (model.axes[j].type == AxisType::Rotary)
-      phi = std::min(phi, line_angle(d.axis_line.col(j).normalized(), ideal.direction));
-  return phi;
+  double across = 1.0, along = 0.0;  // pi / 2: no rotary axis
+  for (int j = 0; j < model.joint_count(); ++j) {
+    if (model.axes[j].type != AxisType::Rotary) continue;
+    const Vector3d line = d.axis_line.col(j);
+    const double a = line.cross(ideal.direction).norm(), b = std::abs(line.dot(ideal.direction));
+    if (a * along < across * b) {
+      across = a;
+      along = b;
+    }
+  }
+  return std::atan2(across, along);
 }
 
 }  // namespace vc::machine
