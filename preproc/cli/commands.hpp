@@ -137,6 +137,7 @@ struct SelftuneArgs {
   // local
   double gain = 1.0, radius_mm = 40.0, angle_deg = 20.0, step_mm = 1.0, tolerance_mm = 0.0005;
   bool no_tilt = false;            // keep the program's tool axis (tip shifted only)
+  double min_support = 6.0;        // local: widen the window where fewer points carry a shift
   // model
   std::string tables_out;          // folder of the updated machine file and tables
   std::string nominal;             // the original program P0 (default: PROGRAM)

@@ -172,6 +172,9 @@ int main(int argc, char** argv) {
   selftune_cmd->add_option("--angle", selftune.angle_deg,
                            "local: deviations reach path points whose tool frame is turned less than this from the cut's, deg")
       ->capture_default_str();
+  selftune_cmd->add_option("--min-support", selftune.min_support,
+                           "local: where fewer measured points than this carry a shift, widen its window (radius and angle x 1.5, up to 3 times); 0: never")
+      ->capture_default_str();
   selftune_cmd->add_flag("--no-tilt", selftune.no_tilt, "local: keep the program's tool axis on 5-axis moves (shift the tip only)");
   selftune_cmd->add_option("--step", selftune.step_mm, "local: longest piece of a shifted move, mm")->capture_default_str();
   selftune_cmd->add_option("--tolerance", selftune.tolerance_mm, "chord and blending tolerance, mm")->capture_default_str();

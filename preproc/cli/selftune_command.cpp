@@ -85,6 +85,7 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
   if (!(args.gain > 0 && args.gain <= 1.5)) throw std::runtime_error("--gain must be in (0, 1.5]");
   if (!(args.radius_mm > 0) || !(args.step_mm > 0) || !(args.cutoff_mm > 0) || !(args.angle_deg > 0))
     throw std::runtime_error("--radius, --angle, --step and --cutoff must be positive");
+  if (!(args.min_support >= 0)) throw std::runtime_error("--min-support must be 0 or more");
   if (!(args.tolerance_mm > 0.0 && args.tolerance_mm <= 0.1)) throw std::runtime_error("--tolerance must be in (0, 0.1] mm");
 
   const machine::WorldConvention world = world_convention(args.world);
@@ -129,6 +130,7 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
                        format_number(args.angle_deg) + " deg)";
     shop::LocalOptions local{args.gain, args.radius_mm, args.step_mm, args.tolerance_mm, world, args.angle_deg};
     local.tilt = !args.no_tilt;
+    local.min_support = args.min_support;
     shop::LocalSummary summary;
     std::ifstream in = open_program(args.input);
     write_atomically(args.output, [&](std::ostream& out) {

@@ -87,7 +87,9 @@ LocalFit fit_tool_displacement(const std::vector<Anchor>& anchors, const Eigen::
   // Normal equations in (v, w_x, w_y).
   Matrix5d normal_matrix = Matrix5d::Zero();
   Vector5d right = Vector5d::Zero();
-  double weight = 0;
+  double weight = 0, point_weights_squared = 0;  // the points' weights: their cuts' summed
+  double point_weight = 0;
+  int point = -1;
   std::vector<std::pair<int, double>> used;  // anchors within reach, their weights
   for (std::size_t i = 0; i < anchors.size(); ++i) {
     const double w = weight_of(anchors[i], tip, frame, options);
@@ -96,11 +98,19 @@ LocalFit fit_tool_displacement(const std::vector<Anchor>& anchors, const Eigen::
     normal_matrix += w * row * row.transpose();
     right += w * (anchors[i].deviation_mm - row.tail<2>().dot(options.known_tilt_rad.head<2>())) * row;
     weight += w;
+    if (anchors[i].point != point) {  // a point's cuts stand together
+      point_weights_squared += point_weight * point_weight;
+      point_weight = 0;
+      point = anchors[i].point;
+    }
+    point_weight += w;
     if (options.with_tilt) used.emplace_back(static_cast<int>(i), w);
   }
   LocalFit fit;
   fit.covered = weight > 1e-6;
   if (!fit.covered) return fit;
+  point_weights_squared += point_weight * point_weight;
+  fit.support = weight * weight / point_weights_squared;
   // (For the tilt's fit, a small ridge keeps the directions of v no normal sees at zero.)
   const Eigen::Matrix3d nvv = normal_matrix.topLeftCorner<3, 3>() + 1e-6 * weight * Eigen::Matrix3d::Identity();
   const auto nvv_solver = nvv.ldlt();

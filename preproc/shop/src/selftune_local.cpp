@@ -80,6 +80,14 @@ class PathShift {
                            noise_mm_};
     if (tilt.tilt == TiltFit::Estimated) narrow.known_tilt_rad = tilt.tilt_rad;
     LocalFit fit = fit_tool_displacement(anchors_, pose.translation(), pose.linear(), narrow);
+    // Where few measured points carry the shift (a corner that C turns through in a few
+    // millimetres: the cuts within the angle touch few points), their noise is the shift:
+    // the window widens.
+    for (int widen = 0; widen < 3 && fit.covered && fit.support < options_.min_support; ++widen) {
+      narrow.radius_mm *= 1.5;
+      narrow.angle_rad *= 1.5;
+      fit = fit_tool_displacement(anchors_, pose.translation(), pose.linear(), narrow);
+    }
     PointChange c;
     c.covered = fit.covered;
     if (!c.covered) return c;

@@ -142,6 +142,23 @@ TEST(LocalFit, NormalsAFewDegreesApartDoNotTellAShiftAlongTheSurface) {
   EXPECT_EQ(fit.shift_mm.z(), 0.0);
 }
 
+// The support counts measured points, not cuts: a point's cuts share its noise.
+TEST(LocalFit, SupportIsTheEffectiveNumberOfPointsNotOfCuts) {
+  std::vector<shop::Anchor> a;
+  for (int point = 0; point < 4; ++point)
+    for (int cut = 0; cut < 25; ++cut)
+      a.push_back({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), 0.0, 0.001, Eigen::Matrix3d::Identity(), point});
+  const shop::LocalFitOptions options{40.0, 0.0, false, 1.0, 0.0};
+  EXPECT_NEAR(shop::fit_tool_displacement(a, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), options).support,
+              4.0, 1e-12);
+  // One point more, far out and with one cut (weight exp(-2 * 0.75^2) = 0.32 against the others' 25): 4.03.
+  a.push_back({Eigen::Vector3d(30, 0, 0), Eigen::Vector3d(1, 0, 0), 0.0, 0.001, Eigen::Matrix3d::Identity(), 4});
+  const double support =
+      shop::fit_tool_displacement(a, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), options).support;
+  EXPECT_GT(support, 4.0);
+  EXPECT_LT(support, 4.1);
+}
+
 TEST(LocalFit, TwoWallsAtACornerTellBothComponentsOfTheTilt) {
   // Deviations of a tool turned by an exact rotation about its tip, on walls facing +y and +x.
   const Eigen::Vector3d v(0.001, -0.0015, 0.0005), w(3e-5, -5e-5, 0);

@@ -58,6 +58,8 @@ struct LocalFit {
   Eigen::Vector3d tilt_rad = Eigen::Vector3d::Zero();  // w, tool frame (z = 0)
   TiltFit tilt = TiltFit::NotAsked;
   int tilt_components = 0;                             // of w estimated (0, 1, 2)
+  double support = 0.0;  // effective number of measured points in the fit, (sum W)^2 / sum W^2,
+                         // W a point's weight (its cuts' summed): their noises are independent
 };
 
 struct LocalFitOptions {

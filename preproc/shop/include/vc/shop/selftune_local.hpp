@@ -34,6 +34,11 @@ struct LocalOptions {
   double angle_deg = 20.0;      // cuts at tool frames turned further are not used (local_fit.hpp)
   bool tilt = true;             // turn the tool axis on 5-axis moves where the points tell it
   double tilt_spread_mm = 1.0;  // heights along the tool that tell a tilt from a shift (local_fit.hpp)
+  // > 0: where fewer measured points than this (effective number, LocalFit::support) carry a
+  // shift, its window widens (radius and angle x 1.5, at most three times) until they do.
+  // 6: on bc_head's swarf part the worst of four noise draws went from 3.95 to 2.43 um PV
+  // (preproc/shop/README.md); 3 and 12 did less.
+  double min_support = 6.0;
 };
 
 // What the tool axis got, counted over the pieces with measured points near (their ends).
