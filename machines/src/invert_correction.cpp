@@ -13,7 +13,6 @@ namespace {
 struct IdealPose {
   ToolPose pose;
   PoseDerivatives d;
-  bool rates = false;  // d holds the rates too (else the axis lines alone: ideal_pose_and_lines)
 };
 
 // One Newton step of the ideal machine's equations, by blocks. The ideal machine's linear axes
@@ -77,20 +76,13 @@ Status ideal_newton(const Model& model, const CorrectionTarget& target, double t
   if (linear_count != 3 || rotary_count != target.direction_equations) return Status::Singular;
   const int equations = 3 + target.direction_equations;
   for (int step = 0;; ++step) {
-    if (step > 0 || !evaluated) {
-      ideal.pose = tool_pose(model, Machine::Ideal, q, tool_length_mm, ideal.d);
-      ideal.rates = true;
-    }
+    if (step > 0 || !evaluated) ideal.pose = tool_pose(model, Machine::Ideal, q, tool_length_mm, ideal.d);
     const Joints residual = correction_residual(target, ideal.pose, equations);
     if (!residual.allFinite()) return Status::NonFinite;
     const double position = residual.head(3).norm();
     const double direction = std::sqrt(direction_squared_norm(residual));
     if (position <= opt.position_tolerance_mm && direction <= opt.direction_tolerance_rad) return Status::Ok;
     if (step == opt.max_iterations) return Status::NotConverged;
-    if (!ideal.rates) {  // the pose was evaluated with the axis lines alone: a step needs the rates
-      ideal.pose = tool_pose(model, Machine::Ideal, q, tool_length_mm, ideal.d);
-      ideal.rates = true;
-    }
     if (!block_step(target, ideal.d, residual, linear, rotary, q)) return Status::Singular;
     ++iterations;
   }
@@ -177,9 +169,11 @@ Uncorrection invert_correction(const Model& model, const Joints& corrected, doub
     return out;
   }
 
-  // Which side of the fade band: judged at the seed, confirmed at the solution. The rates
-  // only where a step is needed (a seed from the last correction is often the answer).
-  ideal.pose = ideal_pose_and_lines(model, q, tool_length_mm, ideal.d);
+  // Which side of the fade band: judged at the seed, confirmed at the solution. With the rates
+  // at once: in LinuxCNC the seed is never the answer (the joints fed back are the cubic
+  // interpolator's way point, two cycles behind the last command and its correction: a step
+  // is taken in nearly every cycle), so evaluating the pose without them first only costs.
+  ideal.pose = tool_pose(model, Machine::Ideal, q, tool_length_mm, ideal.d);
   // Basis perpendicular to the real direction (two rotary axes), or the rotary axis line (one:
   // the same in the part frame at every q, only linear axes move it).
   const CorrectionTarget full = full_target(model, real, ideal.d);

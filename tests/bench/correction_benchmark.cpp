@@ -29,6 +29,7 @@ struct ServoCycle {
   Joints previous_joints;               // joints_from_world(before)
   Joints previous_correction;           // previous_joints - before
   Joints extrapolated_correction;       // from the corrections at world - k step, k = 1, 2, 3
+  Joints feedback;                      // the joints the forward reads (empty: previous_joints)
 };
 
 struct Fixture {
@@ -56,7 +57,7 @@ const Fixture& fixture(const std::string& name) {
     }
     f.poses.push_back(q);
     f.corrected.push_back(correct(f.model, q, f.model.tool_length_mm).joints);
-    ServoCycle c{q, q - step, q - 2 * step, {}, {}, {}};
+    ServoCycle c{q, q - step, q - 2 * step, {}, {}, {}, {}};
     joints_from_world(f.model, WorldConvention::Axes, c.before, f.model.tool_length_mm, c.previous_joints);
     c.previous_correction = c.previous_joints - c.before;
     const auto correction_at = [&](const Joints& nominal) {
@@ -75,6 +76,9 @@ const Fixture& fixture(const std::string& name) {
 // (what servo_cost.sh runs in LinuxCNC): a 60 mm circle round X-360 Y-160 while Z dips 40 mm,
 // B tilts to -60 and back (through the pole fade band at both ends) and C turns once, at
 // F4000 (66.7 mm/s: 0.0637 deg of the circle per 1 ms cycle), seeded as volkins seeds them.
+// The forward reads what LinuxCNC feeds back in a simulated loop: the joint command of the
+// cubic interpolator (cubic.c, one point per servo period), its way point
+// (q(k-3) + 4 q(k-2) + q(k-1)) / 6 of the inverse's outputs, not the last of them.
 std::vector<ServoCycle> contour_cycles(const Model& model) {
   constexpr double kStepDeg = 4000.0 / 60.0 / 60.0 * 1e-3 / (3.14159265358979323846 / 180.0);
   const int n = static_cast<int>(360.0 / kStepDeg);
@@ -89,9 +93,11 @@ std::vector<ServoCycle> contour_cycles(const Model& model) {
     corrections.push_back(joints - p);
   }
   std::vector<ServoCycle> cycles;
-  for (int i = 3; i < n; ++i)
-    cycles.push_back({points[i], points[i - 1], points[i - 2], Joints(points[i - 1] + corrections[i - 1]),
-                      corrections[i - 1], 3 * (corrections[i - 1] - corrections[i - 2]) + corrections[i - 3]});
+  const auto command = [&](int k) { return Joints(points[k] + corrections[k]); };
+  for (int i = 4; i < n; ++i)
+    cycles.push_back({points[i], points[i - 1], points[i - 2], command(i - 1), corrections[i - 1],
+                      3 * (corrections[i - 1] - corrections[i - 2]) + corrections[i - 3],
+                      (command(i - 4) + 4 * command(i - 3) + command(i - 2)) / 6.0});
   return cycles;
 }
 
@@ -195,7 +201,7 @@ void BM_ServoCycle(benchmark::State& state, const std::string& machine, bool cor
     const Joints* forward_seed = correction_seeds ? &c.previous_correction : nullptr;
     const Joints* inverse_seed = correction_seeds ? &c.extrapolated_correction : nullptr;
     Joints world, joints;
-    world_from_joints(f.model, WorldConvention::Axes, c.previous_joints, L,
+    world_from_joints(f.model, WorldConvention::Axes, c.feedback.size() ? c.feedback : c.previous_joints, L,
                       Applied{1.0, &c.before_before, forward_seed}, world);
     joints_from_world(f.model, WorldConvention::Axes, c.world, L,
                       Applied{1.0, &c.previous_joints, inverse_seed, bound ? &f.bound : nullptr}, joints);
