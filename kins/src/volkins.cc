@@ -90,8 +90,8 @@ int comp_id = -1;
 // inverse starts at its nominal joints plus their quadratic extrapolation (the correction
 // moves smoothly, by the error slopes times the step: from there one Newton step is left as a
 // rule, where a start at the previous joints, a whole step away, takes three); the forward of
-// the feedback, which is the last command plus the following error, at the joints less the
-// last one.
+// the feedback at the joints less the last one (the feedback is the cubic interpolator's way
+// point two commands back, plus the following error: one ideal Newton step as a rule).
 struct CorrectionSeed {
   Joints last, before, before_that;
   int kept = 0;  // how many of the three are set
