@@ -86,7 +86,7 @@ double fade_factor(const PoleFade& fade, double phi) noexcept {
 
 double pole_angle(const Model& model, const Joints& nominal, double tool_length_mm) noexcept {
   PoseDerivatives d;
-  const ToolPose ideal = ideal_pose_and_lines(model, nominal, tool_length_mm, d);
+  const ToolPose ideal = tool_pose(model, Machine::Ideal, nominal, tool_length_mm, d);
   return pole_angle_at(model, ideal, d);
 }
 

@@ -236,8 +236,7 @@ class CarriedIdealRates {
   static constexpr int kNone = -1;
 
  public:
-  // `rates` false: the rotary axes' lines alone (no rates of the tip and the direction).
-  CarriedIdealRates(const Vector3d& tip, const Vector3d& direction, bool rates = true) : rates_(rates) {
+  CarriedIdealRates(const Vector3d& tip, const Vector3d& direction) {
     v_.col(kTip) = tip;
     v_.col(kDirection) = direction;
     tip_rate_.fill(kNone);
@@ -249,7 +248,7 @@ class CarriedIdealRates {
   void tool_axis(const Axis& axis, int i, double q) {
     if (axis.type == AxisType::Linear) {
       v_.col(kTip) += q * axis.direction;
-      if (rates_) tip_rate_[i] = add(axis.direction);
+      tip_rate_[i] = add(axis.direction);
     } else {
       turn(rotation_about(axis.direction, q * tables::kDegToRad));
       add_rotary_rates(axis, i, 1.0);
@@ -262,7 +261,7 @@ class CarriedIdealRates {
     v_.col(kTip) -= axis.pole_mm;
     if (axis.type == AxisType::Linear) {
       v_.col(kTip) -= q * axis.direction;
-      if (rates_) tip_rate_[i] = add(-axis.direction);
+      tip_rate_[i] = add(-axis.direction);
     } else {
       turn(rotation_about(axis.direction, q * tables::kDegToRad).transpose());
       add_rotary_rates(axis, i, -1.0);
@@ -276,10 +275,8 @@ class CarriedIdealRates {
 
   ToolPose pose(int joints, PoseDerivatives& d) const {
     for (int j = 0; j < joints; ++j) {
-      if (rates_) {
-        d.tip.col(j) = column(tip_rate_[j]);
-        d.direction.col(j) = column(direction_rate_[j]);
-      }
+      d.tip.col(j) = column(tip_rate_[j]);
+      d.direction.col(j) = column(direction_rate_[j]);
       d.axis_line.col(j) = column(line_[j]);
     }
     return {v_.col(kTip), v_.col(kDirection)};
@@ -290,11 +287,9 @@ class CarriedIdealRates {
   // Rotary joint i about its line through this frame's origin: the tip turns by w x tip, the
   // direction by w x direction, w the line per deg (sign -1: the part turns).
   void add_rotary_rates(const Axis& axis, int i, double sign) {
-    if (rates_) {
-      const Vector3d w = (sign * tables::kDegToRad) * axis.direction;
-      tip_rate_[i] = add(w.cross(v_.col(kTip)));
-      direction_rate_[i] = add(w.cross(v_.col(kDirection)));
-    }
+    const Vector3d w = (sign * tables::kDegToRad) * axis.direction;
+    tip_rate_[i] = add(w.cross(v_.col(kTip)));
+    direction_rate_[i] = add(w.cross(v_.col(kDirection)));
     line_[i] = add(axis.direction);
   }
   int add(const Vector3d& v) {
@@ -310,13 +305,12 @@ class CarriedIdealRates {
   Eigen::Matrix<double, 3, 2 + 3 * kMaxAxes> v_;
   int used_ = 2;
   std::array<int, kMaxAxes> tip_rate_, direction_rate_, line_;  // column of joint j, or kNone
-  bool rates_;
 };
 
-ToolPose carried_ideal_rates(const Model& model, const Joints& q, double tool_length_mm, PoseDerivatives& d,
-                             bool rates = true) noexcept {
+ToolPose carried_ideal_rates(const Model& model, const Joints& q, double tool_length_mm,
+                             PoseDerivatives& d) noexcept {
   const Vector3d direction = model.spindle.ideal.linear().col(2);
-  CarriedIdealRates carried(model.spindle.ideal.translation() - tool_length_mm * direction, direction, rates);
+  CarriedIdealRates carried(model.spindle.ideal.translation() - tool_length_mm * direction, direction);
   for (auto i = model.tool_chain.rbegin(); i != model.tool_chain.rend(); ++i)
     carried.tool_axis(model.axes[*i], *i, q[*i]);
   for (int i : model.workpiece_chain) carried.workpiece_axis(model.axes[i], i, q[i]);
@@ -396,11 +390,6 @@ ToolPose tool_pose(const Model& model, Machine machine, const Joints& q,
 ToolPose tool_pose(const Model& model, Machine machine, const Joints& q, double tool_length_mm,
                    PoseDerivatives& derivatives) noexcept {
   return evaluate(model, machine, q, tool_length_mm, &derivatives);
-}
-
-ToolPose ideal_pose_and_lines(const Model& model, const Joints& q, double tool_length_mm,
-                              PoseDerivatives& derivatives) noexcept {
-  return carried_ideal_rates(model, q, tool_length_mm, derivatives, false);
 }
 
 Isometry3d part_T_tool(const Model& model, Machine machine, const Joints& q,

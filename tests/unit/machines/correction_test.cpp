@@ -209,22 +209,6 @@ TEST_P(EveryMachine, TcpNominalKinematicsRoundTrip) {
   }
 }
 
-// The cheap evaluation for the pole angle and a solver's first check: the same pose and axis
-// lines as the evaluation with rates, to the last bit.
-TEST_P(EveryMachine, IdealPoseAndLinesAreThoseOfTheEvaluationWithRates) {
-  std::mt19937_64 rng(3);
-  for (int k = 0; k < 1000; ++k) {
-    const Joints q = random_pose(model_, rng);
-    PoseDerivatives with_rates, lines;
-    const ToolPose full = tool_pose(model_, Machine::Ideal, q, model_.tool_length_mm, with_rates);
-    const ToolPose cheap = ideal_pose_and_lines(model_, q, model_.tool_length_mm, lines);
-    ASSERT_EQ(full.tip_mm, cheap.tip_mm) << text(q);
-    ASSERT_EQ(full.direction, cheap.direction) << text(q);
-    ASSERT_EQ(with_rates.axis_line.leftCols(model_.joint_count()), lines.axis_line.leftCols(model_.joint_count()))
-        << text(q);
-  }
-}
-
 TEST_P(EveryMachine, AnalyticJacobianMatchesCentralDifferences) {
   std::mt19937_64 rng(4);
   const double L = model_.tool_length_mm;

@@ -41,12 +41,6 @@ ToolPose tool_pose(const Model& model, Machine machine, const Joints& q,
                    double tool_length_mm) noexcept;
 ToolPose tool_pose(const Model& model, Machine machine, const Joints& q, double tool_length_mm,
                    PoseDerivatives& derivatives) noexcept;
-// The ideal machine's pose and its rotary axes' lines (derivatives.axis_line) alone, without
-// the rates of the tip and the direction (derivatives.tip and .direction are left as they
-// were): what the pole angle and a solver's first check need, at a fraction of the cost; the
-// rates follow from tool_pose() where a Newton step needs them.
-ToolPose ideal_pose_and_lines(const Model& model, const Joints& q, double tool_length_mm,
-                              PoseDerivatives& derivatives) noexcept;
 
 // part_T_tool = F_part^-1 * F_tool, the full pose (tool frame in the part frame).
 Eigen::Isometry3d part_T_tool(const Model& model, Machine machine, const Joints& q,
