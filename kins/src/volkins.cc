@@ -20,6 +20,7 @@
 // Servo thread: no allocation, no locks, no I/O, bounded iterations, no exceptions.
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <exception>
@@ -86,25 +87,30 @@ vc::kins::ModuleSettings* settings = nullptr;  // built in rtapi_app_main, read-
 HalData* hal = nullptr;
 int comp_id = -1;
 
-// The full corrections (q_c - q_n) of the last three inverses, servo thread only. The next
-// inverse starts at its nominal joints plus their quadratic extrapolation (the correction
-// moves smoothly, by the error slopes times the step: from there one Newton step is left as a
-// rule, where a start at the previous joints, a whole step away, takes three); the forward of
-// the feedback at the joints less the last one (the feedback is the cubic interpolator's way
-// point two commands back, plus the following error: one ideal Newton step as a rule).
+// The full corrections (q_c - q_n) of the last four inverses, servo thread only. The next
+// inverse starts at its nominal joints plus the quadratic extrapolation of the last three (the
+// correction moves smoothly, by the error slopes times the step: from there one Newton step is
+// left as a rule, where a start at the previous joints, a whole step away, takes three). The
+// forward's feedback is the cubic interpolator's way point two commands back, (p[k-3] + 4 p[k-2]
+// + p[k-1]) / 6 (cubic.c), plus the following error: its start is the feedback less the same
+// combination of the corrections, ~1e-9 off, close enough for the ideal machine's one Newton
+// step to be proved rather than evaluated (invert_correction.hpp).
 struct CorrectionSeed {
-  Joints last, before, before_that;
-  int kept = 0;  // how many of the three are set
+  std::array<Joints, 4> corrections;  // newest first
+  int kept = 0;                 // how many are set
   void keep(const Joints& correction) {
-    before_that = before;
-    before = last;
-    last = correction;
-    kept = std::min(kept + 1, 3);
+    for (int i = 3; i > 0; --i) corrections[i] = corrections[i - 1];
+    corrections[0] = correction;
+    kept = std::min(kept + 1, 4);
   }
-  const Joints* for_forward() const { return kept > 0 ? &last : nullptr; }
+  const Joints* for_forward(Joints& way_point) const {
+    if (kept < 4) return kept > 0 ? &corrections[0] : nullptr;
+    way_point = (corrections[3] + 4.0 * corrections[2] + corrections[1]) / 6.0;
+    return &way_point;
+  }
   const Joints* for_inverse(Joints& extrapolated) const {
-    if (kept < 3) return for_forward();
-    extrapolated = 3.0 * (last - before) + before_that;
+    if (kept < 3) return kept > 0 ? &corrections[0] : nullptr;
+    extrapolated = 3.0 * (corrections[0] - corrections[1]) + corrections[2];
     return &extrapolated;
   }
 } correction_seed;
@@ -269,11 +275,10 @@ int kinematicsForward(const double* joints, EmcPose* pose, const KINEMATICS_FORW
   const double offset = *hal->tool_length;
   const double L = correction_length();
   const Joints seed = world_of(*pose, offset);  // LinuxCNC passes the previous position (or home)
-  Joints w;
+  Joints w, way_point;
   int iterations = 0;
-  const vm::Status s =
-      vm::world_from_joints(model, settings->world, q, L, vm::Applied{applied_gain(), &seed, correction_seed.for_forward()},
-                            w, &iterations);
+  const vm::Applied applied{applied_gain(), &seed, correction_seed.for_forward(way_point)};
+  const vm::Status s = vm::world_from_joints(model, settings->world, q, L, applied, w, &iterations);
   *hal->forward_iterations = iterations;
   if (s != vm::Status::Ok) return refuse();
   set_world(*pose, w, offset);

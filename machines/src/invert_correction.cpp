@@ -5,8 +5,28 @@
 #include <cmath>
 
 #include "vc/machine/correction_equations.hpp"
+#include "vc/tables/units.hpp"
 
 namespace vc::machine {
+
+StepRemainder ideal_step_remainder(const Model& model, const Joints& from, const Joints& to,
+                                   double tool_length_mm) noexcept {
+  double reach = model.spindle.ideal.translation().norm() + std::abs(tool_length_mm);  // R
+  double turn = 0.0, travel = 0.0;                                                    // Omega, V
+  for (int j = 0; j < model.joint_count(); ++j) {
+    const Axis& axis = model.axes[j];
+    const double step = std::abs(to[j] - from[j]);
+    reach += axis.pole_mm.norm();
+    if (axis.type == AxisType::Linear) {
+      reach += std::max(std::abs(from[j]), std::abs(to[j]));
+      travel += step;
+    } else {
+      turn += step * tables::kDegToRad;
+    }
+  }
+  return {1.5 * (turn * turn * reach + turn * travel), turn * turn, turn};
+}
+
 namespace {
 
 // The ideal machine at the current guess, with the derivatives Newton and the pole angle need.
@@ -59,8 +79,11 @@ bool block_step(const CorrectionTarget& target, const PoseDerivatives& d, const 
 // stay). Exact Jacobian at every step: the ideal machine's derivatives are cheap, and the
 // rotary joints' trigonometry makes a frozen one converge slowly. `ideal` holds the pose at q
 // if `evaluated`, and returns the pose at the final q.
+// With `unchecked` set, a step whose remainder bound (ideal_step_remainder) is within half the
+// tolerances ends the solve without evaluating the pose after it: *unchecked is then true and
+// `ideal` holds the pose before the step.
 Status ideal_newton(const Model& model, const CorrectionTarget& target, double tool_length_mm, Joints& q,
-                    int& iterations, IdealPose& ideal, bool evaluated = false) noexcept {
+                    int& iterations, IdealPose& ideal, bool evaluated = false, bool* unchecked = nullptr) noexcept {
   const SolverOptions& opt = model.solver;
   std::array<int, 3> linear{};
   std::array<int, 2> rotary{};
@@ -83,8 +106,17 @@ Status ideal_newton(const Model& model, const CorrectionTarget& target, double t
     const double direction = std::sqrt(direction_squared_norm(residual));
     if (position <= opt.position_tolerance_mm && direction <= opt.direction_tolerance_rad) return Status::Ok;
     if (step == opt.max_iterations) return Status::NotConverged;
+    const Joints before = q;
     if (!block_step(target, ideal.d, residual, linear, rotary, q)) return Status::Singular;
     ++iterations;
+    if (unchecked) {
+      const StepRemainder left = ideal_step_remainder(model, before, q, tool_length_mm);
+      if (left.position_mm <= 0.5 * opt.position_tolerance_mm &&
+          left.direction_rad <= 0.5 * opt.direction_tolerance_rad) {
+        *unchecked = true;
+        return Status::Ok;
+      }
+    }
   }
 }
 
@@ -163,8 +195,8 @@ Uncorrection invert_correction(const Model& model, const Joints& corrected, doub
   IdealPose ideal;
   Joints q = start;
   CorrectionTarget position{real.tip_mm, real.direction, {}, 0};
-  if (model.rotary_count() == 0) {
-    out.status = ideal_newton(model, position, tool_length_mm, q, out.iterations, ideal);
+  if (model.rotary_count() == 0) {  // no fade: nothing needs the pose at the answer
+    out.status = ideal_newton(model, position, tool_length_mm, q, out.iterations, ideal, false, &out.unchecked_step);
     out.nominal = q;
     return out;
   }
@@ -178,7 +210,8 @@ Uncorrection invert_correction(const Model& model, const Joints& corrected, doub
   // the same in the part frame at every q, only linear axes move it).
   const CorrectionTarget full = full_target(model, real, ideal.d);
   bool evaluated = true;  // `ideal` holds the pose at q
-  const double seed_fade = fade_at(model, ideal);
+  const double seed_pole_angle = pole_angle_at(model, ideal.pose, ideal.d);
+  const double seed_fade = fade_factor(model.fade, seed_pole_angle);
   if (seed_fade == 0.0) {  // at the pole: the rotary joints are not corrected
     set_rotary(model, corrected, q);
     const Status s = ideal_newton(model, position, tool_length_mm, q, out.iterations, ideal);
@@ -191,12 +224,22 @@ Uncorrection invert_correction(const Model& model, const Joints& corrected, doub
   }
   // Full correction (and the fade band's first estimate).
   const int steps_before = out.iterations;
-  Status s = ideal_newton(model, full, tool_length_mm, q, out.iterations, ideal, evaluated);
-  // Where the seed was the answer (no step), the fade is the one judged there.
+  bool unchecked = false;
+  Status s = ideal_newton(model, full, tool_length_mm, q, out.iterations, ideal, evaluated,
+                          evaluated && seed_fade == 1.0 ? &unchecked : nullptr);
+  // Where the seed was the answer (no step), the fade is the one judged there; after a step
+  // that was not evaluated, the one judged there if the pole angle cannot have crossed into
+  // the band (it moves by at most twice the turn from the seed), else the pose is evaluated.
   const bool at_seed = evaluated && out.iterations == steps_before;
-  double fade = s != Status::Ok ? 0.0 : at_seed ? seed_fade : fade_at(model, ideal);
+  if (unchecked &&
+      seed_pole_angle - model.fade.full_rad <= 2.0 * ideal_step_remainder(model, start, q, tool_length_mm).turn_rad) {
+    unchecked = false;
+    ideal.pose = tool_pose(model, Machine::Ideal, q, tool_length_mm, ideal.d);
+  }
+  double fade = s != Status::Ok ? 0.0 : at_seed || unchecked ? seed_fade : fade_at(model, ideal);
   if (s == Status::Ok && fade == 1.0) {
     out.nominal = q;
+    out.unchecked_step = unchecked;
     return out;
   }
   if (s != Status::Ok) q = corrected;  // near the pole the full system may be singular: no estimate

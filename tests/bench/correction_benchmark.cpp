@@ -30,6 +30,8 @@ struct ServoCycle {
   Joints previous_correction;           // previous_joints - before
   Joints extrapolated_correction;       // from the corrections at world - k step, k = 1, 2, 3
   Joints feedback;                      // the joints the forward reads (empty: previous_joints)
+  Joints feedback_correction;           // with feedback: the forward's seed, the same combination
+                                        // of the corrections (volkins' way point)
 };
 
 struct Fixture {
@@ -57,7 +59,7 @@ const Fixture& fixture(const std::string& name) {
     }
     f.poses.push_back(q);
     f.corrected.push_back(correct(f.model, q, f.model.tool_length_mm).joints);
-    ServoCycle c{q, q - step, q - 2 * step, {}, {}, {}, {}};
+    ServoCycle c{q, q - step, q - 2 * step, {}, {}, {}, {}, {}};
     joints_from_world(f.model, WorldConvention::Axes, c.before, f.model.tool_length_mm, c.previous_joints);
     c.previous_correction = c.previous_joints - c.before;
     const auto correction_at = [&](const Joints& nominal) {
@@ -78,7 +80,8 @@ const Fixture& fixture(const std::string& name) {
 // F4000 (66.7 mm/s: 0.0637 deg of the circle per 1 ms cycle), seeded as volkins seeds them.
 // The forward reads what LinuxCNC feeds back in a simulated loop: the joint command of the
 // cubic interpolator (cubic.c, one point per servo period), its way point
-// (q(k-3) + 4 q(k-2) + q(k-1)) / 6 of the inverse's outputs, not the last of them.
+// (q(k-3) + 4 q(k-2) + q(k-1)) / 6 of the inverse's outputs, not the last of them; volkins
+// starts its forward at that way point less the same combination of the corrections it kept.
 std::vector<ServoCycle> contour_cycles(const Model& model) {
   constexpr double kStepDeg = 4000.0 / 60.0 / 60.0 * 1e-3 / (3.14159265358979323846 / 180.0);
   const int n = static_cast<int>(360.0 / kStepDeg);
@@ -97,7 +100,8 @@ std::vector<ServoCycle> contour_cycles(const Model& model) {
   for (int i = 4; i < n; ++i)
     cycles.push_back({points[i], points[i - 1], points[i - 2], command(i - 1), corrections[i - 1],
                       3 * (corrections[i - 1] - corrections[i - 2]) + corrections[i - 3],
-                      (command(i - 4) + 4 * command(i - 3) + command(i - 2)) / 6.0});
+                      (command(i - 4) + 4 * command(i - 3) + command(i - 2)) / 6.0,
+                      (corrections[i - 4] + 4 * corrections[i - 3] + corrections[i - 2]) / 6.0});
   return cycles;
 }
 
@@ -198,7 +202,8 @@ void BM_ServoCycle(benchmark::State& state, const std::string& machine, bool cor
   run(state, machine, [correction_seeds, bound, contour, &along_contour](const Fixture& f, std::size_t i) {
     const ServoCycle& c = contour ? along_contour[i] : f.cycles[i];
     const double L = f.model.tool_length_mm;
-    const Joints* forward_seed = correction_seeds ? &c.previous_correction : nullptr;
+    const Joints* forward_seed =
+        !correction_seeds ? nullptr : c.feedback.size() ? &c.feedback_correction : &c.previous_correction;
     const Joints* inverse_seed = correction_seeds ? &c.extrapolated_correction : nullptr;
     Joints world, joints;
     world_from_joints(f.model, WorldConvention::Axes, c.feedback.size() ? c.feedback : c.previous_joints, L,

@@ -57,6 +57,9 @@ struct Uncorrection {
   Joints nominal;
   Status status = Status::Ok;
   int iterations = 0;  // corrections evaluated
+  // invert_correction: the ideal machine's last Newton step was proved within the tolerances
+  // (ideal_step_remainder), not evaluated.
+  bool unchecked_step = false;
 };
 Uncorrection uncorrect(const Model& model, const Joints& corrected, double tool_length_mm) noexcept;
 // The same for a partly applied correction, q_c = q_n + gain * (correct(q_n) - q_n) with gain

@@ -16,6 +16,9 @@
 // with D evaluated again until q_n stays put (two rounds as a rule). Where that fails, `uncorrect`
 // polishes the estimate (two corrections or more). A partial gain (the enable ramp) is the fixed
 // point's.
+// Where the full correction's Newton step is small enough, its result is proved instead of
+// evaluated (ideal_step_remainder below): in the servo thread, seeded with the correction at the
+// feedback, that is the rule.
 // Real-time: no allocation, no locks, no exceptions; bounded: at most 3 + 4 (1 + max_iterations)
 // Newton solves of max_iterations steps and one bounded `uncorrect`.
 #pragma once
@@ -25,6 +28,24 @@
 namespace vc::machine {
 
 inline constexpr double kSeedRadius = 1.0;
+
+// What a Newton step of the ideal machine's equations (tip onto a point, direction onto a
+// direction) from `from` to `to` can leave of them. The step, with the exact Jacobian, cancels
+// the first order; what is left is at most half the largest second derivative along the
+// straight line between the two. The ideal machine, seen from the part, is one serial chain of
+// rotations (rates w_i, Omega = sum |w_i| in rad) and translations (rates v_j, V = sum |v_j| in
+// mm): the tip moves at sum w_i x (p - c_i) + sum v_j u_j, with c_i on axis i's line, so its
+// acceleration is at most 3 Omega^2 R + 3 Omega V, and the direction's at most 2 Omega^2, where R
+// bounds the tip's distance from every frame origin of the chain: the sum of the poles, the
+// linear joints, the spindle's gauge point and the tool length.
+struct StepRemainder {
+  double position_mm;    // 1.5 (Omega^2 R + Omega V)
+  double direction_rad;  // Omega^2
+  double turn_rad;       // Omega: how far any direction of the chain turned (the pole angle moves
+                         // by at most twice that)
+};
+StepRemainder ideal_step_remainder(const Model& model, const Joints& from, const Joints& to,
+                                   double tool_length_mm) noexcept;
 
 // q_n with q_c = q_n + gain * (correct(q_n) - q_n), the answer of `uncorrect` (to the solver
 // tolerances), Newton started at `nominal_seed` (the previous answer), or at q_c where the seed
