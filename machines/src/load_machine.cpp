@@ -447,7 +447,7 @@ class MachineReader {
       listed.push_back(table_path);
       if (!fs::is_regular_file(table_path))
         throw LoadError(where(*t.get("file")), "table file '" + file + "' not found (looked for " + table_path + ")");
-      BoundTable bound{tables::load_table(table_path, options), {}};
+      BoundTable bound(tables::load_table(table_path, options));
       bind(bound, axis, where(*t.get("file")));
       if (scale)
         for (auto&& [key, value] : *scale) {

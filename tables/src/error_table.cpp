@@ -18,22 +18,27 @@ struct Cell {
 };
 
 // Inline and without division: this runs for every table of every axis in every chain walk.
-// (On a cell boundary the cell may be either neighbour: both give the node's value.)
+// On an evenly spaced grid it reads the grid variable alone, not its nodes (fewer cache lines
+// in the servo thread). (On a cell boundary the cell may be either neighbour: both give the
+// node's value.)
 inline Cell locate(const GridVariable& g, double x) noexcept {
-  const std::vector<double>& n = g.nodes;
-  const int last = static_cast<int>(n.size()) - 1;
+  const int last = static_cast<int>(g.nodes.size()) - 1;
+  const double step = g.uniform_step;
   if (g.periodic) {
-    x = n.front() + std::fmod(x - n.front(), 360.0);
-    if (x < n.front()) x += 360.0;
-  } else if (x < n.front()) {
-    return {0, 0.0, n[1] - n[0], 0.0};
-  } else if (x > n.back()) {
-    return {last - 1, 1.0, n[last] - n[last - 1], 0.0};
+    x = g.first + std::fmod(x - g.first, 360.0);
+    if (x < g.first) x += 360.0;
+  } else if (x < g.first) {
+    return {0, 0.0, step > 0.0 ? step : g.nodes[1] - g.nodes[0], 0.0};
+  } else if (x > g.last) {
+    return {last - 1, 1.0, step > 0.0 ? step : g.nodes[last] - g.nodes[last - 1], 0.0};
   }
-  int i = g.uniform_step > 0.0
-              ? static_cast<int>((x - n.front()) * g.inverse_step)
-              : static_cast<int>(std::upper_bound(n.begin(), n.end(), x) - n.begin()) - 1;
-  i = std::clamp(i, 0, last - 1);
+  if (step > 0.0) {
+    const double u = (x - g.first) * g.inverse_step;
+    const int i = std::clamp(static_cast<int>(u), 0, last - 1);
+    return {i, u - i, step, g.inverse_step};
+  }
+  const std::vector<double>& n = g.nodes;
+  const int i = std::clamp(static_cast<int>(std::upper_bound(n.begin(), n.end(), x) - n.begin()) - 1, 0, last - 1);
   const double inverse = g.inverse_width[static_cast<std::size_t>(i)];
   return {i, (x - n[i]) * inverse, n[i + 1] - n[i], inverse};
 }
@@ -48,11 +53,11 @@ std::string GridVariable::name() const {
 ErrorTable::ErrorTable(std::string path, std::vector<GridVariable> grid,
                        std::vector<Column> columns, std::vector<double> values,
                        Interpolation interpolation)
-    : path_(std::move(path)),
-      grid_(std::move(grid)),
+    : grid_(std::move(grid)),
       columns_(std::move(columns)),
       values_(std::move(values)),
-      interpolation_(interpolation) {
+      interpolation_(interpolation),
+      path_(std::move(path)) {
   for (GridVariable& g : grid_) {
     const double step = (g.nodes.back() - g.nodes.front()) / static_cast<double>(g.nodes.size() - 1);
     bool uniform = true;
@@ -60,6 +65,8 @@ ErrorTable::ErrorTable(std::string path, std::vector<GridVariable> grid,
       uniform &= std::abs(g.nodes[i] - (g.nodes.front() + step * static_cast<double>(i))) <= 1e-12 * step;
     g.uniform_step = uniform ? step : 0.0;
     g.inverse_step = uniform ? 1.0 / step : 0.0;
+    g.first = g.nodes.front();
+    g.last = g.nodes.back();
     g.inverse_width.resize(g.nodes.size() - 1);
     for (std::size_t i = 0; i + 1 < g.nodes.size(); ++i) g.inverse_width[i] = 1.0 / (g.nodes[i + 1] - g.nodes[i]);
   }

@@ -116,7 +116,7 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
     // node) and leave 29 % of the first between them; a table's errors round a turn are its
     // first harmonics (run-out, wobble, ovality).
     const int rows = periodic ? kFullTurnRows : options.nodes;
-    machine::BoundTable bound{zero_table(model, joint, rows, columns, tuning_table_name(letter)), {}};
+    machine::BoundTable bound(zero_table(model, joint, rows, columns, tuning_table_name(letter)));
     bound.joint[0] = joint;
     tuned.axes[static_cast<std::size_t>(joint)].tables.push_back(static_cast<int>(tuned.tables.size()));
     tuned.axes[static_cast<std::size_t>(joint)].moved_by |= 1u << joint;

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "vc/tables/error_table.hpp"
@@ -67,13 +68,16 @@ struct TemperatureInput {
   double value_degC = 20.0;
 };
 
-// An error table bound to this machine's joints and temperature inputs.
-struct BoundTable {
-  tables::ErrorTable table;
+// An error table bound to this machine's joints and temperature inputs. The binding comes
+// first and the table's lookup data right after it, on one cache line (the servo thread's
+// cycle reads every table's; between cycles other threads evict them).
+struct alignas(64) BoundTable {
+  explicit BoundTable(tables::ErrorTable t) : table(std::move(t)) {}
   // Of each grid variable: its joint (an axis position), or -1 for a temperature, read from
   // Model::temperatures[input[v]] (else input[v] is -1).
   std::array<int, tables::ErrorTable::kMaxVariables> joint{};
   std::array<int, tables::ErrorTable::kMaxVariables> input{-1, -1, -1};
+  tables::ErrorTable table;
 };
 
 // The spindle line: the gauge point in the last tool-chain frame and its own location errors

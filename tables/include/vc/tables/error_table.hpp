@@ -25,16 +25,19 @@ namespace vc::tables {
 enum class Interpolation { Linear, Cubic };
 
 struct GridVariable {
-  char axis;                  // upper-case axis letter whose position this is; 0 for a temperature
-  bool rotary;                // positions in deg (else mm)
-  bool periodic;              // rotary grid spanning exactly 360 deg
-  std::string temperature;    // a temperature (degC): the input's name, as in the header; else empty
+  // What a lookup reads comes first (one cache line: the servo thread's cycle touches every
+  // table's, and between cycles other threads evict them).
   std::vector<double> nodes;  // strictly increasing, size >= 2
-  SourceLocation where;       // header cell
-  double uniform_step = 0.0;  // > 0 if the nodes are equally spaced (lookup without search)
+  double uniform_step = 0.0;  // > 0 if the nodes are equally spaced (lookup without the nodes)
   // 1 / uniform_step and 1 / (width of each cell): lookups multiply, they do not divide.
   double inverse_step = 0.0;
+  double first = 0.0, last = 0.0;  // nodes.front(), nodes.back()
+  bool periodic;              // rotary grid spanning exactly 360 deg
+  bool rotary;                // positions in deg (else mm)
+  char axis;                  // upper-case axis letter whose position this is; 0 for a temperature
   std::vector<double> inverse_width;
+  std::string temperature;    // a temperature (degC): the input's name, as in the header; else empty
+  SourceLocation where;       // header cell
 
   bool is_temperature() const { return !temperature.empty(); }
   // The header's name: "x" for an axis position, the input's name for a temperature.
@@ -96,13 +99,14 @@ class ErrorTable {
   void evaluate_linear(const double* positions, Sample& out, bool with_slopes) const noexcept;
   void evaluate_cubic(double position, Sample& out, bool with_slopes) const noexcept;
 
-  std::string path_;
+  // What a lookup of the real machine's pose reads first (add_components: one cache line).
+  std::vector<double> by_component_;  // linear 1-D: the values, kMaxColumns per node by component
   std::vector<GridVariable> grid_;
   std::vector<Column> columns_;
   std::vector<double> values_;
   std::vector<double> curvature_;  // cubic: second derivative at each node, same layout
-  std::vector<double> by_component_;  // linear 1-D: the values, kMaxColumns per node by component
   Interpolation interpolation_;
+  std::string path_;
 };
 
 }  // namespace vc::tables
