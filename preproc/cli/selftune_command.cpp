@@ -152,6 +152,19 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
          << fit.points << " points; deviation left unexplained by the model RMS " << um(fit.rms_before_mm) << " -> "
          << um(fit.rms_after_mm) << " after the fit; largest change " << um(fit.largest_change_mm) << ", "
          << format_fixed(fit.largest_change_rad * 1e6, 3) << " urad\n";
+  if (fit.scatter_mm >= 0.0) {
+    report << "  noise: the model leaves " << um(fit.scatter_mm) << " per point (1 sigma; " << fit.points
+           << " points, " << format_fixed(fit.effective_unknowns, 1) << " effective unknowns); carried into the tuned "
+           << "model at the measured points " << um(fit.carried_median_mm) << " median, " << um(fit.carried_largest_mm)
+           << " largest (1 sigma)\n";
+  } else {
+    report << "  noise: no freedom left to estimate it (" << fit.points << " points, "
+           << format_fixed(fit.effective_unknowns, 1) << " effective unknowns)\n";
+  }
+  if (fit.effective_unknowns > 0.5 * fit.points)
+    report << "  warning: the fit spends " << format_fixed(fit.effective_unknowns, 0) << " of " << fit.points
+           << " points on its unknowns, so much of the report's noise goes into the tables: measure more points, "
+              "or tune fewer deviations (--deviations)\n";
   // What the part determines: the resolution of each deviation (1: the points alone fix it,
   // 0: only the ridge and the smoothness do, it stays at the model's value).
   std::string shares, unseen;

@@ -244,6 +244,20 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
   // (data + prior)^-1 data, 1 where the points alone fix an unknown, 0 where only the prior
   // does, averaged over the deviation's unknowns.
   const Eigen::VectorXd resolution = solver.solve(data).diagonal();
+  // The noise: the influence matrix H = A (A^T A + prior)^-1 A^T maps the report onto the
+  // tuned model's prediction at the points; its trace is what the fit spends of them, and a
+  // scatter s per point reaches prediction k as s |H row k|.
+  fit.effective_unknowns = resolution.sum();
+  const double freedom = static_cast<double>(rows) - fit.effective_unknowns;
+  if (rows > 0 && freedom > 0.5) {
+    fit.scatter_mm = (b - a * x).norm() / std::sqrt(freedom);
+    const Eigen::MatrixXd influence = as * solver.solve(as.transpose());
+    std::vector<double> carried(static_cast<std::size_t>(rows));
+    for (Eigen::Index k = 0; k < rows; ++k) carried[static_cast<std::size_t>(k)] = fit.scatter_mm * influence.row(k).norm();
+    std::sort(carried.begin(), carried.end());
+    fit.carried_median_mm = carried[carried.size() / 2];
+    fit.carried_largest_mm = carried.back();
+  }
   std::map<std::string, std::pair<double, int>> by_symbol;
   for (Eigen::Index u = 0; u < cols; ++u) {
     const Unknown& k = unknowns[static_cast<std::size_t>(u)];

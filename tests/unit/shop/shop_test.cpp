@@ -2,7 +2,9 @@
 // virtual CMM's noise and probe, the report reader's checks, and the table sets.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -350,6 +352,83 @@ TEST_F(Files, ModelFitFindsARotaryAxisLocationErrorAndWritesIt) {
   EXPECT_NE(text.find("# dxCB = 0.0 * e40: B-C non-intersection; selftune, was 0.0"), std::string::npos) << text;
   EXPECT_NE(text.find("EY0C_um = "), std::string::npos);
   EXPECT_NE(text.find("EC0C_arcsec = 5.0"), std::string::npos);  // the others as they were
+}
+
+// The noise the fit reports is honest: with a simulated truth (C's line 10 um off in X) and
+// 1 um of Gaussian noise on 72 points, over 300 draws the scatter it estimates is the noise's,
+// and the spread of the tuned model's prediction at the points is the carried noise it reports.
+TEST_F(Files, ModelFitReportsTheNoiseItCarriesHonestly) {
+  const machine::Model model = machine::load_machine(test::machine_path("mc300"));
+  const int c = model.joint_of('C');
+  machine::Model truth = model;
+  machine::Axis& true_c = truth.axes[static_cast<std::size_t>(c)];
+  true_c.location_mm[0] += 0.010;
+  true_c.real_base = machine::line_placement(true_c.pole_mm, true_c.location_mm, true_c.location_rad);
+  shop::FirstPart part;
+  constexpr int kPoints = 72;
+  for (int k = 0; k <= kPoints; ++k) {
+    shop::PathSample s;
+    s.joints = machine::Joints::Zero(model.joint_count());
+    s.joints[model.joint_of('X')] = -300;
+    s.joints[model.joint_of('Y')] = -160;
+    s.joints[model.joint_of('Z')] = -150;
+    s.joints[c] = 5.0 * k;
+    s.tool_length_mm = 100;
+    part.path.push_back(s);
+  }
+  std::vector<double> exact(kPoints);
+  for (int k = 0; k < kPoints; ++k) {
+    const machine::Joints& q = part.path[static_cast<std::size_t>(k)].joints;
+    shop::MatchedPoint m;
+    m.point.normal = k % 2 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+    m.cuts = {shop::Contact{k, 0.0, 0.0}};
+    exact[static_cast<std::size_t>(k)] =
+        m.point.normal.dot(machine::tool_pose(truth, machine::Machine::Real, q, 100).tip_mm -
+                           machine::tool_pose(model, machine::Machine::Real, q, 100).tip_mm);
+    part.points.push_back(m);
+  }
+  shop::ModelOptions options;
+  options.deviations = {"EX0C", "EY0C"};
+  std::mt19937_64 random(17);
+  std::normal_distribution<double> noise(0.0, 0.001);
+  constexpr int kDraws = 300;
+  std::vector<double> sum(kPoints, 0.0), sum_squares(kPoints, 0.0);
+  double scatter = 0.0, carried = 0.0, effective = 0.0;
+  for (int draw = 0; draw < kDraws; ++draw) {
+    for (int k = 0; k < kPoints; ++k)
+      part.points[static_cast<std::size_t>(k)].filtered_mm = exact[static_cast<std::size_t>(k)] + noise(random);
+    const shop::ModelFit fit = shop::fit_tables(model, part, options);
+    ASSERT_GE(fit.scatter_mm, 0.0);
+    scatter += fit.scatter_mm / kDraws;
+    carried += fit.carried_median_mm / kDraws;
+    effective += fit.effective_unknowns / kDraws;
+    // The tuned model's prediction at each point, on the machine with the tuned line.
+    machine::Model tuned = model;
+    machine::Axis& tuned_c = tuned.axes[static_cast<std::size_t>(c)];
+    for (const shop::LocationValue& v : fit.locations) tuned_c.location_mm[v.component] = v.value;
+    tuned_c.real_base = machine::line_placement(tuned_c.pole_mm, tuned_c.location_mm, tuned_c.location_rad);
+    for (int k = 0; k < kPoints; ++k) {
+      const shop::MatchedPoint& m = part.points[static_cast<std::size_t>(k)];
+      const machine::Joints& q = part.path[static_cast<std::size_t>(k)].joints;
+      const double predicted = m.point.normal.dot(machine::tool_pose(tuned, machine::Machine::Real, q, 100).tip_mm -
+                                                  machine::tool_pose(model, machine::Machine::Real, q, 100).tip_mm);
+      sum[static_cast<std::size_t>(k)] += predicted;
+      sum_squares[static_cast<std::size_t>(k)] += predicted * predicted;
+    }
+  }
+  std::vector<double> spread(kPoints);
+  for (int k = 0; k < kPoints; ++k) {
+    const double mean = sum[static_cast<std::size_t>(k)] / kDraws;
+    spread[static_cast<std::size_t>(k)] = std::sqrt(sum_squares[static_cast<std::size_t>(k)] / kDraws - mean * mean);
+  }
+  std::sort(spread.begin(), spread.end());
+  const double spread_median = spread[spread.size() / 2];
+  std::printf("noise 1 um: scatter estimated %.3f um, effective unknowns %.2f; carried (reported) %.3f um, "
+              "spread of the prediction over %d draws %.3f um (median over the points)\n",
+              scatter * 1e3, effective, carried * 1e3, kDraws, spread_median * 1e3);
+  EXPECT_NEAR(effective, 2.0, 0.05);
+  EXPECT_NEAR(scatter, 0.001, 0.00005);
+  EXPECT_NEAR(spread_median / carried, 1.0, 0.15);
 }
 
 }  // namespace

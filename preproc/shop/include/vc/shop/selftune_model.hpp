@@ -43,6 +43,15 @@ struct ModelFit {
   std::vector<Seen> seen;  // best seen first
   int points = 0, parameters = 0, unobservable = 0;
   double rms_before_mm = 0.0, rms_after_mm = 0.0;  // of the equations' right-hand side and residual
+  // What the fit spends of the points: the trace of its influence matrix (= the resolutions'
+  // sum), between 0 and min(points, parameters).
+  double effective_unknowns = 0.0;
+  // The scatter the tuned model leaves per point (the CMM's noise and what the model cannot
+  // represent), |residual| / sqrt(points - effective_unknowns); -1 where no freedom is left.
+  double scatter_mm = -1.0;
+  // That scatter carried into the tuned model's prediction at the measured points (1 sigma,
+  // as if independent per point): median and largest; -1 with the scatter.
+  double carried_median_mm = -1.0, carried_largest_mm = -1.0;
   double largest_change_mm = 0.0, largest_change_rad = 0.0;
 };
 
