@@ -141,6 +141,7 @@ struct SelftuneArgs {
   // model
   std::string tables_out;          // folder of the updated machine file and tables
   std::string nominal;             // the original program P0 (default: PROGRAM)
+  std::string next_program, next_points;  // model: another part (program, CMM plan): the noise carried there
   std::vector<std::string> deviations;
   int nodes = 5;
   double regularisation = 1e-3, smoothness = 1e-2;

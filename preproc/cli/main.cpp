@@ -180,6 +180,9 @@ int main(int argc, char** argv) {
   selftune_cmd->add_option("--tolerance", selftune.tolerance_mm, "chord and blending tolerance, mm")->capture_default_str();
   selftune_cmd->add_option("--tables-out", selftune.tables_out, "model: folder for the updated machine file and tables");
   selftune_cmd->add_option("--nominal", selftune.nominal, "model: the original program P0 (default: PROGRAM)");
+  selftune_cmd->add_option("--next-program", selftune.next_program,
+                           "model: the program of another part (with --next-points): the noise the tuned tables carry to its points");
+  selftune_cmd->add_option("--next-points", selftune.next_points, "model: that part's CMM plan (id,x,y,z,i,j,k)");
   selftune_cmd->add_option("--deviations", selftune.deviations, "model: deviations to tune, e.g. EXX,EX0C (default: every table and the rotary axes' locations)")
       ->delimiter(',');
   selftune_cmd->add_option("--nodes", selftune.nodes, "model: table nodes over each axis's travel (a full turn: a Fourier series of order (nodes - 1) / 2)")->capture_default_str();

@@ -86,6 +86,10 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
   if (!(args.radius_mm > 0) || !(args.step_mm > 0) || !(args.cutoff_mm > 0) || !(args.angle_deg > 0))
     throw std::runtime_error("--radius, --angle, --step and --cutoff must be positive");
   if (!(args.min_support >= 0)) throw std::runtime_error("--min-support must be 0 or more");
+  if (args.next_program.empty() != args.next_points.empty())
+    throw std::runtime_error("--next-program and --next-points go together (the other part's program and CMM plan)");
+  if (!args.next_program.empty() && args.strategy != "model")
+    throw std::runtime_error("--next-program and --next-points need --strategy model (the tuned tables carry over)");
   if (!(args.tolerance_mm > 0.0 && args.tolerance_mm <= 0.1)) throw std::runtime_error("--tolerance must be in (0, 0.1] mm");
 
   const machine::WorldConvention world = world_convention(args.world);
@@ -143,8 +147,21 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
     return 0;
   }
 
+  // The other part's plan matched to its program's cuts as a report would be (no deviations).
+  std::optional<shop::FirstPart> next;
+  if (!args.next_program.empty()) {
+    std::vector<shop::CmmPoint> plan = shop::read_cmm_points(args.next_points, false);
+    for (shop::CmmPoint& p : plan) p.deviation_mm = 0.0;  // only where they are cut matters
+    std::ifstream in = open_program(args.next_program);
+    try {
+      next = shop::analyse_first_part(model, in, files.setup(args.next_program, model, tcp), plan, options);
+    } catch (const std::runtime_error& e) {
+      if (dynamic_cast<const LoadError*>(&e)) throw;
+      throw std::runtime_error(args.next_points + ": " + e.what());
+    }
+  }
   shop::ModelOptions fit_options{args.deviations, args.nodes, args.regularisation, args.smoothness};
-  const shop::ModelFit fit = shop::fit_tables(model, part, fit_options);
+  const shop::ModelFit fit = shop::fit_tables(model, part, fit_options, next ? &*next : nullptr);
   const std::string comment = "volcomp selftune (model) from " + args.report;
   const std::string machine_out =
       shop::write_machine_with_tables(model, args.tables_out, fit.tables, comment, fit.locations);
@@ -161,6 +178,10 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
     report << "  noise: no freedom left to estimate it (" << fit.points << " points, "
            << format_fixed(fit.effective_unknowns, 1) << " effective unknowns)\n";
   }
+  if (next && fit.scatter_mm >= 0.0)
+    report << "  carried to " << args.next_points << " (" << fit.next_points << " points on " << args.next_program
+           << "'s cuts, " << next->left_out.size() << " on none): " << um(fit.next_carried_median_mm) << " median, "
+           << um(fit.next_carried_largest_mm) << " largest (1 sigma)\n";
   if (fit.effective_unknowns > 0.5 * fit.points)
     report << "  warning: the fit spends " << format_fixed(fit.effective_unknowns, 0) << " of " << fit.points
            << " points on its unknowns, so much of the report's noise goes into the tables: measure more points, "

@@ -299,6 +299,13 @@ TEST(VolcompCli, SelftuneRefusesAnAmbiguousCmmExportAndWritesNothing) {
   r = run(" --deviation-sign plus");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.out.find("--deviation-sign"), std::string::npos) << r.out;
+  r = run(" --deviation-sign actual-minus-nominal --strategy model --tables-out " + next + ".d --next-program " + program);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.out.find("--next-program and --next-points go together"), std::string::npos) << r.out;
+  r = run(" --deviation-sign actual-minus-nominal --next-program " + program + " --next-points " + report);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.out.find("--next-program and --next-points need --strategy model"), std::string::npos) << r.out;
+  EXPECT_FALSE(std::filesystem::exists(next));
   // Read: one point is too few for the program, which is the next refusal.
   r = run(" --deviation-sign actual-minus-nominal");
   EXPECT_EQ(r.exit_code, 2);

@@ -678,9 +678,15 @@ TEST_F(VirtualShopHeadTable, SwarfContourTunesTablesThatCarryOverToOtherParts) {
             << " um, wall lean " << wall_lean_um(path("draft_r1.csv.exact.csv")) << " um\n";
   EXPECT_GT(part1.pv_um, 5.0) << "the true machine should differ enough from the model to need tuning";
 
-  std::cout << run_ok("selftune " + machine() + " " + path("draft_p1.ngc") + " " + path("draft_r1.csv") + " -o " +
-                      path("draft_model_p2.ngc") + " --strategy model --nominal " + p0 + " --tables-out " +
-                      path("draft_tuned") + files());
+  // With the cone's program and plan: the noise the tuned tables carry there, before it is cut.
+  const std::string tuned_out =
+      run_ok("selftune " + machine() + " " + path("draft_p1.ngc") + " " + path("draft_r1.csv") + " -o " +
+             path("draft_model_p2.ngc") + " --strategy model --nominal " + p0 + " --tables-out " + path("draft_tuned") +
+             " --next-program " + source("tests/programs/selftune/head_cone_b.ngc") + " --next-points " +
+             source("tests/programs/selftune/head_cone_b_points.csv") + files());
+  std::cout << tuned_out;
+  EXPECT_NE(tuned_out.find("noise: the model leaves"), std::string::npos);
+  EXPECT_NE(tuned_out.find("head_cone_b_points.csv (189 points on"), std::string::npos);
   const Form model = measured(path("draft_model_p2.ngc"), plan, path("draft_model_r2.csv"), 12);
   std::cout << "model strategy, part 2: PV " << model.pv_um << " um, RMS " << model.rms_um << " um\n";
   EXPECT_LE(model.rms_um, 0.7);

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <map>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 #include "vc/machine/forward.hpp"
 
@@ -94,13 +96,23 @@ double& location_value(machine::Axis& axis, int component) {
   return component < 3 ? axis.location_mm[component] : axis.location_rad[component - 3];
 }
 
+// A scatter s per report point reaches prediction k as s |row k of the influence matrix|
+// (1 sigma): the median and the largest over the rows.
+std::pair<double, double> carried(double scatter_mm, const Eigen::MatrixXd& influence) {
+  std::vector<double> sigma(static_cast<std::size_t>(influence.rows()));
+  for (Eigen::Index k = 0; k < influence.rows(); ++k) sigma[static_cast<std::size_t>(k)] = scatter_mm * influence.row(k).norm();
+  std::sort(sigma.begin(), sigma.end());
+  return {sigma[sigma.size() / 2], sigma.back()};
+}
+
 }  // namespace
 
 std::string tuning_table_name(char axis) {
   return std::string("selftune_") + static_cast<char>(std::tolower(axis)) + ".csv";
 }
 
-ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const ModelOptions& options) {
+ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const ModelOptions& options,
+                    const FirstPart* next) {
   if (options.nodes < 2 || options.nodes > 101) throw std::invalid_argument("--nodes must be in [2, 101]");
   const Selection selection = selected(model, options);
   // Probe tables (all zero) on a copy of the model: the unknowns are their values.
@@ -170,13 +182,12 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
   for (const MatchedPoint& m : part.points)
     if (!m.outlier) kept.push_back(&m);
   const auto rows = static_cast<Eigen::Index>(kept.size()), cols = static_cast<Eigen::Index>(unknowns.size());
-  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(rows, cols);
-  Eigen::VectorXd b(rows);
-  for (Eigen::Index k = 0; k < rows; ++k) {
-    const MatchedPoint& m = *kept[static_cast<std::size_t>(k)];
+  // A point's equation: its normal's share of the tip's move per unknown, where its first cut ran.
+  const auto sensitivities = [&](const MatchedPoint& m, const ToolPath& path,
+                                 Eigen::Ref<Eigen::RowVectorXd, 0, Eigen::InnerStride<>> row) {
     const Contact& cut = m.cuts.front();
-    const PathSample& s0 = part.path[static_cast<std::size_t>(cut.sample)];
-    const PathSample& s1 = part.path[static_cast<std::size_t>(cut.sample) + 1];
+    const PathSample& s0 = path[static_cast<std::size_t>(cut.sample)];
+    const PathSample& s1 = path[static_cast<std::size_t>(cut.sample) + 1];
     const machine::Joints q = s0.joints + cut.u * (s1.joints - s0.joints);
     const Eigen::Vector3d base = machine::tool_pose(tuned, machine::Machine::Real, q, s0.tool_length_mm).tip_mm;
     for (Eigen::Index u = 0; u < cols; ++u) {
@@ -187,8 +198,14 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
       set_unknown(x, before + step);
       const Eigen::Vector3d moved = machine::tool_pose(tuned, machine::Machine::Real, q, s0.tool_length_mm).tip_mm;
       set_unknown(x, before);
-      a(k, u) = m.point.normal.dot(moved - base) / step;
+      row[u] = m.point.normal.dot(moved - base) / step;
     }
+  };
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(rows, cols);
+  Eigen::VectorXd b(rows);
+  for (Eigen::Index k = 0; k < rows; ++k) {
+    const MatchedPoint& m = *kept[static_cast<std::size_t>(k)];
+    sensitivities(m, part.path, a.row(k));
     b[k] = m.filtered_mm - m.predicted_mm;
   }
 
@@ -251,12 +268,18 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
   const double freedom = static_cast<double>(rows) - fit.effective_unknowns;
   if (rows > 0 && freedom > 0.5) {
     fit.scatter_mm = (b - a * x).norm() / std::sqrt(freedom);
-    const Eigen::MatrixXd influence = as * solver.solve(as.transpose());
-    std::vector<double> carried(static_cast<std::size_t>(rows));
-    for (Eigen::Index k = 0; k < rows; ++k) carried[static_cast<std::size_t>(k)] = fit.scatter_mm * influence.row(k).norm();
-    std::sort(carried.begin(), carried.end());
-    fit.carried_median_mm = carried[carried.size() / 2];
-    fit.carried_largest_mm = carried.back();
+    const Eigen::MatrixXd gain = solver.solve(as.transpose());  // report -> scaled unknowns
+    const Eigen::MatrixXd influence = as * gain;
+    std::tie(fit.carried_median_mm, fit.carried_largest_mm) = carried(fit.scatter_mm, influence);
+    // The next part's points: the same map from this report onto the tuned model there.
+    if (next && !next->points.empty()) {
+      Eigen::MatrixXd a_next(static_cast<Eigen::Index>(next->points.size()), cols);
+      for (std::size_t k = 0; k < next->points.size(); ++k)
+        sensitivities(next->points[k], next->path, a_next.row(static_cast<Eigen::Index>(k)));
+      fit.next_points = static_cast<int>(next->points.size());
+      const Eigen::MatrixXd next_influence = a_next * scale.asDiagonal() * gain;
+      std::tie(fit.next_carried_median_mm, fit.next_carried_largest_mm) = carried(fit.scatter_mm, next_influence);
+    }
   }
   std::map<std::string, std::pair<double, int>> by_symbol;
   for (Eigen::Index u = 0; u < cols; ++u) {

@@ -356,7 +356,8 @@ TEST_F(Files, ModelFitFindsARotaryAxisLocationErrorAndWritesIt) {
 
 // The noise the fit reports is honest: with a simulated truth (C's line 10 um off in X) and
 // 1 um of Gaussian noise on 72 points, over 300 draws the scatter it estimates is the noise's,
-// and the spread of the tuned model's prediction at the points is the carried noise it reports.
+// and the spread of the tuned model's prediction at the points is the carried noise it reports;
+// so it is at the points of another part, cut elsewhere (X-200 Z-250, C every 10 deg).
 TEST_F(Files, ModelFitReportsTheNoiseItCarriesHonestly) {
   const machine::Model model = machine::load_machine(test::machine_path("mc300"));
   const int c = model.joint_of('C');
@@ -387,48 +388,77 @@ TEST_F(Files, ModelFitReportsTheNoiseItCarriesHonestly) {
                            machine::tool_pose(model, machine::Machine::Real, q, 100).tip_mm);
     part.points.push_back(m);
   }
+  shop::FirstPart next;
+  constexpr int kNextPoints = 36;
+  for (int k = 0; k <= kNextPoints; ++k) {
+    shop::PathSample s = part.path.front();
+    s.joints[model.joint_of('X')] = -200;
+    s.joints[model.joint_of('Z')] = -250;
+    s.joints[c] = 10.0 * k;
+    next.path.push_back(s);
+  }
+  for (int k = 0; k < kNextPoints; ++k) {
+    shop::MatchedPoint m;
+    m.point.normal = Eigen::Vector3d(k % 3 == 0, k % 3 == 1, k % 3 == 2);
+    m.cuts = {shop::Contact{k, 0.0, 0.0}};
+    next.points.push_back(m);
+  }
   shop::ModelOptions options;
   options.deviations = {"EX0C", "EY0C"};
   std::mt19937_64 random(17);
   std::normal_distribution<double> noise(0.0, 0.001);
   constexpr int kDraws = 300;
-  std::vector<double> sum(kPoints, 0.0), sum_squares(kPoints, 0.0);
-  double scatter = 0.0, carried = 0.0, effective = 0.0;
+  // Per point, the sum and sum of squares of the tuned model's prediction over the draws.
+  struct Spread {
+    std::vector<double> sum, squares;
+    void add(std::size_t k, double value) { sum[k] += value; squares[k] += value * value; }
+    double median() const {  // of the points' standard deviations over the draws
+      std::vector<double> sd;
+      for (std::size_t k = 0; k < sum.size(); ++k) {
+        const double mean = sum[k] / kDraws;
+        sd.push_back(std::sqrt(std::max(0.0, squares[k] / kDraws - mean * mean)));
+      }
+      std::sort(sd.begin(), sd.end());
+      return sd[sd.size() / 2];
+    }
+  };
+  Spread at_points{std::vector<double>(kPoints), std::vector<double>(kPoints)};
+  Spread at_next{std::vector<double>(kNextPoints), std::vector<double>(kNextPoints)};
+  double scatter = 0.0, carried = 0.0, next_carried = 0.0, effective = 0.0;
   for (int draw = 0; draw < kDraws; ++draw) {
     for (int k = 0; k < kPoints; ++k)
       part.points[static_cast<std::size_t>(k)].filtered_mm = exact[static_cast<std::size_t>(k)] + noise(random);
-    const shop::ModelFit fit = shop::fit_tables(model, part, options);
+    const shop::ModelFit fit = shop::fit_tables(model, part, options, &next);
     ASSERT_GE(fit.scatter_mm, 0.0);
+    ASSERT_EQ(fit.next_points, kNextPoints);
     scatter += fit.scatter_mm / kDraws;
     carried += fit.carried_median_mm / kDraws;
+    next_carried += fit.next_carried_median_mm / kDraws;
     effective += fit.effective_unknowns / kDraws;
     // The tuned model's prediction at each point, on the machine with the tuned line.
     machine::Model tuned = model;
     machine::Axis& tuned_c = tuned.axes[static_cast<std::size_t>(c)];
     for (const shop::LocationValue& v : fit.locations) tuned_c.location_mm[v.component] = v.value;
     tuned_c.real_base = machine::line_placement(tuned_c.pole_mm, tuned_c.location_mm, tuned_c.location_rad);
-    for (int k = 0; k < kPoints; ++k) {
-      const shop::MatchedPoint& m = part.points[static_cast<std::size_t>(k)];
-      const machine::Joints& q = part.path[static_cast<std::size_t>(k)].joints;
-      const double predicted = m.point.normal.dot(machine::tool_pose(tuned, machine::Machine::Real, q, 100).tip_mm -
-                                                  machine::tool_pose(model, machine::Machine::Real, q, 100).tip_mm);
-      sum[static_cast<std::size_t>(k)] += predicted;
-      sum_squares[static_cast<std::size_t>(k)] += predicted * predicted;
-    }
+    const auto predict = [&](const shop::FirstPart& on, Spread& spread) {
+      for (std::size_t k = 0; k < on.points.size(); ++k) {
+        const machine::Joints& q = on.path[k].joints;
+        spread.add(k, on.points[k].point.normal.dot(machine::tool_pose(tuned, machine::Machine::Real, q, 100).tip_mm -
+                                                     machine::tool_pose(model, machine::Machine::Real, q, 100).tip_mm));
+      }
+    };
+    predict(part, at_points);
+    predict(next, at_next);
   }
-  std::vector<double> spread(kPoints);
-  for (int k = 0; k < kPoints; ++k) {
-    const double mean = sum[static_cast<std::size_t>(k)] / kDraws;
-    spread[static_cast<std::size_t>(k)] = std::sqrt(sum_squares[static_cast<std::size_t>(k)] / kDraws - mean * mean);
-  }
-  std::sort(spread.begin(), spread.end());
-  const double spread_median = spread[spread.size() / 2];
-  std::printf("noise 1 um: scatter estimated %.3f um, effective unknowns %.2f; carried (reported) %.3f um, "
-              "spread of the prediction over %d draws %.3f um (median over the points)\n",
-              scatter * 1e3, effective, carried * 1e3, kDraws, spread_median * 1e3);
+  std::printf("noise 1 um: scatter estimated %.3f um, effective unknowns %.2f; carried (reported / spread of the "
+              "prediction over %d draws, median over the points): at the measured points %.3f / %.3f um, at the "
+              "other part's %.3f / %.3f um\n",
+              scatter * 1e3, effective, kDraws, carried * 1e3, at_points.median() * 1e3, next_carried * 1e3,
+              at_next.median() * 1e3);
   EXPECT_NEAR(effective, 2.0, 0.05);
   EXPECT_NEAR(scatter, 0.001, 0.00005);
-  EXPECT_NEAR(spread_median / carried, 1.0, 0.15);
+  EXPECT_NEAR(at_points.median() / carried, 1.0, 0.15);
+  EXPECT_NEAR(at_next.median() / next_carried, 1.0, 0.15);
 }
 
 }  // namespace

@@ -52,11 +52,18 @@ struct ModelFit {
   // That scatter carried into the tuned model's prediction at the measured points (1 sigma,
   // as if independent per point): median and largest; -1 with the scatter.
   double carried_median_mm = -1.0, carried_largest_mm = -1.0;
+  // The same at the points of another part (fit_tables' `next`): what the tuned tables carry
+  // there, before it is cut.
+  int next_points = 0;
+  double next_carried_median_mm = -1.0, next_carried_largest_mm = -1.0;
   double largest_change_mm = 0.0, largest_change_rad = 0.0;
 };
 
-// Throws std::invalid_argument for a deviation symbol the machine does not have.
-ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const ModelOptions& options);
+// Throws std::invalid_argument for a deviation symbol the machine does not have. `next`: the
+// points of another part matched to its program's cuts (analyse_first_part of its plan), for
+// the noise the tuned tables carry there.
+ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const ModelOptions& options,
+                    const FirstPart* next = nullptr);
 
 // The file name of an axis's tuning table.
 std::string tuning_table_name(char axis);
