@@ -298,38 +298,54 @@ TEST_F(Files, ModelFitOnAFullTurnAxisWritesAPeriodicTableThatLoads) {
   EXPECT_NO_THROW(machine::load_machine(written));
 }
 
-// Location errors of a rotary axis among the unknowns: a part cut with the C axis's line 10 um
-// off in X (the true machine) shows it at every C position; the fit finds it, says the part
-// sees it, and the machine file it writes carries it: the existing key's value replaced (its
-// comment kept), a key the file did not have added.
-TEST_F(Files, ModelFitFindsARotaryAxisLocationErrorAndWritesIt) {
-  const machine::Model model = machine::load_machine(test::machine_path("mc300"));
-  const int c = model.joint_of('C');
-  machine::Model truth = model;
-  machine::Axis& true_c = truth.axes[static_cast<std::size_t>(c)];
+// The MC-300 and, as the true machine, the same with C's line 10 um off in X; a part cut round
+// C at X-300 Y-160 Z-150 (L 100 mm), `points` points a full turn apart in equal steps, normals
+// X and Y in turn, each with the deviation the true machine gives it (filtered_mm, no noise).
+struct CLineOff {
+  machine::Model model, truth;
+  int c = -1;
+  shop::FirstPart part;
+};
+
+CLineOff c_line_off(int points) {
+  CLineOff out{machine::load_machine(test::machine_path("mc300")), {}, -1, {}};
+  const machine::Model& model = out.model;
+  out.c = model.joint_of('C');
+  out.truth = model;
+  machine::Axis& true_c = out.truth.axes[static_cast<std::size_t>(out.c)];
   true_c.location_mm[0] += 0.010;
   true_c.real_base = machine::line_placement(true_c.pole_mm, true_c.location_mm, true_c.location_rad);
-  shop::FirstPart part;
-  for (int k = 0; k <= 36; ++k) {
+  for (int k = 0; k <= points; ++k) {
     shop::PathSample s;
     s.joints = machine::Joints::Zero(model.joint_count());
     s.joints[model.joint_of('X')] = -300;
     s.joints[model.joint_of('Y')] = -160;
     s.joints[model.joint_of('Z')] = -150;
-    s.joints[c] = 10.0 * k;
+    s.joints[out.c] = 360.0 / points * k;
     s.tool_length_mm = 100;
-    part.path.push_back(s);
+    out.part.path.push_back(s);
   }
-  for (int k = 0; k < 36; ++k) {
-    const machine::Joints& q = part.path[static_cast<std::size_t>(k)].joints;
+  for (int k = 0; k < points; ++k) {
+    const machine::Joints& q = out.part.path[static_cast<std::size_t>(k)].joints;
     shop::MatchedPoint m;
     m.point.normal = k % 2 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-    m.cuts = {shop::Contact{k, 0.0, 0.0}};
-    const Eigen::Vector3d shift = machine::tool_pose(truth, machine::Machine::Real, q, 100).tip_mm -
-                                  machine::tool_pose(model, machine::Machine::Real, q, 100).tip_mm;
-    m.filtered_mm = m.point.normal.dot(shift);
-    part.points.push_back(m);
+    m.cuts.push_back(shop::Contact{k, 0.0, 0.0});
+    m.filtered_mm = m.point.normal.dot(machine::tool_pose(out.truth, machine::Machine::Real, q, 100).tip_mm -
+                                       machine::tool_pose(model, machine::Machine::Real, q, 100).tip_mm);
+    out.part.points.push_back(m);
   }
+  return out;
+}
+
+// Location errors of a rotary axis among the unknowns: a part cut with the C axis's line 10 um
+// off in X (the true machine) shows it at every C position; the fit finds it, says the part
+// sees it, and the machine file it writes carries it: the existing key's value replaced (its
+// comment kept), a key the file did not have added.
+TEST_F(Files, ModelFitFindsARotaryAxisLocationErrorAndWritesIt) {
+  const CLineOff setup = c_line_off(36);
+  const machine::Model& model = setup.model;
+  const int c = setup.c;
+  const shop::FirstPart& part = setup.part;
   shop::ModelOptions options;
   options.deviations = {"EX0C", "EY0C"};
   const shop::ModelFit fit = shop::fit_tables(model, part, options);
@@ -359,35 +375,13 @@ TEST_F(Files, ModelFitFindsARotaryAxisLocationErrorAndWritesIt) {
 // and the spread of the tuned model's prediction at the points is the carried noise it reports;
 // so it is at the points of another part, cut elsewhere (X-200 Z-250, C every 10 deg).
 TEST_F(Files, ModelFitReportsTheNoiseItCarriesHonestly) {
-  const machine::Model model = machine::load_machine(test::machine_path("mc300"));
-  const int c = model.joint_of('C');
-  machine::Model truth = model;
-  machine::Axis& true_c = truth.axes[static_cast<std::size_t>(c)];
-  true_c.location_mm[0] += 0.010;
-  true_c.real_base = machine::line_placement(true_c.pole_mm, true_c.location_mm, true_c.location_rad);
-  shop::FirstPart part;
   constexpr int kPoints = 72;
-  for (int k = 0; k <= kPoints; ++k) {
-    shop::PathSample s;
-    s.joints = machine::Joints::Zero(model.joint_count());
-    s.joints[model.joint_of('X')] = -300;
-    s.joints[model.joint_of('Y')] = -160;
-    s.joints[model.joint_of('Z')] = -150;
-    s.joints[c] = 5.0 * k;
-    s.tool_length_mm = 100;
-    part.path.push_back(s);
-  }
-  std::vector<double> exact(kPoints);
-  for (int k = 0; k < kPoints; ++k) {
-    const machine::Joints& q = part.path[static_cast<std::size_t>(k)].joints;
-    shop::MatchedPoint m;
-    m.point.normal = k % 2 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-    m.cuts = {shop::Contact{k, 0.0, 0.0}};
-    exact[static_cast<std::size_t>(k)] =
-        m.point.normal.dot(machine::tool_pose(truth, machine::Machine::Real, q, 100).tip_mm -
-                           machine::tool_pose(model, machine::Machine::Real, q, 100).tip_mm);
-    part.points.push_back(m);
-  }
+  CLineOff setup = c_line_off(kPoints);
+  const machine::Model& model = setup.model;
+  const int c = setup.c;
+  shop::FirstPart& part = setup.part;
+  std::vector<double> exact;
+  for (const shop::MatchedPoint& m : part.points) exact.push_back(m.filtered_mm);
   shop::FirstPart next;
   constexpr int kNextPoints = 36;
   for (int k = 0; k <= kNextPoints; ++k) {
