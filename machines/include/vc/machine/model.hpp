@@ -40,19 +40,21 @@ struct LinearThermal {
   double reference_mm = 0.0;         // the point of the axis that does not move as it grows
 };
 
-struct Axis {
-  char letter;                  // 'X', 'Y', 'Z', 'A', 'B', 'C', ...
+// What a chain walk reads comes first, from a cache line's start (the servo thread's cycle
+// walks every axis; between cycles other threads evict them).
+struct alignas(64) Axis {
+  Eigen::Isometry3d real_base;    // T(o + d0) * R(e0)
+  Eigen::Vector3d direction;      // u: unit direction of travel or rotation (child in parent)
+  Eigen::Vector3d pole_mm;        // o: the pole at q = 0, in the parent frame
+  Eigen::Vector3d location_rad;   // e0: orientation error of the axis line (EA0?, EB0?, EC0?)
   AxisType type;
+  unsigned moved_by = 0;          // bit j set: joint j moves this axis's frame (itself, table variables)
+  std::vector<int> tables;        // indices into Model::tables
+  LinearThermal thermal;          // linear axes: the expansion with a temperature input
+  char letter;                    // 'X', 'Y', 'Z', 'A', 'B', 'C', ...
   Chain chain;
-  Eigen::Vector3d direction;    // u: unit direction of travel or rotation (child in parent)
-  Eigen::Vector3d pole_mm;      // o: the pole at q = 0, in the parent frame
   double travel_min, travel_max;  // mm or deg
   Eigen::Vector3d location_mm;    // d0: position error of the axis line (EX0?, EY0?, EZ0?)
-  Eigen::Vector3d location_rad;   // e0: orientation error of the axis line (EA0?, EB0?, EC0?)
-  Eigen::Isometry3d real_base;    // T(o + d0) * R(e0)
-  std::vector<int> tables;        // indices into Model::tables
-  unsigned moved_by = 0;          // bit j set: joint j moves this axis's frame (itself, table variables)
-  LinearThermal thermal;          // linear axes: the expansion with a temperature input
 
   // The axis has component errors (delta, eps): tables or a thermal expansion.
   bool has_component_errors() const { return !tables.empty() || thermal.input >= 0; }
