@@ -25,6 +25,7 @@
 #include <cmath>
 #include <exception>
 
+#include "gain_ramp.hpp"
 #include "module_settings.hpp"
 
 #include "rtapi.h"  // rtapi.h and hal.h declare C linkage themselves
@@ -70,7 +71,7 @@ struct HalData {
   hal_float_t tool_length_slew_time;          // s: a tool length change reaches the correction in this time
   hal_float_t temperature_time_constant;      // s: of the low-pass on every temperature input
   // State of the ramp (only volkins.update writes it).
-  double phase;
+  vc::kins::GainRamp ramp;
   // Whether volkins.update has run, and whether the kinematics ran before it did (then it
   // applied the full correction, and the ramp starts there: no step when update starts).
   bool update_ran;
@@ -149,20 +150,19 @@ void set_world(EmcPose& pose, Joints w, double tool_length_mm) {
 }
 
 // Servo thread, before motion-controller: moves the ramp one period towards volkins.enable
-// (smoothstep, so joint velocity stays continuous) and takes up valid pole fade parameters.
+// (gain_ramp.hpp: bounded rate and change of rate, so joint velocity stays continuous, also
+// when enable switches during a ramp) and takes up valid pole fade parameters.
 void update(void*, long period_ns) {
   const double target = *hal->enable ? 1.0 : 0.0;
   if (!hal->update_ran) {
     hal->update_ran = true;
     *hal->update_missing = 0;
-    if (hal->kinematics_before_update) hal->phase = target;  // where the kinematics were
+    if (hal->kinematics_before_update) hal->ramp = {target, 0.0};  // where the kinematics were
     hal->offset_from = hal->offset_to = hal->offset_applied = *hal->tool_length;
     hal->offset_phase = 1.0;
   }
-  const double step = hal->ramp_time > 0.0 ? period_ns * 1e-9 / hal->ramp_time : 1.0;
-  hal->phase += std::clamp(target - hal->phase, -step, step);
-  const double s = hal->phase;
-  *hal->gain = s * s * (3.0 - 2.0 * s);
+  hal->ramp.step(target, period_ns * 1e-9, hal->ramp_time);
+  *hal->gain = hal->ramp.gain;
   *hal->active = *hal->gain > 0.0;
 
   const double offset = *hal->tool_length;
@@ -343,7 +343,7 @@ bool export_hal(const vm::Model& model) {
   *hal->gain = 0.0;
   *hal->active = 0;
   *hal->update_missing = 0;
-  hal->phase = 0.0;
+  hal->ramp = vc::kins::GainRamp{};
   hal->update_ran = false;
   hal->kinematics_before_update = false;
   hal->tool_length_slew_time = 0.25;
