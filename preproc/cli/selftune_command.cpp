@@ -112,16 +112,18 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
   std::string layout;
   const std::vector<shop::CmmPoint> measured = shop::read_cmm_points(args.report, true, format, &layout);
   report << "volcomp selftune: " << args.report << " read as " << layout << "\n";
-  shop::FirstPart part;
-  {
-    std::ifstream in = open_program(args.input);
+  // Points matched to a program's cuts; a refusal names the points' file (a LoadError names its own).
+  const auto analyse = [&](const std::string& program, const std::string& points_file,
+                           const std::vector<shop::CmmPoint>& points) {
+    std::ifstream in = open_program(program);
     try {
-      part = shop::analyse_first_part(model, in, files.setup(args.input, model, tcp), measured, options);
+      return shop::analyse_first_part(model, in, files.setup(program, model, tcp), points, options);
     } catch (const std::runtime_error& e) {
       if (dynamic_cast<const LoadError*>(&e)) throw;
-      throw std::runtime_error(args.report + ": " + e.what());
+      throw std::runtime_error(points_file + ": " + e.what());
     }
-  }
+  };
+  const shop::FirstPart part = analyse(args.input, args.report, measured);
   print_first_part(part, report);
   const shop::FormError before = shop::form_error(measured);
   report << "  measured form error: largest " << um(before.largest_mm) << ", RMS " << um(before.rms_mm) << "\n";
@@ -152,13 +154,7 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
   if (!args.next_program.empty()) {
     std::vector<shop::CmmPoint> plan = shop::read_cmm_points(args.next_points, false);
     for (shop::CmmPoint& p : plan) p.deviation_mm = 0.0;  // only where they are cut matters
-    std::ifstream in = open_program(args.next_program);
-    try {
-      next = shop::analyse_first_part(model, in, files.setup(args.next_program, model, tcp), plan, options);
-    } catch (const std::runtime_error& e) {
-      if (dynamic_cast<const LoadError*>(&e)) throw;
-      throw std::runtime_error(args.next_points + ": " + e.what());
-    }
+    next = analyse(args.next_program, args.next_points, plan);
   }
   shop::ModelOptions fit_options{args.deviations, args.nodes, args.regularisation, args.smoothness};
   const shop::ModelFit fit = shop::fit_tables(model, part, fit_options, next ? &*next : nullptr);

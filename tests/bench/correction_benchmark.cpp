@@ -195,22 +195,26 @@ void BM_ForwardSeeded(benchmark::State& state, const std::string& machine) {
 // proves it): the pair the 2.5 us target is for. Without `correction_seeds`, the seeds
 // LinuxCNC gives alone (volkins before it kept corrections); without `bound`, every step
 // checked (volkins before the bound).
+// The pair of one cycle: the forward of the feedback, then the inverse of the new command.
+double servo_pair(const Fixture& f, const ServoCycle& c, bool correction_seeds, bool bound) {
+  const double L = f.model.tool_length_mm;
+  const Joints* forward_seed =
+      !correction_seeds ? nullptr : c.feedback.size() ? &c.feedback_correction : &c.previous_correction;
+  const Joints* inverse_seed = correction_seeds ? &c.extrapolated_correction : nullptr;
+  Joints world, joints;
+  world_from_joints(f.model, WorldConvention::Axes, c.feedback.size() ? c.feedback : c.previous_joints, L,
+                    Applied{1.0, &c.before_before, forward_seed}, world);
+  joints_from_world(f.model, WorldConvention::Axes, c.world, L,
+                    Applied{1.0, &c.previous_joints, inverse_seed, bound ? &f.bound : nullptr}, joints);
+  return world[0] + joints[0];
+}
+
 void BM_ServoCycle(benchmark::State& state, const std::string& machine, bool correction_seeds, bool bound,
                    bool contour = false) {
   static const std::vector<ServoCycle> none;
   const std::vector<ServoCycle>& along_contour = contour ? contour_of(machine) : none;
   run(state, machine, [correction_seeds, bound, contour, &along_contour](const Fixture& f, std::size_t i) {
-    const ServoCycle& c = contour ? along_contour[i] : f.cycles[i];
-    const double L = f.model.tool_length_mm;
-    const Joints* forward_seed =
-        !correction_seeds ? nullptr : c.feedback.size() ? &c.feedback_correction : &c.previous_correction;
-    const Joints* inverse_seed = correction_seeds ? &c.extrapolated_correction : nullptr;
-    Joints world, joints;
-    world_from_joints(f.model, WorldConvention::Axes, c.feedback.size() ? c.feedback : c.previous_joints, L,
-                      Applied{1.0, &c.before_before, forward_seed}, world);
-    joints_from_world(f.model, WorldConvention::Axes, c.world, L,
-                      Applied{1.0, &c.previous_joints, inverse_seed, bound ? &f.bound : nullptr}, joints);
-    return world[0] + joints[0];
+    return servo_pair(f, contour ? along_contour[i] : f.cycles[i], correction_seeds, bound);
   }, contour ? along_contour.size() : 0);
 }
 
@@ -228,14 +232,8 @@ void BM_ServoCycleColdCaches(benchmark::State& state, const std::string& machine
     for (std::size_t k = 0; k < other.size(); k += 64) ++other[k];
     const ServoCycle& c = cycles[i];
     i = (i + 97) % cycles.size();  // spread over the contour
-    const double L = f.model.tool_length_mm;
     const auto t0 = std::chrono::steady_clock::now();
-    Joints world, joints;
-    world_from_joints(f.model, WorldConvention::Axes, c.feedback, L, Applied{1.0, &c.before_before, &c.feedback_correction},
-                      world);
-    joints_from_world(f.model, WorldConvention::Axes, c.world, L,
-                      Applied{1.0, &c.previous_joints, &c.extrapolated_correction, &f.bound}, joints);
-    benchmark::DoNotOptimize(world[0] + joints[0]);
+    benchmark::DoNotOptimize(servo_pair(f, c, true, true));
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     state.SetIterationTime(elapsed);
     ns.push_back(elapsed * 1e9);

@@ -255,7 +255,8 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
   Eigen::VectorXd x(cols);
   for (Eigen::Index u = 0; u < cols; ++u) x[u] = xs[u] * scale[u];
   fit.rms_before_mm = rows ? b.norm() / std::sqrt(static_cast<double>(rows)) : 0.0;
-  fit.rms_after_mm = rows ? (b - a * x).norm() / std::sqrt(static_cast<double>(rows)) : 0.0;
+  const double residual_norm = (b - a * x).norm();
+  fit.rms_after_mm = rows ? residual_norm / std::sqrt(static_cast<double>(rows)) : 0.0;
 
   // How much of each deviation the part determines: the diagonal of the resolution matrix
   // (data + prior)^-1 data, 1 where the points alone fix an unknown, 0 where only the prior
@@ -267,7 +268,7 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
   fit.effective_unknowns = resolution.sum();
   const double freedom = static_cast<double>(rows) - fit.effective_unknowns;
   if (rows > 0 && freedom > 0.5) {
-    fit.scatter_mm = (b - a * x).norm() / std::sqrt(freedom);
+    fit.scatter_mm = residual_norm / std::sqrt(freedom);
     const Eigen::MatrixXd gain = solver.solve(as.transpose());  // report -> scaled unknowns
     const Eigen::MatrixXd influence = as * gain;
     std::tie(fit.carried_median_mm, fit.carried_largest_mm) = carried(fit.scatter_mm, influence);
