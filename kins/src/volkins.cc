@@ -9,7 +9,7 @@
 // The HAL function volkins.update (servo thread, before motion-controller) ramps the
 // correction in and out when volkins.enable changes, so switching never jumps; the kinematics
 // functions read the ramp and the parameters, report on output pins and keep only the last
-// three corrections between calls, as their solvers' start (an answer never depends on it).
+// four corrections between calls, as their solvers' start (an answer never depends on it).
 // A HAL file without `addf volkins.update`
 // does not leave the machine silently uncorrected: until the function has run, the kinematics
 // apply what volkins.enable asks for in full (no ramp), say so on volkins.gain, volkins.active
@@ -77,8 +77,9 @@ struct HalData {
   bool update_ran;
   bool kinematics_before_update;
   // The tool length offset the correction follows (volkins.update slews it to volkins.tool-length
-  // along a smoothstep, so that a G43 does not step the joints by angular error x change of L).
-  double offset_from, offset_to, offset_phase, offset_applied;
+  // with a bounded rate and change of rate, so that a G43 does not step the joints by angular
+  // error x change of L, nor a second one during the slew their velocity).
+  vc::kins::ToolLengthSlew offset;
   // Each temperature input low-passed (from its reference at load), held while it is faulty.
   double temperature_state[kMaxTemperatures];
 };
@@ -149,34 +150,24 @@ void set_world(EmcPose& pose, Joints w, double tool_length_mm) {
   for (int j = 0; j < w.size(); ++j) pose_field(pose, settings->pose_field[j]) = w[j];
 }
 
-// Servo thread, before motion-controller: moves the ramp one period towards volkins.enable
-// (gain_ramp.hpp: bounded rate and change of rate, so joint velocity stays continuous, also
-// when enable switches during a ramp) and takes up valid pole fade parameters.
+// Servo thread, before motion-controller: moves the ramp one period towards volkins.enable and
+// the correction's tool length towards volkins.tool-length (gain_ramp.hpp: bounded rate and
+// change of rate, so joint velocity stays continuous, also when either changes on the way),
+// low-passes the temperatures and takes up valid pole fade parameters.
 void update(void*, long period_ns) {
   const double target = *hal->enable ? 1.0 : 0.0;
   if (!hal->update_ran) {
     hal->update_ran = true;
     *hal->update_missing = 0;
     if (hal->kinematics_before_update) hal->ramp = {target, 0.0};  // where the kinematics were
-    hal->offset_from = hal->offset_to = hal->offset_applied = *hal->tool_length;
-    hal->offset_phase = 1.0;
+    hal->offset.reset(*hal->tool_length);
   }
   hal->ramp.step(target, period_ns * 1e-9, hal->ramp_time);
   *hal->gain = hal->ramp.gain;
   *hal->active = *hal->gain > 0.0;
 
-  const double offset = *hal->tool_length;
-  if (offset != hal->offset_to) {  // a new tool length: slew from where the correction is
-    hal->offset_from = hal->offset_applied;
-    hal->offset_to = offset;
-    hal->offset_phase = 0.0;
-  }
-  const double slew = hal->tool_length_slew_time > 0.0 ? period_ns * 1e-9 / hal->tool_length_slew_time : 1.0;
-  hal->offset_phase = std::min(1.0, hal->offset_phase + slew);
-  const double p = hal->offset_phase;
-  hal->offset_applied = hal->offset_from + (hal->offset_to - hal->offset_from) * p * p * (3.0 - 2.0 * p);
-  if (p >= 1.0) hal->offset_applied = hal->offset_to;
-  *hal->correction_length = settings->model.correction_length(hal->offset_applied);
+  hal->offset.step(*hal->tool_length, period_ns * 1e-9, hal->tool_length_slew_time);
+  *hal->correction_length = settings->model.correction_length(hal->offset.length.value);
 
   // Temperatures: a first-order low-pass (sensor noise never reaches the joints); a reading
   // that is not a number or lies outside the model's range is not taken: the last good value
@@ -347,8 +338,7 @@ bool export_hal(const vm::Model& model) {
   hal->update_ran = false;
   hal->kinematics_before_update = false;
   hal->tool_length_slew_time = 0.25;
-  hal->offset_from = hal->offset_to = hal->offset_applied = *hal->tool_length;
-  hal->offset_phase = 1.0;
+  hal->offset.reset(*hal->tool_length);
   *hal->correction_length = model.correction_length(*hal->tool_length);
   for (std::size_t i = 0; i < model.temperatures.size(); ++i)  // until a sensor says otherwise
     *hal->temperature[i] = *hal->temperature_filtered[i] = hal->temperature_state[i] = model.temperatures[i].reference_degC;

@@ -193,6 +193,74 @@ TEST_F(Mc300Session, TogglingWhileMovingStaysWithinJointLimits) {
   }
 }
 
+// Tool length changes in quick succession while the machine moves (G43.1 every ~0.1 s, less
+// than the 0.25 s slew: each arrives while L is still on its way to the last one; the program
+// keeps the Z joint where it was). Every sample: the joints are the core's for the L volkins
+// reports, their acceleration within the INI limits, and what the slew of L itself adds to
+// their second difference, D(x_k, L_k+1) - 2 D(x_k, L_k) + D(x_k, L_k-1), within its bound:
+// 4 x (the correction's change with L) x (largest change of L) / slew-time^2. A slew that
+// restarted at rest stepped the joints' velocity by up to 1.5 x that change / slew-time.
+TEST_F(Mc300Session, ToolLengthChangesInQuickSuccessionKeepTheJointsSmooth) {
+  const fs::path dir = test::run_folder("mc300_tool_changes_program");
+  const std::vector<double> lengths = {100, 60, 130, 80, 20, 150, 40, 110, 70, 140, 30, 100};
+  std::ofstream ngc(dir / "tool_changes.ngc");
+  ngc << "G21 G90 G17 G40 G49 G54 G94 G64 P0.001\nT1 M6\nG43 H1\nG0 X-300 Y-160 Z-200 B-30 C20\nG1 F4000\n";
+  double largest_change = 0.0;
+  for (std::size_t i = 0; i < 3 * lengths.size(); ++i) {
+    const double L = lengths[i % lengths.size()], before = lengths[(i + lengths.size() - 1) % lengths.size()];
+    largest_change = std::max(largest_change, std::abs(L - before));
+    // The Z joint stays at -100: the programmed Z is the joint less the tool length.
+    ngc << "G43.1 Z" << L << "\nX" << -300 + 2.0 * static_cast<double>(i % 2) << " Z" << -100 - L << "\n";
+  }
+  ngc << "G4 P1\nM2\n";
+  ngc.close();
+  const trace::SessionTrace t = run_session("mc300_tool_changes", kMc300Ini, *model_,
+                                            "--compensation on --program " + (dir / "tool_changes.ngc").string());
+  const trace::TraceSummary s = trace::check_trace(*model_, WorldConvention::Axes, t);
+  ASSERT_GT(s.samples.size(), 1000u);
+  EXPECT_LT(extremes(s).mismatch, 1e-9) << "the joints are not the core's for the L volkins reports";
+  ASSERT_EQ(t.correction_length_mm.size(), t.size());
+  // Offsets that arrived while L was still moving to the one before.
+  std::size_t changes = 0, during_slew = 0;
+  for (std::size_t n = 1; n < t.size(); ++n) {
+    if (t.tool_length_mm[n] == t.tool_length_mm[n - 1]) continue;
+    ++changes;
+    during_slew += t.correction_length_mm[n - 1] != model_->correction_length(t.tool_length_mm[n - 1]);
+  }
+  EXPECT_GE(changes, 30u);
+  EXPECT_GE(during_slew, 20u) << "the offsets should change while L slews";
+  const double dt = 1e-3, slew_time = 0.25;
+  for (int j = 0; j < model_->joint_count(); ++j) {
+    const std::string section = "JOINT_" + std::to_string(j);
+    const double a_max = ini_value(kMc300Ini, section, "MAX_ACCELERATION");
+    double a = 0.0, a_slew = 0.0, per_mm = 0.0;
+    for (std::size_t k = 9; k + 1 < t.size(); ++k) {
+      a = std::max(a, std::abs(t.joints[k + 1][j] - 2 * t.joints[k][j] + t.joints[k - 1][j]) / (dt * dt));
+      if (t.gain[k - 1] != 1.0 || t.gain[k + 1] != 1.0) continue;  // the enable ramp's samples
+      double d[3];
+      for (int i = 0; i < 3; ++i) {
+        Joints full, nominal;
+        const double L = t.correction_length_mm[k + i - 1];
+        machine::joints_from_world(*model_, WorldConvention::Axes, t.world[k], L, full);
+        machine::nominal_inverse(*model_, WorldConvention::Axes, t.world[k], L, nominal);
+        d[i] = full[j] - nominal[j];
+      }
+      a_slew = std::max(a_slew, std::abs(d[2] - 2 * d[1] + d[0]) / (dt * dt));
+      const double dL = t.correction_length_mm[k + 1] - t.correction_length_mm[k];
+      if (std::abs(dL) > 1e-6) per_mm = std::max(per_mm, std::abs(d[2] - d[1]) / std::abs(dL));
+    }
+    const double bound = 4.0 * per_mm * largest_change / (slew_time * slew_time);
+    EXPECT_LE(a, a_max) << section;
+    // 5 %: the correction's change with L varies along the path; 1e-3 mm/s^2: the solver's tolerance
+    // (1e-10 mm) in a second difference at 1 ms, where the change with L is nil (Z, B, C).
+    EXPECT_LE(a_slew, bound * 1.05 + 1e-3) << section;
+    std::cout << section << ": peak acceleration " << a << " mm/s^2 (limit " << a_max << "), the slew of L's share "
+              << a_slew << " (bound " << bound << ", correction's change with L up to " << per_mm * 1e3
+              << " um/mm)\n";
+  }
+  std::cout << changes << " tool length changes, " << during_slew << " of them while L slewed\n";
+}
+
 // The TCP convention: the program gives the tool tip in the part frame (G43 adds the tool
 // length to Z, as for LinuxCNC's own TCP kinematics). The program is the 5-axis contour of
 // sample_part.ngc, converted with the ideal machine.
