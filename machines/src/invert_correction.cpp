@@ -64,9 +64,15 @@ bool block_step(const CorrectionTarget& target, const PoseDerivatives& d, const 
   for (int c = 0; c < n; ++c) b -= d.tip.col(rotary[c]) * dr[c];
   Eigen::Matrix3d t;
   for (int c = 0; c < 3; ++c) t.col(c) = d.tip.col(linear[c]);
-  const Eigen::PartialPivLU<Eigen::Matrix3d> lu(t);
-  if (!(std::abs(lu.determinant()) > 0.0)) return false;
-  const Eigen::Vector3d dl = lu.solve(b);
+  // Eigen's closed form (cofactors) of a 3 x 3 inverse: the linear axes' tip rates are nearly
+  // orthonormal, and the servo thread runs a fraction of the code a pivoting LU takes (its
+  // code, not its arithmetic, is what a cycle pays for: it is fetched anew every cycle).
+  Eigen::Matrix3d inverse;
+  double determinant = 0.0;
+  bool invertible = false;
+  t.computeInverseAndDetWithCheck(inverse, determinant, invertible, 0.0);
+  if (!invertible) return false;
+  const Eigen::Vector3d dl = inverse * b;
   if (!dl.allFinite() || !std::isfinite(dr[0]) || !std::isfinite(dr[1])) return false;
   for (int c = 0; c < 3; ++c) q[linear[c]] += dl[c];
   for (int c = 0; c < n; ++c) q[rotary[c]] += dr[c];
