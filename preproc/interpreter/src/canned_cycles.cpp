@@ -11,6 +11,9 @@
 // relative to R. Below R, the first move is straight up to R. Each hole: rapid across at the
 // current height (the first) or the clear height, down to R if above it, then the cycle, then
 // up to the clear height: R (G99) or the start height (G98, if above R).
+#include <cmath>
+#include <string>
+
 #include "words.hpp"
 #include "vc/interpreter/line_text.hpp"
 
@@ -18,6 +21,10 @@ namespace vc::interpreter {
 namespace {
 
 constexpr double kPeckClearance_inch = 0.010;  // G83_RAPID_DELTA (interp_internal.hh), in program units
+// The most moves one cycle block may make (its pecks times its repeats): every move is written
+// out, and no real hole needs more (500 mm in pecks of 0.01 mm are 150,000 moves). Beyond it
+// the block is refused, not expanded until memory runs out.
+constexpr double kMostCycleMoves = 1e6;
 
 }  // namespace
 
@@ -137,6 +144,12 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
   }
   const double clear = retract_to_r_ ? r : old_z;
   const double peck_clearance = kPeckClearance_inch * kInch;  // the same in G20 and G21
+  const bool pecking = code == 730 || code == 830;
+  const double moves = repeats * (4.0 + (pecking ? 3.0 * std::ceil((r - bottom) / cycle_q_) : 0.0));
+  if (!(moves <= kMostCycleMoves))
+    fail("this block would make " + number_text(moves) + " moves (" +
+         (pecking ? "(R - bottom) / Q pecks of 3 moves" : std::string("4 moves")) + " x L " +
+         std::to_string(repeats) + "); more than " + number_text(kMostCycleMoves) + " are refused");
   for (int k = repeats; k > 0; --k) {
     x += dx;
     y += dy;
@@ -166,6 +179,7 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
       case 730:
       case 830:
         for (double depth = r - cycle_q_; depth > bottom; depth -= cycle_q_) {
+          if (depth - cycle_q_ == depth) fail("Q is below the resolution of the heights it pecks between");
           add(MoveKind::Line, x, y, depth);
           if (code == 830) add(MoveKind::Rapid, x, y, r);
           add(MoveKind::Rapid, x, y, depth + peck_clearance);

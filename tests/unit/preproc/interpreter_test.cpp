@@ -179,6 +179,25 @@ TEST(Interpreter, RefusesWhatItCannotTranslateWithLineAndColumn) {
   EXPECT_NE(refusal(kStart + "G1 X[1/0]\n").find("test.ngc:3:"), std::string::npos);
 }
 
+// A cycle block writes out every move it makes: one that would make millions (a retract plane
+// 1e11 mm up, pecks of 0.07 mm: the fuzzer's, which ran out of memory; a million holes) is refused
+// at its line and column, as is a Q the heights cannot step by. A deep real hole is not.
+TEST(Interpreter, RefusesCycleBlocksThatWouldMakeMillionsOfMoves) {
+  const std::string drill = kStart + "G0 Z1\nS1500 M3\nF5\n";
+  const std::string pecks = refusal(drill + "G98 G73 X0.5 Y0.5 Z-0.3 R111111111110.1 Q0.07\n");
+  EXPECT_EQ(pecks.substr(0, 16), "test.ngc:6:5: er") << pecks;
+  EXPECT_NE(pecks.find("G73: this block would make"), std::string::npos) << pecks;
+  EXPECT_NE(pecks.find("more than 1000000 are refused"), std::string::npos) << pecks;
+  const std::string holes = refusal(drill + "G99 G81 X1 Z-1 R0.5 L1000000\n");
+  EXPECT_NE(holes.find("x L 1000000)"), std::string::npos) << holes;
+  const std::string stuck = refusal(drill + "G98 G83 X1 Z99999999999999900 R100000000000000000 Q1\n");
+  EXPECT_NE(stuck.find("below the resolution"), std::string::npos) << stuck;
+  // 500 mm deep in pecks of 0.01 mm: 150,000 moves, written out.
+  const gcode::Parameters zero;
+  const Interpreted deep = interpret(drill + "G98 G83 X1 Z-500 R0.5 Q0.01\n", nullptr, &zero);
+  EXPECT_GT(deep.moves.size(), 150'000u);
+}
+
 TEST(Interpreter, RefusesUnknownWorkOffsetsWithoutParameterFile) {
   interpreter::Setup setup;
   setup.file = "p.ngc";
