@@ -10,7 +10,7 @@
 # its samples and the ratios of the medians (the issue 21 target: volkins <= 2 x xyzbc-trt-kins).
 # Also the 10th percentile: a shared VM's stalls only add time, and on a noisy host they move
 # the medians of the same module by 2x between runs, while the low percentiles stay with the
-# computation.
+# computation. And each round's own ratio of the medians, with the median over the rounds.
 #
 #   tests/bench/servo_cost.sh [ROUNDS] [PROGRAM]     (default 3 rounds, the 5-axis contour)
 # Needs the module installed (cmake --install build --component volkins) and no other session.
@@ -32,6 +32,7 @@ stats() {  # median, p99, worst and 10th percentile of a column of numbers
   sort -n "$1" | awk '{ v[NR] = $1 } END { printf "%d %d %d %d", v[int(NR * 0.5) + 1], v[int(NR * 0.99) + 1], v[NR], v[int(NR * 0.1) + 1] }'
 }
 kinematics=(trivkins xyzbc-trt-kins volkins)
+declare -A round_median round_p10  # of the current round, by kinematics
 for r in $(seq "$rounds"); do
   for kins in "${kinematics[@]}"; do
     case "$kins" in
@@ -49,7 +50,14 @@ for r in $(seq "$rounds"); do
     printf "%-15s run %d: motion-controller.time p10 %6d ticks, median %6d, p99 %6d, worst %7d (%d samples)\n" \
       "$kins" "$r" "$p10" "$median" "$p99" "$worst" "$(wc -l < "$runs/$kins-$r.ticks")"
     cat "$runs/$kins-$r.ticks" >> "$runs/$kins.all"
+    round_median[$kins]=$median round_p10[$kins]=$p10
   done
+  # The round's own ratios: a host that gets busier between rounds moves every kinematics of
+  # one round less than it moves the rounds apart.
+  round_ratio=$(awk -v v="${round_median[volkins]}" -v x="${round_median[xyzbc-trt-kins]}" 'BEGIN { printf "%.2f", v / x }')
+  printf "round %d: volkins / xyzbc-trt-kins median %s, p10 %s\n" "$r" "$round_ratio" \
+    "$(awk -v v="${round_p10[volkins]}" -v x="${round_p10[xyzbc-trt-kins]}" 'BEGIN { printf "%.2f", v / x }')"
+  echo "$round_ratio" >> "$runs/round_ratios"
 done
 ghz=$(awk '/^cpu MHz/ { print $4 / 1000; exit }' /proc/cpuinfo)
 echo "all samples (ticks; the CPU's clock is ${ghz:-?} GHz):"
@@ -62,4 +70,5 @@ done
 echo "${all[volkins]} ${all[xyzbc-trt-kins]} ${all[trivkins]}" | awk '{
   printf "ratios of the medians: volkins / xyzbc-trt-kins %.2f (target <= 2), volkins / trivkins %.2f, xyzbc-trt-kins / trivkins %.2f\n", $1 / $5, $1 / $9, $5 / $9
   printf "volkins / xyzbc-trt-kins: p10 %.2f, p99 %.2f, worst %.2f\n", $4 / $8, $2 / $6, $3 / $7 }'
+echo "the rounds' own median ratios: $(sort -n "$runs/round_ratios" | tr '\n' ' ')(median of the rounds $(sort -n "$runs/round_ratios" | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'))"
 rm -rf "$runs"
