@@ -195,7 +195,6 @@ void BM_ForwardSeeded(benchmark::State& state, const std::string& machine) {
 // proves it): the pair the 2.5 us target is for. Without `correction_seeds`, the seeds
 // LinuxCNC gives alone (volkins before it kept corrections); without `bound`, every step
 // checked (volkins before the bound).
-// The pair of one cycle: the forward of the feedback, then the inverse of the new command.
 double servo_pair(const Fixture& f, const ServoCycle& c, bool correction_seeds, bool bound) {
   const double L = f.model.tool_length_mm;
   const Joints* forward_seed =

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -81,6 +82,14 @@ void expect_compensated(const trace::TraceSummary& s, int model_rotaries, const 
             << " um\n";
 }
 
+// The core's full correction of a world position for tool length L: joints less nominal joints.
+Joints full_correction(const machine::Model& model, const Joints& world, double L) {
+  Joints full, nominal;
+  machine::joints_from_world(model, WorldConvention::Axes, world, L, full);
+  machine::nominal_inverse(model, WorldConvention::Axes, world, L, nominal);
+  return full - nominal;
+}
+
 class Mc300Session : public ::testing::Test {
  protected:
   static void SetUpTestSuite() { model_ = new machine::Model(machine::load_machine(test::machine_path("mc300"))); }
@@ -151,12 +160,7 @@ TEST_F(Mc300Session, TogglingWhileMovingStaysWithinJointLimits) {
   ASSERT_EQ(t.correction_length_mm.size(), t.size()) << "the trace records the L applied";
   const double dt = 1e-3;
   std::vector<Joints> correction(t.size());
-  for (std::size_t k = 0; k < t.size(); ++k) {
-    Joints full, nominal;
-    machine::joints_from_world(*model_, WorldConvention::Axes, t.world[k], t.correction_length_mm[k], full);
-    machine::nominal_inverse(*model_, WorldConvention::Axes, t.world[k], t.correction_length_mm[k], nominal);
-    correction[k] = full - nominal;
-  }
+  for (std::size_t k = 0; k < t.size(); ++k) correction[k] = full_correction(*model_, t.world[k], t.correction_length_mm[k]);
   auto ramp_peaks = [&](int j) {
     double v = 0, a = 0;
     for (std::size_t k = 1; k + 1 < t.size(); ++k) {
@@ -230,21 +234,20 @@ TEST_F(Mc300Session, ToolLengthChangesInQuickSuccessionKeepTheJointsSmooth) {
   EXPECT_GE(changes, 30u);
   EXPECT_GE(during_slew, 20u) << "the offsets should change while L slews";
   const double dt = 1e-3, slew_time = 0.25;
+  // At each sample with the full gain around it (not the enable ramp's): the correction of its
+  // command for the L before, its own and the one after, what the slew of L alone changes.
+  std::vector<std::array<Joints, 3>> by_length(t.size());
+  for (std::size_t k = 9; k + 1 < t.size(); ++k)
+    if (t.gain[k - 1] == 1.0 && t.gain[k + 1] == 1.0)
+      for (std::size_t i = 0; i < 3; ++i) by_length[k][i] = full_correction(*model_, t.world[k], t.correction_length_mm[k + i - 1]);
   for (int j = 0; j < model_->joint_count(); ++j) {
     const std::string section = "JOINT_" + std::to_string(j);
     const double a_max = ini_value(kMc300Ini, section, "MAX_ACCELERATION");
     double a = 0.0, a_slew = 0.0, per_mm = 0.0;
     for (std::size_t k = 9; k + 1 < t.size(); ++k) {
       a = std::max(a, std::abs(t.joints[k + 1][j] - 2 * t.joints[k][j] + t.joints[k - 1][j]) / (dt * dt));
-      if (t.gain[k - 1] != 1.0 || t.gain[k + 1] != 1.0) continue;  // the enable ramp's samples
-      double d[3];
-      for (int i = 0; i < 3; ++i) {
-        Joints full, nominal;
-        const double L = t.correction_length_mm[k + i - 1];
-        machine::joints_from_world(*model_, WorldConvention::Axes, t.world[k], L, full);
-        machine::nominal_inverse(*model_, WorldConvention::Axes, t.world[k], L, nominal);
-        d[i] = full[j] - nominal[j];
-      }
+      if (by_length[k][0].size() == 0) continue;  // the enable ramp's samples
+      const double d[3] = {by_length[k][0][j], by_length[k][1][j], by_length[k][2][j]};
       a_slew = std::max(a_slew, std::abs(d[2] - 2 * d[1] + d[0]) / (dt * dt));
       const double dL = t.correction_length_mm[k + 1] - t.correction_length_mm[k];
       if (std::abs(dL) > 1e-6) per_mm = std::max(per_mm, std::abs(d[2] - d[1]) / std::abs(dL));
