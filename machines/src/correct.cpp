@@ -7,6 +7,7 @@
 #include "small_lu.hpp"
 #include "vc/machine/contraction_bound.hpp"
 #include "vc/machine/correction_equations.hpp"
+#include "vc/machine/ideal_jacobian_solver.hpp"
 
 namespace vc::machine {
 namespace {
@@ -21,9 +22,10 @@ struct Stopping {
 };
 
 // Newton on the real machine for the free joints; the others stay fixed. It starts with the
-// ideal machine's Jacobian (`ideal`, already computed for the target): the real one differs
-// by the error slopes, ~1e-4, so each step still gains about four digits. Where a step gains
-// less than two, the exact Jacobian of the real machine (table slopes included) replaces it.
+// ideal machine's Jacobian (`ideal`, already computed for the target), solved by its blocks
+// (ideal_jacobian_solver.hpp): the real one differs by the error slopes, ~1e-4, so each step
+// still gains about four digits. Where a step gains less than two, the exact Jacobian of the
+// real machine (table slopes included, an LU) replaces it.
 // While the Jacobian is the ideal one, a step whose residual bound kappa |W F| (W: direction
 // rows times kDirectionLeverMm) is within both tolerances ends the solve unevaluated: `pose`
 // is then the real pose before it and `unchecked_bound` that bound (else -1). Otherwise `pose`
@@ -41,8 +43,12 @@ Status newton(const Model& model, const CorrectionTarget& target, double tool_le
   std::array<int, kMaxAxes> index{};
   for (int j = 0; j < model.joint_count(); ++j)
     if (free[j]) index[unknowns++] = j;
-  SmallLu lu;  // factored when a step is first needed (a seed from the servo thread's last
-               // corrections is often within the tolerance already)
+  // Factored when a step is first needed (a seed from the servo thread's last corrections is
+  // often within the tolerance already). The blocks where the free joints are theirs (the
+  // full correction's or the position's), else an LU.
+  IdealJacobianSolver blocks(model, target.direction_equations);
+  const bool by_blocks = blocks.applies() && unknowns == 3 + target.direction_equations;
+  SmallLu lu;
   double previous_norm = std::numeric_limits<double>::infinity();
   for (int step = 0;; ++step) {
     pose = tool_pose(model, Machine::Real, q, tool_length_mm);
@@ -54,18 +60,24 @@ Status newton(const Model& model, const CorrectionTarget& target, double tool_le
     if (step == opt.max_iterations) return Status::NotConverged;
     const double norm = position + kDirectionLeverMm * direction;
     if (step == 0) {
-      lu.compute(correction_jacobian(target, ideal, index, unknowns));
+      if (by_blocks ? !blocks.factorize(target, ideal) : !lu.compute(correction_jacobian(target, ideal, index, unknowns)))
+        return Status::Singular;
     } else if (norm > 1e-2 * previous_norm) {
       PoseDerivatives exact;
       tool_pose(model, Machine::Real, q, tool_length_mm, exact);
-      lu.compute(correction_jacobian(target, exact, index, unknowns));
+      if (!lu.compute(correction_jacobian(target, exact, index, unknowns))) return Status::Singular;
       ideal_jacobian = false;
     }
     previous_norm = norm;
-    if (!lu.ok()) return Status::Singular;
-    const Joints step_vector = lu.solve(-residual);
-    if (!step_vector.allFinite()) return Status::Singular;
-    for (int c = 0; c < unknowns; ++c) q[index[c]] += step_vector[c];
+    if (ideal_jacobian && by_blocks) {
+      const Joints step_vector = blocks.solve(residual);  // over all joints
+      if (!step_vector.allFinite()) return Status::Singular;
+      q -= step_vector;
+    } else {
+      const Joints step_vector = lu.solve(-residual);  // over the unknowns
+      if (!step_vector.allFinite()) return Status::Singular;
+      for (int c = 0; c < unknowns; ++c) q[index[c]] += step_vector[c];
+    }
     ++iterations;
     if (ideal_jacobian && stopping.kappa > 0.0) {
       const double bound = stopping.kappa * std::hypot(position, kDirectionLeverMm * direction);

@@ -1,10 +1,10 @@
 #include "vc/machine/invert_correction.hpp"
 
-#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 
 #include "vc/machine/correction_equations.hpp"
+#include "vc/machine/ideal_jacobian_solver.hpp"
 #include "vc/tables/units.hpp"
 
 namespace vc::machine {
@@ -35,50 +35,6 @@ struct IdealPose {
   PoseDerivatives d;
 };
 
-// One Newton step of the ideal machine's equations, by blocks. The ideal machine's linear axes
-// only translate, so the direction rows do not depend on the linear joints: the rotary steps
-// solve the direction rows alone (1 x 1 or 2 x 2), then the linear steps the position rows
-// less what the rotary steps do to the tip (3 x 3). The same step as the full system's, at a
-// fraction of a 5 x 5 LU's cost. False if a block is singular (the pole; degenerate axes).
-bool block_step(const CorrectionTarget& target, const PoseDerivatives& d, const Joints& residual,
-                const std::array<int, 3>& linear, const std::array<int, 2>& rotary, Joints& q) noexcept {
-  const int n = target.direction_equations;
-  double dr[2] = {0.0, 0.0};  // rotary steps
-  if (n > 0) {
-    double a[2][2];
-    for (int c = 0; c < n; ++c) {
-      const Eigen::Vector3d rate = target.direction.cross(d.direction.col(rotary[c]));
-      for (int m = 0; m < n; ++m) a[m][c] = target.basis[m].dot(rate);
-    }
-    if (n == 1) {
-      if (!(std::abs(a[0][0]) > 0.0)) return false;
-      dr[0] = -residual[3] / a[0][0];
-    } else {
-      const double det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
-      if (!(std::abs(det) > 0.0)) return false;
-      dr[0] = (-residual[3] * a[1][1] + residual[4] * a[0][1]) / det;
-      dr[1] = (-residual[4] * a[0][0] + residual[3] * a[1][0]) / det;
-    }
-  }
-  Eigen::Vector3d b = -residual.head<3>();
-  for (int c = 0; c < n; ++c) b -= d.tip.col(rotary[c]) * dr[c];
-  Eigen::Matrix3d t;
-  for (int c = 0; c < 3; ++c) t.col(c) = d.tip.col(linear[c]);
-  // Eigen's closed form (cofactors) of a 3 x 3 inverse: the linear axes' tip rates are nearly
-  // orthonormal, and the servo thread runs a fraction of the code a pivoting LU takes (its
-  // code, not its arithmetic, is what a cycle pays for: it is fetched anew every cycle).
-  Eigen::Matrix3d inverse;
-  double determinant = 0.0;
-  bool invertible = false;
-  t.computeInverseAndDetWithCheck(inverse, determinant, invertible, 0.0);
-  if (!invertible) return false;
-  const Eigen::Vector3d dl = inverse * b;
-  if (!dl.allFinite() || !std::isfinite(dr[0]) || !std::isfinite(dr[1])) return false;
-  for (int c = 0; c < 3; ++c) q[linear[c]] += dl[c];
-  for (int c = 0; c < n; ++c) q[rotary[c]] += dr[c];
-  return true;
-}
-
 // Newton on the ideal machine: its tip onto target.tip_mm and, with direction equations, its
 // tool direction parallel to target.direction (the real machine's pose at q_c). The unknowns
 // are all joints (with direction equations) or the linear ones (without: the rotary joints
@@ -91,18 +47,8 @@ bool block_step(const CorrectionTarget& target, const PoseDerivatives& d, const 
 Status ideal_newton(const Model& model, const CorrectionTarget& target, double tool_length_mm, Joints& q,
                     int& iterations, IdealPose& ideal, bool evaluated = false, bool* unchecked = nullptr) noexcept {
   const SolverOptions& opt = model.solver;
-  std::array<int, 3> linear{};
-  std::array<int, 2> rotary{};
-  int linear_count = 0, rotary_count = 0;
-  for (int j = 0; j < model.joint_count(); ++j) {
-    if (model.axes[j].type == AxisType::Linear) {
-      if (linear_count == 3) return Status::Singular;  // not a square system
-      linear[linear_count++] = j;
-    } else if (rotary_count < target.direction_equations) {
-      rotary[rotary_count++] = j;
-    }
-  }
-  if (linear_count != 3 || rotary_count != target.direction_equations) return Status::Singular;
+  IdealJacobianSolver solver(model, target.direction_equations);
+  if (!solver.applies()) return Status::Singular;  // not a square system of the solver's blocks
   const int equations = 3 + target.direction_equations;
   for (int step = 0;; ++step) {
     if (step > 0 || !evaluated) ideal.pose = tool_pose(model, Machine::Ideal, q, tool_length_mm, ideal.d);
@@ -112,8 +58,11 @@ Status ideal_newton(const Model& model, const CorrectionTarget& target, double t
     const double direction = std::sqrt(direction_squared_norm(residual));
     if (position <= opt.position_tolerance_mm && direction <= opt.direction_tolerance_rad) return Status::Ok;
     if (step == opt.max_iterations) return Status::NotConverged;
+    if (!solver.factorize(target, ideal.d)) return Status::Singular;
+    const Joints step_vector = solver.solve(residual);
+    if (!step_vector.allFinite()) return Status::Singular;
     const Joints before = q;
-    if (!block_step(target, ideal.d, residual, linear, rotary, q)) return Status::Singular;
+    q -= step_vector;
     ++iterations;
     if (unchecked) {
       const StepRemainder left = ideal_step_remainder(model, before, q, tool_length_mm);

@@ -1,7 +1,6 @@
 #include "vc/machine/kinematics.hpp"
 
-#include <Eigen/LU>
-
+#include "vc/machine/ideal_jacobian_solver.hpp"
 
 namespace vc::machine {
 
@@ -13,26 +12,22 @@ Status nominal_inverse(const Model& model, WorldConvention convention, const Joi
   // Tcp: rotary joints are given; the ideal tip is affine in the linear joints, so Newton
   // lands in one step and the second confirms it.
   const int n = model.joint_count();
+  IdealJacobianSolver solver(model, 0);  // the linear joints, by their 3 x 3 block
+  if (!solver.applies()) return Status::Singular;
   PoseDerivatives d;
   for (int step = 0; step <= model.solver.max_iterations; ++step) {
     const ToolPose pose = tool_pose(model, Machine::Ideal, nominal, tool_length_mm, d);
     Eigen::Vector3d tip_target;
-    Eigen::Matrix3d jacobian;
     int c = 0;
     for (int j = 0; j < n; ++j)
-      if (model.axes[j].type == AxisType::Linear) {
-        tip_target[c] = world[j];
-        jacobian.col(c++) = d.tip.col(j);
-      }
+      if (model.axes[j].type == AxisType::Linear) tip_target[c++] = world[j];
     const Eigen::Vector3d residual = pose.tip_mm - tip_target;
     if (!residual.allFinite()) return Status::NonFinite;
     if (residual.norm() <= model.solver.position_tolerance_mm) return Status::Ok;
-    const Eigen::FullPivLU<Eigen::Matrix3d> lu(jacobian);
-    if (!lu.isInvertible()) return Status::Singular;
-    const Eigen::Vector3d dq = lu.solve(-residual);
-    c = 0;
-    for (int j = 0; j < n; ++j)
-      if (model.axes[j].type == AxisType::Linear) nominal[j] += dq[c++];
+    if (!solver.factorize(position_target(pose), d)) return Status::Singular;
+    const Joints dq = solver.solve(Joints(residual));
+    if (!dq.allFinite()) return Status::Singular;
+    nominal -= dq;
   }
   return Status::NotConverged;
 }

@@ -20,8 +20,8 @@ constexpr int kMaxSteps = 3;
 OneStepCorrection::OneStepCorrection(const machine::Model& model)
     : model_(model),
       applies_(model.joint_count() == 3 + model.rotary_count()),
-      affine_(model.joint_count() == 3 && model.rotary_count() == 0) {
-  if (applies_ && !affine_ && model.rotary_count() <= 2) blocks_.emplace(model);
+      affine_(model.joint_count() == 3 && model.rotary_count() == 0),
+      blocks_(model, model.rotary_count()) {
   for (int j = 0; j < machine::kMaxAxes; ++j) all_joints_[j] = j;
 }
 
@@ -32,19 +32,16 @@ double OneStepCorrection::weighted_norm(const Joints& residual) const {
 }
 
 bool OneStepCorrection::equations_at(const PerTool& tool, const Joints& target, machine::CorrectionTarget& equations,
-                                     SquareMatrix& b, int& band) const {
+                                     machine::PoseDerivatives& d, int& band) const {
   band = 0;
   if (affine_) {
     equations = machine::position_target({tool.jacobian * target.head<3>() + tool.tip_at_zero, Eigen::Vector3d::UnitZ()});
-    b = tool.jacobian;
     return true;
   }
-  machine::PoseDerivatives d;
   const machine::ToolPose ideal = machine::tool_pose(model_, Machine::Ideal, target, tool.tool_length_mm, d);
   band = tool.bound.band_at(ideal, d);
   if (band < 0) return false;
   equations = machine::full_target(model_, ideal, d);
-  b = machine::correction_jacobian(equations, d, all_joints_, model_.joint_count());
   return true;
 }
 
@@ -63,28 +60,29 @@ OneStepCorrection::PerTool& OneStepCorrection::for_tool(double tool_length_mm) {
   return per_tool_.back();
 }
 
-bool OneStepCorrection::factorize(const PerTool& tool, const SquareMatrix& b) {
+bool OneStepCorrection::factorize(const PerTool& tool, const machine::CorrectionTarget& equations,
+                                  const machine::PoseDerivatives& d) {
   if (affine_) return std::abs(tool.lu.determinant()) > 0.0;
-  blocks_used_ = blocks_ && blocks_->factorize(b);
+  blocks_used_ = blocks_.factorize(equations, d);
   if (blocks_used_) return true;
-  point_lu_.compute(b);
+  point_lu_.compute(machine::correction_jacobian(equations, d, all_joints_, model_.joint_count()));
   return std::abs(point_lu_.determinant()) > 0.0;
 }
 
 Joints OneStepCorrection::solve(const PerTool& tool, const Joints& residual) const {
   if (affine_) return tool.lu.solve(residual);
-  return blocks_used_ ? blocks_->solve(residual) : Joints(point_lu_.solve(residual));
+  return blocks_used_ ? blocks_.solve(residual) : Joints(point_lu_.solve(residual));
 }
 
 bool OneStepCorrection::correct(const Joints& target, double tool_length_mm, const Joints& seed, Joints& corrected) {
   if (!applies_ || !target.allFinite() || !seed.allFinite()) return false;
   const PerTool& t = for_tool(tool_length_mm);
   machine::CorrectionTarget equations;
-  SquareMatrix b;
+  machine::PoseDerivatives d;
   int band;
-  if (!equations_at(t, target, equations, b, band)) return false;
+  if (!equations_at(t, target, equations, d, band)) return false;
   const double kappa = t.bound.kappa(band);
-  if (!(kappa < 1e-2) || !factorize(t, b)) return false;
+  if (!(kappa < 1e-2) || !factorize(t, equations, d)) return false;
   const machine::SolverOptions& opt = model_.solver;
   const int n = model_.joint_count();
   corrected = seed;

@@ -18,12 +18,11 @@
 
 #include <Eigen/LU>
 #include <array>
-#include <optional>
 #include <vector>
 
 #include "vc/machine/contraction_bound.hpp"
 #include "vc/machine/correction_equations.hpp"
-#include "vc/predistort/ideal_jacobian_solver.hpp"
+#include "vc/machine/ideal_jacobian_solver.hpp"
 
 namespace vc::predistort {
 
@@ -64,12 +63,12 @@ class OneStepCorrection {
     Eigen::Vector3d tip_at_zero;  // b
     Eigen::PartialPivLU<machine::SquareMatrix> lu;  // of A
   };
-  // The equations at `target`, B and the band of the pole angle; false near
-  // a pole.
+  // The equations at `target`, the ideal machine's derivatives there (B's columns) and the band
+  // of the pole angle; false near a pole.
   bool equations_at(const PerTool& tool, const machine::Joints& target, machine::CorrectionTarget& equations,
-                    machine::SquareMatrix& b, int& band) const;
+                    machine::PoseDerivatives& d, int& band) const;
   // B at the current point, for solve(); false if singular.
-  bool factorize(const PerTool& tool, const machine::SquareMatrix& b);
+  bool factorize(const PerTool& tool, const machine::CorrectionTarget& equations, const machine::PoseDerivatives& d);
   machine::Joints solve(const PerTool& tool, const machine::Joints& residual) const;
   PerTool& for_tool(double tool_length_mm);
   double weighted_norm(const machine::Joints& residual) const;
@@ -79,8 +78,8 @@ class OneStepCorrection {
   bool affine_;  // three linear axes
   std::array<int, machine::kMaxAxes> all_joints_{};
   std::vector<PerTool> per_tool_;
-  std::optional<IdealJacobianSolver> blocks_;  // rotary joints: B block triangular
-  bool blocks_used_ = false;                    // B at the current point in blocks_ (else point_lu_)
+  machine::IdealJacobianSolver blocks_;  // rotary joints: B block triangular
+  bool blocks_used_ = false;             // B at the current point in blocks_ (else point_lu_)
   Eigen::PartialPivLU<machine::SquareMatrix> point_lu_;
 };
 
