@@ -89,22 +89,23 @@ vc::kins::ModuleSettings* settings = nullptr;  // built in rtapi_app_main, read-
 HalData* hal = nullptr;
 int comp_id = -1;
 
-// The full corrections (q_c - q_n) of the last four inverses, servo thread only. The next
-// inverse starts at its nominal joints plus the quadratic extrapolation of the last three (the
+// The corrections (q_c - q_n) of the last four inverses, servo thread only. The next inverse
+// starts at its nominal joints plus the quadratic extrapolation of the last three (the
 // correction moves smoothly, by the error slopes times the step: from there one Newton step is
 // left as a rule, where a start at the previous joints, a whole step away, takes three). The
 // forward's feedback is the cubic interpolator's way point two commands back, (p[k-3] + 4 p[k-2]
 // + p[k-1]) / 6 (cubic.c), plus the following error: its start is the feedback less the same
 // combination of the corrections, ~1e-9 off, close enough for the ideal machine's one Newton
 // step to be proved rather than evaluated (invert_correction.hpp).
-struct CorrectionSeed {
+struct KeptCorrections {
   std::array<Joints, 4> corrections;  // newest first
-  int kept = 0;                 // how many are set
+  int kept = 0;                       // how many are set
   void keep(const Joints& correction) {
     for (int i = 3; i > 0; --i) corrections[i] = corrections[i - 1];
     corrections[0] = correction;
     kept = std::min(kept + 1, 4);
   }
+  void forget() { kept = 0; }
   const Joints* for_forward(Joints& way_point) const {
     if (kept < 4) return kept > 0 ? &corrections[0] : nullptr;
     way_point = (corrections[3] + 4.0 * corrections[2] + corrections[1]) / 6.0;
@@ -115,7 +116,11 @@ struct CorrectionSeed {
     extrapolated = 3.0 * (corrections[0] - corrections[1]) + corrections[2];
     return &extrapolated;
   }
-} correction_seed;
+};
+// The corrections applied, and the full ones without the pole fade (the same outside the fade
+// band; none at the pole, where the inverse does not solve them): in the band the inverse's
+// full Newton and the forward's estimate of the full correction start from these.
+KeptCorrections applied_corrections, full_corrections;
 
 char* machine = nullptr;
 char* coordinates = nullptr;
@@ -235,15 +240,23 @@ int kinematicsInverse(const EmcPose* pose, double* joints, const KINEMATICS_INVE
   const double offset = *hal->tool_length;       // LinuxCNC's tool length offset (G43)
   const double L = correction_length();          // the tool-length rule, slewed
   const Joints previous = Eigen::Map<const Joints>(joints, n);  // LinuxCNC's seed
-  Joints extrapolated;
-  const vm::Applied applied{applied_gain(), &previous, correction_seed.for_inverse(extrapolated),
-                            &*settings->contraction};
+  Joints extrapolated, extrapolated_full;
+  const vm::Applied applied{applied_gain(), &previous, applied_corrections.for_inverse(extrapolated),
+                            &*settings->contraction, full_corrections.for_inverse(extrapolated_full)};
   Joints q;
   vm::Correction report;
   const vm::Status s = vm::joints_from_world(model, settings->world, world_of(*pose, offset), L, applied, q, &report);
   *hal->iterations = report.iterations;
   if (s != vm::Status::Ok) return refuse();
-  if (applied.gain > 0.0) correction_seed.keep(report.joints - report.nominal);
+  if (applied.gain > 0.0) {
+    applied_corrections.keep(report.joints - report.nominal);
+    if (report.full_joints.size() > 0)
+      full_corrections.keep(report.full_joints - report.nominal);
+    else if (report.fade == 1.0)
+      full_corrections.keep(report.joints - report.nominal);
+    else
+      full_corrections.forget();
+  }
   bool too_large = false;
   for (int j = 0; j < n; ++j) {
     const double c = q[j] - report.nominal[j];
@@ -266,9 +279,10 @@ int kinematicsForward(const double* joints, EmcPose* pose, const KINEMATICS_FORW
   const double offset = *hal->tool_length;
   const double L = correction_length();
   const Joints seed = world_of(*pose, offset);  // LinuxCNC passes the previous position (or home)
-  Joints w, way_point;
+  Joints w, way_point, way_point_full;
   int iterations = 0;
-  const vm::Applied applied{applied_gain(), &seed, correction_seed.for_forward(way_point)};
+  const vm::Applied applied{applied_gain(), &seed, applied_corrections.for_forward(way_point), nullptr,
+                            full_corrections.for_forward(way_point_full)};
   const vm::Status s = vm::world_from_joints(model, settings->world, q, L, applied, w, &iterations);
   *hal->forward_iterations = iterations;
   if (s != vm::Status::Ok) return refuse();

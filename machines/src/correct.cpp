@@ -135,7 +135,7 @@ double kappa_for(const ContractionBound* bound, double tool_length_mm, const Cor
 }
 
 Start start(const Model& model, const Joints& nominal, double tool_length_mm, const Joints& seed, Full full,
-            const ContractionBound* bound = nullptr) noexcept {
+            const ContractionBound* bound = nullptr, const Joints* full_seed = nullptr) noexcept {
   Start s;
   s.out.nominal = nominal;
   s.out.joints = seed;
@@ -162,6 +162,7 @@ Start start(const Model& model, const Joints& nominal, double tool_length_mm, co
     // the joints are as exact as elsewhere.
     const double tolerance =
         s.out.fade < 1.0 ? model.solver.direction_tolerance_rad * std::sin(s.out.pole_angle_rad) : 0.0;
+    if (full_seed) s.out.joints = *full_seed;
     s.out.status = newton(model, full_target(model, s.ideal, s.d), tool_length_mm, all, s.d, s.out.joints,
                           s.out.iterations, s.real, s.unchecked_bound,
                           {tolerance, kappa_for(bound, tool_length_mm, s.out)});
@@ -198,9 +199,10 @@ Correction correct(const Model& model, const Joints& nominal, double tool_length
 }
 
 Correction correct(const Model& model, const Joints& nominal, double tool_length_mm, const Joints& seed,
-                   const ContractionBound* bound) noexcept {
+                   const ContractionBound* bound, const Joints* full_seed) noexcept {
   const int rotary = model.rotary_count();
-  Start s = start(model, nominal, tool_length_mm, seed, rotary > 0 ? Full::WhereFaded : Full::Never, bound);
+  if (full_seed && !(full_seed->size() == nominal.size() && full_seed->allFinite())) full_seed = nullptr;
+  Start s = start(model, nominal, tool_length_mm, seed, rotary > 0 ? Full::WhereFaded : Full::Never, bound, full_seed);
   Correction& out = s.out;
   if (!s.ok) return out;
   const int n = model.joint_count();
@@ -209,9 +211,16 @@ Correction correct(const Model& model, const Joints& nominal, double tool_length
   const FreeJoints& linear = s.linear;
   CorrectionTarget target = position_target(ideal);
   if (rotary > 0 && out.fade < 1.0) {
-    // Rotary joints take f of their full correction; linear joints make the position exact.
-    for (int j = 0; j < n; ++j)
-      if (!linear[j]) out.joints[j] = nominal[j] + out.fade * (out.joints[j] - nominal[j]);
+    if (out.fade > 0.0) out.full_joints = out.joints;
+    // Rotary joints take f of their full correction; linear joints make the position exact,
+    // from the seed's where the full correction had its own seed (the seed is then the faded
+    // answer's estimate, the full solution's linear joints are not).
+    for (int j = 0; j < n; ++j) {
+      if (!linear[j])
+        out.joints[j] = nominal[j] + out.fade * (out.joints[j] - nominal[j]);
+      else if (full_seed)
+        out.joints[j] = seed[j];
+    }
   }
   if (rotary == 0 || out.fade < 1.0)
     out.status = newton(model, target, tool_length_mm, linear, d, out.joints, out.iterations, s.real,

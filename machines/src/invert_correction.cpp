@@ -85,22 +85,22 @@ void set_rotary(const Model& model, const Joints& from, Joints& q) noexcept {
     if (model.axes[j].type == AxisType::Rotary) q[j] = from[j];
 }
 
-// The fade band's answer from an estimate q_n (~1e-7 off, the ideal pose at it in `ideal`).
-// The full correction D is evaluated at q_n (first seeded with D at the full solution q_full,
-// q_c - q_full); with D fixed, the rotary joints are set to q_c - f(q_n) D and the linear ones
-// solve the position, until f (ideal machine only) stops moving them. Near the pole D moves by
-// up to ~1e-2 times q_n's change (its rotary part grows as 1/sin phi), so D is evaluated again
-// until q_n has settled within kBandSettledMm of where D was: then D's own error is ~1e-11.
+// The fade band's answer from an estimate q_n (the ideal pose at it in `ideal`) and an estimate
+// d of the full correction D there (q_c - q_full from the full solution q_full, or one the
+// caller kept). D is evaluated at q_n (seeded with q_n + d); with D fixed, the rotary joints
+// are set to q_c - f(q_n) D and the linear ones solve the position, until f (ideal machine only)
+// stops moving them. Near the pole D moves by up to ~1e-2 times q_n's change (its rotary part
+// grows as 1/sin phi), so D is evaluated again until q_n has settled within kBandSettledMm of
+// where D was: then D's own error is ~1e-11.
 // False where a solve fails, the pose leaves the band or it does not settle in kBandRounds:
 // the caller polishes with whole corrections.
 constexpr double kBandSettledMm = 1e-10;  // mm or deg
 constexpr int kBandRounds = 4;
 
-bool band_solve(const Model& model, const Joints& corrected, double tool_length_mm, const Joints& q_full,
+bool band_solve(const Model& model, const Joints& corrected, double tool_length_mm, Joints d,
                 const CorrectionTarget& position, Joints& q, int& iterations, IdealPose& ideal) noexcept {
   const double f0 = fade_at(model, ideal);
   if (!(f0 > 0.0 && f0 < 1.0)) return false;  // not in the band: not this solve's case
-  Joints d = corrected - q_full;
   for (int round = 0; round < kBandRounds; ++round) {
     const Joints at = q;
     const Correction full = full_correction(model, q, tool_length_mm, Joints(q + d));
@@ -130,7 +130,7 @@ bool band_solve(const Model& model, const Joints& corrected, double tool_length_
 }  // namespace
 
 Uncorrection invert_correction(const Model& model, const Joints& corrected, double tool_length_mm, double gain,
-                               const Joints& nominal_seed) noexcept {
+                               const Joints& nominal_seed, const Joints* full_correction) noexcept {
   Uncorrection out;
   out.nominal = corrected;
   if (!corrected.allFinite() || !nominal_seed.allFinite() || !std::isfinite(gain) ||
@@ -167,6 +167,17 @@ Uncorrection invert_correction(const Model& model, const Joints& corrected, doub
   bool evaluated = true;  // `ideal` holds the pose at q
   const double seed_pole_angle = pole_angle_at(model, ideal.pose, ideal.d);
   const double seed_fade = fade_factor(model.fade, seed_pole_angle);
+  if (seed_fade > 0.0 && seed_fade < 1.0 && near && full_correction && full_correction->size() == corrected.size() &&
+      full_correction->allFinite() && full_correction->cwiseAbs().maxCoeff() <= kSeedRadius) {
+    // In the band with a full correction at hand (the servo thread's, of the last commands):
+    // straight to the band's solve from the seed, without the full solution's estimate of D.
+    if (band_solve(model, corrected, tool_length_mm, *full_correction, position, q, out.iterations, ideal)) {
+      out.nominal = q;
+      return out;
+    }
+    q = start;  // on as without it
+    ideal.pose = tool_pose(model, Machine::Ideal, q, tool_length_mm, ideal.d);
+  }
   if (seed_fade == 0.0) {  // at the pole: the rotary joints are not corrected
     set_rotary(model, corrected, q);
     const Status s = ideal_newton(model, position, tool_length_mm, q, out.iterations, ideal);
@@ -204,7 +215,8 @@ Uncorrection invert_correction(const Model& model, const Joints& corrected, doub
   for (int j = 0; j < model.joint_count(); ++j)
     if (model.axes[j].type == AxisType::Rotary) estimate[j] = corrected[j] - fade * (corrected[j] - q[j]);
   s = ideal_newton(model, position, tool_length_mm, estimate, out.iterations, ideal);
-  if (s == Status::Ok && band_solve(model, corrected, tool_length_mm, q, position, estimate, out.iterations, ideal)) {
+  if (s == Status::Ok &&
+      band_solve(model, corrected, tool_length_mm, Joints(corrected - q), position, estimate, out.iterations, ideal)) {
     out.nominal = estimate;
     return out;
   }

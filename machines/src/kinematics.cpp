@@ -85,7 +85,10 @@ Status joints_from_world(const Model& model, WorldConvention convention, const J
   const Joints seed = usable(applied.correction, nominal) ? Joints(nominal + *applied.correction)
                       : near(applied.seed, nominal)        ? *applied.seed
                                                            : nominal;
-  const Correction c = correct(model, nominal, tool_length_mm, seed, applied.contraction);
+  const bool full_seeded = usable(applied.full_correction, nominal);
+  const Joints full_seed = full_seeded ? Joints(nominal + *applied.full_correction) : Joints();
+  const Correction c =
+      correct(model, nominal, tool_length_mm, seed, applied.contraction, full_seeded ? &full_seed : nullptr);
   if (report) *report = c;
   if (c.status != Status::Ok) return c.status;
   joints = nominal + applied.gain * (c.joints - nominal);
@@ -104,7 +107,8 @@ Status world_from_joints(const Model& model, WorldConvention convention, const J
         near(&from_seed, joints))
       nominal_seed = from_seed;
   }
-  const Uncorrection u = invert_correction(model, joints, tool_length_mm, applied.gain, nominal_seed);
+  const Uncorrection u =
+      invert_correction(model, joints, tool_length_mm, applied.gain, nominal_seed, applied.full_correction);
   if (iterations) *iterations = u.iterations;
   if (u.status != Status::Ok) return u.status;
   world = nominal_forward(model, convention, u.nominal, tool_length_mm);

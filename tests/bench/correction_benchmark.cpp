@@ -32,6 +32,9 @@ struct ServoCycle {
   Joints feedback;                      // the joints the forward reads (empty: previous_joints)
   Joints feedback_correction;           // with feedback: the forward's seed, the same combination
                                         // of the corrections (volkins' way point)
+  // The same two combinations of the full corrections (no pole fade), where volkins keeps them
+  // (the contour; empty: none).
+  Joints extrapolated_full, feedback_full;
 };
 
 struct Fixture {
@@ -59,7 +62,7 @@ const Fixture& fixture(const std::string& name) {
     }
     f.poses.push_back(q);
     f.corrected.push_back(correct(f.model, q, f.model.tool_length_mm).joints);
-    ServoCycle c{q, q - step, q - 2 * step, {}, {}, {}, {}, {}};
+    ServoCycle c{q, q - step, q - 2 * step, {}, {}, {}, {}, {}, {}, {}};
     joints_from_world(f.model, WorldConvention::Axes, c.before, f.model.tool_length_mm, c.previous_joints);
     c.previous_correction = c.previous_joints - c.before;
     const auto correction_at = [&](const Joints& nominal) {
@@ -85,23 +88,34 @@ const Fixture& fixture(const std::string& name) {
 std::vector<ServoCycle> contour_cycles(const Model& model) {
   constexpr double kStepDeg = 4000.0 / 60.0 / 60.0 * 1e-3 / (3.14159265358979323846 / 180.0);
   const int n = static_cast<int>(360.0 / kStepDeg);
-  std::vector<Joints> points, corrections;
+  std::vector<Joints> points, corrections, full;  // full: none at the pole (empty)
   for (int i = 0; i < n; ++i) {
     const double theta = i * kStepDeg, rad = theta * 3.14159265358979323846 / 180.0;
     Joints p(5), joints;
     p << -360.0 + 60.0 * std::cos(rad), -160.0 + 60.0 * std::sin(rad), -200.0 - 40.0 * std::sin(rad / 2),
         -60.0 * std::sin(rad / 2), theta;
-    joints_from_world(model, WorldConvention::Axes, p, model.tool_length_mm, joints);
+    Correction report;
+    joints_from_world(model, WorldConvention::Axes, p, model.tool_length_mm, joints, &report);
     points.push_back(p);
     corrections.push_back(joints - p);
+    full.push_back(report.full_joints.size() ? Joints(report.full_joints - p)
+                   : report.fade == 1.0     ? Joints(joints - p)
+                                            : Joints());
   }
   std::vector<ServoCycle> cycles;
   const auto command = [&](int k) { return Joints(points[k] + corrections[k]); };
+  const auto kept = [&](int from, int to) {  // volkins keeps full corrections since the pole
+    for (int k = from; k <= to; ++k)
+      if (full[k].size() == 0) return false;
+    return true;
+  };
   for (int i = 4; i < n; ++i)
     cycles.push_back({points[i], points[i - 1], points[i - 2], command(i - 1), corrections[i - 1],
                       3 * (corrections[i - 1] - corrections[i - 2]) + corrections[i - 3],
                       (command(i - 4) + 4 * command(i - 3) + command(i - 2)) / 6.0,
-                      (corrections[i - 4] + 4 * corrections[i - 3] + corrections[i - 2]) / 6.0});
+                      (corrections[i - 4] + 4 * corrections[i - 3] + corrections[i - 2]) / 6.0,
+                      kept(i - 3, i - 1) ? Joints(3 * (full[i - 1] - full[i - 2]) + full[i - 3]) : Joints(),
+                      kept(i - 4, i - 2) ? Joints((full[i - 4] + 4 * full[i - 3] + full[i - 2]) / 6.0) : Joints()});
   return cycles;
 }
 
@@ -200,11 +214,13 @@ double servo_pair(const Fixture& f, const ServoCycle& c, bool correction_seeds, 
   const Joints* forward_seed =
       !correction_seeds ? nullptr : c.feedback.size() ? &c.feedback_correction : &c.previous_correction;
   const Joints* inverse_seed = correction_seeds ? &c.extrapolated_correction : nullptr;
+  const auto full = [correction_seeds](const Joints& kept) { return correction_seeds && kept.size() ? &kept : nullptr; };
   Joints world, joints;
   world_from_joints(f.model, WorldConvention::Axes, c.feedback.size() ? c.feedback : c.previous_joints, L,
-                    Applied{1.0, &c.before_before, forward_seed}, world);
+                    Applied{1.0, &c.before_before, forward_seed, nullptr, full(c.feedback_full)}, world);
   joints_from_world(f.model, WorldConvention::Axes, c.world, L,
-                    Applied{1.0, &c.previous_joints, inverse_seed, bound ? &f.bound : nullptr}, joints);
+                    Applied{1.0, &c.previous_joints, inverse_seed, bound ? &f.bound : nullptr, full(c.extrapolated_full)},
+                    joints);
   return world[0] + joints[0];
 }
 

@@ -3,7 +3,7 @@
 // and the fixed point `uncorrect`, which only ever evaluates whole corrections. To 1e-9 on every
 // shipped machine and the test machines (a rotary head; one rotary axis), with the seeds the
 // servo thread gives (the previous cycle's answer, q_c itself, a far one), through the MC-300's
-// pole fade band, and for a partial gain. Seeded; VC_RANDOM_POSES overrides the pose count.
+// pole fade band (also with the full corrections the servo thread keeps), and for a partial gain. Seeded; VC_RANDOM_POSES overrides the pose count.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -157,6 +157,68 @@ TEST_P(EveryMachine, NearSeedsEndOnAProvedStepWithTheSameAnswer) {
   }
   std::printf("%s: %d of %d poses at full correction ended on a proved step\n", GetParam().c_str(), proved, full);
   EXPECT_GT(proved, full / 2);
+}
+
+// In the pole fade band, with full corrections as the servo thread keeps them (full_joints of
+// the last commands, combined: ~1e-11 to 1e-6 off here), the inverse's full Newton and the
+// forward's band solve start next to their answers: the answers are the same (to 1e-9, against
+// q_n and the unseeded solves), with fewer Newton steps and corrections. A crude full correction
+// (1e-3 off) changes no answer either.
+TEST_P(EveryMachine, KeptFullCorrectionsStartTheFadeBandsSolvesNotTheirAnswers) {
+  if (model_.rotary_count() == 0) GTEST_SKIP() << "no rotary joints: no fade band";
+  std::mt19937_64 rng(26);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), exponent(-11.0, -6.0);
+  const double L = model_.tool_length_mm;
+  const auto off = [&](const Joints& q, double scale) {
+    Joints r = q;
+    for (int j = 0; j < r.size(); ++j) r[j] += scale * unit(rng);
+    return r;
+  };
+  int band = 0;
+  long forward_without = 0, forward_with = 0, inverse_without = 0, inverse_with = 0;
+  for (int tries = 0; band < 200 && tries < 100 * pose_count(); ++tries) {
+    const Joints nominal = random_pose(model_, rng);
+    const Correction c = correct(model_, nominal, L);
+    ASSERT_EQ(c.status, Status::Ok) << text(nominal);
+    if (!(c.fade > 0.0 && c.fade < 1.0)) continue;
+    ++band;
+    // full_joints is the full correction (its own solve, unseeded).
+    ASSERT_EQ(c.full_joints.size(), nominal.size()) << text(nominal);
+    ASSERT_LT(max_difference(c.full_joints, full_correction(model_, nominal, L, nominal).joints), 1e-9) << text(nominal);
+    const double scale = std::pow(10.0, exponent(rng));
+    const Joints full = off(Joints(c.full_joints - nominal), scale), crude = off(Joints(c.full_joints - nominal), 1e-3);
+    // The forward.
+    const Joints seed = off(nominal, scale);
+    const Uncorrection plain = invert_correction(model_, c.joints, L, 1.0, seed);
+    ASSERT_EQ(plain.status, Status::Ok) << text(nominal);
+    ASSERT_LT(max_difference(plain.nominal, nominal), 1e-9) << text(nominal);
+    forward_without += plain.iterations;
+    for (const Joints* d : {&full, &crude}) {
+      const Uncorrection u = invert_correction(model_, c.joints, L, 1.0, seed, d);
+      ASSERT_EQ(u.status, Status::Ok) << text(nominal);
+      ASSERT_LT(max_difference(u.nominal, nominal), 1e-9) << text(nominal) << ", D off by " << (d == &full ? scale : 1e-3);
+      ASSERT_LT(max_difference(u.nominal, plain.nominal), 1e-9) << text(nominal);
+      if (d == &full) forward_with += u.iterations;
+    }
+    // The inverse: started at the faded answer and the full one, each as far off.
+    const Joints faded_seed = off(c.joints, scale), full_seed = nominal + full;
+    const Correction bare = correct(model_, nominal, L, faded_seed, nullptr);
+    const Correction kept = correct(model_, nominal, L, faded_seed, nullptr, &full_seed);
+    ASSERT_EQ(bare.status, Status::Ok) << text(nominal);
+    ASSERT_EQ(kept.status, Status::Ok) << text(nominal);
+    ASSERT_LT(max_difference(bare.joints, c.joints), 1e-9) << text(nominal);
+    ASSERT_LT(max_difference(kept.joints, c.joints), 1e-9) << text(nominal);
+    ASSERT_LT(max_difference(kept.full_joints, c.full_joints), 1e-9) << text(nominal);
+    inverse_without += bare.iterations;
+    inverse_with += kept.iterations;
+  }
+  std::printf("%s: %d poses in the fade band; forward's steps and corrections %ld -> %ld, inverse's Newton steps "
+              "%ld -> %ld with the full corrections kept\n",
+              GetParam().c_str(), band, forward_without, forward_with, inverse_without, inverse_with);
+  if (band == 0) GTEST_SKIP() << "the tool never comes near a rotary axis line: no fade band";
+  EXPECT_GE(band, 50);
+  EXPECT_LT(forward_with, forward_without);
+  EXPECT_LT(inverse_with, inverse_without);
 }
 
 TEST_P(EveryMachine, RefusesWhatIsNotANumber) {

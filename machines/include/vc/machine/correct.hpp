@@ -27,6 +27,9 @@ struct Correction {
   bool unchecked_step = false;  // the last step taken on the contraction bound: the residuals are its bound
   double pole_angle_rad = 0.0;  // phi: ideal tool direction to the nearest rotary axis line
   double fade = 1.0;            // f in [0, 1]
+  // In the fade band (0 < f < 1): the full correction's joints (no fade), which correct() solved
+  // for on the way; else empty.
+  Joints full_joints;
 };
 
 Correction correct(const Model& model, const Joints& nominal, double tool_length_mm) noexcept;
@@ -34,10 +37,13 @@ Correction correct(const Model& model, const Joints& nominal, double tool_length
 Correction correct(const Model& model, const Joints& nominal, double tool_length_mm,
                    const Joints& seed) noexcept;
 // Same, a step taken unevaluated where `bound` (may be null) proves it within the tolerance:
-// at full correction (f = 1), a pole angle and tool length the bound covers.
+// at full correction (f = 1), a pole angle and tool length the bound covers. `full_seed` (may
+// be null): where the full correction's Newton starts (an estimate of full_joints; the servo
+// thread keeps them); `seed` is then the estimate of the faded answer (the fade band), where
+// the linear joints start. Any seeds give the same answer (to the tolerances).
 class ContractionBound;
 Correction correct(const Model& model, const Joints& nominal, double tool_length_mm, const Joints& seed,
-                   const ContractionBound* bound) noexcept;
+                   const ContractionBound* bound, const Joints* full_seed = nullptr) noexcept;
 
 // The full correction (position and tool direction, no pole fade) at `nominal`, seeded at
 // `seed`: what correct() fades near a pole (without rotary joints, correct() itself); `fade`

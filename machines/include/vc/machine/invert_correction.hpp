@@ -18,8 +18,10 @@
 // point's.
 // Where the full correction's Newton step is small enough, its result is proved instead of
 // evaluated (ideal_step_remainder below): in the servo thread, seeded with the correction at the
-// feedback, that is the rule.
-// Real-time: no allocation, no locks, no exceptions; bounded: at most 3 + 4 (1 + max_iterations)
+// feedback, that is the rule. In the band, given a full correction kept from the last commands
+// (the servo thread's), the band's rounds start from the seed and it: the two Newton solves of
+// the first estimate are skipped and the first D starts next to its answer.
+// Real-time: no allocation, no locks, no exceptions; bounded: at most 3 + 8 (1 + max_iterations)
 // Newton solves of max_iterations steps and one bounded `uncorrect`.
 #pragma once
 
@@ -50,8 +52,12 @@ StepRemainder ideal_step_remainder(const Model& model, const Joints& from, const
 // q_n with q_c = q_n + gain * (correct(q_n) - q_n), the answer of `uncorrect` (to the solver
 // tolerances), Newton started at `nominal_seed` (the previous answer), or at q_c where the seed
 // is farther than kSeedRadius (mm or deg, any joint) from it.
+// `full_correction` (optional): the full correction D (no fade, Correction::full_joints less
+// the nominal joints) of a pose near the answer. In the fade band, with a near seed, the band's
+// solve then starts from the seed and it instead of from the full solution's estimate: one
+// evaluation of D fewer as a rule. Any D gives the same answer (to the tolerances).
 // `iterations` counts the ideal machine's Newton steps plus the corrections evaluated.
 Uncorrection invert_correction(const Model& model, const Joints& corrected, double tool_length_mm, double gain,
-                               const Joints& nominal_seed) noexcept;
+                               const Joints& nominal_seed, const Joints* full_correction = nullptr) noexcept;
 
 }  // namespace vc::machine

@@ -43,6 +43,11 @@ struct Applied {
   // The inverse: where it proves a Newton step within the tolerance, the step is taken without
   // evaluating the real machine after it (contraction_bound.hpp), or none.
   const ContractionBound* contraction = nullptr;
+  // A full correction without the pole fade (Correction::full_joints less the nominal joints)
+  // of a pose nearby, or none: where the inverse's full Newton starts, and the forward's
+  // estimate of it in the fade band (invert_correction.hpp). Outside the band, the same as
+  // `correction`.
+  const Joints* full_correction = nullptr;
   static constexpr double kSeedRadius = machine::kSeedRadius;
 };
 // q = q_n + gain * (correct(q_n) - q_n).
