@@ -40,6 +40,14 @@ TEST_P(NoAllocation, RealTimeFunctionsNeverCallMalloc) {
     for (int j = 0; j < model.joint_count(); ++j)
       q[j] = std::uniform_real_distribution<double>(model.axes[j].travel_min, model.axes[j].travel_max)(rng);
     poses.push_back(q);
+    // The tilting axis (the first rotary one) at 6 deg: the pole fade band on the MC-300 and the
+    // AC trunnion, whose solves take other paths.
+    for (int j = 0; j < model.joint_count(); ++j)
+      if (model.axes[j].type == AxisType::Rotary) {
+        q[j] = 6.0;
+        poses.push_back(q);
+        break;
+      }
   }
   const double L = model.tool_length_mm;
   const ContractionBound bound(model, {0.0, 2.0 * L}, true);  // as volkins builds it at load
@@ -62,11 +70,19 @@ TEST_P(NoAllocation, RealTimeFunctionsNeverCallMalloc) {
       const Applied bounded{1.0, &joints, &correction, &bound};  // the unchecked step's path
       sink += static_cast<double>(joints_from_world(model, w, q, L, bounded, joints));
       sink += static_cast<double>(world_from_joints(model, w, joints, L, forward, world));
+      // With the full corrections volkins keeps (the fade band's seeds).
+      const Joints full = (c.full_joints.size() ? c.full_joints : c.joints) - q;
+      const Applied kept_inverse{1.0, &joints, &correction, &bound, &full}, kept_forward{1.0, &world, &correction, nullptr, &full};
+      sink += static_cast<double>(joints_from_world(model, w, q, L, kept_inverse, joints));
+      sink += static_cast<double>(world_from_joints(model, w, joints, L, kept_forward, world));
       sink += outside_tables(model, joints);
     }
   }
   counting = false;
   EXPECT_EQ(allocations.load(), 0) << "allocations in the real-time path";
+  int band = 0;
+  for (const Joints& q : poses) band += correct(model, q, L).full_joints.size() > 0;
+  if (GetParam() == "mc300") EXPECT_GT(band, 100) << "the fade band's paths were not taken";
   EXPECT_TRUE(std::isfinite(sink));
 }
 
