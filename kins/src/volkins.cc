@@ -249,11 +249,12 @@ int kinematicsInverse(const EmcPose* pose, double* joints, const KINEMATICS_INVE
   *hal->iterations = report.iterations;
   if (s != vm::Status::Ok) return refuse();
   if (applied.gain > 0.0) {
-    applied_corrections.keep(report.joints - report.nominal);
+    const Joints correction = report.joints - report.nominal;
+    applied_corrections.keep(correction);
     if (report.full_joints.size() > 0)
       full_corrections.keep(report.full_joints - report.nominal);
-    else if (report.fade == 1.0)
-      full_corrections.keep(report.joints - report.nominal);
+    else if (report.fade == 1.0)  // the full correction is the one applied
+      full_corrections.keep(correction);
     else
       full_corrections.forget();
   }

@@ -9,6 +9,11 @@
 
 namespace vc::machine {
 
+bool usable_correction(const Joints* correction, const Joints& point) noexcept {
+  return correction && correction->size() == point.size() && correction->allFinite() &&
+         correction->cwiseAbs().maxCoeff() <= kSeedRadius;
+}
+
 StepRemainder ideal_step_remainder(const Model& model, const Joints& from, const Joints& to,
                                    double tool_length_mm) noexcept {
   double reach = model.spindle.ideal.translation().norm() + std::abs(tool_length_mm);  // R
@@ -167,8 +172,7 @@ Uncorrection invert_correction(const Model& model, const Joints& corrected, doub
   bool evaluated = true;  // `ideal` holds the pose at q
   const double seed_pole_angle = pole_angle_at(model, ideal.pose, ideal.d);
   const double seed_fade = fade_factor(model.fade, seed_pole_angle);
-  if (seed_fade > 0.0 && seed_fade < 1.0 && near && full_correction && full_correction->size() == corrected.size() &&
-      full_correction->allFinite() && full_correction->cwiseAbs().maxCoeff() <= kSeedRadius) {
+  if (seed_fade > 0.0 && seed_fade < 1.0 && near && usable_correction(full_correction, corrected)) {
     // In the band with a full correction at hand (the servo thread's, of the last commands):
     // straight to the band's solve from the seed, without the full solution's estimate of D.
     if (band_solve(model, corrected, tool_length_mm, *full_correction, position, q, out.iterations, ideal)) {

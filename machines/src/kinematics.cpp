@@ -50,12 +50,6 @@ bool near(const Joints* seed, const Joints& point) {
          (*seed - point).cwiseAbs().maxCoeff() <= Applied::kSeedRadius;
 }
 
-// A full correction small enough to shift a seed by (the answer is within it).
-bool usable(const Joints* correction, const Joints& point) {
-  return correction && correction->size() == point.size() && correction->allFinite() &&
-         correction->cwiseAbs().maxCoeff() <= Applied::kSeedRadius;
-}
-
 }  // namespace
 
 Status joints_from_world(const Model& model, WorldConvention convention, const Joints& world,
@@ -82,10 +76,10 @@ Status joints_from_world(const Model& model, WorldConvention convention, const J
     }
     return Status::Ok;
   }
-  const Joints seed = usable(applied.correction, nominal) ? Joints(nominal + *applied.correction)
-                      : near(applied.seed, nominal)        ? *applied.seed
-                                                           : nominal;
-  const bool full_seeded = usable(applied.full_correction, nominal);
+  const Joints seed = usable_correction(applied.correction, nominal) ? Joints(nominal + *applied.correction)
+                      : near(applied.seed, nominal)                    ? *applied.seed
+                                                                       : nominal;
+  const bool full_seeded = usable_correction(applied.full_correction, nominal);
   const Joints full_seed = full_seeded ? Joints(nominal + *applied.full_correction) : Joints();
   const Correction c =
       correct(model, nominal, tool_length_mm, seed, applied.contraction, full_seeded ? &full_seed : nullptr);
@@ -99,7 +93,7 @@ Status world_from_joints(const Model& model, WorldConvention convention, const J
                          double tool_length_mm, const Applied& applied, Joints& world,
                          int* iterations) noexcept {
   Joints nominal_seed = joints;
-  if (usable(applied.correction, joints)) {
+  if (usable_correction(applied.correction, joints)) {
     nominal_seed = joints - applied.gain * *applied.correction;
   } else if (applied.seed) {
     Joints from_seed;

@@ -31,6 +31,10 @@ namespace vc::machine {
 
 inline constexpr double kSeedRadius = 1.0;
 
+// A correction (q_c - q_n) small enough to shift a seed by for joints like `point` (the answer
+// is within it): given, of their size, finite, within kSeedRadius (mm or deg, any joint).
+bool usable_correction(const Joints* correction, const Joints& point) noexcept;
+
 // What a Newton step of the ideal machine's equations (tip onto a point, direction onto a
 // direction) from `from` to `to` can leave of them. The step, with the exact Jacobian, cancels
 // the first order; what is left is at most half the largest second derivative along the
