@@ -95,17 +95,27 @@ void set_rotary(const Model& model, const Joints& from, Joints& q) noexcept {
 // caller kept). D is evaluated at q_n (seeded with q_n + d); with D fixed, the rotary joints
 // are set to q_c - f(q_n) D and the linear ones solve the position, until f (ideal machine only)
 // stops moving them. Near the pole D moves by up to ~1e-2 times q_n's change (its rotary part
-// grows as 1/sin phi), so D is evaluated again until q_n has settled within kBandSettledMm of
-// where D was: then D's own error is ~1e-11.
+// grows as 1/sin phi), so D is evaluated again where q_n has moved to: each such round moves
+// q_n by K times the last round's move, K the rounds' contraction (~1e-3), and leaves an
+// error of about K / (1 - K) times its own move. The solve ends where that error, K estimated
+// from the last two moves and taken kBandSafety times, is within kBandSettledMm (or the move
+// itself is): then D's own error is ~1e-11.
+// The position solves take their one step unevaluated: the ideal tip is affine in the linear
+// joints (ideal_step_remainder: no turn, no remainder), and f depends on the rotary joints
+// alone (the pole angle is the tool direction's against the rotary lines), so the pose before
+// the step still gives it.
 // False where a solve fails, the pose leaves the band or it does not settle in kBandRounds:
 // the caller polishes with whole corrections.
 constexpr double kBandSettledMm = 1e-10;  // mm or deg
+constexpr double kBandSafety = 10.0;
+constexpr double kBandContracting = 0.1;  // the largest K the error estimate is trusted for
 constexpr int kBandRounds = 4;
 
 bool band_solve(const Model& model, const Joints& corrected, double tool_length_mm, Joints d,
                 const CorrectionTarget& position, Joints& q, int& iterations, IdealPose& ideal) noexcept {
   const double f0 = fade_at(model, ideal);
   if (!(f0 > 0.0 && f0 < 1.0)) return false;  // not in the band: not this solve's case
+  double last_move = 0.0;
   for (int round = 0; round < kBandRounds; ++round) {
     const Joints at = q;
     const Correction full = full_correction(model, q, tool_length_mm, Joints(q + d));
@@ -123,11 +133,18 @@ bool band_solve(const Model& model, const Joints& corrected, double tool_length_
           moved = std::max(moved, std::abs(r - q[j]));
           q[j] = r;
         }
-      if (ideal_newton(model, position, tool_length_mm, q, iterations, ideal) != Status::Ok) return false;
+      bool unchecked = false;
+      if (ideal_newton(model, position, tool_length_mm, q, iterations, ideal, false, &unchecked) != Status::Ok)
+        return false;
       settled = moved <= model.solver.position_tolerance_mm;
     }
     if (!settled) return false;
-    if ((q - at).cwiseAbs().maxCoeff() <= kBandSettledMm) return true;
+    const double move = (q - at).cwiseAbs().maxCoeff();
+    if (move <= kBandSettledMm) return true;
+    const double contraction = round > 0 ? move / last_move : 1.0;
+    if (contraction <= kBandContracting && kBandSafety * contraction / (1.0 - contraction) * move <= kBandSettledMm)
+      return true;
+    last_move = move;
   }
   return false;
 }
