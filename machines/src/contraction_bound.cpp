@@ -24,7 +24,9 @@ constexpr int kBandSamples = 100, kMaxDraws = 6000;
 
 ContractionBound::ContractionBound(const Model& model, const std::vector<double>& tool_lengths_mm,
                                    bool over_temperatures)
-    : affine_(model.joint_count() == 3 && model.rotary_count() == 0), full_rad_(model.fade.full_rad) {
+    : affine_(model.joint_count() == 3 && model.rotary_count() == 0),
+      full_rad_(model.fade.full_rad),
+      position_kappa_(std::numeric_limits<double>::infinity()) {
   for (int j = 0; j < model.joint_count(); ++j)
     if (model.axes[static_cast<std::size_t>(j)].type == AxisType::Rotary) rotary_[static_cast<std::size_t>(rotary_count_++)] = j;
   kappa_.fill(std::numeric_limits<double>::infinity());
@@ -36,52 +38,70 @@ ContractionBound::ContractionBound(const Model& model, const std::vector<double>
   // The full correction's equations are square only with 3 + rotary joints (no bound else).
   if (tool_lengths_mm.empty() || model.joint_count() != 3 + model.rotary_count()) return;
   kappa_.fill(0.0);
+  double position = 0.0;
   for (double length : tool_lengths_mm) {
-    std::array<double, kBands> largest{};
-    std::array<int, kBands> count{};
-    sample(model, length, over_temperatures, largest, count);
+    const Largest largest = sample(model, length, over_temperatures);
     // Too few samples in all (the travel hardly reaches full correction): no bound.
-    const int taken = std::accumulate(count.begin(), count.end(), 0);
-    const double overall = taken >= kBandSamples ? *std::max_element(largest.begin(), largest.end())
+    const int taken = std::accumulate(largest.count.begin(), largest.count.end(), 0);
+    const double overall = taken >= kBandSamples ? *std::max_element(largest.band.begin(), largest.band.end())
                                                  : std::numeric_limits<double>::infinity();
     for (std::size_t band = 0; band < kBands; ++band)
-      kappa_[band] = std::max(kappa_[band], kMargin * (count[band] >= kBandSamples ? largest[band] : overall));
+      kappa_[band] = std::max(kappa_[band], kMargin * (largest.count[band] >= kBandSamples ? largest.band[band] : overall));
+    position = std::max(position, largest.position_count >= kBandSamples ? kMargin * largest.position
+                                                                         : std::numeric_limits<double>::infinity());
   }
+  if (rotary_count_ > 0) position_kappa_ = position;
   shortest_mm_ = *std::min_element(tool_lengths_mm.begin(), tool_lengths_mm.end());
   longest_mm_ = *std::max_element(tool_lengths_mm.begin(), tool_lengths_mm.end());
 }
 
-void ContractionBound::sample(const Model& model, double tool_length_mm, bool over_temperatures,
-                              std::array<double, kBands>& largest, std::array<int, kBands>& count) const {
+ContractionBound::Largest ContractionBound::sample(const Model& model, double tool_length_mm,
+                                                   bool over_temperatures) const {
+  Largest largest;
   const int n = model.joint_count();
-  std::array<int, kMaxAxes> all{};
+  std::array<int, kMaxAxes> all{}, linear{};
   std::iota(all.begin(), all.end(), 0);
+  for (int j = 0, c = 0; j < n; ++j)
+    if (model.axes[static_cast<std::size_t>(j)].type == AxisType::Linear) linear[static_cast<std::size_t>(c++)] = j;
   Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxAxes, 1> w = Eigen::VectorXd::Ones(n);
   w.tail(n - 3).setConstant(kDirectionLeverMm);
   Model varied = model;  // its temperatures drawn at each sample (over_temperatures)
   TravelSamples samples(model);
   const int bands = affine_ ? 1 : kBands;
+  const bool positions = rotary_count_ > 0;  // (on three linear axes they are the bands' equations)
   for (int draw = 0; draw < kMaxDraws; ++draw) {
-    if (*std::min_element(count.begin(), count.begin() + bands) >= kBandSamples) break;
+    const bool bands_full = *std::min_element(largest.count.begin(), largest.count.begin() + bands) >= kBandSamples;
+    const bool positions_full = !positions || largest.position_count >= kBandSamples;
+    if (bands_full && positions_full) break;
     const Joints q = samples.next();
     if (over_temperatures)
       for (TemperatureInput& t : varied.temperatures) t.value_degC = samples.uniform(t.min_degC, t.max_degC);
     PoseDerivatives d;
     const ToolPose ideal = tool_pose(varied, Machine::Ideal, q, tool_length_mm, d);
     const int band = band_at(ideal, d);
-    if (band < 0 || count[static_cast<std::size_t>(band)] >= kBandSamples) continue;
-    const CorrectionTarget equations = full_target(varied, ideal, d);
-    const SquareMatrix b = correction_jacobian(equations, d, all, n);
+    const bool band_wanted = band >= 0 && largest.count[static_cast<std::size_t>(band)] < kBandSamples;
+    if (!band_wanted && positions_full) continue;
     const Correction core = correct(varied, q, tool_length_mm);
     if (core.status != Status::Ok) continue;
     PoseDerivatives real;
     tool_pose(varied, Machine::Real, core.joints, tool_length_mm, real);
-    const SquareMatrix jacobian = correction_jacobian(equations, real, all, n);
-    const SquareMatrix contraction = (b - jacobian) * b.inverse();
-    double& l = largest[static_cast<std::size_t>(band)];
-    l = std::max(l, (w.asDiagonal() * contraction * w.cwiseInverse().asDiagonal()).norm());
-    ++count[static_cast<std::size_t>(band)];
+    if (band_wanted) {
+      const CorrectionTarget equations = full_target(varied, ideal, d);
+      const SquareMatrix b = correction_jacobian(equations, d, all, n);
+      const SquareMatrix contraction = (b - correction_jacobian(equations, real, all, n)) * b.inverse();
+      double& l = largest.band[static_cast<std::size_t>(band)];
+      l = std::max(l, (w.asDiagonal() * contraction * w.cwiseInverse().asDiagonal()).norm());
+      ++largest.count[static_cast<std::size_t>(band)];
+    }
+    if (!positions_full) {
+      const CorrectionTarget equations = position_target(ideal);
+      const SquareMatrix b = correction_jacobian(equations, d, linear, 3);
+      const SquareMatrix contraction = (b - correction_jacobian(equations, real, linear, 3)) * b.inverse();
+      largest.position = std::max(largest.position, contraction.norm());
+      ++largest.position_count;
+    }
   }
+  return largest;
 }
 
 int ContractionBound::band_of(double pole_angle_rad) const {

@@ -134,6 +134,13 @@ double kappa_for(const ContractionBound* bound, double tool_length_mm, const Cor
   return kappa < 1e-2 ? kappa : 0.0;
 }
 
+// The same for the position's solve alone (the rotary joints held where the fade is below 1).
+double position_kappa_for(const ContractionBound* bound, double tool_length_mm) noexcept {
+  if (!bound || !bound->covers(tool_length_mm)) return 0.0;
+  const double kappa = bound->position_kappa();
+  return kappa < 1e-2 ? kappa : 0.0;
+}
+
 Start start(const Model& model, const Joints& nominal, double tool_length_mm, const Joints& seed, Full full,
             const ContractionBound* bound = nullptr, const Joints* full_seed = nullptr) noexcept {
   Start s;
@@ -222,10 +229,15 @@ Correction correct(const Model& model, const Joints& nominal, double tool_length
         out.joints[j] = seed[j];
     }
   }
-  if (rotary == 0 || out.fade < 1.0)
+  const bool position_alone = rotary > 0 && out.fade < 1.0;
+  if (rotary == 0 || position_alone)
     out.status = newton(model, target, tool_length_mm, linear, d, out.joints, out.iterations, s.real,
-                        s.unchecked_bound, {0.0, rotary == 0 ? kappa_for(bound, tool_length_mm, out) : 0.0});
+                        s.unchecked_bound,
+                        {0.0, rotary == 0 ? kappa_for(bound, tool_length_mm, out) : position_kappa_for(bound, tool_length_mm)});
   set_residuals(out, s);
+  // An unchecked position step moved the linear joints alone: the tool direction is the real
+  // pose's before it (its change, through the tables' angular error slopes, is ~1e-14 rad).
+  if (position_alone && out.unchecked_step) out.residual_rad = ideal.direction.cross(s.real.direction).norm();
   return out;
 }
 

@@ -12,7 +12,11 @@
 // at the core's corrected joints there) and doubled for what the sampling may miss. B^-1
 // grows towards a kinematic pole, so kappa is kept per band of the pole angle (full
 // correction angle x [1, 1.5), [1.5, 2), [2, 3), [3, ...), 100 samples each; one band on
-// three linear axes). Below the full-correction angle (fade < 1) there is no bound.
+// three linear axes). Below the full-correction angle (fade < 1) there is no bound for them.
+// The position's equations alone (the linear joints, the rotary ones held: correct()'s last
+// solve where the fade is below 1) have their own kappa, (B - J) B^-1 of the position rows and
+// the linear joints, sampled over the travel with J at the core's corrected joints: it does not
+// grow towards the pole (only the linear axes' directions enter B).
 //
 // Sampled once, at load: at one tool length or the largest over several (volkins: the tool
 // changes while it runs; the bound then holds between the smallest and the largest), at the
@@ -37,6 +41,8 @@ class ContractionBound {
 
   // kappa in a band (band_of); infinity where the samples cannot bound it.
   double kappa(int band) const { return kappa_[static_cast<std::size_t>(band)]; }
+  // kappa of the position's equations alone (rotary joints held); infinity where not sampled.
+  double position_kappa() const { return position_kappa_; }
   // The band of a pole angle, -1 below full correction.
   int band_of(double pole_angle_rad) const;
   // The band of the pole angle at an ideal pose and its derivatives, without atan2 (the same
@@ -48,9 +54,15 @@ class ContractionBound {
   }
 
  private:
-  // The largest contraction per band at one tool length over the travel; counts the samples.
-  void sample(const Model& model, double tool_length_mm, bool over_temperatures,
-              std::array<double, kBands>& largest, std::array<int, kBands>& count) const;
+  // The largest contraction per band at one tool length over the travel, and the position's
+  // alone (machines with rotary joints); counts the samples.
+  struct Largest {
+    std::array<double, kBands> band{};
+    std::array<int, kBands> count{};
+    double position = 0.0;
+    int position_count = 0;
+  };
+  Largest sample(const Model& model, double tool_length_mm, bool over_temperatures) const;
 
   bool affine_;  // three linear axes: one band
   double full_rad_;
@@ -58,6 +70,7 @@ class ContractionBound {
   int rotary_count_ = 0;
   std::array<double, kBands> edge_cos_{}, edge_sin_{};  // of the bands' lower edges
   std::array<double, kBands> kappa_{};
+  double position_kappa_;
   double shortest_mm_ = 0.0, longest_mm_ = -1.0;
 };
 

@@ -24,7 +24,8 @@ struct Correction {
   int iterations = 0;         // Newton steps taken
   double residual_mm = 0.0;   // |pos P(q_c) - pos P'(q_n)|
   double residual_rad = 0.0;  // |k'(q_n) x k(q_c)|: tool direction error left (by design > 0 where f < 1)
-  bool unchecked_step = false;  // the last step taken on the contraction bound: the residuals are its bound
+  bool unchecked_step = false;  // the last step taken on the contraction bound: residual_mm is its bound
+                                // (and residual_rad at full correction)
   double pole_angle_rad = 0.0;  // phi: ideal tool direction to the nearest rotary axis line
   double fade = 1.0;            // f in [0, 1]
   // In the fade band (0 < f < 1): the full correction's joints (no fade), which correct() solved
@@ -37,7 +38,8 @@ Correction correct(const Model& model, const Joints& nominal, double tool_length
 Correction correct(const Model& model, const Joints& nominal, double tool_length_mm,
                    const Joints& seed) noexcept;
 // Same, a step taken unevaluated where `bound` (may be null) proves it within the tolerance:
-// at full correction (f = 1), a pole angle and tool length the bound covers. `full_seed` (may
+// at full correction (f = 1) and a pole angle the bound covers, or in the last solve where f < 1
+// (the position's, rotary joints held), at a tool length it covers. `full_seed` (may
 // be null): where the full correction's Newton starts (an estimate of full_joints; the servo
 // thread keeps them); `seed` is then the estimate of the faded answer (the fade band), where
 // the linear joints start. Any seeds give the same answer (to the tolerances).
