@@ -90,14 +90,32 @@ void set_rotary(const Model& model, const Joints& from, Joints& q) noexcept {
     if (model.axes[j].type == AxisType::Rotary) q[j] = from[j];
 }
 
+// A first estimate of the full correction D at q: one Newton step of its equations from q + d
+// with the ideal Jacobian at q (`ideal`: the ideal pose at q). It leaves ~1e-4 of d's error
+// (the error slopes). That is all a first round needs: D at an estimate of q_n is itself off by
+// ~1e-2 of the estimate's error, and the next round's D, solved to the tolerances where q_n
+// moved to, makes up for both.
+bool first_full_correction(const Model& model, const Joints& q, double tool_length_mm, const IdealPose& ideal,
+                           Joints& d, int& iterations) noexcept {
+  const CorrectionTarget target = full_target(model, ideal.pose, ideal.d);
+  IdealJacobianSolver solver(model, target.direction_equations);
+  if (!solver.applies() || !solver.factorize(target, ideal.d)) return false;
+  const ToolPose real = tool_pose(model, Machine::Real, Joints(q + d), tool_length_mm);
+  const Joints step = solver.solve(correction_residual(target, real, 3 + target.direction_equations));
+  if (!step.allFinite()) return false;
+  d -= step;
+  ++iterations;
+  return true;
+}
+
 // The fade band's answer from an estimate q_n (the ideal pose at it in `ideal`) and an estimate
 // d of the full correction D there (q_c - q_full from the full solution q_full, or one the
-// caller kept). D is evaluated at q_n (seeded with q_n + d); with D fixed, the rotary joints
+// caller kept). D is estimated at q_n (first_full_correction); with D fixed, the rotary joints
 // are set to q_c - f(q_n) D and the linear ones solve the position, until f (ideal machine only)
 // stops moving them. Near the pole D moves by up to ~1e-2 times q_n's change (its rotary part
-// grows as 1/sin phi), so D is evaluated again where q_n has moved to: each such round moves
-// q_n by K times the last round's move, K the rounds' contraction (~1e-3), and leaves an
-// error of about K / (1 - K) times its own move. The solve ends where that error, K estimated
+// grows as 1/sin phi), so D is solved again (full_correction, seeded with the last) where q_n
+// moved to: each such round moves q_n by K times the last round's move, K the rounds'
+// contraction (~1e-3), and leaves an error of about K / (1 - K) times its own move. The solve ends where that error, K estimated
 // from the last two moves and taken kBandSafety times, is within kBandSettledMm (or the move
 // itself is): then D's own error is ~1e-11.
 // The position solves take their one step unevaluated: the ideal tip is affine in the linear
@@ -118,10 +136,14 @@ bool band_solve(const Model& model, const Joints& corrected, double tool_length_
   double last_move = 0.0;
   for (int round = 0; round < kBandRounds; ++round) {
     const Joints at = q;
-    const Correction full = full_correction(model, q, tool_length_mm, Joints(q + d));
-    iterations += full.iterations + 1;
-    if (full.status != Status::Ok) return false;
-    d = full.joints - q;
+    if (round == 0) {
+      if (!first_full_correction(model, q, tool_length_mm, ideal, d, iterations)) return false;
+    } else {
+      const Correction full = full_correction(model, q, tool_length_mm, Joints(q + d));
+      iterations += full.iterations + 1;
+      if (full.status != Status::Ok) return false;
+      d = full.joints - q;
+    }
     bool settled = false;
     for (int pass = 0; pass < model.solver.max_iterations && !settled; ++pass) {
       const double f = fade_at(model, ideal);
