@@ -115,9 +115,9 @@ bool first_full_correction(const Model& model, const Joints& q, double tool_leng
 // stops moving them. Near the pole D moves by up to ~1e-2 times q_n's change (its rotary part
 // grows as 1/sin phi), so D is solved again (full_correction, seeded with the last) where q_n
 // moved to: each such round moves q_n by K times the last round's move, K the rounds'
-// contraction (~1e-3), and leaves an error of about K / (1 - K) times its own move. The solve ends where that error, K estimated
-// from the last two moves and taken kBandSafety times, is within kBandSettledMm (or the move
-// itself is): then D's own error is ~1e-11.
+// contraction (~1e-3), and leaves an error of about K / (1 - K) times its own move. The solve
+// ends where that error, K estimated from the last two moves and taken kBandSafety times, is
+// within kBandSettledMm (or the move itself is): then D's own error is ~1e-11.
 // The position solves take their one step unevaluated: the ideal tip is affine in the linear
 // joints (ideal_step_remainder: no turn, no remainder), and f depends on the rotary joints
 // alone (the pole angle is the tool direction's against the rotary lines), so the pose before

@@ -12,10 +12,21 @@
 # the medians of the same module by 2x between runs, while the low percentiles stay with the
 # computation. And each round's own ratio of the medians, with the median over the rounds.
 #
-#   tests/bench/servo_cost.sh [ROUNDS] [PROGRAM]     (default 3 rounds, the 5-axis contour)
+# With --servo-cpu N the servo thread runs alone on CPU N (RTAPI_CPU_NUMBER; the rest of
+# LinuxCNC on the other CPUs) and a busy loop at nice 19 keeps CPU N from halting between two
+# cycles: what isolcpus=N idle=poll does on a real-time machine (LinuxCNC's latency advice).
+# On a VM a halted virtual CPU is given to other guests, and the servo thread then finds its
+# code and data evicted at every cycle: the host's noise, not the kinematics' cost.
+#
+#   tests/bench/servo_cost.sh [--servo-cpu N] [ROUNDS] [PROGRAM]   (default 3 rounds, the 5-axis contour)
 # Needs the module installed (cmake --install build --component volkins) and no other session.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+servo_cpu=
+if [ "${1:-}" = --servo-cpu ]; then
+  servo_cpu=$2
+  shift 2
+fi
 rounds=${1:-3}
 program=${2:-kins/configs/mc300/nc/contour_5axis.ngc}
 ini=kins/configs/mc300/mc300.ini
@@ -25,6 +36,19 @@ chmod 755 "$runs"
 python3 tests/bench/xyzbc_trt_program.py "$program" "$runs/program_trt.ngc" \
   --rot-point -300 -150 -230 --offset 0 0 --tool-offset 100
 chmod 644 "$runs/program_trt.ngc"
+pin=()
+if [ -n "$servo_cpu" ]; then
+  others=$(python3 -c "import os; print(','.join(str(c) for c in sorted(os.sched_getaffinity(0)) if c != $servo_cpu))")
+  [ -n "$others" ] || { echo "error: --servo-cpu $servo_cpu leaves no other CPU for the rest of LinuxCNC" >&2; exit 2; }
+  printf 'int main(void) { for (;;) __asm__ volatile(""); }\n' > "$runs/busy.c"
+  cc -O1 "$runs/busy.c" -o "$runs/busy"
+  taskset -c "$servo_cpu" nice -n 19 "$runs/busy" &
+  busy=$!
+  trap 'kill $busy 2>/dev/null || true' EXIT
+  export RTAPI_CPU_NUMBER=$servo_cpu
+  pin=(taskset -c "$others")
+  echo "servo thread alone on CPU $servo_cpu, kept awake; the rest of LinuxCNC on CPU $others"
+fi
 ticks() {  # the controller_time column of a trace
   awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "controller_time") c = i; next } { print $c }' "$1"
 }
@@ -37,13 +61,13 @@ for r in $(seq "$rounds"); do
   for kins in "${kinematics[@]}"; do
     case "$kins" in
       trivkins)
-        kins/configs/run_headless.sh "$ini" "$runs/$kins-$r" --program "$program" --without-volkins \
+        "${pin[@]}" kins/configs/run_headless.sh "$ini" "$runs/$kins-$r" --program "$program" --without-volkins \
           --kinematics "trivkins coordinates=xyzbc kinstype=B" >/dev/null ;;
       xyzbc-trt-kins)
-        kins/configs/run_headless.sh "$ini" "$runs/$kins-$r" --program "$runs/program_trt.ngc" --without-volkins \
+        "${pin[@]}" kins/configs/run_headless.sh "$ini" "$runs/$kins-$r" --program "$runs/program_trt.ngc" --without-volkins \
           --kinematics "xyzbc-trt-kins coordinates=xyzbc" --halfile kins/configs/mc300/xyzbc_trt.hal >/dev/null ;;
       volkins)
-        kins/configs/run_headless.sh "$ini" "$runs/$kins-$r" --program "$program" --compensation on >/dev/null ;;
+        "${pin[@]}" kins/configs/run_headless.sh "$ini" "$runs/$kins-$r" --program "$program" --compensation on >/dev/null ;;
     esac
     ticks "$runs/$kins-$r/kins/configs/mc300/trace.csv" > "$runs/$kins-$r.ticks"
     read -r median p99 worst p10 <<< "$(stats "$runs/$kins-$r.ticks")"

@@ -11,11 +11,11 @@
 // the linear joints solve the position alone. The side is judged at the seed and confirmed at
 // the solution (the fade at q_n is what correct() uses). In the band between (0 < f < 1) the
 // rotary joints took f of a full correction D found by another solve: the two Newton solves above
-// give q_n to ~1e-7, then D is evaluated at q_n (one real Newton, from a start within ~1e-7) and
-// q_n's rotary joints are q_c's less f(q_n) D, its linear ones from the position (ideal machine),
-// with D evaluated again where q_n moved to until the rounds' contraction shows q_n's error
-// within 1e-10 (two rounds as a rule). Where that fails, `uncorrect`
-// polishes the estimate (two corrections or more). A partial gain (the enable ramp) is the fixed
+// give q_n to ~1e-7, then D is estimated at q_n (one Newton step on the real machine) and q_n's
+// rotary joints are q_c's less f(q_n) D, its linear ones from the position (ideal machine), with
+// D solved again where q_n moved to until the rounds' contraction shows q_n's error within 1e-10
+// (two rounds as a rule). Where that fails, `uncorrect` polishes the estimate (two corrections
+// or more). A partial gain (the enable ramp) is the fixed
 // point's.
 // Where the full correction's Newton step is small enough, its result is proved instead of
 // evaluated (ideal_step_remainder below): in the servo thread, seeded with the correction at the
