@@ -121,7 +121,7 @@ bool first_full_correction(const Model& model, const Joints& q, double tool_leng
 // The position solves take their one step unevaluated: the ideal tip is affine in the linear
 // joints (ideal_step_remainder: no turn, no remainder), and f depends on the rotary joints
 // alone (the pole angle is the tool direction's against the rotary lines), so the pose before
-// the step still gives it.
+// the step still gives it (`ideal` returns it: its tip is not the answer's).
 // False where a solve fails, the pose leaves the band or it does not settle in kBandRounds:
 // the caller polishes with whole corrections.
 constexpr double kBandSettledMm = 1e-10;  // mm or deg
