@@ -124,21 +124,21 @@ struct Start {
   bool ok = false;
 };
 
+// A sampled kappa a solve may stop on where it describes the steps at all (a step gains two
+// digits or more); 0 (every step evaluated) else.
+double stopping_kappa(double kappa) noexcept { return kappa < 1e-2 ? kappa : 0.0; }
+
 // The contraction a solve at full correction may stop on (0: every step evaluated): the bound's
-// for the pole angle's band, where it covers the tool length and describes the steps at all.
+// for the pole angle's band, where it covers the tool length.
 double kappa_for(const ContractionBound* bound, double tool_length_mm, const Correction& c) noexcept {
   if (!bound || !bound->covers(tool_length_mm) || c.fade < 1.0) return 0.0;
   const int band = bound->band_of(c.pole_angle_rad);
-  if (band < 0) return 0.0;
-  const double kappa = bound->kappa(band);
-  return kappa < 1e-2 ? kappa : 0.0;
+  return band < 0 ? 0.0 : stopping_kappa(bound->kappa(band));
 }
 
 // The same for the position's solve alone (the rotary joints held where the fade is below 1).
 double position_kappa_for(const ContractionBound* bound, double tool_length_mm) noexcept {
-  if (!bound || !bound->covers(tool_length_mm)) return 0.0;
-  const double kappa = bound->position_kappa();
-  return kappa < 1e-2 ? kappa : 0.0;
+  return bound && bound->covers(tool_length_mm) ? stopping_kappa(bound->position_kappa()) : 0.0;
 }
 
 Start start(const Model& model, const Joints& nominal, double tool_length_mm, const Joints& seed, Full full,
@@ -179,15 +179,16 @@ Start start(const Model& model, const Joints& nominal, double tool_length_mm, co
   return s;
 }
 
-void set_residuals(Correction& out, const Start& s) noexcept {
+// The residuals left at the answer. After an unchecked step (not evaluated) the position's is
+// its bound (|W F| <= bound), and so is the direction's where that step solved it; after the
+// position's solve alone (`position_alone`: fade < 1, the linear joints moved, the rotary ones
+// held) the direction is the real pose's before the step (its change, through the tables'
+// angular error slopes, is ~1e-14 rad).
+void set_residuals(Correction& out, const Start& s, bool position_alone = false) noexcept {
   out.unchecked_step = s.unchecked_bound >= 0.0;
-  if (out.unchecked_step) {  // not evaluated: the bound (|W F| <= bound)
-    out.residual_mm = s.unchecked_bound;
-    out.residual_rad = s.unchecked_bound / kDirectionLeverMm;
-    return;
-  }
-  out.residual_mm = (s.real.tip_mm - s.ideal.tip_mm).norm();
-  out.residual_rad = s.ideal.direction.cross(s.real.direction).norm();
+  out.residual_mm = out.unchecked_step ? s.unchecked_bound : (s.real.tip_mm - s.ideal.tip_mm).norm();
+  out.residual_rad = out.unchecked_step && !position_alone ? s.unchecked_bound / kDirectionLeverMm
+                                                          : s.ideal.direction.cross(s.real.direction).norm();
 }
 
 }  // namespace
@@ -234,10 +235,7 @@ Correction correct(const Model& model, const Joints& nominal, double tool_length
     out.status = newton(model, target, tool_length_mm, linear, d, out.joints, out.iterations, s.real,
                         s.unchecked_bound,
                         {0.0, rotary == 0 ? kappa_for(bound, tool_length_mm, out) : position_kappa_for(bound, tool_length_mm)});
-  set_residuals(out, s);
-  // An unchecked position step moved the linear joints alone: the tool direction is the real
-  // pose's before it (its change, through the tables' angular error slopes, is ~1e-14 rad).
-  if (position_alone && out.unchecked_step) out.residual_rad = ideal.direction.cross(s.real.direction).norm();
+  set_residuals(out, s, position_alone);
   return out;
 }
 

@@ -15,8 +15,7 @@
 // rotary joints are q_c's less f(q_n) D, its linear ones from the position (ideal machine), with
 // D solved again where q_n moved to until the rounds' contraction shows q_n's error within 1e-10
 // (two rounds as a rule). Where that fails, `uncorrect` polishes the estimate (two corrections
-// or more). A partial gain (the enable ramp) is the fixed
-// point's.
+// or more). A partial gain (the enable ramp) is the fixed point's.
 // Where the full correction's Newton step is small enough, its result is proved instead of
 // evaluated (ideal_step_remainder below): in the servo thread, seeded with the correction at the
 // feedback, that is the rule. In the band, given a full correction kept from the last commands
