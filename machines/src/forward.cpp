@@ -26,10 +26,10 @@ struct ChainMotion {
 };
 
 // Rot(u, angle), Rodrigues' formula (u unit): I + s K + (1 - c) K^2, K = [u]x, with
-// K^2 = u u^T - I written out (no matrix product).
-Matrix3d rotation_about(const Vector3d& u, double angle) {
+// K^2 = u u^T - I written out (no matrix product). The angle in deg: a rotary joint's position.
+Matrix3d rotation_about(const Vector3d& u, double angle_deg) {
   double s, c;
-  sin_cos(angle, s, c);
+  sin_cos_deg(angle_deg, s, c);
   const double v = 1.0 - c;
   const double x = u.x(), y = u.y(), z = u.z();
   Matrix3d r;
@@ -71,7 +71,7 @@ Frame walk_ideal_chain(const Model& model, const std::vector<int>& chain, const 
     if (axis.type == AxisType::Linear) {
       parent.origin += parent.rotation * (q[i] * axis.direction);
     } else {
-      const Matrix3d turned = parent.rotation * rotation_about(axis.direction, q[i] * tables::kDegToRad);
+      const Matrix3d turned = parent.rotation * rotation_about(axis.direction, q[i]);
       copy_by_columns(turned, parent.rotation);
     }
   }
@@ -95,7 +95,7 @@ Frame walk_real_chain(const Model& model, const std::vector<int>& chain, const J
     const bool linear = axis.type == AxisType::Linear;
     const Vector3d motion_origin = linear ? Vector3d(q[i] * axis.direction + delta) : delta;
     const Matrix3d motion_rotation =
-        linear ? r_eps : Matrix3d(r_eps * rotation_about(axis.direction, q[i] * tables::kDegToRad));
+        linear ? r_eps : Matrix3d(r_eps * rotation_about(axis.direction, q[i]));
     // Frame after `base` (the fixed placement of the axis line), then the child frame.
     const Frame base = parent.then(axis.real_base);
     const Vector3d child_origin = base.origin + base.rotation * motion_origin;
@@ -177,7 +177,7 @@ class CarriedPose {
       turns = true;
     }
     if (axis.type == AxisType::Rotary) {
-      const Matrix3d turn = rotation_about(axis.direction, q[i] * tables::kDegToRad);
+      const Matrix3d turn = rotation_about(axis.direction, q[i]);
       if (turns)
         motion_rotation = motion_rotation * turn;
       else
@@ -250,7 +250,7 @@ class CarriedIdealRates {
       v_.col(kTip) += q * axis.direction;
       tip_rate_[i] = add(axis.direction);
     } else {
-      turn(rotation_about(axis.direction, q * tables::kDegToRad));
+      turn(rotation_about(axis.direction, q));
       add_rotary_rates(axis, i, 1.0);
     }
     v_.col(kTip) += axis.pole_mm;
@@ -263,7 +263,7 @@ class CarriedIdealRates {
       v_.col(kTip) -= q * axis.direction;
       tip_rate_[i] = add(-axis.direction);
     } else {
-      turn(rotation_about(axis.direction, q * tables::kDegToRad).transpose());
+      turn(rotation_about(axis.direction, q).transpose());
       add_rotary_rates(axis, i, -1.0);
     }
   }

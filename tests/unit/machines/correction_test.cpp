@@ -299,18 +299,6 @@ TEST_P(EveryMachine, ChainEqualsNaiveMatrixProduct) {
   }
 }
 
-// The small-angle sin and cos of the chain walk against the library's, to an ulp.
-TEST(SinCos, WithinAnUlpOfTheLibrary) {
-  std::mt19937_64 rng(9);
-  for (int k = 0; k < 100000; ++k) {
-    const double x = std::uniform_real_distribution<double>(-1.2e-3, 1.2e-3)(rng);
-    double s, c;
-    sin_cos(x, s, c);
-    ASSERT_LE(std::abs(s - std::sin(x)), std::abs(std::nextafter(std::sin(x), 1.0) - std::sin(x))) << x;
-    ASSERT_LE(std::abs(c - std::cos(x)), std::abs(std::nextafter(std::cos(x), 0.0) - std::cos(x))) << x;
-  }
-}
-
 INSTANTIATE_TEST_SUITE_P(Shipped, EveryMachine, ::testing::ValuesIn(test::shipped_machines()),
                          [](const auto& param_info) { return param_info.param; });
 INSTANTIATE_TEST_SUITE_P(TestsOnly, EveryMachine, ::testing::ValuesIn(kTestMachines),

@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "vc/machine/trigonometry.hpp"
 #include "vc/tables/error_table.hpp"
 
 namespace vc::machine {
@@ -161,55 +162,5 @@ bool outside_tables(const Model& model, const Joints& q) noexcept;
 // T(origin + location_mm) * R(location_rad): the real placement of an axis or spindle line.
 Eigen::Isometry3d line_placement(const Eigen::Vector3d& origin_mm, const Eigen::Vector3d& location_mm,
                                  const Eigen::Vector3d& location_rad);
-
-// sin and cos of x; within an ulp of std::sin / std::cos, fast for the small angles of
-// error tables.
-inline void sin_cos(double x, double& s, double& c) noexcept {
-  if (std::abs(x) < 1e-3) {
-    // Taylor series; the first omitted terms (x^7 / 5040, x^8 / 40320) are below half an ulp
-    // of the result for |x| < 1e-3 rad (206 arcsec). Multiplying by the rounded reciprocals
-    // (not dividing: a division is several times slower, and this runs three times per axis
-    // per chain walk) moves the small terms by ~1e-16 of themselves, far below an ulp of 1.
-    constexpr double k6 = 1.0 / 6.0, k12 = 1.0 / 12.0, k20 = 1.0 / 20.0, k30 = 1.0 / 30.0;
-    const double x2 = x * x;
-    s = x * (1.0 - x2 * k6 * (1.0 - x2 * k20));
-    c = 1.0 - x2 * 0.5 * (1.0 - x2 * k12 * (1.0 - x2 * k30));
-    return;
-  }
-  s = std::sin(x);
-  c = std::cos(x);
-}
-
-// R(a, b, c) = Rx(a) * Ry(b) * Rz(c) (model.md), exact trigonometry, from the sines and
-// cosines of a, b, c.
-inline void rotation_xyz(double sa, double ca, double sb, double cb, double sc, double cc, Eigen::Matrix3d& r) noexcept {
-  r << cb * cc, -cb * sc, sb,
-       ca * sc + sa * sb * cc, ca * cc - sa * sb * sc, -sa * cb,
-       sa * sc - ca * sb * cc, sa * cc + ca * sb * sc, ca * cb;
-}
-
-// R(a, b, c).
-inline Eigen::Matrix3d rotation_xyz(const Eigen::Vector3d& abc) noexcept {
-  double sa, ca, sb, cb, sc, cc;
-  sin_cos(abc[0], sa, ca);
-  sin_cos(abc[1], sb, cb);
-  sin_cos(abc[2], sc, cc);
-  Eigen::Matrix3d r;
-  rotation_xyz(sa, ca, sb, cb, sc, cc, r);
-  return r;
-}
-
-// R(a, b, c) and its angular velocity per unit change of (a, b, c), as matrix columns:
-// omega = a' e_x + b' Rx(a) e_y + c' Rx(a) Ry(b) e_z.
-inline void rotation_xyz(const Eigen::Vector3d& abc, Eigen::Matrix3d& r, Eigen::Matrix3d& rate) noexcept {
-  double sa, ca, sb, cb, sc, cc;
-  sin_cos(abc[0], sa, ca);
-  sin_cos(abc[1], sb, cb);
-  sin_cos(abc[2], sc, cc);
-  rotation_xyz(sa, ca, sb, cb, sc, cc, r);
-  rate << 1.0, 0.0, sb,
-          0.0, ca, -sa * cb,
-          0.0, sa, ca * cb;
-}
 
 }  // namespace vc::machine
