@@ -40,7 +40,7 @@ bool outside_tables(const Model& model, const Joints& q) noexcept {
     for (std::size_t v = 0; v < grid.size(); ++v) {
       if (grid[v].periodic || bound.joint[v] < 0) continue;  // (temperatures: their range is checked where set)
       const double x = q[bound.joint[v]];
-      if (x < grid[v].nodes.front() || x > grid[v].nodes.back()) return true;
+      if (x < grid[v].first || x > grid[v].last) return true;  // (not the nodes: another cache line)
     }
   }
   return false;
