@@ -26,7 +26,9 @@ ContractionBound::ContractionBound(const Model& model, const std::vector<double>
                                    bool over_temperatures)
     : affine_(model.joint_count() == 3 && model.rotary_count() == 0),
       full_rad_(model.fade.full_rad),
-      position_kappa_(std::numeric_limits<double>::infinity()) {
+      fade_start_rad_(model.fade.start_rad),
+      position_kappa_(std::numeric_limits<double>::infinity()),
+      fade_band_kappa_sin_(std::numeric_limits<double>::infinity()) {
   for (int j = 0; j < model.joint_count(); ++j)
     if (model.axes[static_cast<std::size_t>(j)].type == AxisType::Rotary) rotary_[static_cast<std::size_t>(rotary_count_++)] = j;
   kappa_.fill(std::numeric_limits<double>::infinity());
@@ -38,7 +40,7 @@ ContractionBound::ContractionBound(const Model& model, const std::vector<double>
   // The full correction's equations are square only with 3 + rotary joints (no bound else).
   if (tool_lengths_mm.empty() || model.joint_count() != 3 + model.rotary_count()) return;
   kappa_.fill(0.0);
-  double position = 0.0;
+  double position = 0.0, fade_band = 0.0;
   for (double length : tool_lengths_mm) {
     const Largest largest = sample(model, length, over_temperatures);
     // Too few samples in all (the travel hardly reaches full correction): no bound.
@@ -49,8 +51,13 @@ ContractionBound::ContractionBound(const Model& model, const std::vector<double>
       kappa_[band] = std::max(kappa_[band], kMargin * (largest.count[band] >= kBandSamples ? largest.band[band] : overall));
     position = std::max(position, largest.position_count >= kBandSamples ? kMargin * largest.position
                                                                          : std::numeric_limits<double>::infinity());
+    fade_band = std::max(fade_band, largest.fade_band_count >= kBandSamples ? kMargin * largest.fade_band
+                                                                            : std::numeric_limits<double>::infinity());
   }
-  if (rotary_count_ > 0) position_kappa_ = position;
+  if (rotary_count_ > 0) {
+    position_kappa_ = position;
+    fade_band_kappa_sin_ = fade_band;
+  }
   shortest_mm_ = *std::min_element(tool_lengths_mm.begin(), tool_lengths_mm.end());
   longest_mm_ = *std::max_element(tool_lengths_mm.begin(), tool_lengths_mm.end());
 }
@@ -72,7 +79,8 @@ ContractionBound::Largest ContractionBound::sample(const Model& model, double to
   for (int draw = 0; draw < kMaxDraws; ++draw) {
     const bool bands_full = *std::min_element(largest.count.begin(), largest.count.begin() + bands) >= kBandSamples;
     const bool positions_full = !positions || largest.position_count >= kBandSamples;
-    if (bands_full && positions_full) break;
+    const bool fade_band_full = !positions || largest.fade_band_count >= kBandSamples;
+    if (bands_full && positions_full && fade_band_full) break;
     const Joints q = samples.next();
     if (over_temperatures)
       for (TemperatureInput& t : varied.temperatures) t.value_degC = samples.uniform(t.min_degC, t.max_degC);
@@ -80,18 +88,30 @@ ContractionBound::Largest ContractionBound::sample(const Model& model, double to
     const ToolPose ideal = tool_pose(varied, Machine::Ideal, q, tool_length_mm, d);
     const int band = band_at(ideal, d);
     const bool band_wanted = band >= 0 && largest.count[static_cast<std::size_t>(band)] < kBandSamples;
-    if (!band_wanted && positions_full) continue;
+    const double phi = band < 0 && !fade_band_full ? pole_angle_at(varied, ideal, d) : 0.0;
+    const bool fade_band_wanted = band < 0 && !fade_band_full && phi >= fade_start_rad_;
+    if (!band_wanted && !fade_band_wanted && positions_full) continue;
     const Correction core = correct(varied, q, tool_length_mm);
     if (core.status != Status::Ok) continue;
     PoseDerivatives real;
     tool_pose(varied, Machine::Real, core.joints, tool_length_mm, real);
-    if (band_wanted) {
+    // |W (B - J_real) B^-1 W^-1| of the full correction's equations, J_real at `joints`.
+    auto full_contraction = [&](const PoseDerivatives& at_joints) {
       const CorrectionTarget equations = full_target(varied, ideal, d);
       const SquareMatrix b = correction_jacobian(equations, d, all, n);
-      const SquareMatrix contraction = (b - correction_jacobian(equations, real, all, n)) * b.inverse();
+      const SquareMatrix contraction = (b - correction_jacobian(equations, at_joints, all, n)) * b.inverse();
+      return (w.asDiagonal() * contraction * w.cwiseInverse().asDiagonal()).norm();
+    };
+    if (band_wanted) {
       double& l = largest.band[static_cast<std::size_t>(band)];
-      l = std::max(l, (w.asDiagonal() * contraction * w.cwiseInverse().asDiagonal()).norm());
+      l = std::max(l, full_contraction(real));
       ++largest.count[static_cast<std::size_t>(band)];
+    }
+    if (fade_band_wanted && core.full_joints.size() > 0) {  // (at phi = start exactly the fade is 0: none)
+      PoseDerivatives real_full;  // where the full correction's Newton ends
+      tool_pose(varied, Machine::Real, core.full_joints, tool_length_mm, real_full);
+      largest.fade_band = std::max(largest.fade_band, full_contraction(real_full) * std::sin(phi));
+      ++largest.fade_band_count;
     }
     if (!positions_full) {
       const CorrectionTarget equations = position_target(ideal);
@@ -102,6 +122,11 @@ ContractionBound::Largest ContractionBound::sample(const Model& model, double to
     }
   }
   return largest;
+}
+
+double ContractionBound::fade_band_kappa(double pole_angle_rad) const {
+  if (!(pole_angle_rad >= fade_start_rad_)) return std::numeric_limits<double>::infinity();
+  return fade_band_kappa_sin_ / std::sin(pole_angle_rad);
 }
 
 int ContractionBound::band_of(double pole_angle_rad) const {

@@ -125,16 +125,16 @@ struct Start {
   bool ok = false;
 };
 
-// A sampled kappa a solve may stop on where it describes the steps at all (a step gains two
-// digits or more); 0 (every step evaluated) else.
-double stopping_kappa(double kappa) noexcept { return kappa < 1e-2 ? kappa : 0.0; }
+// A sampled kappa a solve may stop on where it describes the steps at all (a step gains a digit
+// or more: 0.001-0.004 at full correction on the shipped machines, 0.03-0.05 at the fade band's
+// start); 0 (every step evaluated) else.
+double stopping_kappa(double kappa) noexcept { return kappa < 0.1 ? kappa : 0.0; }
 
-// The contraction a solve at full correction may stop on (0: every step evaluated): the bound's
-// for the pole angle's band, where it covers the tool length.
+// The contraction the full correction's solve may stop on (0: every step evaluated): the bound's
+// at the pole angle (its band's, or the fade band's), where it covers the tool length.
 double kappa_for(const ContractionBound* bound, double tool_length_mm, const Correction& c) noexcept {
-  if (!bound || !bound->covers(tool_length_mm) || c.fade < 1.0) return 0.0;
-  const int band = bound->band_of(c.pole_angle_rad);
-  return band < 0 ? 0.0 : stopping_kappa(bound->kappa(band));
+  if (!bound || !bound->covers(tool_length_mm)) return 0.0;
+  return stopping_kappa(bound->full_kappa(c.pole_angle_rad));
 }
 
 // The same for the position's solve alone (the rotary joints held where the fade is below 1).
@@ -220,7 +220,10 @@ Correction correct(const Model& model, const Joints& nominal, double tool_length
   const FreeJoints& linear = s.linear;
   CorrectionTarget target = position_target(ideal);
   if (rotary > 0 && out.fade < 1.0) {
-    if (out.fade > 0.0) out.full_joints = out.joints;
+    if (out.fade > 0.0) {
+      out.full_joints = out.joints;
+      out.full_unchecked_step = s.unchecked_bound >= 0.0;
+    }
     // Rotary joints take f of their full correction; linear joints make the position exact,
     // from the seed's where the full correction had its own seed (the seed is then the faded
     // answer's estimate, the full solution's linear joints are not).

@@ -1,8 +1,8 @@
 // correct() with a contraction bound (the servo thread's inverse): where it takes a Newton step
-// without evaluating the real machine after it (at full correction, or the position's last step
-// where the pole fade is below 1), the residual it leaves, computed afterwards on another code
-// path (the 4x4 chain, part_T_tool), is within the bound it reports and the solver's
-// tolerance, and the joints are the core's. On every shipped machine, the test
+// without evaluating the real machine after it (at full correction, the fade band's full
+// correction, or the position's last step where the pole fade is below 1), the residual it
+// leaves, computed afterwards on another code path (the 4x4 chain, part_T_tool), is within the
+// bound it reports and the solver's tolerance, and the joints are the core's. On every shipped machine, the test
 // machines and the MC-300 with temperature inputs (the bound sampled over their ranges, the
 // correction at temperatures drawn in them), at tool lengths and seeds as volkins sees them.
 // Seeded; VC_RANDOM_POSES overrides the pose count.
@@ -39,8 +39,9 @@ TEST_P(ContractionBoundTest, UncheckedStepsLandWithinTheirBoundOnTheCoresJoints)
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> unit(-1.0, 1.0), exponent(-11.0, -6.0), length(0.0, 300.0);
   const double tolerance = model.solver.position_tolerance_mm;
-  int unchecked = 0, full = 0, faded = 0, unchecked_faded = 0;
+  int unchecked = 0, full = 0, faded = 0, unchecked_faded = 0, unchecked_band = 0;
   double worst_ratio = 0.0;  // exact residual / reported bound, where the bound is above rounding
+  double worst_band = 0.0;   // the fade band's full correction: exact position residual / the solver's limit
   const int poses = test::pose_count(3000);
   for (int k = 0; k < poses; ++k) {
     for (TemperatureInput& t : model.temperatures)
@@ -49,16 +50,40 @@ TEST_P(ContractionBoundTest, UncheckedStepsLandWithinTheirBoundOnTheCoresJoints)
     const double L = length(rng);
     const Correction core = correct(model, q, L);
     ASSERT_EQ(core.status, Status::Ok) << test::text(q);
-    // A seed as the servo thread's extrapolation gives it: the answer, 1e-11 to 1e-6 off.
-    Joints seed = core.joints;
+    // Seeds as the servo thread's extrapolation gives them: the answer, 1e-11 to 1e-6 off (in
+    // the fade band also the full correction's).
     const double scale = std::pow(10.0, exponent(rng));
-    for (int j = 0; j < seed.size(); ++j) seed[j] += scale * unit(rng);
-    const Correction c = correct(model, q, L, seed, &bound);
+    auto near = [&](const Joints& answer) {
+      Joints seed = answer;
+      for (int j = 0; j < seed.size(); ++j) seed[j] += scale * unit(rng);
+      return seed;
+    };
+    const bool band = core.fade > 0.0 && core.fade < 1.0;
+    const Joints full_seed = band ? near(core.full_joints) : Joints();
+    const Correction c = correct(model, q, L, near(core.joints), &bound, band ? &full_seed : nullptr);
     ASSERT_EQ(c.status, Status::Ok) << test::text(q);
     // Both within the tolerance of the residual; near a pole that leaves the joints ~1e-9 apart.
     ASSERT_LT((c.joints - core.joints).cwiseAbs().maxCoeff(), 1e-8) << test::text(q);
     full += core.fade == 1.0;
     faded += core.fade < 1.0;
+    if (c.full_unchecked_step) {
+      // The fade band's full correction ended on the bound: its equations' residual, on the 4x4
+      // chain, within what the solver stops on there (the direction tolerance times sin(phi)).
+      ++unchecked_band;
+      ASSERT_TRUE(band) << test::text(q);
+      const double limit = std::min(tolerance, kDirectionLeverMm * model.solver.direction_tolerance_rad *
+                                                   std::sin(core.pole_angle_rad));
+      const Eigen::Isometry3d real = part_T_tool(model, Machine::Real, c.full_joints, L);
+      const Eigen::Isometry3d ideal = part_T_tool(model, Machine::Ideal, q, L);
+      const double position = (real.translation() - ideal.translation()).norm();
+      ASSERT_LE(position, limit + 1e-12) << test::text(q);
+      worst_band = std::max(worst_band, position / limit);
+      if (model.rotary_count() == 2) {
+        ASSERT_LE(ideal.linear().col(2).cross(real.linear().col(2)).norm(), limit / kDirectionLeverMm + 1e-15)
+            << test::text(q);
+      }
+      ASSERT_LT((c.full_joints - core.full_joints).cwiseAbs().maxCoeff(), 1e-8) << test::text(q);
+    }
     if (!c.unchecked_step) continue;
     ++(core.fade == 1.0 ? unchecked : unchecked_faded);
     ASSERT_LE(c.residual_mm, tolerance);
@@ -79,12 +104,14 @@ TEST_P(ContractionBoundTest, UncheckedStepsLandWithinTheirBoundOnTheCoresJoints)
     if (c.residual_mm > 1e-12) worst_ratio = std::max(worst_ratio, position / c.residual_mm);
   }
   std::printf("%s: %d of %d poses at full correction and %d of %d in the fade band or at the pole solved with an "
-              "unchecked step; exact residual / bound (above 1e-12 mm) at most %.3f\n",
-              GetParam().c_str(), unchecked, full, unchecked_faded, faded, worst_ratio);
+              "unchecked step, %d with the fade band's full correction unchecked; exact residual / bound (above "
+              "1e-12 mm) at most %.3f, the band's full correction's / its limit %.3f\n",
+              GetParam().c_str(), unchecked, full, unchecked_faded, faded, unchecked_band, worst_ratio, worst_band);
   // Seeds up to 1e-6 off: most at full correction are within reach of the bound, and some below.
   EXPECT_GT(unchecked, full / 2);
   if (faded >= 20) {
     EXPECT_GT(unchecked_faded, 0);
+    EXPECT_GT(unchecked_band, 0);
   }
 }
 
@@ -110,8 +137,17 @@ TEST(ContractionBound, NoBoundWhereTheEquationsAreNotSquareOrNotSampled) {
   for (int band = 0; band < ContractionBound::kBands; ++band) EXPECT_TRUE(std::isinf(none.kappa(band)));
   EXPECT_TRUE(std::isinf(none.position_kappa()));
   EXPECT_FALSE(none.covers(100.0));
+  EXPECT_TRUE(std::isinf(none.full_kappa(0.5 * (model.fade.start_rad + model.fade.full_rad))));
   const ContractionBound bound(model, {100.0});
   EXPECT_EQ(bound.band_of(0.5 * model.fade.full_rad), -1);
+  // The fade band's: finite where sampled, growing towards the pole as 1 / sin(phi), none below.
+  const double mid = 0.5 * (model.fade.start_rad + model.fade.full_rad);
+  EXPECT_GT(bound.full_kappa(mid), 0.0);
+  EXPECT_LT(bound.full_kappa(mid), 1e-1);
+  EXPECT_NEAR(bound.full_kappa(model.fade.start_rad) * std::sin(model.fade.start_rad),
+              bound.full_kappa(mid) * std::sin(mid), 1e-15);
+  EXPECT_TRUE(std::isinf(bound.full_kappa(0.99 * model.fade.start_rad)));
+  EXPECT_EQ(bound.full_kappa(model.fade.full_rad), bound.kappa(0));
   for (int band = 0; band < ContractionBound::kBands; ++band) {
     EXPECT_GT(bound.kappa(band), 0.0);
     EXPECT_LT(bound.kappa(band), 1e-2);

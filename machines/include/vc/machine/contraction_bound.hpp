@@ -12,7 +12,10 @@
 // at the core's corrected joints there) and doubled for what the sampling may miss. B^-1
 // grows towards a kinematic pole, so kappa is kept per band of the pole angle (full
 // correction angle x [1, 1.5), [1.5, 2), [2, 3), [3, ...), 100 samples each; one band on
-// three linear axes). Below the full-correction angle (fade < 1) there is no bound for them.
+// three linear axes). In the fade band (fade start <= phi < full) kappa sin(phi) is sampled
+// instead, 100 samples and doubled, and kappa taken as that over sin(phi) (B^-1 grows as
+// 1 / sin(phi) there): the inverse's full correction in the band, solved from the servo
+// thread's extrapolation (~1e-10 off), is proved in one step as it is at full correction.
 // The position's equations alone (the linear joints, the rotary ones held: correct()'s last
 // solve where the fade is below 1) have their own kappa, (B - J) B^-1 of the position rows and
 // the linear joints, sampled over the travel with J at the core's corrected joints: it does not
@@ -43,6 +46,15 @@ class ContractionBound {
   double kappa(int band) const { return kappa_[static_cast<std::size_t>(band)]; }
   // kappa of the position's equations alone (rotary joints held); infinity where not sampled.
   double position_kappa() const { return position_kappa_; }
+  // kappa of the fade band's full correction at a pole angle: (kappa sin(phi) sampled) / sin(phi);
+  // infinity below the sampled band or where it was not sampled.
+  double fade_band_kappa(double pole_angle_rad) const;
+  // kappa of the full correction's equations at a pole angle: its band's above full correction,
+  // else the fade band's.
+  double full_kappa(double pole_angle_rad) const {
+    const int band = band_of(pole_angle_rad);
+    return band >= 0 ? kappa(band) : fade_band_kappa(pole_angle_rad);
+  }
   // The band of a pole angle, -1 below full correction.
   int band_of(double pole_angle_rad) const;
   // The band of the pole angle at an ideal pose and its derivatives, without atan2 (the same
@@ -61,16 +73,20 @@ class ContractionBound {
     std::array<int, kBands> count{};
     double position = 0.0;
     int position_count = 0;
+    double fade_band = 0.0;  // kappa sin(phi)
+    int fade_band_count = 0;
   };
   Largest sample(const Model& model, double tool_length_mm, bool over_temperatures) const;
 
   bool affine_;  // three linear axes: one band
   double full_rad_;
+  double fade_start_rad_;  // the fade band sampled: [fade_start_rad_, full_rad_)
   std::array<int, kMaxAxes> rotary_{};  // the rotary joints
   int rotary_count_ = 0;
   std::array<double, kBands> edge_cos_{}, edge_sin_{};  // of the bands' lower edges
   std::array<double, kBands> kappa_{};
   double position_kappa_;
+  double fade_band_kappa_sin_;  // kappa sin(phi) in the fade band
   double shortest_mm_ = 0.0, longest_mm_ = -1.0;
 };
 

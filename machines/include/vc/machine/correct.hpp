@@ -31,6 +31,7 @@ struct Correction {
   // In the fade band (0 < f < 1): the full correction's joints (no fade), which correct() solved
   // for on the way; else empty.
   Joints full_joints;
+  bool full_unchecked_step = false;  // in the fade band: full_joints' last step taken on the bound
 };
 
 Correction correct(const Model& model, const Joints& nominal, double tool_length_mm) noexcept;
