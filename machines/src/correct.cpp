@@ -80,7 +80,8 @@ Status newton(const Model& model, const CorrectionTarget& target, double tool_le
     }
     ++iterations;
     if (ideal_jacobian && stopping.kappa > 0.0) {
-      const double lever = kDirectionLeverMm * direction;  // (not std::hypot: ~40 instructions; an overflow is inf, no stop)
+      // |W F| without std::hypot (~40 instructions a call; an overflow gives inf: no stop).
+      const double lever = kDirectionLeverMm * direction;
       const double bound = stopping.kappa * std::sqrt(position * position + lever * lever);
       if (bound <= unchecked_limit) {
         unchecked_bound = bound;
