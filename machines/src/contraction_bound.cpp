@@ -79,7 +79,7 @@ ContractionBound::Largest ContractionBound::sample(const Model& model, double to
   for (int draw = 0; draw < kMaxDraws; ++draw) {
     const bool bands_full = *std::min_element(largest.count.begin(), largest.count.begin() + bands) >= kBandSamples;
     const bool positions_full = !positions || largest.position_count >= kBandSamples;
-    const bool fade_band_full = !positions || largest.fade_band_count >= kBandSamples;
+    const bool fade_band_full = rotary_count_ == 0 || largest.fade_band_count >= kBandSamples;
     if (bands_full && positions_full && fade_band_full) break;
     const Joints q = samples.next();
     if (over_temperatures)

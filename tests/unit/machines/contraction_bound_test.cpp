@@ -2,9 +2,10 @@
 // without evaluating the real machine after it (at full correction, the fade band's full
 // correction, or the position's last step where the pole fade is below 1), the residual it
 // leaves, computed afterwards on another code path (the 4x4 chain, part_T_tool), is within the
-// bound it reports and the solver's tolerance, and the joints are the core's. On every shipped machine, the test
-// machines and the MC-300 with temperature inputs (the bound sampled over their ranges, the
-// correction at temperatures drawn in them), at tool lengths and seeds as volkins sees them.
+// bound it reports and the solver's tolerance, and the joints are the core's. On every shipped
+// machine, the test machines and the MC-300 with temperature inputs (the bound sampled over
+// their ranges, the correction at temperatures drawn in them), at tool lengths and seeds as
+// volkins sees them.
 // Seeded; VC_RANDOM_POSES overrides the pose count.
 #include <gtest/gtest.h>
 
@@ -137,11 +138,11 @@ TEST(ContractionBound, NoBoundWhereTheEquationsAreNotSquareOrNotSampled) {
   for (int band = 0; band < ContractionBound::kBands; ++band) EXPECT_TRUE(std::isinf(none.kappa(band)));
   EXPECT_TRUE(std::isinf(none.position_kappa()));
   EXPECT_FALSE(none.covers(100.0));
-  EXPECT_TRUE(std::isinf(none.full_kappa(0.5 * (model.fade.start_rad + model.fade.full_rad))));
+  const double mid = 0.5 * (model.fade.start_rad + model.fade.full_rad);  // in the fade band
+  EXPECT_TRUE(std::isinf(none.full_kappa(mid)));
   const ContractionBound bound(model, {100.0});
   EXPECT_EQ(bound.band_of(0.5 * model.fade.full_rad), -1);
   // The fade band's: finite where sampled, growing towards the pole as 1 / sin(phi), none below.
-  const double mid = 0.5 * (model.fade.start_rad + model.fade.full_rad);
   EXPECT_GT(bound.full_kappa(mid), 0.0);
   EXPECT_LT(bound.full_kappa(mid), 1e-1);
   EXPECT_NEAR(bound.full_kappa(model.fade.start_rad) * std::sin(model.fade.start_rad),

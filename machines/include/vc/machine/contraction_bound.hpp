@@ -46,11 +46,9 @@ class ContractionBound {
   double kappa(int band) const { return kappa_[static_cast<std::size_t>(band)]; }
   // kappa of the position's equations alone (rotary joints held); infinity where not sampled.
   double position_kappa() const { return position_kappa_; }
-  // kappa of the fade band's full correction at a pole angle: (kappa sin(phi) sampled) / sin(phi);
-  // infinity below the sampled band or where it was not sampled.
-  double fade_band_kappa(double pole_angle_rad) const;
   // kappa of the full correction's equations at a pole angle: its band's above full correction,
-  // else the fade band's.
+  // else the fade band's (kappa sin(phi) as sampled, over sin(phi); infinity below the sampled
+  // band or where it was not sampled).
   double full_kappa(double pole_angle_rad) const {
     const int band = band_of(pole_angle_rad);
     return band >= 0 ? kappa(band) : fade_band_kappa(pole_angle_rad);
@@ -77,6 +75,7 @@ class ContractionBound {
     int fade_band_count = 0;
   };
   Largest sample(const Model& model, double tool_length_mm, bool over_temperatures) const;
+  double fade_band_kappa(double pole_angle_rad) const;
 
   bool affine_;  // three linear axes: one band
   double full_rad_;
