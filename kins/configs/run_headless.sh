@@ -5,7 +5,7 @@
 #   run_headless.sh CONFIG.ini RUN_DIR [--kinematics "volkins machine=... world=tcp"]
 #                   [--without-volkins] [--without-update] [--expect-message TEXT] [--program FILE]
 #                   [--compensation on|off|toggle]
-#                   [--set SECTION.KEY=VALUE]... [--halfile FILE]...
+#                   [--set SECTION.KEY=VALUE]... [--add SECTION.KEY=VALUE]... [--halfile FILE]...
 #
 # The configuration folder and kins/configs/common are copied to RUN_DIR/kins/configs, with with the
 # machine files and tables (machines/data, tables/data): rtapi_app runs as another user
@@ -14,13 +14,14 @@
 # writes its files (parameter file, tool table map via HOME) only inside RUN_DIR, and the trace
 # lands in RUN_DIR/kins/configs/<name>/trace.csv (--set DRIVER.TRACE=none: no trace). --halfile
 # copies FILE into the configuration folder and adds it to [HAL] after the others (e.g. a
-# simulated probe, kins/sim). Exit 0 if the program ran cleanly.
+# simulated probe, kins/sim). --add appends KEY = VALUE to [SECTION] (a REMAP, a SUBROUTINE_PATH).
+# Exit 0 if the program ran cleanly.
 set -euo pipefail
 
-usage() { echo "usage: $0 CONFIG.ini RUN_DIR [--kinematics LINE] [--without-volkins] [--without-update] [--expect-message TEXT] [--program FILE] [--compensation on|off|toggle] [--set SECTION.KEY=VALUE]... [--halfile FILE]..." >&2; exit 2; }
+usage() { echo "usage: $0 CONFIG.ini RUN_DIR [--kinematics LINE] [--without-volkins] [--without-update] [--expect-message TEXT] [--program FILE] [--compensation on|off|toggle] [--set SECTION.KEY=VALUE]... [--add SECTION.KEY=VALUE]... [--halfile FILE]..." >&2; exit 2; }
 [ $# -ge 2 ] || usage
 ini_src=$(realpath "$1"); run_dir=$2; shift 2
-kinematics="" ; without_volkins=0; without_update=0; program=""; compensation=""; settings=(); halfiles=()
+kinematics="" ; without_volkins=0; without_update=0; program=""; compensation=""; settings=(); additions=(); halfiles=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --kinematics) kinematics=$2; shift 2 ;;
@@ -30,6 +31,7 @@ while [ $# -gt 0 ]; do
     --program) program=$(realpath "$2"); shift 2 ;;
     --compensation) compensation=$2; shift 2 ;;
     --set) settings+=("$2"); shift 2 ;;
+    --add) additions+=("$2"); shift 2 ;;
     --halfile) halfiles+=("$(realpath "$2")"); shift 2 ;;
     *) usage ;;
   esac
@@ -56,6 +58,14 @@ for setting in "${settings[@]}"; do  # SECTION.KEY=VALUE: replaces KEY's line in
     in_section && $1 == k && $2 == "=" { $0 = k " = " v; done = 1 }
     { print }
     END { if (!done) { print "run_headless.sh: no " k " in " s > "/dev/stderr"; exit 1 } }' "$ini" > "$ini.new"
+  mv "$ini.new" "$ini"
+done
+for addition in "${additions[@]}"; do  # SECTION.KEY=VALUE: a new KEY line at the end of [SECTION]
+  section=${addition%%.*}; rest=${addition#*.}; key=${rest%%=*}; value=${rest#*=}
+  awk -v s="[$section]" -v line="$key = $value" '
+    /^\[/ { if (in_section && !done) { print line; done = 1 } in_section = ($0 == s) }
+    { print }
+    END { if (in_section && !done) { print line; done = 1 } if (!done) { print "run_headless.sh: no " s > "/dev/stderr"; exit 1 } }' "$ini" > "$ini.new"
   mv "$ini.new" "$ini"
 done
 for halfile in "${halfiles[@]}"; do  # after the [HAL] section's last HALFILE

@@ -22,7 +22,8 @@ std::string lower(std::string s) {
 
 }  // namespace
 
-ModuleSettings settings_from_parameters(const char* machine, const char* coordinates, const char* world) {
+ModuleSettings settings_from_parameters(const char* machine, const char* coordinates, const char* world,
+                                        const char* sparm) {
   if (!machine || !*machine)
     refuse("no machine file: load it as `loadrt volkins machine=/path/to/machine.toml`");
   ModuleSettings s;
@@ -45,17 +46,26 @@ ModuleSettings settings_from_parameters(const char* machine, const char* coordin
     refuse("coordinates=" + std::string(coordinates) + " does not match the machine file " + s.model.path +
            ", whose joints are the axes \"" + wanted + "\" in this order (one joint per axis)");
 
-  const std::string convention = world && *world ? lower(world) : "axes";
-  if (convention == "axes")
-    s.world = machine::WorldConvention::Axes;
+  // Type 0's world: world=, else sparm=identityfirst (identity), else identity.
+  const std::string convention = world && *world ? lower(world) : "";
+  const std::string switchkins = sparm && *sparm ? lower(sparm) : "";
+  if (!switchkins.empty() && switchkins != "identityfirst")
+    refuse("sparm=" + std::string(sparm) + " is not a volkins parameter: sparm=identityfirst (kinematics type 0 is "
+           "the identity, as with LinuxCNC's trt modules) or none; world=tcp makes type 0 the TCP kinematics");
+  if (convention == "axes" || convention.empty())
+    s.kinematics_types = {machine::WorldConvention::Axes, machine::WorldConvention::Tcp};
   else if (convention == "tcp")
-    s.world = machine::WorldConvention::Tcp;
+    s.kinematics_types = {machine::WorldConvention::Tcp, machine::WorldConvention::Axes};
   else
     refuse("world=" + std::string(world) + " is not a world convention: use world=axes or world=tcp");
+  if (convention == "tcp" && !switchkins.empty())
+    refuse("world=tcp and sparm=identityfirst contradict each other: kinematics type 0 is either TCP (world=tcp) or "
+           "the identity (sparm=identityfirst or world=axes)");
 
   s.z_joint = s.model.joint_of('Z');
-  if (s.world == machine::WorldConvention::Tcp && s.z_joint < 0)
+  if (s.kinematics_types[0] == machine::WorldConvention::Tcp && s.z_joint < 0)
     refuse("world=tcp needs a Z axis (the tool length is taken along it); " + s.model.path + " has none");
+  if (s.z_joint < 0) s.kinematics_type_count = 1;  // no TCP world to switch to
 
   static constexpr const char* kPoseOrder = "xyzabcuvw";
   for (int j = 0; j < s.model.joint_count(); ++j)

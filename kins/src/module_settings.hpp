@@ -1,4 +1,4 @@
-// What `loadrt volkins machine=... coordinates=... world=...` asks for, checked at load time.
+// What `loadrt volkins machine=... coordinates=... world=... sparm=...` asks for, checked at load time.
 //
 // Pure C++ (no LinuxCNC headers) so the rules are unit-tested without a running HAL. Throws
 // vc::LoadError (machine file and tables: file, line, problem) or std::runtime_error (the
@@ -18,7 +18,13 @@ inline constexpr int kMaxTemperatureInputs = 8;
 
 struct ModuleSettings {
   machine::Model model;
-  machine::WorldConvention world = machine::WorldConvention::Axes;
+  // The kinematics types motion.switchkins-type selects (LinuxCNC 2.9 switchable kinematics):
+  // type 0, the one LinuxCNC starts in, and type 1, the other world convention (identity and
+  // TCP, as LinuxCNC's trt modules with and without sparm=identityfirst). A machine without a
+  // Z axis has no TCP world: one type only.
+  std::array<machine::WorldConvention, 2> kinematics_types{machine::WorldConvention::Axes,
+                                                           machine::WorldConvention::Tcp};
+  int kinematics_type_count = 2;
   // For each joint, its field in LinuxCNC's EmcPose in the order x y z a b c u v w.
   std::array<int, machine::kMaxAxes> pose_field{};
   // The Z joint. In the TCP convention LinuxCNC's G43 has added the tool length to world Z
@@ -35,8 +41,10 @@ struct ModuleSettings {
 inline constexpr std::array<double, 6> kBoundToolLengthsMm{0.0, 100.0, 200.0, 300.0, 400.0, 500.0};
 
 // machine: the machine file (required). coordinates: LinuxCNC's axis letters, one per joint in
-// the machine file's joint order (optional; default the machine's own). world: "axes" (default)
-// or "tcp" (needs a Z axis).
-ModuleSettings settings_from_parameters(const char* machine, const char* coordinates, const char* world);
+// the machine file's joint order (optional; default the machine's own). world: the world of
+// kinematics type 0, "axes" (default) or "tcp" (needs a Z axis). sparm: LinuxCNC's switchable
+// modules' parameter; "identityfirst" makes type 0 the identity (axes) world, as world=axes.
+ModuleSettings settings_from_parameters(const char* machine, const char* coordinates, const char* world,
+                                        const char* sparm = nullptr);
 
 }  // namespace vc::kins

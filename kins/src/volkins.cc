@@ -1,6 +1,7 @@
 // volkins: LinuxCNC 2.9 kinematics with full volumetric correction (linear and angular).
 //
 //   [KINS] KINEMATICS = volkins machine=/path/machine.toml [coordinates=xyzbc] [world=axes|tcp]
+//                      [sparm=identityfirst]
 //
 // The thin shell over vc_machine: rtapi_app_main reads and validates the machine file and its
 // tables (any problem fails loadrt with file:line:problem, before anything is created in HAL);
@@ -17,6 +18,10 @@
 // the machine file are HAL pins volkins.temperature.<name>, low-passed in volkins.update;
 // a missing or out-of-range reading holds the last good value and raises
 // volkins.temperature-fault.
+// Switchable kinematics (LinuxCNC 2.9, motion.switchkins-type): type 0 is the world= convention
+// (or the identity with sparm=identityfirst), type 1 the other one; both corrected. A switch
+// while the commanded position moves is refused (motion then aborts): the planner's queued
+// moves are in the old world's coordinates.
 // Servo thread: no allocation, no locks, no I/O, bounded iterations, no exceptions.
 
 #include <algorithm>
@@ -62,6 +67,8 @@ struct HalData {
   hal_float_t* temperature[kMaxTemperatures];           // in: volkins.temperature.<name>, degC
   hal_float_t* temperature_filtered[kMaxTemperatures];  // out: what the correction uses, degC
   hal_bit_t* temperature_fault;               // out: an input is missing or out of its range (held)
+  hal_bit_t* kinstype_is[3];                  // out: kinstype.is-N, as LinuxCNC's switchable modules
+  hal_bit_t* tcp;                             // out: the world is the tool tip (TCP kinematics type)
   // Parameters.
   hal_float_t ramp_time;                      // s: 0 -> 1 (and back) takes this long
   hal_float_t max_correction_mm;              // largest linear joint correction allowed
@@ -83,6 +90,19 @@ struct HalData {
   // Each temperature input low-passed (from its reference at load), held while it is faulty.
   double temperature_state[kMaxTemperatures];
 };
+
+// The kinematics type motion selected (0 or 1: settings->kinematics_types) and whether the
+// commanded position moved in the last servo cycle (a switch is refused then). The servo
+// thread alone reads and writes them: kinematicsSwitch runs at the start of motion-controller,
+// after volkins.update has compared the last inverse's pose with the one of the cycle before.
+struct KinematicsType {
+  int type = 0;
+  EmcPose last_inverse_pose{};   // the pose of the newest kinematicsInverse call
+  EmcPose pose_at_update{};      // last_inverse_pose when volkins.update last ran
+  bool pose_known = false;       // pose_at_update holds an inverse's pose of this world
+  bool moving = false;           // it changed between the last two volkins.update calls
+};
+KinematicsType kinematics;
 
 vc::kins::ModuleSettings* settings = nullptr;  // built in rtapi_app_main, read-only afterwards
                                                // except model.fade (volkins.update)
@@ -125,6 +145,7 @@ KeptCorrections applied_corrections, full_corrections;
 char* machine = nullptr;
 char* coordinates = nullptr;
 char* world = nullptr;
+char* sparm = nullptr;
 
 // A field of LinuxCNC's EmcPose by its index in x y z a b c u v w (const or not).
 template <class Pose>
@@ -142,17 +163,30 @@ auto& pose_field(Pose& pose, int field) {
   }
 }
 
+vm::WorldConvention current_world() { return settings->kinematics_types[kinematics.type]; }
+
 // LinuxCNC's world position as the core's world (TCP: less the tool length G43 added to Z).
 Joints world_of(const EmcPose& pose, double tool_length_mm) {
   Joints w(settings->model.joint_count());
   for (int j = 0; j < w.size(); ++j) w[j] = pose_field(pose, settings->pose_field[j]);
-  if (settings->world == vm::WorldConvention::Tcp) w[settings->z_joint] -= tool_length_mm;
+  if (current_world() == vm::WorldConvention::Tcp) w[settings->z_joint] -= tool_length_mm;
   return w;
 }
 
 void set_world(EmcPose& pose, Joints w, double tool_length_mm) {
-  if (settings->world == vm::WorldConvention::Tcp) w[settings->z_joint] += tool_length_mm;
+  if (current_world() == vm::WorldConvention::Tcp) w[settings->z_joint] += tool_length_mm;
   for (int j = 0; j < w.size(); ++j) pose_field(pose, settings->pose_field[j]) = w[j];
+}
+
+bool same_pose(const EmcPose& a, const EmcPose& b) {
+  for (int field = 0; field < 9; ++field)
+    if (pose_field(a, field) != pose_field(b, field)) return false;
+  return true;
+}
+
+void show_kinematics_type() {
+  for (int t = 0; t < 3; ++t) *hal->kinstype_is[t] = t == kinematics.type;
+  *hal->tcp = current_world() == vm::WorldConvention::Tcp;
 }
 
 // Servo thread, before motion-controller: moves the ramp one period towards volkins.enable and
@@ -168,6 +202,9 @@ void update(void*, long period_ns) {
     hal->offset.reset(*hal->tool_length);
   }
   hal->ramp.step(target, period_ns * 1e-9, hal->ramp_time);
+  kinematics.moving = kinematics.pose_known && !same_pose(kinematics.last_inverse_pose, kinematics.pose_at_update);
+  kinematics.pose_at_update = kinematics.last_inverse_pose;
+  kinematics.pose_known = true;
   *hal->gain = hal->ramp.gain;
   *hal->active = *hal->gain > 0.0;
 
@@ -240,12 +277,13 @@ int kinematicsInverse(const EmcPose* pose, double* joints, const KINEMATICS_INVE
   const double offset = *hal->tool_length;       // LinuxCNC's tool length offset (G43)
   const double L = correction_length();          // the tool-length rule, slewed
   const Joints previous = Eigen::Map<const Joints>(joints, n);  // LinuxCNC's seed
+  kinematics.last_inverse_pose = *pose;
   Joints extrapolated, extrapolated_full;
   const vm::Applied applied{applied_gain(), &previous, applied_corrections.for_inverse(extrapolated),
                             &*settings->contraction, full_corrections.for_inverse(extrapolated_full)};
   Joints q;
   vm::Correction report;
-  const vm::Status s = vm::joints_from_world(model, settings->world, world_of(*pose, offset), L, applied, q, &report);
+  const vm::Status s = vm::joints_from_world(model, current_world(), world_of(*pose, offset), L, applied, q, &report);
   *hal->iterations = report.iterations;
   if (s != vm::Status::Ok) return refuse();
   if (applied.gain > 0.0) {
@@ -284,7 +322,7 @@ int kinematicsForward(const double* joints, EmcPose* pose, const KINEMATICS_FORW
   int iterations = 0;
   const vm::Applied applied{applied_gain(), &seed, applied_corrections.for_forward(way_point), nullptr,
                             full_corrections.for_forward(way_point_full)};
-  const vm::Status s = vm::world_from_joints(model, settings->world, q, L, applied, w, &iterations);
+  const vm::Status s = vm::world_from_joints(model, current_world(), q, L, applied, w, &iterations);
   *hal->forward_iterations = iterations;
   if (s != vm::Status::Ok) return refuse();
   set_world(*pose, w, offset);
@@ -293,8 +331,40 @@ int kinematicsForward(const double* joints, EmcPose* pose, const KINEMATICS_FORW
 
 KINEMATICS_TYPE kinematicsType() { return KINEMATICS_BOTH; }
 
-KINS_NOT_SWITCHABLE
+int kinematicsSwitchable() { return 1; }
+
+// Called by motion-controller when motion.switchkins-type changes; motion then recomputes its
+// world position with the forward of the joint commands (the joints do not move). Refused
+// (motion aborts) for a type volkins does not have and while the commanded position moves.
+int kinematicsSwitch(int type) {
+  static const char* const names[] = {"identity", "TCP"};
+  if (type < 0 || type >= settings->kinematics_type_count) {
+    rtapi_print_msg(RTAPI_MSG_ERR,
+                    "volkins: kinematics type %d refused: volkins has %s (motion.switchkins-type %s); it stays in "
+                    "type %d (%s)\n",
+                    type, settings->kinematics_type_count == 2 ? "types 0 and 1" : "type 0 only (no Z axis: no TCP)",
+                    settings->kinematics_type_count == 2 ? "0 or 1" : "0", kinematics.type,
+                    names[current_world() == vm::WorldConvention::Tcp]);
+    return -1;
+  }
+  if (type == kinematics.type) return 0;
+  if (kinematics.moving) {
+    rtapi_print_msg(RTAPI_MSG_ERR,
+                    "volkins: switch to kinematics type %d refused while the commanded position moves (the queued moves "
+                    "are in the old world's coordinates); volkins stays in type %d (%s). Switch at rest: M66 E0 L0 "
+                    "before and after setting motion.switchkins-type, as LinuxCNC's M428/M429 remaps do\n",
+                    type, kinematics.type, names[current_world() == vm::WorldConvention::Tcp]);
+    return -1;
+  }
+  kinematics.type = type;
+  kinematics.pose_known = false;  // the next inverse's pose is in the new world
+  if (hal) show_kinematics_type();
+  return 0;
+}
+
 EXPORT_SYMBOL(kinematicsType);
+EXPORT_SYMBOL(kinematicsSwitchable);
+EXPORT_SYMBOL(kinematicsSwitch);
 EXPORT_SYMBOL(kinematicsForward);
 EXPORT_SYMBOL(kinematicsInverse);
 
@@ -302,7 +372,8 @@ MODULE_LICENSE("GPL");
 MODULE_DESCRIPTION("Kinematics with volumetric error correction (volcomp)");
 RTAPI_MP_STRING(machine, "machine description file (TOML)");
 RTAPI_MP_STRING(coordinates, "axis letters, one per joint, in the machine file's order");
-RTAPI_MP_STRING(world, "world convention: axes (default) or tcp");
+RTAPI_MP_STRING(world, "world convention of kinematics type 0: axes (default) or tcp");
+RTAPI_MP_STRING(sparm, "identityfirst: kinematics type 0 is the identity (as LinuxCNC's trt modules)");
 
 }  // extern "C"
 
@@ -339,6 +410,9 @@ bool export_hal(const vm::Model& model) {
   }
   r |= hal_pin_bit_newf(HAL_OUT, &hal->temperature_fault, comp_id, "volkins.temperature-fault");
   r |= hal_param_float_newf(HAL_RW, &hal->temperature_time_constant, comp_id, "volkins.temperature-time-constant");
+  // LinuxCNC's switchable modules' pins, under their names (GUIs and programs read them).
+  for (int t = 0; t < 3; ++t) r |= hal_pin_bit_newf(HAL_OUT, &hal->kinstype_is[t], comp_id, "kinstype.is-%d", t);
+  r |= hal_pin_bit_newf(HAL_OUT, &hal->tcp, comp_id, "volkins.tcp");
   r |= hal_export_funct("volkins.update", update, nullptr, 1 /* uses floating point */, 0, comp_id);
   if (r) return false;
 
@@ -364,6 +438,8 @@ bool export_hal(const vm::Model& model) {
   hal->max_correction_deg = 0.1;
   hal->pole_fade_start_deg = model.fade.start_rad * kDegPerRad;
   hal->pole_fade_full_deg = model.fade.full_rad * kDegPerRad;
+  kinematics = KinematicsType{};
+  show_kinematics_type();
   return true;
 }
 
@@ -373,7 +449,7 @@ extern "C" int rtapi_app_main(void) {
   // Everything that can fail on the user's files happens before HAL sees the component, so a
   // refused machine file leaves nothing loaded.
   try {
-    settings = new vc::kins::ModuleSettings(vc::kins::settings_from_parameters(machine, coordinates, world));
+    settings = new vc::kins::ModuleSettings(vc::kins::settings_from_parameters(machine, coordinates, world, sparm));
   } catch (const std::exception& e) {
     rtapi_print_msg(RTAPI_MSG_ERR, "volkins: %s\n", e.what());
     return -EINVAL;
@@ -397,9 +473,9 @@ extern "C" int rtapi_app_main(void) {
     settings = nullptr;
     return -ENOMEM;
   }
-  rtapi_print_msg(RTAPI_MSG_INFO, "volkins: %s (%s, %d tables), joints %s, world %s\n", model.path.c_str(),
+  rtapi_print_msg(RTAPI_MSG_INFO, "volkins: %s (%s, %d tables), joints %s, kinematics type 0 %s\n", model.path.c_str(),
                   model.info.name.c_str(), static_cast<int>(model.tables.size()), model.coordinates().c_str(),
-                  settings->world == vm::WorldConvention::Tcp ? "tcp" : "axes");
+                  settings->kinematics_types[0] == vm::WorldConvention::Tcp ? "tcp" : "identity (axes)");
   hal_ready(comp_id);
   return 0;
 }

@@ -65,6 +65,29 @@ TEST_P(ShippedMachine, LoadsAndExposesItsPins) {
 INSTANTIATE_TEST_SUITE_P(Shipped, ShippedMachine, ::testing::ValuesIn(test::shipped_machines()),
                          [](const auto& p) { return p.param; });
 
+// Switchable kinematics: volkins starts in type 0 and says so on LinuxCNC's kinstype.is-N pins;
+// volkins.tcp tells which world type 0 is (world=, sparm=identityfirst).
+TEST(Volkins, StartsInKinematicsTypeZeroOfTheWorldItWasGiven) {
+  struct Case {
+    std::string parameters;
+    bool tcp;
+  };
+  for (const Case& c : {Case{"", false}, Case{"world=tcp", true}, Case{"sparm=identityfirst", false}}) {
+    const test::CommandResult r = test::halrun("kinstype", loadrt(shipped("mc300"), c.parameters) + "show pin\n");
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    auto bit = [&](const std::string& pin) {
+      std::smatch m;
+      EXPECT_TRUE(std::regex_search(r.out, m, std::regex(R"(bit\s+OUT\s+(TRUE|FALSE)\s+)" + std::regex_replace(pin, std::regex(R"(\.)"), R"(\.)") + R"(\s)")))
+          << pin << " missing:\n" << r.out;
+      return m.size() > 1 && m[1] == "TRUE";
+    };
+    EXPECT_TRUE(bit("kinstype.is-0")) << c.parameters;
+    EXPECT_FALSE(bit("kinstype.is-1")) << c.parameters;
+    EXPECT_FALSE(bit("kinstype.is-2")) << c.parameters;
+    EXPECT_EQ(bit("volkins.tcp"), c.tcp) << c.parameters;
+  }
+}
+
 // volkins.update moves the gain 0 -> 1 in ramp-time seconds and back when enable drops.
 TEST(Volkins, EnableRampsTheGainInRampTime) {
   const std::string script = loadrt(shipped("mc300")) +
@@ -207,6 +230,7 @@ TEST(Volkins, BadModuleParametersFailLoadrt) {
        "volkins: error: coordinates=xyz does not match the machine file machines/data/mc300.toml"},
       {loadrt(mc300, "coordinates=xyzcb"), "whose joints are the axes \"xyzbc\" in this order"},
       {loadrt(mc300, "world=tool"), "volkins: error: world=tool is not a world convention"},
+      {loadrt(mc300, "world=tcp sparm=identityfirst"), "volkins: error: world=tcp and sparm=identityfirst contradict"},
       {"loadrt volkins machine=/nonexistent/machine.toml\n", "volkins: /nonexistent/machine.toml: error:"},
   };
   for (const Case& c : cases) {

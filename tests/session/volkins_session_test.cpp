@@ -295,6 +295,94 @@ TEST_F(Mc300Session, TcpConventionPutsTheRealToolOnTheCommandedPose) {
   expect_compensated(trace::check_trace(*model_, WorldConvention::Tcp, t), 2, "mc300 tcp, compensation on");
 }
 
+// Switchable kinematics (LinuxCNC 2.9: motion.switchkins-type, M428/M429 remapped as in its
+// sample trt configurations): kins/configs/mc300/nc/switchkins.ngc moves in the identity world
+// (type 0, world=axes), switches to TCP (type 1), turns B and C about the tool tip, and back,
+// four switches in all. Every sample is the core's correction in the world volkins reports
+// (the trace's tcp column); at each switch the joints stand still while the world position
+// changes to the other world's; the joints' velocity and acceleration stay within the INI.
+const std::string kSwitchkinsOptions =
+    " --halfile " + test::source_path("kins/configs/common/switchkins.hal") +
+    " --add RS274NGC.SUBROUTINE_PATH=../common/remap_subs"
+    " --add 'RS274NGC.REMAP=M428 modalgroup=10 ngc=428remap' --add 'RS274NGC.REMAP=M429 modalgroup=10 ngc=429remap'";
+
+// Peak joint velocity and acceleration (finite differences at the 1 ms servo period).
+std::pair<double, double> joint_peaks(const std::vector<Joints>& q, int j) {
+  const double dt = 1e-3;
+  double v = 0, a = 0;
+  for (std::size_t n = 9; n + 1 < q.size(); ++n) {
+    v = std::max(v, std::abs(q[n + 1][j] - q[n][j]) / dt);
+    a = std::max(a, std::abs(q[n + 1][j] - 2 * q[n][j] + q[n - 1][j]) / (dt * dt));
+  }
+  return {v, a};
+}
+
+void expect_within_joint_limits(const std::vector<Joints>& q, int joints, const std::string& what) {
+  for (int j = 0; j < joints; ++j) {
+    const std::string section = "JOINT_" + std::to_string(j);
+    const auto [v, a] = joint_peaks(q, j);
+    EXPECT_LE(v, ini_value(kMc300Ini, section, "MAX_VELOCITY")) << what << " " << section;
+    EXPECT_LE(a, ini_value(kMc300Ini, section, "MAX_ACCELERATION")) << what << " " << section;
+    std::cout << what << " " << section << ": peak velocity " << v << ", peak acceleration " << a << "\n";
+  }
+}
+
+TEST_F(Mc300Session, SwitchedKinematicsKeepTheJointsStillAndCorrectBothWorlds) {
+  // TCP's X Y Z are the part frame's: the world limits opened for both worlds.
+  std::string limits;
+  for (const char* axis : {"AXIS_X", "AXIS_Y", "AXIS_Z"})
+    limits += std::string(" --set ") + axis + ".MIN_LIMIT=-2000 --set " + axis + ".MAX_LIMIT=2000";
+  const trace::SessionTrace t =
+      run_session("mc300_switchkins", kMc300Ini, *model_,
+                  "--compensation on --program " + test::source_path("kins/configs/mc300/nc/switchkins.ngc") +
+                      kSwitchkinsOptions + limits);
+  ASSERT_EQ(t.convention.size(), t.size()) << "the trace records volkins.tcp";
+  std::size_t tcp = 0, switches = 0;
+  for (std::size_t n = 1; n < t.size(); ++n) {
+    tcp += t.convention[n] == WorldConvention::Tcp;
+    if (t.convention[n] == t.convention[n - 1]) continue;
+    ++switches;
+    // At rest: the joints stay (to the solvers' tolerance), the world is the other one's.
+    EXPECT_LT((t.joints[n] - t.joints[n - 1]).cwiseAbs().maxCoeff(), 1e-9) << "joints jump at sample " << n;
+    EXPECT_GT((t.world[n] - t.world[n - 1]).cwiseAbs().maxCoeff(), 1.0) << "the world did not change at " << n;
+  }
+  EXPECT_EQ(switches, 4u);
+  EXPECT_GT(tcp, 1000u);
+  EXPECT_GT(t.size() - tcp, 1000u);
+  const trace::TraceSummary s = trace::check_trace(*model_, WorldConvention::Axes, t);
+  ASSERT_GT(s.samples.size(), 5000u);
+  const Extremes e = extremes(s);
+  EXPECT_LT(e.mismatch, 1e-9) << "the module's joints differ from the core's";
+  EXPECT_LT(e.pose_mm, 1e-6);
+  EXPECT_LT(e.tip_mm, 1e-4);
+  expect_within_joint_limits(t.joints, model_->joint_count(), "switchkins");
+  std::cout << switches << " switches, " << tcp << " TCP samples of " << t.size() << ": module-core max " << e.mismatch
+            << ", tool tip after LinuxCNC's interpolation max " << e.tip_mm * 1e3 << " um\n";
+}
+
+// A switch while the commanded position moves (motion.switchkins-type set from HAL during the
+// sample part's first sweep, not through a remap that waits for rest) is refused: the queued
+// moves are in the old world's coordinates, and LinuxCNC's own modules would take the switch
+// and run them through the new kinematics. volkins stays in type 0, motion aborts the program
+// and stops within the joints' acceleration limits, and the operator is told why.
+TEST_F(Mc300Session, ASwitchWhileMovingIsRefusedAndMotionStopsWithinTheJointLimits) {
+  const trace::SessionTrace t = run_session(
+      "mc300_switch_while_moving", kMc300Ini, *model_,
+      "--compensation on --add DRIVER.SCHEDULE=2.0:motion.switchkins-type=1"
+      " --expect-message 'switch to kinematics type 1 refused while the commanded position moves'");
+  ASSERT_EQ(t.convention.size(), t.size());
+  for (std::size_t n = 0; n < t.size(); ++n) ASSERT_EQ(t.convention[n], WorldConvention::Axes) << "sample " << n;
+  // It moved when the switch came and has stopped since: the program was aborted (its first
+  // sweep alone lasts longer).
+  ASSERT_GT(t.size(), 2000u);
+  EXPECT_LT(t.size(), 4000u) << "the program ran on after the refused switch";
+  EXPECT_GT((t.joints[1990] - t.joints[1989]).cwiseAbs().maxCoeff(), 1e-3) << "not moving at the switch";
+  EXPECT_LT((t.joints.back() - t.joints[t.size() - 2]).cwiseAbs().maxCoeff(), 1e-9) << "not at rest at the end";
+  const trace::TraceSummary s = trace::check_trace(*model_, WorldConvention::Axes, t);
+  EXPECT_LT(extremes(s).mismatch, 1e-9);
+  expect_within_joint_limits(t.joints, model_->joint_count(), "switch while moving");
+}
+
 // Column `name` of a trace CSV (std::stod: a sensor's "nan" included).
 std::vector<double> trace_column(const fs::path& path, const std::string& name) {
   std::ifstream in(path);

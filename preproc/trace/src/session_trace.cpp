@@ -38,8 +38,11 @@ SessionTrace read_session_trace(const std::string& path, const machine::Model& m
       throw LoadError({path, header.line, 1}, "no column '" + wanted[w] + "' (the machine's axes are " + axes + ")");
 
   int correction_length = -1;  // optional: traces recorded before volkins slewed the tool length
-  for (std::size_t c = 0; c < header.cells.size(); ++c)
+  int tcp = -1;                 // optional: the kinematics type's world, per sample
+  for (std::size_t c = 0; c < header.cells.size(); ++c) {
     if (header.cells[c].text == "correction_length") correction_length = static_cast<int>(c);
+    if (header.cells[c].text == "tcp") tcp = static_cast<int>(c);
+  }
 
   // Optional: the filtered temperature each input had (the trace of a machine with [temperatures]).
   std::vector<int> temperature_column(model.temperatures.size(), -1);
@@ -68,6 +71,9 @@ SessionTrace read_session_trace(const std::string& path, const machine::Model& m
     t.controller_ticks.push_back(value(2 * n + 2));
     if (correction_length >= 0)
       t.correction_length_mm.push_back(tables::csv_number(path, row.line, row.cells[correction_length]));
+    if (tcp >= 0)
+      t.convention.push_back(tables::csv_number(path, row.line, row.cells[tcp]) != 0.0 ? machine::WorldConvention::Tcp
+                                                                                        : machine::WorldConvention::Axes);
     for (std::size_t i = 0; i < temperature_column.size(); ++i)
       if (temperature_column[i] >= 0)
         t.temperature_degC[i].push_back(tables::csv_number(path, row.line, row.cells[temperature_column[i]]));
@@ -79,7 +85,7 @@ Joints interpolated(const std::vector<Joints>& p, std::size_t n) {
   return (p[n - 3] + 4.0 * p[n - 2] + p[n - 1]) / 6.0;
 }
 
-TraceSummary check_trace(const machine::Model& machine_model, machine::WorldConvention convention,
+TraceSummary check_trace(const machine::Model& machine_model, machine::WorldConvention loaded_convention,
                          const SessionTrace& trace) {
   using machine::Machine;
   TraceSummary out;
@@ -100,6 +106,7 @@ TraceSummary check_trace(const machine::Model& machine_model, machine::WorldConv
   std::vector<Joints> nominal(count), expected(count);
   std::vector<machine::Correction> corrections(count);
   for (std::size_t k = 0; k < count; ++k) {
+    const machine::WorldConvention convention = trace.convention.size() == count ? trace.convention[k] : loaded_convention;
     const double offset = trace.tool_length_mm[k == 0 ? 0 : k - 1];
     const double L = correction_length(k);  // the tool-length rule (slewed)
     const Joints world = core_world(model, convention, trace.world[k], offset);

@@ -1,4 +1,4 @@
-// The module parameters' rules (machine, coordinates, world), without a HAL.
+// The module parameters' rules (machine, coordinates, world, sparm), without a HAL.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -12,7 +12,9 @@ namespace {
 
 TEST(ModuleSettings, DefaultsFollowTheMachineFile) {
   const ModuleSettings s = settings_from_parameters(test::machine_path("mc300").c_str(), nullptr, nullptr);
-  EXPECT_EQ(s.world, machine::WorldConvention::Axes);
+  EXPECT_EQ(s.kinematics_types[0], machine::WorldConvention::Axes);
+  EXPECT_EQ(s.kinematics_types[1], machine::WorldConvention::Tcp);
+  EXPECT_EQ(s.kinematics_type_count, 2);
   EXPECT_EQ(s.model.coordinates(), "xyzbc");
   const std::array<int, 5> fields{0, 1, 2, 4, 5};  // x y z b c in EmcPose order x y z a b c u v w
   for (int j = 0; j < 5; ++j) EXPECT_EQ(s.pose_field[j], fields[j]);
@@ -20,9 +22,23 @@ TEST(ModuleSettings, DefaultsFollowTheMachineFile) {
 
 TEST(ModuleSettings, CoordinatesAndWorldAreCaseInsensitive) {
   const ModuleSettings s = settings_from_parameters(test::machine_path("ac_trunnion").c_str(), "XYZAC", "TCP");
-  EXPECT_EQ(s.world, machine::WorldConvention::Tcp);
+  EXPECT_EQ(s.kinematics_types[0], machine::WorldConvention::Tcp);
+  EXPECT_EQ(s.kinematics_types[1], machine::WorldConvention::Axes);
   EXPECT_EQ(s.pose_field[3], 3);
   EXPECT_EQ(s.pose_field[4], 5);
+}
+
+// LinuxCNC's trt modules: without sparm type 0 is TCP, with sparm=identityfirst the identity.
+// volkins starts in the identity unless world=tcp; sparm=identityfirst is taken as world=axes.
+TEST(ModuleSettings, SparmIdentityfirstMakesTypeZeroTheIdentity) {
+  const std::string mc300 = test::machine_path("mc300");
+  for (const char* world : {static_cast<const char*>(nullptr), "axes"}) {
+    const ModuleSettings s = settings_from_parameters(mc300.c_str(), "xyzbc", world, "identityfirst");
+    EXPECT_EQ(s.kinematics_types[0], machine::WorldConvention::Axes);
+    EXPECT_EQ(s.kinematics_types[1], machine::WorldConvention::Tcp);
+  }
+  EXPECT_THROW(settings_from_parameters(mc300.c_str(), "xyzbc", "tcp", "identityfirst"), std::runtime_error);
+  EXPECT_THROW(settings_from_parameters(mc300.c_str(), "xyzbc", nullptr, "tcpfirst"), std::runtime_error);
 }
 
 TEST(ModuleSettings, RelativePathsAreMadeAbsolute) {

@@ -26,6 +26,9 @@ struct SessionTrace {
   std::vector<double> correction_length_mm;  // volkins.correction-length: the L applied (the offset's,
                                              // slewed); empty in a trace without the column
   std::vector<double> controller_ticks; // motion-controller.time (CPU clock ticks)
+  // The world convention of each sample (column "tcp": volkins.tcp, 1 in the TCP kinematics type);
+  // empty in a trace without the column (the convention the module was loaded with throughout).
+  std::vector<machine::WorldConvention> convention;
   // Per temperature input of the model (its order), per sample: volkins.temperature.<name>.filtered,
   // the value the cycle's kinematics used (column "temperature_<name>"); empty for an input
   // without the column (its reference is taken).
@@ -34,7 +37,7 @@ struct SessionTrace {
 };
 
 // Reads a trace CSV: header with the machine's axis letters (x,y,z,b,c), joints j0.., gain,
-// tool_length and controller_time; optional correction_length and temperature_<name>. Throws
+// tool_length and controller_time; optional correction_length, tcp and temperature_<name>. Throws
 // LoadError naming file, line and column.
 SessionTrace read_session_trace(const std::string& path, const machine::Model& model);
 
@@ -65,7 +68,9 @@ struct TraceSummary {
   std::size_t skipped = 0;           // samples within 4 cycles of a tool length change
 };
 
-// `convention` as the module was loaded (TCP: world Z includes the tool length, as G43 adds it).
+// `convention` as the module was loaded (TCP: world Z includes the tool length, as G43 adds it),
+// for the samples whose own convention the trace does not record (switchable kinematics: its
+// tcp column).
 TraceSummary check_trace(const machine::Model& model, machine::WorldConvention convention,
                          const SessionTrace& trace);
 
