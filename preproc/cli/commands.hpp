@@ -64,6 +64,12 @@ struct ProbePlanArgs {
   std::string output;                    // the program (default: stdout)
 };
 
+struct InitArgs {
+  std::string ini;     // the LinuxCNC configuration's INI file
+  std::string output;  // the machine file to write
+  std::string patch;   // the patch's file; "" or "-": stdout
+};
+
 struct PoseArgs {
   std::string machine;
   std::string poses;
@@ -167,6 +173,8 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out);
 int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out);
 int run_identify_sphere(const IdentifySphereArgs& args, std::ostream& out);
 int run_probe_plan(const ProbePlanArgs& args, std::ostream& out);
+// The patch goes to `patch_out` unless args.patch names a file; the summary to `report`.
+int run_init(const InitArgs& args, std::ostream& patch_out, std::ostream& report);
 int run_trace(const TraceArgs& args, std::ostream& out);
 int run_error(const PoseArgs& args, std::ostream& out);
 int run_correct(const PoseArgs& args, std::ostream& out);

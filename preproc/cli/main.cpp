@@ -254,6 +254,15 @@ int main(int argc, char** argv) {
   plan_cmd->add_option("--log", plan.log_file, "the log file LinuxCNC writes (LOGOPEN)")->capture_default_str();
   plan_cmd->add_option("-o,--output", plan.output, "the program (default: stdout)");
 
+  vc::cli::InitArgs init;
+  CLI::App* init_cmd = app.add_subcommand(
+      "init", "From a LinuxCNC configuration: a machine file with its kinematics' nominal geometry (zero errors) "
+              "and the patch that loads volkins in place of the stock module (summary on stderr)");
+  init_cmd->add_option("CONFIG", init.ini, "the configuration's INI file")->required();
+  init_cmd->add_option("-o,--output", init.output, "the machine file to write (.toml)")->required();
+  init_cmd->add_option("--patch", init.patch,
+                       "write the patch (unified diff, for patch -p1 -d CONFIG_DIR) to this file; - or none: stdout");
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*check_cmd) return vc::cli::run_check(check, std::cout);
@@ -262,6 +271,7 @@ int main(int argc, char** argv) {
     if (*circle_cmd) return vc::cli::run_identify_circle(circle, std::cout);
     if (*sphere_cmd) return vc::cli::run_identify_sphere(sphere, std::cout);
     if (*plan_cmd) return vc::cli::run_probe_plan(plan, std::cout);
+    if (*init_cmd) return vc::cli::run_init(init, std::cout, std::cerr);
     if (*error_cmd) return vc::cli::run_error(error, std::cout);
     if (*correct_cmd) return vc::cli::run_correct(correct, std::cout);
     if (*trace_cmd) return vc::cli::run_trace(trace, std::cout);

@@ -16,11 +16,15 @@
 
 #include "linuxcnc_run.hpp"
 #include "vc/machine/load_machine.hpp"
+#include "session_checks.hpp"
 #include "vc/trace/session_trace.hpp"
 
 namespace vc {
 namespace {
 
+using test::Extremes;
+using test::expect_compensated;
+using test::extremes;
 namespace fs = std::filesystem;
 using machine::Joints;
 using machine::WorldConvention;
@@ -39,47 +43,6 @@ trace::SessionTrace run_session(const std::string& name, const std::string& ini,
   if (r.exit_code != 0) throw std::runtime_error("session failed: " + r.out);
   const fs::path config = fs::path(ini).parent_path().filename();
   return trace::read_session_trace((dir / "run/kins/configs" / config / "trace.csv").string(), model);
-}
-
-struct Extremes {
-  double tip_mm = 0, mismatch = 0, pose_mm = 0, pose_rad = 0, pose_mm_faded = 0;
-  std::size_t full = 0;
-};
-
-Extremes extremes(const trace::TraceSummary& s) {
-  Extremes e;
-  for (const trace::SampleCheck& c : s.samples) {
-    e.tip_mm = std::max(e.tip_mm, c.tip_error_mm.norm());
-    e.mismatch = std::max(e.mismatch, c.module_mismatch);
-    if (c.full_correction) {
-      ++e.full;
-      e.pose_mm = std::max(e.pose_mm, c.command_pose_mm);
-      e.pose_rad = std::max(e.pose_rad, c.command_pose_rad);
-    }
-  }
-  return e;
-}
-
-// The claims of a compensated session, at every sample.
-void expect_compensated(const trace::TraceSummary& s, int model_rotaries, const std::string& what) {
-  ASSERT_GT(s.samples.size(), 10000u) << what;
-  const Extremes e = extremes(s);
-  EXPECT_LT(e.mismatch, 1e-9) << what << ": the module's joints differ from the core's";
-  EXPECT_LT(e.pose_mm, 1e-6) << what;
-  EXPECT_LT(e.pose_rad, 1e-8) << what;
-  if (model_rotaries == 2) {
-    EXPECT_GT(e.full, s.samples.size() / 3) << what << ": too few samples with the full correction";
-  }
-  for (const trace::SampleCheck& c : s.samples) {
-    if (!c.full_correction) {
-      ASSERT_LT(c.command_pose_mm, 1e-6) << what << " sample " << c.sample;
-    }
-  }
-  // What remains at the tool is LinuxCNC's joint smoothing of a corrected path (~1e-5 mm).
-  EXPECT_LT(e.tip_mm, 1e-4) << what;
-  std::cout << what << ": module-core max " << e.mismatch << ", commanded pose residual max " << e.pose_mm
-            << " mm / " << e.pose_rad << " rad, tool tip after LinuxCNC's interpolation max " << e.tip_mm * 1e3
-            << " um\n";
 }
 
 // The core's full correction of a world position for tool length L: joints less nominal joints.

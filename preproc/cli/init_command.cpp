@@ -1,0 +1,81 @@
+// `volcomp init CONFIG.ini -o MACHINE.toml [--patch FILE|-]`: the machine file with the nominal
+// geometry of the configuration's kinematics, and the patch that loads volkins in its place
+// (preproc/init/README.md). The patch goes to stdout unless --patch names a file; the summary
+// always goes to stderr, so that stdout is a clean patch. Nothing is written on a refusal.
+#include <stdlib.h>
+#include <unistd.h>
+
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "atomic_output.hpp"
+#include "commands.hpp"
+#include "vc/init/init.hpp"
+#include "vc/machine/load_machine.hpp"
+
+namespace vc::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string today() {
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  localtime_r(&now, &local);
+  char text[16];
+  std::strftime(text, sizeof text, "%Y-%m-%d", &local);
+  return text;
+}
+
+// The machine file must load as every other tool loads it: a failure here is init's own bug,
+// caught before anything is written.
+void check_loads(const std::string& toml) {
+  std::string temporary = (fs::temp_directory_path() / "volcomp-init-XXXXXX.toml").string();
+  const int fd = mkstemps(temporary.data(), 5);
+  if (fd < 0) throw std::runtime_error("cannot create a temporary file in " + fs::temp_directory_path().string());
+  close(fd);
+  try {
+    std::ofstream(temporary) << toml;
+    machine::load_machine(temporary);
+  } catch (const std::exception& e) {
+    fs::remove(temporary);
+    throw std::runtime_error(std::string("volcomp init wrote a machine file that does not load (a bug): ") + e.what());
+  }
+  fs::remove(temporary);
+}
+
+void check_folder(const std::string& file, const char* what) {
+  const fs::path folder = fs::absolute(file).parent_path();
+  if (!fs::is_directory(folder)) throw std::runtime_error(std::string(what) + ": no folder " + folder.string());
+}
+
+}  // namespace
+
+int run_init(const InitArgs& args, std::ostream& patch_out, std::ostream& report) {
+  const init::InitResult r = init::run_init({args.ini, args.output, today()});
+  check_loads(r.machine_text);
+  const bool patch_to_file = !args.patch.empty() && args.patch != "-";
+  check_folder(args.output, "-o");
+  if (patch_to_file) check_folder(args.patch, "--patch");
+
+  write_atomically(args.output, [&](std::ostream& out) { out << r.machine_text; });
+  if (patch_to_file) write_atomically(args.patch, [&](std::ostream& out) { out << r.patch.diff; });
+  else patch_out << r.patch.diff << std::flush;
+
+  report << "volcomp init: " << r.machine.name << " (" << fs::absolute(args.ini).lexically_normal().string() << ")\n"
+         << "  kinematics: " << r.machine.module << ", joints " << r.machine.coordinates << " -> " << r.patch.kinematics
+         << '\n'
+         << "  machine file: " << args.output << ": nominal geometry, zero errors; add the measured error tables "
+         << "(machines/README.md section 5), then `volcomp check " << args.output << "`\n"
+         << "  patch (" << (patch_to_file ? args.patch : std::string("stdout")) << "):";
+  for (const std::string& change : r.patch.changes) report << "\n    " << change;
+  report << "\n  apply it: patch -p1 -d " << r.folder << " < " << (patch_to_file ? args.patch : std::string("PATCH"))
+         << '\n';
+  for (const std::string& file : r.not_read) report << "  not read: " << file << '\n';
+  for (const std::string& remark : r.machine.remarks) report << "  note: " << remark << '\n';
+  return 0;
+}
+
+}  // namespace vc::cli

@@ -1,0 +1,39 @@
+// The patch that puts volkins in place of the stock kinematics in a LinuxCNC configuration: a
+// unified diff of the configuration's own files (paths relative to its folder, for
+// `patch -p1 -d CONFIG_DIR`), which
+// - makes [KINS]KINEMATICS `volkins machine=<file> coordinates=<joints>`, with world=tcp where
+//   the stock module's type 0 is TCP, or sparm=identityfirst where the stock line had it;
+// - deletes every `setp <module>.<pin> ...`, removes `<module>.<pin>` from every net (a net
+//   left without pins is deleted, with the `sets` of a signal no net is left on), except
+//   `<module>.tool-offset`, which becomes `volkins.tool-length`; a `loadrt <module> ...`
+//   with the INI's parameters becomes `loadrt [KINS]KINEMATICS`;
+// - appends to the INI's [HAL] section, after a comment line, `HALCMD = addf volkins.update
+//   servo-thread 1` and, unless a tool-offset pin became volkins.tool-length, the net of
+//   motion.tooloffset.z to volkins.tool-length (on the signal motion.tooloffset.z is on, if
+//   any).
+// Every other line stays byte for byte. Lines that cannot be rewritten that way (another
+// command naming a stock pin, a pin in a file outside the folder, a continued line) are
+// refused with their file and line.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "vc/init/hal_file.hpp"
+#include "vc/init/kinematics_line.hpp"
+#include "vc/init/nominal_machine.hpp"
+
+namespace vc::init {
+
+struct ConfigPatch {
+  std::string diff;                 // "" if nothing changes
+  std::string kinematics;           // the new [KINS]KINEMATICS value
+  std::vector<std::string> changes; // per file: what changes, for the summary
+};
+
+// machine_path: the machine file as volkins' machine= takes it (relative to the configuration
+// folder, or absolute). Throws vc::LoadError (file:line) for what cannot be patched.
+ConfigPatch patch_config(const LinuxcncIni& ini, const HalConfig& hal, const KinematicsLine& kinematics,
+                         const NominalMachine& machine, const std::string& machine_path);
+
+}  // namespace vc::init

@@ -1,0 +1,27 @@
+// What a stock LinuxCNC kinematics module means as a nominal machine in the project's model
+// (machines/README.md section 1), exactly, so that volkins with that machine file and zero
+// errors moves the joints as the stock module did:
+// - trivkins: the world is the joints. X, Y, Z in the tool chain (directions +x, +y, +z);
+//   A, B, C (at most two) in the workpiece chain about +x, +y, +z, bed outward. trivkins
+//   does not know where a rotary axis is: its pole is a placeholder, said so in the file.
+// - xyzbc-trt-kins, xyzac-trt-kins (LinuxCNC's trtfuncs.c): the world is the tool tip in a
+//   frame attached to the table (TCP). With xr, yr, zr its x/y/z-rot-point pins and dx, dy, dz
+//   its x/y/z-offset pins: tool chain X, Y, Z (+x, +y, +z, poles 0, gauge point 0,
+//   tool_length_reference_mm 0: L is the G43 offset, as its tool-offset pin); workpiece chain
+//   B about +y with its pole at [xr + dx, yr, zr + dz] carrying C about +z with its pole at
+//   [-dx, 0, -dz] (xyzbc), or A about +x at [xr, yr + dy, zr + dz] carrying C at [0, -dy, -dz]
+//   (xyzac); fixture origin [-xr, -yr, -zr]. In volkins' TCP world, LinuxCNC's Z is the tool
+//   tip's plus the tool length offset, as the stock module's (tests/unit/init checks both
+//   directions against trtfuncs.c's equations).
+#pragma once
+
+#include "vc/init/hal_file.hpp"
+#include "vc/init/kinematics_line.hpp"
+#include "vc/init/nominal_machine.hpp"
+
+namespace vc::init {
+
+// Throws vc::LoadError (file:line) with what the model cannot take or the INI does not say.
+NominalMachine nominal_machine(const LinuxcncIni& ini, const HalConfig& hal, const KinematicsLine& kinematics);
+
+}  // namespace vc::init

@@ -1,0 +1,168 @@
+#include "vc/init/stock_kinematics.hpp"
+
+#include <cctype>
+#include <filesystem>
+
+#include "vc/init/machine_layout.hpp"
+#include "vc/init/number.hpp"
+#include "vc/init/pin_value.hpp"
+#include "vc/init/typical_tool.hpp"
+
+namespace vc::init {
+namespace {
+
+Vector3 unit(int k) {
+  Vector3 u{};
+  u[static_cast<std::size_t>(k)] = 1.0;
+  return u;
+}
+
+int index_of(char letter) { return letter == 'X' || letter == 'A' ? 0 : letter == 'Y' || letter == 'B' ? 1 : 2; }
+
+std::string joint_text(const LayoutAxis& a, const MachineLayout& layout) {
+  return std::string(1, a.letter) + ": joint " + std::to_string(a.joint) + " of " + layout.coordinates_from;
+}
+
+NominalAxis axis_from(const LayoutAxis& a, const MachineLayout& layout, const std::string& what) {
+  NominalAxis axis;
+  axis.letter = a.letter;
+  axis.rotary = a.rotary;
+  axis.direction = unit(index_of(a.letter));
+  axis.travel_min = a.travel_min;
+  axis.travel_max = a.travel_max;
+  axis.about = {joint_text(a, layout), what};
+  axis.type_from = a.type_from;
+  axis.travel_from = a.travel_from;
+  return axis;
+}
+
+// X, Y, Z carry the tool: +X moves it along +x relative to the part (both modules' world).
+void linear_axes(const MachineLayout& layout, const std::string& module, const std::string& world, NominalMachine& m) {
+  for (char l : std::string("XYZ")) {
+    NominalAxis axis = axis_from(*layout.axis(l), layout, module + world + ": the joint moves the tool along +" +
+                                                              std::string(1, static_cast<char>(std::tolower(l))) +
+                                                              " relative to the part");
+    axis.direction_from = "the tool's motion relative to the part (machines/README.md section 1)";
+    axis.pole_from = {"the bed frame's origin (" + module + " places X, Y, Z nowhere in particular)"};
+    m.tool_chain.push_back(axis);
+  }
+}
+
+void trivkins(const MachineLayout& layout, NominalMachine& m) {
+  linear_axes(layout, "trivkins", " (the world is the joints)", m);
+  std::string rotary;
+  for (const LayoutAxis& a : layout.axes) {
+    if (!a.rotary) continue;
+    rotary += rotary.empty() ? std::string(1, a.letter) : std::string(" and ") + a.letter;
+    NominalAxis axis = axis_from(a, layout, "a rotary axis carrying the part, bed outward in ABC order");
+    axis.direction_from = "about +" + std::string(1, "xyz"[index_of(a.letter)]);
+    axis.pole_from = {"A PLACEHOLDER: trivkins does not know where the rotary axes are. Give the pole (where the",
+                      "axis's error table is measured, machines/README.md section 1) or measure it with",
+                      "`volcomp probe-plan` and `volcomp identify sphere` (preproc/identify/README.md)."};
+    m.workpiece_chain.push_back(axis);
+  }
+  if (!rotary.empty())
+    m.remarks.push_back("trivkins does not know where " + rotary +
+                        (rotary.size() > 1 ? " are: their pole_mm are placeholders; measure them"
+                                           : " is: its pole_mm is a placeholder; measure it") +
+                        " (volcomp identify sphere).");
+  m.gauge_point_from = "trivkins knows no spindle: the tool tip is L below the Z frame's origin";
+  m.fixture_from = {"trivkins: the part frame is the bed frame"};
+}
+
+// A geometry pin of the trt modules, with where its value comes from.
+struct Pin {
+  std::string name;
+  double value = 0.0;
+  std::string from;
+};
+
+Pin geometry_pin(const HalConfig& hal, const LinuxcncIni& ini, const std::string& module, const std::string& name) {
+  const std::string pin = module + "." + name;
+  const PinValue v = pin_value(hal, pin, 0.0);
+  auto at = [&](const HalCommand& c) { return cite(c.path, c.line, c.text, ini.folder()); };
+  if (v.source == PinValue::Source::Live)
+    throw LoadError(v.net->where(), pin + " follows " + v.driver + " at run time (both are on signal " + v.signal +
+                                        ", which no sets gives a value); volkins takes the geometry from the machine "
+                                        "file: set it with setp");
+  Pin p{name, v.value, name + " = " + format_number(v.value) + ": "};
+  if (v.source == PinValue::Source::Default) p.from += "not set in the HAL files read (the module's default)";
+  else p.from += at(*v.command);
+  if (v.source == PinValue::Source::Sets) p.from += " (its signal, " + at(*v.net) + ")";
+  return p;
+}
+
+void trt(const LinuxcncIni& ini, const HalConfig& hal, const KinematicsLine& k, const MachineLayout& layout,
+         NominalMachine& m) {
+  const bool bc = k.kind == StockModule::XyzbcTrt;
+  const char tilt = bc ? 'B' : 'A';
+  const std::string& mod = k.module;
+  linear_axes(layout, mod, " (the world is the tool tip relative to the table)", m);
+  m.pins = {"x-rot-point", "y-rot-point", "z-rot-point", "x-offset", "y-offset", "z-offset", "tool-offset"};
+  m.tool_offset_pin = "tool-offset";
+  const Pin xr = geometry_pin(hal, ini, mod, "x-rot-point"), yr = geometry_pin(hal, ini, mod, "y-rot-point"),
+            zr = geometry_pin(hal, ini, mod, "z-rot-point"), dx = geometry_pin(hal, ini, mod, "x-offset"),
+            dy = geometry_pin(hal, ini, mod, "y-offset"), dz = geometry_pin(hal, ini, mod, "z-offset");
+  const Pin& unused = bc ? dy : dx;
+  m.remarks.push_back(mod + " does not use its " + unused.name + " pin (trtfuncs.c): " + unused.from + ".");
+
+  NominalAxis t = axis_from(*layout.axis(tilt), layout, "the tilting table, carrying the rotary table C");
+  t.direction_from = mod + " tilts the table about +" + std::string(1, bc ? 'y' : 'x') + " (trtfuncs.c)";
+  if (bc) {
+    t.pole_mm = {xr.value + dx.value, yr.value, zr.value + dz.value};
+    t.pole_from = {"[x-rot-point + x-offset, y-rot-point, z-rot-point + z-offset]: B's line is the rotation point's",
+                   "moved by the x and z offsets (trtfuncs.c), with"};
+  } else {
+    t.pole_mm = {xr.value, yr.value + dy.value, zr.value + dz.value};
+    t.pole_from = {"[x-rot-point, y-rot-point + y-offset, z-rot-point + z-offset]: A's line is the rotation point's",
+                   "moved by the y and z offsets (trtfuncs.c), with"};
+  }
+  for (const Pin* p : bc ? std::vector<const Pin*>{&xr, &yr, &zr, &dx, &dz} : std::vector<const Pin*>{&xr, &yr, &zr, &dy, &dz})
+    t.pole_from.push_back("  " + p->from);
+  m.workpiece_chain.push_back(t);
+
+  NominalAxis c = axis_from(*layout.axis('C'), layout, "the rotary table, on the tilting table");
+  c.direction_from = mod + " turns the rotary table about its +z (trtfuncs.c)";
+  c.pole_mm = bc ? Vector3{-dx.value, 0.0, -dz.value} : Vector3{0.0, -dy.value, -dz.value};
+  c.pole_from = {std::string(bc ? "[-x-offset, 0, -z-offset]" : "[0, -y-offset, -z-offset]") + " in " + tilt +
+                 "'s frame: C's line passes through the rotation point (trtfuncs.c), with the offsets above"};
+  m.workpiece_chain.push_back(c);
+
+  m.fixture_origin_mm = {-xr.value, -yr.value, -zr.value};
+  m.fixture_from = {"[-x-rot-point, -y-rot-point, -z-rot-point] in C's frame: the part frame is the bed frame at " +
+                    std::string(1, tilt) + " = C = 0, as the world of " + mod + " (the tool tip relative to the table)"};
+  m.gauge_point_from = "the tool tip of " + mod + " is tool-offset below the spindle point, the Z frame's origin";
+  m.tool_length_reference_from = "L = the active G43 offset (motion.tooloffset.z), exactly as the tool-offset pin of " + mod;
+
+  // sparm=identityfirst makes type 0 the identity (volkins: the same parameter); else type 0
+  // is the TCP kinematics (volkins: world=tcp).
+  const std::string* sparm = k.parameter("sparm");
+  m.identity_first = sparm && sparm->find("identityfirst") != std::string::npos;
+  m.world = m.identity_first ? "" : "tcp";
+}
+
+}  // namespace
+
+NominalMachine nominal_machine(const LinuxcncIni& ini, const HalConfig& hal, const KinematicsLine& k) {
+  const MachineLayout layout = read_layout(ini, k);
+  NominalMachine m;
+  m.module = k.module;
+  m.coordinates = layout.coordinates;
+  if (const IniEntry* name = ini.find("EMC", "MACHINE"); name && !name->value.empty()) {
+    m.name = name->value;
+    m.name_from = "[EMC] " + ini.cite(*name);
+  } else {
+    m.name = std::filesystem::path(ini.path()).stem().string();
+    m.name_from = "the INI file's name: it has no [EMC]MACHINE";
+  }
+  const TypicalTool tool = longest_tool(ini);
+  m.tool_length_mm = tool.length_mm;
+  m.tool_length_from = tool.from;
+  if (tool.unreadable) m.remarks.push_back("tool_length_mm is 0: " + tool.from);
+  m.tool_length_reference_from = "L = the active G43 offset (motion.tooloffset.z): the tool table holds gauge lengths";
+  if (k.kind == StockModule::Trivkins) trivkins(layout, m);
+  else trt(ini, hal, k, layout, m);
+  return m;
+}
+
+}  // namespace vc::init

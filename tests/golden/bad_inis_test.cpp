@@ -1,0 +1,127 @@
+// Golden bad LinuxCNC configurations for `volcomp init`: every tests/golden/bad_inis/*.ini (with
+// the HAL files of its name) must be refused by the command line with exit code 2, the exact
+// message of its .expect twin (trimmed; the source tree's path removed so that paths read
+// relative to the repository root), and neither output file written. The good base they are
+// made from (bad_inis/good/) is accepted: the machine file and the patch written, stdout a
+// clean patch.
+//
+// VC_UPDATE_GOLDEN=1 writes the .expect files from the current messages: read every one of
+// them critically before committing (the right file and line? does it say what is wrong and
+// how to fix it?).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "test_support.hpp"
+#include "vc/machine/load_machine.hpp"
+
+namespace vc {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string trimmed(const std::string& s) {
+  const auto space = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
+  const auto begin = std::find_if_not(s.begin(), s.end(), space);
+  const auto end = std::find_if_not(s.rbegin(), s.rend(), space).base();
+  return begin < end ? std::string(begin, end) : std::string();
+}
+
+std::string relative_message(std::string message) {
+  const std::string root = fs::path(VC_SOURCE_DIR).lexically_normal().string() + "/";
+  for (std::size_t at; (at = message.find(root)) != std::string::npos;) message.erase(at, root.size());
+  return message;
+}
+
+std::string read(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("vc_bad_inis_" + std::to_string(::getpid()) + "_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// stdout alone (stderr to a file), and the exit code.
+test::CommandResult run_stdout(const std::string& args, const fs::path& stderr_file) {
+  const std::string command = std::string(VC_VOLCOMP) + " " + args + " 2>'" + stderr_file.string() + "'";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string out;
+  char buffer[4096];
+  while (std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
+  const int status = pclose(pipe);
+  return {out, WEXITSTATUS(status)};
+}
+
+TEST(BadInis, EveryBadConfigurationIsRefusedWithItsMessage) {
+  const fs::path dir = test::source_path("tests/golden/bad_inis");
+  std::vector<fs::path> inis;
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.path().extension() == ".ini") inis.push_back(entry.path());
+  std::sort(inis.begin(), inis.end());
+  ASSERT_GE(inis.size(), 7u);
+  const bool update = std::getenv("VC_UPDATE_GOLDEN") != nullptr;
+  const fs::path out = scratch("refused");
+  for (const fs::path& ini : inis) {
+    SCOPED_TRACE(ini.filename().string());
+    const auto r = test::run_volcomp("init " + ini.string() + " -o " + (out / "machine.toml").string() + " --patch " +
+                                     (out / "config.diff").string());
+    EXPECT_EQ(r.exit_code, 2) << r.out;
+    EXPECT_FALSE(fs::exists(out / "machine.toml")) << "a refusal wrote the machine file";
+    EXPECT_FALSE(fs::exists(out / "config.diff")) << "a refusal wrote the patch";
+    const std::string message = trimmed(relative_message(r.out));
+    EXPECT_EQ(message.rfind("tests/golden/bad_inis/", 0), 0u) << "file:line first: " << message;
+    EXPECT_NE(message.find(": error: "), std::string::npos) << message;
+    fs::path expect = ini;
+    expect.replace_extension(".expect");
+    if (update) {
+      std::ofstream(expect) << message << '\n';
+      continue;
+    }
+    ASSERT_TRUE(fs::exists(expect)) << "no " << expect << " (run with VC_UPDATE_GOLDEN=1 and read it)";
+    EXPECT_EQ(message, trimmed(read(expect)));
+  }
+  fs::remove_all(out);
+}
+
+TEST(BadInis, TheGoodBaseIsAcceptedAndWritesBothOutputs) {
+  const fs::path dir = scratch("good") / "config";
+  fs::copy(test::source_path("tests/golden/bad_inis/good"), dir, fs::copy_options::recursive);
+  const fs::path summary = dir.parent_path() / "summary.txt";
+
+  // --patch FILE: both outputs in files, nothing on stdout.
+  const auto to_file = run_stdout("init " + (dir / "xyzbc.ini").string() + " -o " + (dir / "xyzbc.toml").string() +
+                                      " --patch " + (dir.parent_path() / "config.diff").string(),
+                                  summary);
+  ASSERT_EQ(to_file.exit_code, 0) << read(summary);
+  EXPECT_EQ(to_file.out, "");
+  EXPECT_NE(read(summary).find("volcomp init: golden xyzbc"), std::string::npos) << read(summary);
+  const machine::Model model = machine::load_machine((dir / "xyzbc.toml").string());
+  EXPECT_EQ(model.coordinates(), "xyzbc");
+  EXPECT_EQ(model.axes[3].pole_mm, Eigen::Vector3d(-20, 0, 35));  // [xr + dx, yr, zr + dz]
+  EXPECT_EQ(model.fixture.translation(), Eigen::Vector3d(0, 0, -50));
+  const std::string diff = read(dir.parent_path() / "config.diff");
+  EXPECT_NE(diff.find("+KINEMATICS = volkins machine=xyzbc.toml coordinates=xyzbc world=tcp\n"), std::string::npos)
+      << diff;
+  const auto check = test::run_volcomp("check " + (dir / "xyzbc.toml").string() + " --samples 200");
+  EXPECT_EQ(check.exit_code, 0) << check.out;
+
+  // No --patch: stdout is the patch alone (the summary on stderr).
+  const auto to_stdout = run_stdout("init " + (dir / "xyzbc.ini").string() + " -o " + (dir / "again.toml").string(), summary);
+  ASSERT_EQ(to_stdout.exit_code, 0) << read(summary);
+  EXPECT_EQ(to_stdout.out, std::string(diff).replace(diff.find("xyzbc.toml"), 10, "again.toml"));
+  EXPECT_EQ(read(dir / "again.toml").substr(read(dir / "again.toml").find("[machine]")),
+            read(dir / "xyzbc.toml").substr(read(dir / "xyzbc.toml").find("[machine]")));
+  fs::remove_all(dir.parent_path());
+}
+
+}  // namespace
+}  // namespace vc

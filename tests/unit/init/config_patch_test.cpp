@@ -1,0 +1,190 @@
+// The patch `volcomp init` writes, applied with the real `patch -p1` to a copy of the
+// configuration: volkins' KINEMATICS line, no stock pin left, volkins.tool-length on the
+// tool-offset signal, volkins.update first in the servo thread, every other byte unchanged
+// (CRLF and trailing blanks too); what it cannot rewrite is refused with its line.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <set>
+#include <sstream>
+
+#include "init_test_files.hpp"
+#include "vc/init/init.hpp"
+
+namespace vc::init {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// init on `ini`, its machine file in the folder, the patch applied there.
+InitResult init_and_patch(const fs::path& ini, const std::string& machine = "machine.toml") {
+  InitResult r = run_init({ini.string(), (ini.parent_path() / machine).string(), "2026-01-01"});
+  const fs::path diff = ini.parent_path().parent_path() / (ini.stem().string() + ".diff");
+  test::write_file(diff, r.patch.diff);
+  EXPECT_EQ(test::apply_patch(ini.parent_path(), diff), 0) << r.patch.diff;
+  return r;
+}
+
+TEST(ConfigPatch, PutsVolkinsInTheXyzbcSample) {
+  if (!test::samples_installed()) GTEST_SKIP() << "LinuxCNC's sample configurations are not installed (" << test::kSampleConfigs << ")";
+  const fs::path original = test::kSampleConfigs / "table-rotary-tilting";
+  const fs::path copy = test::scratch_folder("xyzbc_patch") / "table-rotary-tilting";
+  fs::copy(original, copy, fs::copy_options::recursive);
+  const InitResult r = init_and_patch(copy / "xyzbc-trt.ini", "xyzbc.toml");
+  EXPECT_EQ(r.machine_path, "xyzbc.toml");  // inside the folder: relative to it
+
+  const std::vector<std::string> before = lines_of(test::read_file(original / "xyzbc-trt.ini"));
+  const std::vector<std::string> after = lines_of(test::read_file(copy / "xyzbc-trt.ini"));
+  EXPECT_NE(std::find(after.begin(), after.end(),
+                      "KINEMATICS = volkins machine=xyzbc.toml coordinates=xyzbc sparm=identityfirst"),
+            after.end());
+  EXPECT_NE(std::find(after.begin(), after.end(), "HALCMD = net  :tool-offset  volkins.tool-length xyzbc-trt-gui.tool-offset"),
+            after.end());
+  EXPECT_NE(std::find(after.begin(), after.end(), "HALCMD = addf volkins.update servo-thread 1"), after.end());
+  // The lines the patch adds or changes, exactly; every other line kept, in order.
+  const std::set<std::string> changed{
+      "KINEMATICS = volkins machine=xyzbc.toml coordinates=xyzbc sparm=identityfirst",
+      "HALCMD = net  :tool-offset  volkins.tool-length xyzbc-trt-gui.tool-offset",
+      "HALCMD = net  :x-offset    xyzbc-trt-gui.x-offset",
+      "HALCMD = net  :z-offset    xyzbc-trt-gui.z-offset",
+      "# volkins (volcomp init): its update function runs first in the servo thread",
+      "HALCMD = addf volkins.update servo-thread 1"};
+  std::set<std::string> added;
+  std::size_t i = 0;
+  for (const std::string& line : after) {
+    while (i < before.size() && before[i] != line &&
+           (before[i].find("xyzbc-trt-kins.") != std::string::npos || before[i].rfind("KINEMATICS", 0) == 0))
+      ++i;  // a stock line, replaced or deleted
+    if (i < before.size() && before[i] == line) {
+      ++i;
+      continue;
+    }
+    added.insert(line);
+  }
+  EXPECT_EQ(i, before.size()) << "an original line went missing: " << (i < before.size() ? before[i] : "");
+  EXPECT_EQ(added, changed);
+  // No HAL command of the configuration (its INI and HAL files, comments aside) names a stock
+  // pin; every other file is unchanged. (Its remap_subs/centering.ngc reads the rot-point pins
+  // guarded by `exists`, and its xyzbc-trt.txt names two: init patches no G-code or notes.)
+  for (const auto& entry : fs::recursive_directory_iterator(copy)) {
+    if (!entry.is_regular_file()) continue;
+    const std::string text = test::read_file(entry.path());
+    if (entry.path().extension() == ".ini" || entry.path().extension() == ".hal") {
+      for (const std::string& line : lines_of(text))
+        EXPECT_EQ(line.substr(0, line.find('#')).find("xyzbc-trt-kins."), std::string::npos) << entry.path() << ": " << line;
+    }
+    const fs::path twin = original / fs::relative(entry.path(), copy);
+    if (entry.path().filename() != "xyzbc-trt.ini" && entry.path().filename() != "xyzbc.toml") {
+      EXPECT_EQ(text, test::read_file(twin)) << entry.path();
+    }
+  }
+}
+
+TEST(ConfigPatch, RewritesTheConfigurationsOwnHalFilesByteForByte) {
+  const fs::path dir = test::scratch_folder("own_hal") / "cfg";
+  fs::create_directories(dir / "lib");
+  test::write_file(dir / "lib/sim.tcl", "# not read\n");
+  ::setenv("HALLIB_DIR", (dir / "lib").c_str(), 1);
+  std::string ini =
+      "[EMC]\r\nMACHINE = own\r\n[KINS]\r\nKINEMATICS =   xyzac-trt-kins   \r\nJOINTS = 5\r\n"
+      "[TRAJ]\r\nCOORDINATES = X Y Z A C\r\nLINEAR_UNITS = mm\r\n"
+      "[HAL]\r\nHALFILE = LIB:sim.tcl\r\nHALFILE = kins.hal\r\n[EMCIO]\r\nTOOL_TABLE = t.tbl\r\n";
+  const double limits[5][2] = {{-1, 1}, {-2, 2}, {-3, 3}, {-90, 90}, {-36000, 36000}};
+  for (int j = 0; j < 5; ++j)
+    ini += "[JOINT_" + std::to_string(j) + "]\r\nTYPE = " + (j < 3 ? "LINEAR" : "ANGULAR") + "\r\nMIN_LIMIT = " +
+           std::to_string(static_cast<int>(limits[j][0])) + "\r\nMAX_LIMIT = " +
+           std::to_string(static_cast<int>(limits[j][1])) + "\r\n";
+  test::write_file(dir / "own.ini", ini);
+  test::write_file(dir / "t.tbl", "T1 P1 Z50 D6 ;long\nT2 P2 Z75.5 ;longer\n");
+  const std::string hal =
+      "loadrt xyzac-trt-kins\n"
+      "setp xyzac-trt-kins.x-rot-point 10   \n"
+      "net :yoff xyzac-trt-kins.y-offset\n"
+      "sets :yoff 5 # the y offset\n"
+      "net :tool <= motion.tooloffset.z => xyzac-trt-kins.tool-offset\n"
+      "xyzac-trt-kins.z-offset = 7\n"
+      "net :kt kinstype.is-1 => gui.led  \n"
+      "addf motion-controller servo-thread";
+  test::write_file(dir / "kins.hal", hal);
+  const InitResult r = init_and_patch(dir / "own.ini");
+  ::unsetenv("HALLIB_DIR");
+
+  EXPECT_EQ(test::read_file(dir / "kins.hal"),
+            "loadrt [KINS]KINEMATICS\n"
+            "net :tool <= motion.tooloffset.z => volkins.tool-length\n"
+            "net :kt kinstype.is-1 => gui.led  \n"
+            "addf motion-controller servo-thread");
+  std::string patched_ini = ini;
+  patched_ini.replace(patched_ini.find("xyzac-trt-kins   "), 17, "volkins machine=machine.toml coordinates=xyzac world=tcp");
+  patched_ini.insert(patched_ini.find("[EMCIO]"),
+                     "# volkins (volcomp init): its update function runs first in the servo thread\r\n"
+                     "HALCMD = addf volkins.update servo-thread 1\r\n");
+  EXPECT_EQ(test::read_file(dir / "own.ini"), patched_ini);
+  // The geometry: A's pole [xr, yr + dy, zr + dz], C's [0, -dy, -dz], the fixture [-xr, -yr, -zr].
+  const NominalMachine& m = r.machine;
+  EXPECT_EQ(m.workpiece_chain[0].pole_mm, (Vector3{10, 5, 7}));
+  EXPECT_EQ(m.workpiece_chain[1].pole_mm, (Vector3{0, -5, -7}));
+  EXPECT_EQ(m.fixture_origin_mm, (Vector3{-10, 0, 0}));
+  EXPECT_EQ(m.tool_length_mm, 75.5);
+  EXPECT_NE(r.machine_text.find("tool_length_mm = 75.5             # the longest tool of the tool table, T2: t.tbl:2 "
+                                "`T2 P2 Z75.5 ;longer`"),
+            std::string::npos)
+      << r.machine_text;
+  ASSERT_EQ(r.not_read.size(), 1u);
+  EXPECT_NE(r.not_read[0].find("sim.tcl"), std::string::npos);
+  EXPECT_NE(r.machine_text.find("#   " + (dir / "lib/sim.tcl").string()), std::string::npos) << r.machine_text;
+}
+
+TEST(ConfigPatch, RefusesWhatItCannotRewrite) {
+  const fs::path dir = test::scratch_folder("cannot");
+  const fs::path lib = test::scratch_folder("cannot_lib");
+  std::string ini = "[KINS]\nKINEMATICS = xyzbc-trt-kins\nJOINTS = 5\n[TRAJ]\nCOORDINATES = XYZBC\nLINEAR_UNITS = mm\n"
+                    "[HAL]\nHALFILE = m.hal\n";
+  for (int j = 0; j < 5; ++j)
+    ini += "[JOINT_" + std::to_string(j) + "]\nMIN_LIMIT = -1\nMAX_LIMIT = 1\n";
+  test::write_file(dir / "m.ini", ini);
+  auto refusal = [&](const std::string& hal) -> std::string {
+    test::write_file(dir / "m.hal", hal);
+    try {
+      run_init({(dir / "m.ini").string(), (dir / "m.toml").string(), "2026-01-01"});
+    } catch (const LoadError& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  EXPECT_EQ(refusal("loadrt [KINS]KINEMATICS\ngetp xyzbc-trt-kins.x-offset\n"),
+            (dir / "m.hal").string() + ":2: error: `getp xyzbc-trt-kins.x-offset` names xyzbc-trt-kins.x-offset: init "
+                                       "rewrites the setp and net lines of xyzbc-trt-kins pins only; change this one "
+                                       "by hand (volkins has no such pin)");
+  EXPECT_EQ(refusal("setp xyzbc-trt-kins.no-such-pin 1\n"),
+            (dir / "m.hal").string() + ":1: error: xyzbc-trt-kins has no pin xyzbc-trt-kins.no-such-pin");
+  EXPECT_EQ(refusal("net :x other.pin => xyzbc-trt-kins.x-offset\n"),
+            (dir / "m.hal").string() + ":1: error: xyzbc-trt-kins.x-offset follows other.pin at run time (both are on "
+                                       "signal :x, which no sets gives a value); volkins takes the geometry from the "
+                                       "machine file: set it with setp");
+  EXPECT_EQ(refusal("loadrt xyzbc-trt-kins sparm=identityfirst\n"),
+            (dir / "m.hal").string() + ":1: error: `loadrt xyzbc-trt-kins sparm=identityfirst` loads xyzbc-trt-kins "
+                                       "with other parameters than [KINS]KINEMATICS (m.ini:2 `KINEMATICS = "
+                                       "xyzbc-trt-kins`): make them the same (`loadrt [KINS]KINEMATICS`)");
+  // A stock pin in a file outside the configuration folder.
+  test::write_file(lib / "outside.hal", "setp xyzbc-trt-kins.x-offset 3\n");
+  std::string with_lib = ini;
+  with_lib.replace(with_lib.find("HALFILE = m.hal"), 15, "HALFILE = " + (lib / "outside.hal").string());
+  test::write_file(dir / "m.ini", with_lib);
+  const std::string outside = refusal("");
+  EXPECT_EQ(outside.rfind((lib / "outside.hal").string() + ":1: error: `setp xyzbc-trt-kins.x-offset 3` sets a "
+                                                           "xyzbc-trt-kins pin, in a file outside the configuration folder",
+                          0),
+            0u)
+      << outside;
+}
+
+}  // namespace
+}  // namespace vc::init
