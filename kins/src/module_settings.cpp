@@ -40,11 +40,26 @@ ModuleSettings settings_from_parameters(const char* machine, const char* coordin
       refuse("temperature input '" + t.name + "' of " + s.model.path +
              ": a HAL pin name needs 1-24 letters, digits, '_' or '-'");
 
-  const std::string wanted = s.model.coordinates();
-  const std::string given = coordinates && *coordinates ? lower(coordinates) : wanted;
-  if (given != wanted)
-    refuse("coordinates=" + std::string(coordinates) + " does not match the machine file " + s.model.path +
-           ", whose joints are the axes \"" + wanted + "\" in this order (one joint per axis)");
+  const std::string axes = s.model.coordinates();
+  const std::string given = coordinates && *coordinates ? lower(coordinates) : axes;
+  const auto mismatch = [&](const std::string& why) {
+    refuse("coordinates=" + std::string(coordinates) + " does not match the machine file " + s.model.path + ": " + why +
+           " (its axes are \"" + axes + "\": each at least once, a letter twice drives two joints alike, e.g. a "
+           "gantry's two Y motors)");
+  };
+  if (given.size() > static_cast<std::size_t>(kMaxJoints))
+    mismatch("more than " + std::to_string(kMaxJoints) + " joints");
+  s.joint_count = static_cast<int>(given.size());
+  s.principal_joint.fill(-1);
+  for (int k = 0; k < s.joint_count; ++k) {
+    const std::size_t axis = axes.find(given[k]);
+    if (axis == std::string::npos)
+      mismatch("joint " + std::to_string(k) + "'s axis " + static_cast<char>(std::toupper(given[k])) + " is not in it");
+    s.model_joint[k] = static_cast<int>(axis);
+    if (s.principal_joint[axis] < 0) s.principal_joint[axis] = k;
+  }
+  for (std::size_t axis = 0; axis < axes.size(); ++axis)
+    if (s.principal_joint[axis] < 0) mismatch(std::string("no joint drives its axis ") + static_cast<char>(std::toupper(axes[axis])));
 
   // Type 0's world: world=, else sparm=identityfirst (identity), else identity.
   const std::string convention = world && *world ? lower(world) : "";
@@ -69,7 +84,7 @@ ModuleSettings settings_from_parameters(const char* machine, const char* coordin
 
   static constexpr const char* kPoseOrder = "xyzabcuvw";
   for (int j = 0; j < s.model.joint_count(); ++j)
-    s.pose_field[j] = static_cast<int>(std::strchr(kPoseOrder, wanted[j]) - kPoseOrder);
+    s.pose_field[j] = static_cast<int>(std::strchr(kPoseOrder, axes[j]) - kPoseOrder);
   s.contraction.emplace(s.model, std::vector<double>(kBoundToolLengthsMm.begin(), kBoundToolLengthsMm.end()), true);
   return s;
 }

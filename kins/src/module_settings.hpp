@@ -15,6 +15,8 @@ namespace vc::kins {
 
 // Temperature inputs the module takes (a HAL pin each).
 inline constexpr int kMaxTemperatureInputs = 8;
+// LinuxCNC's joints (EMCMOT_MAX_JOINTS).
+inline constexpr int kMaxJoints = 16;
 
 struct ModuleSettings {
   machine::Model model;
@@ -25,8 +27,15 @@ struct ModuleSettings {
   std::array<machine::WorldConvention, 2> kinematics_types{machine::WorldConvention::Axes,
                                                            machine::WorldConvention::Tcp};
   int kinematics_type_count = 2;
-  // For each joint, its field in LinuxCNC's EmcPose in the order x y z a b c u v w.
+  // For each joint of the machine file (one per axis), its field in LinuxCNC's EmcPose in the
+  // order x y z a b c u v w.
   std::array<int, machine::kMaxAxes> pose_field{};
+  // LinuxCNC's joints, one per letter of coordinates=: the machine file's joint each drives (a
+  // letter given twice drives two joints alike: a gantry's two Y motors), and for each machine
+  // joint the first of its LinuxCNC joints, the one the forward reads (LinuxCNC's principal joint).
+  int joint_count = 0;
+  std::array<int, kMaxJoints> model_joint{};
+  std::array<int, machine::kMaxAxes> principal_joint{};
   // The Z joint. In the TCP convention LinuxCNC's G43 has added the tool length to world Z
   // (as with its own TCP kinematics, whose tool-offset pin follows motion.tooloffset.z): the
   // module takes it off before the core sees the tool tip, and adds it back in the forward.
@@ -40,8 +49,9 @@ struct ModuleSettings {
 
 inline constexpr std::array<double, 6> kBoundToolLengthsMm{0.0, 100.0, 200.0, 300.0, 400.0, 500.0};
 
-// machine: the machine file (required). coordinates: LinuxCNC's axis letters, one per joint in
-// the machine file's joint order (optional; default the machine's own). world: the world of
+// machine: the machine file (required). coordinates: LinuxCNC's axis letters, one per joint
+// (optional; default the machine's own, in its order): every axis of the machine file at least
+// once, no other letter; a letter twice gives two joints the same command. world: the world of
 // kinematics type 0, "axes" (default) or "tcp" (needs a Z axis). sparm: LinuxCNC's switchable
 // modules' parameter; "identityfirst" makes type 0 the identity (axes) world, as world=axes.
 ModuleSettings settings_from_parameters(const char* machine, const char* coordinates, const char* world,

@@ -58,7 +58,7 @@ struct HalData {
   hal_bit_t* active;                          // out: a correction is applied (gain > 0)
   hal_bit_t* update_missing;                  // out: the kinematics ran before volkins.update ever did
   hal_float_t* correction_length;             // out: L the correction is computed for now (mm)
-  hal_float_t* correction[vm::kMaxAxes];      // out: joint - nominal joint of the last inverse
+  hal_float_t* correction[vc::kins::kMaxJoints];  // out: joint - nominal joint of the last inverse
   hal_s32_t* iterations;                      // out: Newton steps of the last inverse
   hal_s32_t* forward_iterations;              // out: Newton steps (and band corrections) of the last forward
   hal_bit_t* out_of_table;                    // out: last inverse beyond a table's grid
@@ -276,11 +276,13 @@ int kinematicsInverse(const EmcPose* pose, double* joints, const KINEMATICS_INVE
   const int n = model.joint_count();
   const double offset = *hal->tool_length;       // LinuxCNC's tool length offset (G43)
   const double L = correction_length();          // the tool-length rule, slewed
-  const Joints previous = Eigen::Map<const Joints>(joints, n);  // LinuxCNC's seed
+  Joints previous(n);  // LinuxCNC's seed: its principal joints
+  for (int j = 0; j < n; ++j) previous[j] = joints[settings->principal_joint[j]];
   kinematics.last_inverse_pose = *pose;
   Joints extrapolated, extrapolated_full;
   const vm::Applied applied{applied_gain(), &previous, applied_corrections.for_inverse(extrapolated),
-                            &*settings->contraction, full_corrections.for_inverse(extrapolated_full)};
+                            &*settings->contraction, full_corrections.for_inverse(extrapolated_full),
+                            model.correction_length(offset)};
   Joints q;
   vm::Correction report;
   const vm::Status s = vm::joints_from_world(model, current_world(), world_of(*pose, offset), L, applied, q, &report);
@@ -298,30 +300,33 @@ int kinematicsInverse(const EmcPose* pose, double* joints, const KINEMATICS_INVE
   }
   bool too_large = false;
   for (int j = 0; j < n; ++j) {
-    const double c = q[j] - report.nominal[j];
     const double limit =
         model.axes[j].type == vm::AxisType::Linear ? hal->max_correction_mm : hal->max_correction_deg;
-    too_large |= !(std::abs(c) <= limit);
-    *hal->correction[j] = c;
+    too_large |= !(std::abs(q[j] - report.nominal[j]) <= limit);
+  }
+  for (int k = 0; k < settings->joint_count; ++k) {
+    const int j = settings->model_joint[k];
+    *hal->correction[k] = q[j] - report.nominal[j];
   }
   *hal->out_of_table = vm::outside_tables(model, q);
   *hal->limit_exceeded = too_large;
   if (too_large) return refuse();
-  for (int j = 0; j < n; ++j) joints[j] = q[j];
+  for (int k = 0; k < settings->joint_count; ++k) joints[k] = q[settings->model_joint[k]];
   return 0;
 }
 
 int kinematicsForward(const double* joints, EmcPose* pose, const KINEMATICS_FORWARD_FLAGS*,
                       KINEMATICS_INVERSE_FLAGS*) {
   const vm::Model& model = settings->model;
-  const Joints q = Eigen::Map<const Joints>(joints, model.joint_count());
+  Joints q(model.joint_count());  // the principal joint of each axis, as LinuxCNC's modules read them
+  for (int j = 0; j < q.size(); ++j) q[j] = joints[settings->principal_joint[j]];
   const double offset = *hal->tool_length;
   const double L = correction_length();
   const Joints seed = world_of(*pose, offset);  // LinuxCNC passes the previous position (or home)
   Joints w, way_point, way_point_full;
   int iterations = 0;
   const vm::Applied applied{applied_gain(), &seed, applied_corrections.for_forward(way_point), nullptr,
-                            full_corrections.for_forward(way_point_full)};
+                            full_corrections.for_forward(way_point_full), model.correction_length(offset)};
   const vm::Status s = vm::world_from_joints(model, current_world(), q, L, applied, w, &iterations);
   *hal->forward_iterations = iterations;
   if (s != vm::Status::Ok) return refuse();
@@ -391,8 +396,8 @@ bool export_hal(const vm::Model& model) {
   r |= hal_pin_bit_newf(HAL_OUT, &hal->update_missing, comp_id, "volkins.update-missing");
   r |= hal_pin_float_newf(HAL_OUT, &hal->correction_length, comp_id, "volkins.correction-length");
   r |= hal_param_float_newf(HAL_RW, &hal->tool_length_slew_time, comp_id, "volkins.tool-length-slew-time");
-  for (int j = 0; j < model.joint_count(); ++j)
-    r |= hal_pin_float_newf(HAL_OUT, &hal->correction[j], comp_id, "volkins.joint.%d.correction", j);
+  for (int k = 0; k < settings->joint_count; ++k)
+    r |= hal_pin_float_newf(HAL_OUT, &hal->correction[k], comp_id, "volkins.joint.%d.correction", k);
   r |= hal_pin_s32_newf(HAL_OUT, &hal->iterations, comp_id, "volkins.iterations");
   r |= hal_pin_s32_newf(HAL_OUT, &hal->forward_iterations, comp_id, "volkins.forward-iterations");
   r |= hal_pin_bit_newf(HAL_OUT, &hal->out_of_table, comp_id, "volkins.out-of-table");

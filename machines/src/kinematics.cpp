@@ -1,5 +1,7 @@
 #include "vc/machine/kinematics.hpp"
 
+#include <cmath>
+
 #include "vc/machine/ideal_jacobian_solver.hpp"
 
 namespace vc::machine {
@@ -45,6 +47,10 @@ Joints nominal_forward(const Model& model, WorldConvention convention, const Joi
 
 namespace {
 
+double nominal_length(const Applied& applied, double tool_length_mm) {
+  return std::isnan(applied.nominal_tool_length_mm) ? tool_length_mm : applied.nominal_tool_length_mm;
+}
+
 bool near(const Joints* seed, const Joints& point) {
   return seed && seed->size() == point.size() && seed->allFinite() &&
          (*seed - point).cwiseAbs().maxCoeff() <= Applied::kSeedRadius;
@@ -66,7 +72,7 @@ Status joints_from_world(const Model& model, WorldConvention convention, const J
                          double tool_length_mm, const Applied& applied, Joints& joints,
                          Correction* report) noexcept {
   Joints nominal;
-  const Status s = nominal_inverse(model, convention, world, tool_length_mm, nominal);
+  const Status s = nominal_inverse(model, convention, world, nominal_length(applied, tool_length_mm), nominal);
   if (s != Status::Ok) return s;
   if (applied.gain == 0.0) {
     joints = nominal;
@@ -97,7 +103,7 @@ Status world_from_joints(const Model& model, WorldConvention convention, const J
     nominal_seed = joints - applied.gain * *applied.correction;
   } else if (applied.seed) {
     Joints from_seed;
-    if (nominal_inverse(model, convention, *applied.seed, tool_length_mm, from_seed) == Status::Ok &&
+    if (nominal_inverse(model, convention, *applied.seed, nominal_length(applied, tool_length_mm), from_seed) == Status::Ok &&
         near(&from_seed, joints))
       nominal_seed = from_seed;
   }
@@ -105,7 +111,7 @@ Status world_from_joints(const Model& model, WorldConvention convention, const J
       invert_correction(model, joints, tool_length_mm, applied.gain, nominal_seed, applied.full_correction);
   if (iterations) *iterations = u.iterations;
   if (u.status != Status::Ok) return u.status;
-  world = nominal_forward(model, convention, u.nominal, tool_length_mm);
+  world = nominal_forward(model, convention, u.nominal, nominal_length(applied, tool_length_mm));
   return Status::Ok;
 }
 

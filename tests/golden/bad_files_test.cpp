@@ -37,19 +37,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string trimmed(const std::string& s) {
-  const auto space = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
-  const auto begin = std::find_if_not(s.begin(), s.end(), space);
-  const auto end = std::find_if_not(s.rbegin(), s.rend(), space).base();
-  return begin < end ? std::string(begin, end) : std::string();
-}
-
-// The message with "<source tree>/" removed wherever it occurs.
-std::string relative_message(std::string message) {
-  const std::string root = fs::path(VC_SOURCE_DIR).lexically_normal().string() + "/";
-  for (std::size_t at; (at = message.find(root)) != std::string::npos;) message.erase(at, root.size());
-  return message;
-}
+using test::relative_message;
+using test::trimmed;
 
 std::vector<fs::path> files_with_extension(const fs::path& folder, const std::string& extension) {
   std::vector<fs::path> files;

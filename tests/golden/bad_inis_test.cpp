@@ -25,18 +25,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string trimmed(const std::string& s) {
-  const auto space = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
-  const auto begin = std::find_if_not(s.begin(), s.end(), space);
-  const auto end = std::find_if_not(s.rbegin(), s.rend(), space).base();
-  return begin < end ? std::string(begin, end) : std::string();
-}
-
-std::string relative_message(std::string message) {
-  const std::string root = fs::path(VC_SOURCE_DIR).lexically_normal().string() + "/";
-  for (std::size_t at; (at = message.find(root)) != std::string::npos;) message.erase(at, root.size());
-  return message;
-}
+using test::relative_message;
+using test::trimmed;
 
 std::string read(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -50,16 +40,6 @@ fs::path scratch(const std::string& name) {
   return dir;
 }
 
-// stdout alone (stderr to a file), and the exit code.
-test::CommandResult run_stdout(const std::string& args, const fs::path& stderr_file) {
-  const std::string command = std::string(VC_VOLCOMP) + " " + args + " 2>'" + stderr_file.string() + "'";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string out;
-  char buffer[4096];
-  while (std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
-  const int status = pclose(pipe);
-  return {out, WEXITSTATUS(status)};
-}
 
 TEST(BadInis, EveryBadConfigurationIsRefusedWithItsMessage) {
   const fs::path dir = test::source_path("tests/golden/bad_inis");
@@ -98,7 +78,7 @@ TEST(BadInis, TheGoodBaseIsAcceptedAndWritesBothOutputs) {
   const fs::path summary = dir.parent_path() / "summary.txt";
 
   // --patch FILE: both outputs in files, nothing on stdout.
-  const auto to_file = run_stdout("init " + (dir / "xyzbc.ini").string() + " -o " + (dir / "xyzbc.toml").string() +
+  const auto to_file = test::run_volcomp_stdout("init " + (dir / "xyzbc.ini").string() + " -o " + (dir / "xyzbc.toml").string() +
                                       " --patch " + (dir.parent_path() / "config.diff").string(),
                                   summary);
   ASSERT_EQ(to_file.exit_code, 0) << read(summary);
@@ -115,7 +95,7 @@ TEST(BadInis, TheGoodBaseIsAcceptedAndWritesBothOutputs) {
   EXPECT_EQ(check.exit_code, 0) << check.out;
 
   // No --patch: stdout is the patch alone (the summary on stderr).
-  const auto to_stdout = run_stdout("init " + (dir / "xyzbc.ini").string() + " -o " + (dir / "again.toml").string(), summary);
+  const auto to_stdout = test::run_volcomp_stdout("init " + (dir / "xyzbc.ini").string() + " -o " + (dir / "again.toml").string(), summary);
   ASSERT_EQ(to_stdout.exit_code, 0) << read(summary);
   EXPECT_EQ(to_stdout.out, std::string(diff).replace(diff.find("xyzbc.toml"), 10, "again.toml"));
   EXPECT_EQ(read(dir / "again.toml").substr(read(dir / "again.toml").find("[machine]")),

@@ -228,7 +228,7 @@ TEST(Volkins, BadModuleParametersFailLoadrt) {
       {"loadrt volkins\n", "volkins: error: no machine file"},
       {loadrt(mc300, "coordinates=xyz"),
        "volkins: error: coordinates=xyz does not match the machine file machines/data/mc300.toml"},
-      {loadrt(mc300, "coordinates=xyzcb"), "whose joints are the axes \"xyzbc\" in this order"},
+      {loadrt(mc300, "coordinates=xyzba"), "joint 4's axis A is not in it (its axes are \"xyzbc\""},
       {loadrt(mc300, "world=tool"), "volkins: error: world=tool is not a world convention"},
       {loadrt(mc300, "world=tcp sparm=identityfirst"), "volkins: error: world=tcp and sparm=identityfirst contradict"},
       {"loadrt volkins machine=/nonexistent/machine.toml\n", "volkins: /nonexistent/machine.toml: error:"},

@@ -227,6 +227,27 @@ TEST_F(Mc300Session, ToolLengthChangesInQuickSuccessionKeepTheJointsSmooth) {
   std::cout << changes << " tool length changes, " << during_slew << " of them while L slewed\n";
 }
 
+// Peak joint velocity and acceleration (finite differences at the 1 ms servo period).
+std::pair<double, double> joint_peaks(const std::vector<Joints>& q, int j) {
+  const double dt = 1e-3;
+  double v = 0, a = 0;
+  for (std::size_t n = 9; n + 1 < q.size(); ++n) {
+    v = std::max(v, std::abs(q[n + 1][j] - q[n][j]) / dt);
+    a = std::max(a, std::abs(q[n + 1][j] - 2 * q[n][j] + q[n - 1][j]) / (dt * dt));
+  }
+  return {v, a};
+}
+
+void expect_within_joint_limits(const std::vector<Joints>& q, int joints, const std::string& what) {
+  for (int j = 0; j < joints; ++j) {
+    const std::string section = "JOINT_" + std::to_string(j);
+    const auto [v, a] = joint_peaks(q, j);
+    EXPECT_LE(v, ini_value(kMc300Ini, section, "MAX_VELOCITY")) << what << " " << section;
+    EXPECT_LE(a, ini_value(kMc300Ini, section, "MAX_ACCELERATION")) << what << " " << section;
+    std::cout << what << " " << section << ": peak velocity " << v << ", peak acceleration " << a << "\n";
+  }
+}
+
 // The TCP convention: the program gives the tool tip in the part frame (G43 adds the tool
 // length to Z, as for LinuxCNC's own TCP kinematics). The program is the 5-axis contour of
 // sample_part.ngc, converted with the ideal machine.
@@ -256,6 +277,9 @@ TEST_F(Mc300Session, TcpConventionPutsTheRealToolOnTheCommandedPose) {
       run_session("mc300_tcp", kMc300Ini, *model_,
                   "--kinematics " + kins + limits + " --program " + (dir / "tcp_contour.ngc").string());
   expect_compensated(trace::check_trace(*model_, WorldConvention::Tcp, t), 2, "mc300 tcp, compensation on");
+  // The G43 at rest does not move the joints (the nominal TCP kinematics take the offset at
+  // once, as LinuxCNC's own; only the correction's L slews).
+  expect_within_joint_limits(t.joints, model_->joint_count(), "tcp");
 }
 
 // Switchable kinematics (LinuxCNC 2.9: motion.switchkins-type, M428/M429 remapped as in its
@@ -268,27 +292,6 @@ const std::string kSwitchkinsOptions =
     " --halfile " + test::source_path("kins/configs/common/switchkins.hal") +
     " --add RS274NGC.SUBROUTINE_PATH=../common/remap_subs"
     " --add 'RS274NGC.REMAP=M428 modalgroup=10 ngc=428remap' --add 'RS274NGC.REMAP=M429 modalgroup=10 ngc=429remap'";
-
-// Peak joint velocity and acceleration (finite differences at the 1 ms servo period).
-std::pair<double, double> joint_peaks(const std::vector<Joints>& q, int j) {
-  const double dt = 1e-3;
-  double v = 0, a = 0;
-  for (std::size_t n = 9; n + 1 < q.size(); ++n) {
-    v = std::max(v, std::abs(q[n + 1][j] - q[n][j]) / dt);
-    a = std::max(a, std::abs(q[n + 1][j] - 2 * q[n][j] + q[n - 1][j]) / (dt * dt));
-  }
-  return {v, a};
-}
-
-void expect_within_joint_limits(const std::vector<Joints>& q, int joints, const std::string& what) {
-  for (int j = 0; j < joints; ++j) {
-    const std::string section = "JOINT_" + std::to_string(j);
-    const auto [v, a] = joint_peaks(q, j);
-    EXPECT_LE(v, ini_value(kMc300Ini, section, "MAX_VELOCITY")) << what << " " << section;
-    EXPECT_LE(a, ini_value(kMc300Ini, section, "MAX_ACCELERATION")) << what << " " << section;
-    std::cout << what << " " << section << ": peak velocity " << v << ", peak acceleration " << a << "\n";
-  }
-}
 
 TEST_F(Mc300Session, SwitchedKinematicsKeepTheJointsStillAndCorrectBothWorlds) {
   // TCP's X Y Z are the part frame's: the world limits opened for both worlds.
@@ -470,6 +473,19 @@ TEST(Mill3Session, CompensationOnPutsTheRealToolOnTheCommandedPose) {
   const machine::Model model = machine::load_machine(test::machine_path("mill3"));
   const trace::SessionTrace t = run_session("mill3_on", "kins/configs/mill3/mill3.ini", model, "");
   expect_compensated(trace::check_trace(model, WorldConvention::Axes, t), 0, "mill3, compensation on");
+}
+
+// A gantry (kins/configs/mill3/mill3_gantry.ini, coordinates=xyyz: joints 1 and 2 are Y's two
+// motors): both Y joints get the core's corrected Y at every sample, and the tool is on the path.
+TEST(Mill3Session, AGantrysTwoYJointsBothGetTheCorrectedY) {
+  const machine::Model model = machine::load_machine(test::machine_path("mill3"));
+  const std::string ini = "kins/configs/mill3/mill3_gantry.ini";
+  const trace::SessionTrace t = run_session("mill3_gantry", ini, model, "");
+  expect_compensated(trace::check_trace(model, WorldConvention::Axes, t), 0, "mill3 gantry, compensation on");
+  const std::vector<double> y2 =
+      trace_column(fs::temp_directory_path() / "volcomp-test-runs/mill3_gantry/run/kins/configs/mill3/trace.csv", "y2");
+  ASSERT_EQ(y2.size(), t.size());
+  for (std::size_t n = 0; n < t.size(); ++n) ASSERT_EQ(y2[n], t.joints[n][1]) << "sample " << n;
 }
 
 // A HAL file without `addf volkins.update` (a stock configuration that loads volkins and

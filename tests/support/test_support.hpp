@@ -3,7 +3,10 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -70,15 +73,36 @@ struct CommandResult {
   int exit_code;
 };
 
-// Runs the volcomp just built with `args`; stdout and stderr together.
-inline CommandResult run_volcomp(const std::string& args) {
-  const std::string command = std::string(VC_VOLCOMP) + " " + args + " 2>&1";
+// Runs a shell command; what it writes to stdout, and its exit code.
+inline CommandResult run_command(const std::string& command) {
   FILE* pipe = popen(command.c_str(), "r");
   std::string out;
   char buffer[4096];
   while (std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
   const int status = pclose(pipe);
   return {out, WEXITSTATUS(status)};
+}
+
+// Runs the volcomp just built with `args`; stdout and stderr together.
+inline CommandResult run_volcomp(const std::string& args) { return run_command(std::string(VC_VOLCOMP) + " " + args + " 2>&1"); }
+
+// The same with stdout alone (stderr to `stderr_file`).
+inline CommandResult run_volcomp_stdout(const std::string& args, const std::string& stderr_file) {
+  return run_command(std::string(VC_VOLCOMP) + " " + args + " 2>'" + stderr_file + "'");
+}
+
+inline std::string trimmed(const std::string& s) {
+  const auto space = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
+  const auto begin = std::find_if_not(s.begin(), s.end(), space);
+  const auto end = std::find_if_not(s.rbegin(), s.rend(), space).base();
+  return begin < end ? std::string(begin, end) : std::string();
+}
+
+// The message with "<source tree>/" removed wherever it occurs.
+inline std::string relative_message(std::string message) {
+  const std::string root = std::filesystem::path(VC_SOURCE_DIR).lexically_normal().string() + "/";
+  for (std::size_t at; (at = message.find(root)) != std::string::npos;) message.erase(at, root.size());
+  return message;
 }
 
 }  // namespace vc::test

@@ -111,9 +111,11 @@ TraceSummary check_trace(const machine::Model& machine_model, machine::WorldConv
     const double L = correction_length(k);  // the tool-length rule (slewed)
     const Joints world = core_world(model, convention, trace.world[k], offset);
     at_temperatures_of(k);
-    machine::nominal_inverse(model, convention, world, L, nominal[k]);
-    machine::joints_from_world(model, convention, world, L, machine::Applied{trace.gain[k], nullptr}, expected[k],
-                               &corrections[k]);
+    // The nominal (TCP) kinematics take the offset at once, the correction its slewed L.
+    machine::Applied applied{trace.gain[k], nullptr};
+    applied.nominal_tool_length_mm = model.correction_length(offset);
+    machine::nominal_inverse(model, convention, world, applied.nominal_tool_length_mm, nominal[k]);
+    machine::joints_from_world(model, convention, world, L, applied, expected[k], &corrections[k]);
   }
   // Left out of the tool-tip claims: the samples while L differs from the tool's (the tool length
   // slews after a G43: the tip is off by angular error x difference of L meanwhile), and the

@@ -41,6 +41,21 @@ TEST(ModuleSettings, SparmIdentityfirstMakesTypeZeroTheIdentity) {
   EXPECT_THROW(settings_from_parameters(mc300.c_str(), "xyzbc", nullptr, "tcpfirst"), std::runtime_error);
 }
 
+// LinuxCNC's coordinates=: a letter per joint, in any order, a letter twice for two joints
+// driven alike (a gantry); the forward reads the first joint of each letter.
+TEST(ModuleSettings, CoordinatesMapLinuxcncJointsToTheMachinesAxes) {
+  const ModuleSettings gantry = settings_from_parameters(test::machine_path("mill3").c_str(), "XYYZ", nullptr);
+  EXPECT_EQ(gantry.joint_count, 4);
+  const std::array<int, 4> axis_of{0, 1, 1, 2};
+  for (int k = 0; k < 4; ++k) EXPECT_EQ(gantry.model_joint[k], axis_of[k]) << k;
+  const std::array<int, 3> principal{0, 1, 3};
+  for (int j = 0; j < 3; ++j) EXPECT_EQ(gantry.principal_joint[j], principal[j]) << j;
+
+  const ModuleSettings swapped = settings_from_parameters(test::machine_path("mc300").c_str(), "xyzcb", nullptr);
+  EXPECT_EQ(swapped.model_joint[3], 4);  // joint 3 drives C, the machine file's fifth axis
+  EXPECT_EQ(swapped.principal_joint[3], 4);
+}
+
 TEST(ModuleSettings, RelativePathsAreMadeAbsolute) {
   const auto here = std::filesystem::current_path();
   std::filesystem::current_path(test::source_path("machines/data"));
@@ -53,8 +68,9 @@ TEST(ModuleSettings, RefusesWhatItCannotHonour) {
   const std::string mc300 = test::machine_path("mc300");
   EXPECT_THROW(settings_from_parameters(nullptr, nullptr, nullptr), std::runtime_error);
   EXPECT_THROW(settings_from_parameters("", nullptr, nullptr), std::runtime_error);
-  EXPECT_THROW(settings_from_parameters(mc300.c_str(), "xyzcb", nullptr), std::runtime_error);
-  EXPECT_THROW(settings_from_parameters(mc300.c_str(), "xyzbca", nullptr), std::runtime_error);
+  EXPECT_THROW(settings_from_parameters(mc300.c_str(), "xyzb", nullptr), std::runtime_error);    // no C joint
+  EXPECT_THROW(settings_from_parameters(mc300.c_str(), "xyzbca", nullptr), std::runtime_error);  // no A axis
+  EXPECT_THROW(settings_from_parameters(mc300.c_str(), "xyzbcxxxxxxxxxxxx", nullptr), std::runtime_error);  // 17 joints
   EXPECT_THROW(settings_from_parameters(mc300.c_str(), nullptr, "joints"), std::runtime_error);
   EXPECT_THROW(settings_from_parameters("/nonexistent.toml", nullptr, nullptr), LoadError);
 }

@@ -9,6 +9,8 @@
 // Real-time: no allocation, no locks, bounded iterations.
 #pragma once
 
+#include <limits>
+
 #include "vc/machine/invert_correction.hpp"
 
 namespace vc::machine {
@@ -48,6 +50,13 @@ struct Applied {
   // estimate of it in the fade band (invert_correction.hpp). Outside the band, the same as
   // `correction`.
   const Joints* full_correction = nullptr;
+  // The tool length of the nominal TCP kinematics where it differs from the correction's
+  // (NaN: the same). volkins' correction follows a new tool length offset over a slew time,
+  // while LinuxCNC's world position takes it at once (G43 adds it to world Z): the nominal
+  // joints take it at once too, as LinuxCNC's own TCP kinematics do, so that a G43 does not
+  // move the joints where the stock kinematics would not (at B = 0 the world's Z is the Z
+  // joint's whatever the offset). Only the Tcp convention's nominal joints depend on it.
+  double nominal_tool_length_mm = std::numeric_limits<double>::quiet_NaN();
   static constexpr double kSeedRadius = machine::kSeedRadius;
 };
 // q = q_n + gain * (correct(q_n) - q_n).
