@@ -18,10 +18,11 @@
 // the machine file are HAL pins volkins.temperature.<name>, low-passed in volkins.update;
 // a missing or out-of-range reading holds the last good value and raises
 // volkins.temperature-fault.
-// Switchable kinematics (LinuxCNC 2.9, motion.switchkins-type): type 0 is the world= convention
-// (or the identity with sparm=identityfirst), type 1 the other one; both corrected. A switch
-// while the commanded position moves is refused (motion then aborts): the planner's queued
-// moves are in the old world's coordinates.
+// coordinates= maps LinuxCNC's joints to the machine file's axes (a letter twice: two joints
+// driven alike, a gantry). Switchable kinematics (LinuxCNC 2.9, motion.switchkins-type): type 0
+// is the world= convention (or the identity with sparm=identityfirst), type 1 the other one;
+// both corrected. A switch while the commanded position moves is refused (motion then aborts):
+// the planner's queued moves are in the old world's coordinates.
 // Servo thread: no allocation, no locks, no I/O, bounded iterations, no exceptions.
 
 #include <algorithm>
@@ -58,7 +59,7 @@ struct HalData {
   hal_bit_t* active;                          // out: a correction is applied (gain > 0)
   hal_bit_t* update_missing;                  // out: the kinematics ran before volkins.update ever did
   hal_float_t* correction_length;             // out: L the correction is computed for now (mm)
-  hal_float_t* correction[vc::kins::kMaxJoints];  // out: joint - nominal joint of the last inverse
+  hal_float_t* correction[vc::kins::kMaxJoints];  // out: LinuxCNC joint - its nominal value, last inverse
   hal_s32_t* iterations;                      // out: Newton steps of the last inverse
   hal_s32_t* forward_iterations;              // out: Newton steps (and band corrections) of the last forward
   hal_bit_t* out_of_table;                    // out: last inverse beyond a table's grid
@@ -376,7 +377,7 @@ EXPORT_SYMBOL(kinematicsInverse);
 MODULE_LICENSE("GPL");
 MODULE_DESCRIPTION("Kinematics with volumetric error correction (volcomp)");
 RTAPI_MP_STRING(machine, "machine description file (TOML)");
-RTAPI_MP_STRING(coordinates, "axis letters, one per joint, in the machine file's order");
+RTAPI_MP_STRING(coordinates, "axis letter of each joint (default: the machine file's axes in its order)");
 RTAPI_MP_STRING(world, "world convention of kinematics type 0: axes (default) or tcp");
 RTAPI_MP_STRING(sparm, "identityfirst: kinematics type 0 is the identity (as LinuxCNC's trt modules)");
 
