@@ -3,11 +3,10 @@
 #include <cctype>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <map>
 #include <sstream>
 #include <stdexcept>
 
+#include "vc/init/linuxcnc_ini.hpp"
 #include "vc/predistort/predistort.hpp"
 #include "vc/tables/source_error.hpp"
 
@@ -67,55 +66,36 @@ interpreter::Position start_position(const std::string& value, double unit_mm) {
     }
     return start;
   }
-  // The INI: sections, "NAME = value" lines, '#' and ';' comments.
-  std::ifstream in(value);
-  std::map<std::string, std::pair<std::string, int>> entries;  // "SECTION.NAME" -> value, line
-  std::string section, line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    const std::size_t first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#' || line[first] == ';') continue;
-    if (line[first] == '[') {
-      section = line.substr(first + 1, line.find(']') - first - 1);
-      continue;
-    }
-    const std::size_t equals = line.find('=');
-    if (equals == std::string::npos) continue;
-    auto trim = [](std::string t) {
-      t.erase(0, t.find_first_not_of(" \t\r"));
-      t.erase(t.find_last_not_of(" \t\r") + 1);
-      return t;
-    };
-    entries.try_emplace(section + "." + trim(line.substr(0, equals)), trim(line.substr(equals + 1)), number);
-  }
+  // The INI, as LinuxCNC reads it (vc/init/linuxcnc_ini.hpp).
+  const init::LinuxcncIni ini = init::LinuxcncIni::read(value);
   // LinuxCNC's LINEAR_UNITS: mm, metric, in, inch, imperial (emcIniLoad's names).
   double ini_unit_mm = 1.0;
-  if (const auto units = entries.find("TRAJ.LINEAR_UNITS"); units != entries.end()) {
-    const std::string& u = units->second.first;
+  if (const init::IniEntry* units = ini.find("TRAJ", "LINEAR_UNITS")) {
+    const std::string& u = units->value;
     if (u == "in" || u == "inch" || u == "imperial") ini_unit_mm = 25.4;
     else if (u != "mm" && u != "metric")
-      throw LoadError({value, units->second.second}, "--start: LINEAR_UNITS " + u + " is not mm, metric, in, inch or imperial");
+      throw LoadError(units->where(), "--start: LINEAR_UNITS " + u + " is not mm, metric, in, inch or imperial");
     if (ini_unit_mm != unit_mm)
-      throw LoadError({value, units->second.second},
-                      "--start: the INI's LINEAR_UNITS is " + u + ": give --machine-units " +
-                          (ini_unit_mm == 1.0 ? "mm" : "inch") + " (the .var file and the tool table are in it)");
+      throw LoadError(units->where(), "--start: the INI's LINEAR_UNITS is " + u + ": give --machine-units " +
+                                          (ini_unit_mm == 1.0 ? "mm" : "inch") +
+                                          " (the .var file and the tool table are in it)");
   }
-  const auto coordinates = entries.find("TRAJ.COORDINATES");
-  if (coordinates == entries.end()) throw LoadError({value}, "--start: no [TRAJ]COORDINATES in the INI file");
+  const init::IniEntry* coordinates = ini.find("TRAJ", "COORDINATES");
+  if (!coordinates) throw LoadError({value}, "--start: no [TRAJ]COORDINATES in the INI file");
   int joint = 0;
-  for (char c : coordinates->second.first) {
+  for (char c : coordinates->value) {
     if (c == ' ' || c == '\t') continue;
     const char* axis = std::strchr(interpreter::kAxisLetters, std::toupper(static_cast<unsigned char>(c)));
-    if (!axis) throw LoadError({value, coordinates->second.second}, std::string("--start: axis ") + c + " is not one of XYZABC");
-    const auto home = entries.find("JOINT_" + std::to_string(joint) + ".HOME");
-    if (home != entries.end()) {
+    if (!axis) throw LoadError(coordinates->where(), std::string("--start: axis ") + c + " is not one of XYZABC");
+    if (const init::IniEntry* home = ini.find("JOINT_" + std::to_string(joint), "HOME")) {
       std::size_t used = 0;
       try {
         const int i = static_cast<int>(axis - interpreter::kAxisLetters);
-        start[static_cast<std::size_t>(i)] = std::stod(home->second.first, &used) * (interpreter::is_linear(i) ? unit_mm : 1.0);
+        start[static_cast<std::size_t>(i)] = std::stod(home->value, &used) * (interpreter::is_linear(i) ? unit_mm : 1.0);
       } catch (const std::exception&) {
         used = 0;
       }
-      if (used == 0) throw LoadError({value, home->second.second}, "--start: HOME is not a number");
+      if (used == 0) throw LoadError(home->where(), "--start: HOME is not a number");
     }
     ++joint;
   }
