@@ -80,7 +80,6 @@ ModuleSettings settings_from_parameters(const char* machine, const char* coordin
   s.z_joint = s.model.joint_of('Z');
   if (s.kinematics_types[0] == machine::WorldConvention::Tcp && s.z_joint < 0)
     refuse("world=tcp needs a Z axis (the tool length is taken along it); " + s.model.path + " has none");
-  if (s.z_joint < 0) s.kinematics_type_count = 1;  // no TCP world to switch to
 
   static constexpr const char* kPoseOrder = "xyzabcuvw";
   for (int j = 0; j < s.model.joint_count(); ++j)

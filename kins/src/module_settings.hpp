@@ -26,7 +26,7 @@ struct ModuleSettings {
   // Z axis has no TCP world: one type only.
   std::array<machine::WorldConvention, 2> kinematics_types{machine::WorldConvention::Axes,
                                                            machine::WorldConvention::Tcp};
-  int kinematics_type_count = 2;
+  int kinematics_type_count() const { return z_joint >= 0 ? 2 : 1; }
   // For each joint of the machine file (one per axis), its field in LinuxCNC's EmcPose in the
   // order x y z a b c u v w.
   std::array<int, machine::kMaxAxes> pose_field{};

@@ -344,12 +344,12 @@ int kinematicsSwitchable() { return 1; }
 // (motion aborts) for a type volkins does not have and while the commanded position moves.
 int kinematicsSwitch(int type) {
   static const char* const names[] = {"identity", "TCP"};
-  if (type < 0 || type >= settings->kinematics_type_count) {
+  if (type < 0 || type >= settings->kinematics_type_count()) {
     rtapi_print_msg(RTAPI_MSG_ERR,
                     "volkins: kinematics type %d refused: volkins has %s (motion.switchkins-type %s); it stays in "
                     "type %d (%s)\n",
-                    type, settings->kinematics_type_count == 2 ? "types 0 and 1" : "type 0 only (no Z axis: no TCP)",
-                    settings->kinematics_type_count == 2 ? "0 or 1" : "0", kinematics.type,
+                    type, settings->kinematics_type_count() == 2 ? "types 0 and 1" : "type 0 only (no Z axis: no TCP)",
+                    settings->kinematics_type_count() == 2 ? "0 or 1" : "0", kinematics.type,
                     names[current_world() == vm::WorldConvention::Tcp]);
     return -1;
   }

@@ -40,19 +40,11 @@ namespace fs = std::filesystem;
 using test::relative_message;
 using test::trimmed;
 
-std::vector<fs::path> files_with_extension(const fs::path& folder, const std::string& extension) {
-  std::vector<fs::path> files;
-  for (const auto& entry : fs::directory_iterator(folder))
-    if (entry.is_regular_file() && entry.path().extension() == extension) files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
 // Loads every `extension` file of `folder` with `load` and compares the refusal with its .expect.
 void check_folder(const std::string& folder, const std::string& extension,
                   const std::function<void(const fs::path&)>& load) {
   const fs::path dir = test::source_path(folder);
-  const std::vector<fs::path> files = files_with_extension(dir, extension);
+  const std::vector<fs::path> files = test::files_with_extension(dir, extension);
   ASSERT_FALSE(files.empty()) << "no " << extension << " files in " << dir;
   const bool update = std::getenv("VC_UPDATE_GOLDEN") != nullptr;
 
@@ -83,7 +75,7 @@ void check_folder(const std::string& folder, const std::string& extension,
   }
 
   // Every .expect belongs to a bad file (a renamed or deleted case leaves none behind).
-  for (const fs::path& expect : files_with_extension(dir, ".expect")) {
+  for (const fs::path& expect : test::files_with_extension(dir, ".expect")) {
     fs::path input = expect;
     input.replace_extension(extension);
     EXPECT_TRUE(fs::exists(input)) << expect.filename() << " has no " << input.filename();

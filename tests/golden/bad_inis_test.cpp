@@ -43,10 +43,7 @@ fs::path scratch(const std::string& name) {
 
 TEST(BadInis, EveryBadConfigurationIsRefusedWithItsMessage) {
   const fs::path dir = test::source_path("tests/golden/bad_inis");
-  std::vector<fs::path> inis;
-  for (const auto& entry : fs::directory_iterator(dir))
-    if (entry.path().extension() == ".ini") inis.push_back(entry.path());
-  std::sort(inis.begin(), inis.end());
+  const std::vector<fs::path> inis = test::files_with_extension(dir, ".ini");
   ASSERT_GE(inis.size(), 7u);
   const bool update = std::getenv("VC_UPDATE_GOLDEN") != nullptr;
   const fs::path out = scratch("refused");

@@ -193,10 +193,7 @@ TEST(Volkins, CorrectionLengthIsTheReferencePlusTheOffset) {
 // loads in the same HAL session.
 TEST(Volkins, BadMachineFilesFailLoadrtWithTheirMessage) {
   const fs::path folder = test::source_path("tests/golden/bad_machines");
-  std::vector<fs::path> files;
-  for (const auto& e : fs::directory_iterator(folder))
-    if (e.path().extension() == ".toml") files.push_back(e.path());
-  std::sort(files.begin(), files.end());
+  const std::vector<fs::path> files = test::files_with_extension(folder, ".toml");
   ASSERT_GT(files.size(), 30u);
   std::string script;
   for (const fs::path& f : files) script += loadrt("tests/golden/bad_machines/" + f.filename().string());

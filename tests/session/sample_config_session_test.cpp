@@ -99,14 +99,19 @@ class SampleTrt : public ::testing::Test {
     if (!fs::exists(kSample)) GTEST_SKIP() << "LinuxCNC's sample configurations are not installed: " << kSample;
   }
 
-  // A copy of the sample as the user has it.
-  static fs::path user_copy(const fs::path& dir) {
+  // A fresh run folder `dir` with a copy of the sample as the user has it (`user`), retrofitted:
+  // `volcomp init` on it and its patch applied with patch(1).
+  struct Retrofitted {
+    fs::path dir, user;
+  };
+  static Retrofitted retrofitted(const Sample& sample, const std::string& name) {
+    const fs::path dir = test::run_folder(name);
     const fs::path user = dir / "user";
     fs::copy(kSample, user, fs::copy_options::recursive);
-    return user;
+    retrofit(sample, dir, user);
+    return {dir, user};
   }
 
-  // `volcomp init` on the user's configuration and its patch applied with patch(1).
   static void retrofit(const Sample& sample, const fs::path& dir, const fs::path& user) {
     const test::CommandResult init = test::run_in(
         dir, std::string(VC_VOLCOMP) + " init " + (user / sample.ini).string() + " -o " +
@@ -118,8 +123,8 @@ class SampleTrt : public ::testing::Test {
     ASSERT_NE(patch.out.find("patching file"), std::string::npos) << patch.out;
   }
 
-  // The configuration made headless in dir/run (a file `replace` copied over its own first, with
-  // `extra` files beside it), run; its trace, read for `model`.
+  // The configuration made headless in dir/run (the `extra` files copied into it, over its own),
+  // run; its trace, read for `model`.
   static trace::SessionTrace run(const Sample& sample, const fs::path& dir, const fs::path& config,
                                  const machine::Model& model, const std::vector<fs::path>& extra = {}) {
     const fs::path run_dir = dir / "run";
@@ -143,9 +148,7 @@ class SampleTrt : public ::testing::Test {
   // The stock module's session: the transcription must be its inverse. The trace is read for
   // init's machine file (the sample's axes).
   static void expect_stock_transcribed(const Sample& sample, const std::string& name) {
-    const fs::path dir = test::run_folder(name);
-    const fs::path user = user_copy(dir);
-    retrofit(sample, dir, user);
+    const auto [dir, user] = retrofitted(sample, name);
     const machine::Model model = machine::load_machine((user / sample.machine).string());
     const trace::SessionTrace t = run(sample, dir, kSample, model);
     const StockComparison c = compare_with_stock(sample, t);
@@ -160,9 +163,7 @@ class SampleTrt : public ::testing::Test {
 
   // Retrofitted, zero errors: the stock module's joints.
   static void expect_stock_joints(const Sample& sample, const std::string& name) {
-    const fs::path dir = test::run_folder(name);
-    const fs::path user = user_copy(dir);
-    retrofit(sample, dir, user);
+    const auto [dir, user] = retrofitted(sample, name);
     const machine::Model model = machine::load_machine((user / sample.machine).string());
     const trace::SessionTrace t = run(sample, dir, user, model);
     expect_volkins_applied(t);
@@ -190,9 +191,7 @@ TEST_F(SampleTrt, XyzacRetrofittedWithZeroErrorsVolkinsGivesTheStockJoints) {
 }
 
 TEST_F(SampleTrt, XyzbcRetrofittedWithErrorsVolkinsPutsTheRealToolOnTheCommandedPose) {
-  const fs::path dir = test::run_folder("sample_xyzbc_errors");
-  const fs::path user = user_copy(dir);
-  retrofit(kXyzbc, dir, user);
+  const auto [dir, user] = retrofitted(kXyzbc, "sample_xyzbc_errors");
   // The true machine: location errors of every kind and a table on X.
   std::ofstream table(dir / "x_errors.csv");
   table << "x[mm],EXX[um],EYX[um],EZX[um],EAX[arcsec],EBX[arcsec],ECX[arcsec]\n"

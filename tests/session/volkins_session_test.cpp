@@ -96,6 +96,17 @@ double ini_value(const std::string& ini, const std::string& section, const std::
   throw std::runtime_error("no [" + section + "] " + key + " in " + ini);
 }
 
+// Peak joint velocity and acceleration (finite differences at the 1 ms servo period).
+std::pair<double, double> joint_peaks(const std::vector<Joints>& q, int j) {
+  const double dt = 1e-3;
+  double v = 0, a = 0;
+  for (std::size_t n = 9; n + 1 < q.size(); ++n) {
+    v = std::max(v, std::abs(q[n + 1][j] - q[n][j]) / dt);
+    a = std::max(a, std::abs(q[n + 1][j] - 2 * q[n][j] + q[n - 1][j]) / (dt * dt));
+  }
+  return {v, a};
+}
+
 TEST_F(Mc300Session, TogglingWhileMovingStaysWithinJointLimits) {
   const trace::SessionTrace t = run_session("mc300_toggle", kMc300Ini, *model_, "--compensation toggle");
   const trace::TraceSummary s = trace::check_trace(*model_, WorldConvention::Axes, t);
@@ -136,19 +147,11 @@ TEST_F(Mc300Session, TogglingWhileMovingStaysWithinJointLimits) {
   std::size_t tool_changes = 0;
   for (std::size_t n = 1; n < t.size(); ++n) tool_changes += t.tool_length_mm[n] != t.tool_length_mm[n - 1];
   EXPECT_GT(tool_changes, 0u) << "the program changes the tool length while the compensation toggles";
-  auto peaks = [&](const std::vector<Joints>& q, int j) {
-    double v = 0, a = 0;
-    for (std::size_t n = 9; n + 1 < q.size(); ++n) {
-      v = std::max(v, std::abs(q[n + 1][j] - q[n][j]) / dt);
-      a = std::max(a, std::abs(q[n + 1][j] - 2 * q[n][j] + q[n - 1][j]) / (dt * dt));
-    }
-    return std::pair{v, a};
-  };
   for (int j = 0; j < model_->joint_count(); ++j) {
     const std::string section = "JOINT_" + std::to_string(j);
     const double v_max = ini_value(kMc300Ini, section, "MAX_VELOCITY");
     const double a_max = ini_value(kMc300Ini, section, "MAX_ACCELERATION");
-    const auto [v, a] = peaks(t.joints, j);
+    const auto [v, a] = joint_peaks(t.joints, j);
     const auto [v_ramp, a_ramp] = ramp_peaks(j);
     EXPECT_LE(v, v_max) << section;
     EXPECT_LE(a, a_max) << section;
@@ -225,17 +228,6 @@ TEST_F(Mc300Session, ToolLengthChangesInQuickSuccessionKeepTheJointsSmooth) {
               << " um/mm)\n";
   }
   std::cout << changes << " tool length changes, " << during_slew << " of them while L slewed\n";
-}
-
-// Peak joint velocity and acceleration (finite differences at the 1 ms servo period).
-std::pair<double, double> joint_peaks(const std::vector<Joints>& q, int j) {
-  const double dt = 1e-3;
-  double v = 0, a = 0;
-  for (std::size_t n = 9; n + 1 < q.size(); ++n) {
-    v = std::max(v, std::abs(q[n + 1][j] - q[n][j]) / dt);
-    a = std::max(a, std::abs(q[n + 1][j] - 2 * q[n][j] + q[n - 1][j]) / (dt * dt));
-  }
-  return {v, a};
 }
 
 void expect_within_joint_limits(const std::vector<Joints>& q, int joints, const std::string& what) {

@@ -98,6 +98,16 @@ inline std::string trimmed(const std::string& s) {
   return begin < end ? std::string(begin, end) : std::string();
 }
 
+// The regular files of `folder` whose name ends in `extension` (".ini"), sorted.
+inline std::vector<std::filesystem::path> files_with_extension(const std::filesystem::path& folder,
+                                                               const std::string& extension) {
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(folder))
+    if (entry.is_regular_file() && entry.path().extension() == extension) files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
 // The message with "<source tree>/" removed wherever it occurs.
 inline std::string relative_message(std::string message) {
   const std::string root = std::filesystem::path(VC_SOURCE_DIR).lexically_normal().string() + "/";

@@ -14,7 +14,7 @@ TEST(ModuleSettings, DefaultsFollowTheMachineFile) {
   const ModuleSettings s = settings_from_parameters(test::machine_path("mc300").c_str(), nullptr, nullptr);
   EXPECT_EQ(s.kinematics_types[0], machine::WorldConvention::Axes);
   EXPECT_EQ(s.kinematics_types[1], machine::WorldConvention::Tcp);
-  EXPECT_EQ(s.kinematics_type_count, 2);
+  EXPECT_EQ(s.kinematics_type_count(), 2);
   EXPECT_EQ(s.model.coordinates(), "xyzbc");
   const std::array<int, 5> fields{0, 1, 2, 4, 5};  // x y z b c in EmcPose order x y z a b c u v w
   for (int j = 0; j < 5; ++j) EXPECT_EQ(s.pose_field[j], fields[j]);
