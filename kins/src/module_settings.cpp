@@ -40,18 +40,27 @@ ModuleSettings settings_from_parameters(const char* machine, const char* coordin
       refuse("temperature input '" + t.name + "' of " + s.model.path +
              ": a HAL pin name needs 1-24 letters, digits, '_' or '-'");
 
+  static constexpr const char* kPoseOrder = "xyzabcuvw";
+  const auto field_of = [](char letter) { return static_cast<int>(std::strchr(kPoseOrder, letter) - kPoseOrder); };
   const std::string axes = s.model.coordinates();
+  const char tool_axis = static_cast<char>(std::tolower(static_cast<unsigned char>(s.model.tool_axis_coordinate)));
   const std::string given = coordinates && *coordinates ? lower(coordinates) : axes;
   const auto mismatch = [&](const std::string& why) {
     refuse("coordinates=" + std::string(coordinates) + " does not match the machine file " + s.model.path + ": " + why +
-           " (its axes are \"" + axes + "\": each at least once, a letter twice drives two joints alike, e.g. a "
-           "gantry's two Y motors)");
+           " (its axes are \"" + axes + "\"" +
+           (tool_axis ? std::string(" and its tool_axis_coordinate ") + s.model.tool_axis_coordinate : std::string()) +
+           ": each axis at least once, a letter twice drives two joints alike, e.g. a gantry's two Y motors)");
   };
   if (given.size() > static_cast<std::size_t>(kMaxJoints))
     mismatch("more than " + std::to_string(kMaxJoints) + " joints");
   s.joint_count = static_cast<int>(given.size());
   s.principal_joint.fill(-1);
   for (int k = 0; k < s.joint_count; ++k) {
+    if (tool_axis && given[k] == tool_axis) {
+      s.model_joint[k] = -1;
+      if (s.tool_axis_joint < 0) s.tool_axis_joint = k;
+      continue;
+    }
     const std::size_t axis = axes.find(given[k]);
     if (axis == std::string::npos)
       mismatch("joint " + std::to_string(k) + "'s axis " + static_cast<char>(std::toupper(given[k])) + " is not in it");
@@ -60,6 +69,7 @@ ModuleSettings settings_from_parameters(const char* machine, const char* coordin
   }
   for (std::size_t axis = 0; axis < axes.size(); ++axis)
     if (s.principal_joint[axis] < 0) mismatch(std::string("no joint drives its axis ") + static_cast<char>(std::toupper(axes[axis])));
+  if (tool_axis) s.tool_axis_field = field_of(tool_axis);
 
   // Type 0's world: world=, else sparm=identityfirst (identity), else identity.
   const std::string convention = world && *world ? lower(world) : "";
@@ -81,9 +91,7 @@ ModuleSettings settings_from_parameters(const char* machine, const char* coordin
   if (s.kinematics_types[0] == machine::WorldConvention::Tcp && s.z_joint < 0)
     refuse("world=tcp needs a Z axis (the tool length is taken along it); " + s.model.path + " has none");
 
-  static constexpr const char* kPoseOrder = "xyzabcuvw";
-  for (int j = 0; j < s.model.joint_count(); ++j)
-    s.pose_field[j] = static_cast<int>(std::strchr(kPoseOrder, axes[j]) - kPoseOrder);
+  for (int j = 0; j < s.model.joint_count(); ++j) s.pose_field[j] = field_of(axes[j]);
   s.contraction.emplace(s.model, std::vector<double>(kBoundToolLengthsMm.begin(), kBoundToolLengthsMm.end()), true);
   return s;
 }

@@ -33,9 +33,14 @@ struct ModuleSettings {
   // LinuxCNC's joints, one per letter of coordinates=: the machine file's joint each drives (a
   // letter given twice drives two joints alike: a gantry's two Y motors), and for each machine
   // joint the first of its LinuxCNC joints, the one the forward reads (LinuxCNC's principal joint).
+  // A joint of the machine file's tool_axis_coordinate (5axiskins' W) drives no axis of the
+  // model: model_joint -1, its command is the world's coordinate (the linear joints make its
+  // motion); tool_axis_joint is the first such joint (-1: none), tool_axis_field its EmcPose field.
   int joint_count = 0;
   std::array<int, kMaxJoints> model_joint{};
   std::array<int, machine::kMaxAxes> principal_joint{};
+  int tool_axis_joint = -1;
+  int tool_axis_field = -1;
   // The Z joint. In the TCP convention LinuxCNC's G43 has added the tool length to world Z
   // (as with its own TCP kinematics, whose tool-offset pin follows motion.tooloffset.z): the
   // module takes it off before the core sees the tool tip, and adds it back in the forward.
@@ -51,7 +56,8 @@ inline constexpr std::array<double, 6> kBoundToolLengthsMm{0.0, 100.0, 200.0, 30
 
 // machine: the machine file (required). coordinates: LinuxCNC's axis letters, one per joint
 // (optional; default the machine's own, in its order): every axis of the machine file at least
-// once, no other letter; a letter twice gives two joints the same command. world: the world of
+// once, no other letter but its tool_axis_coordinate; a letter twice gives two joints the same
+// command. world: the world of
 // kinematics type 0, "axes" (default) or "tcp" (needs a Z axis). sparm: LinuxCNC's switchable
 // modules' parameter; "identityfirst" makes type 0 the identity (axes) world, as world=axes.
 ModuleSettings settings_from_parameters(const char* machine, const char* coordinates, const char* world,

@@ -179,6 +179,12 @@ void set_world(EmcPose& pose, Joints w, double tool_length_mm) {
   for (int j = 0; j < w.size(); ++j) pose_field(pose, settings->pose_field[j]) = w[j];
 }
 
+// The tool-axis coordinate's value (5axiskins' W; 0 without one): the nominal TCP kinematics
+// place the tip of a tool this much longer than the real one on the world point.
+double tool_axis_of(const EmcPose& pose) {
+  return settings->tool_axis_field >= 0 ? pose_field(pose, settings->tool_axis_field) : 0.0;
+}
+
 bool same_pose(const EmcPose& a, const EmcPose& b) {
   for (int field = 0; field < 9; ++field)
     if (pose_field(a, field) != pose_field(b, field)) return false;
@@ -277,13 +283,14 @@ int kinematicsInverse(const EmcPose* pose, double* joints, const KINEMATICS_INVE
   const int n = model.joint_count();
   const double offset = *hal->tool_length;       // LinuxCNC's tool length offset (G43)
   const double L = correction_length();          // the tool-length rule, slewed
+  const double w = tool_axis_of(*pose);
   Joints previous(n);  // LinuxCNC's seed: its principal joints
   for (int j = 0; j < n; ++j) previous[j] = joints[settings->principal_joint[j]];
   kinematics.last_inverse_pose = *pose;
   Joints extrapolated, extrapolated_full;
   const vm::Applied applied{applied_gain(), &previous, applied_corrections.for_inverse(extrapolated),
                             &*settings->contraction, full_corrections.for_inverse(extrapolated_full),
-                            model.correction_length(offset)};
+                            model.correction_length(offset) + w};
   Joints q;
   vm::Correction report;
   const vm::Status s = vm::joints_from_world(model, current_world(), world_of(*pose, offset), L, applied, q, &report);
@@ -307,12 +314,15 @@ int kinematicsInverse(const EmcPose* pose, double* joints, const KINEMATICS_INVE
   }
   for (int k = 0; k < settings->joint_count; ++k) {
     const int j = settings->model_joint[k];
-    *hal->correction[k] = q[j] - report.nominal[j];
+    *hal->correction[k] = j >= 0 ? q[j] - report.nominal[j] : 0.0;
   }
   *hal->out_of_table = vm::outside_tables(model, q);
   *hal->limit_exceeded = too_large;
   if (too_large) return refuse();
-  for (int k = 0; k < settings->joint_count; ++k) joints[k] = q[settings->model_joint[k]];
+  for (int k = 0; k < settings->joint_count; ++k) {
+    const int j = settings->model_joint[k];
+    joints[k] = j >= 0 ? q[j] : w;  // the tool-axis joint: the world's coordinate
+  }
   return 0;
 }
 
@@ -323,15 +333,17 @@ int kinematicsForward(const double* joints, EmcPose* pose, const KINEMATICS_FORW
   for (int j = 0; j < q.size(); ++j) q[j] = joints[settings->principal_joint[j]];
   const double offset = *hal->tool_length;
   const double L = correction_length();
+  const double tool_axis = settings->tool_axis_joint >= 0 ? joints[settings->tool_axis_joint] : 0.0;
   const Joints seed = world_of(*pose, offset);  // LinuxCNC passes the previous position (or home)
   Joints w, way_point, way_point_full;
   int iterations = 0;
   const vm::Applied applied{applied_gain(), &seed, applied_corrections.for_forward(way_point), nullptr,
-                            full_corrections.for_forward(way_point_full), model.correction_length(offset)};
+                            full_corrections.for_forward(way_point_full), model.correction_length(offset) + tool_axis};
   const vm::Status s = vm::world_from_joints(model, current_world(), q, L, applied, w, &iterations);
   *hal->forward_iterations = iterations;
   if (s != vm::Status::Ok) return refuse();
   set_world(*pose, w, offset);
+  if (settings->tool_axis_field >= 0) pose_field(*pose, settings->tool_axis_field) = tool_axis;
   return 0;
 }
 

@@ -55,6 +55,9 @@ class MachineReader {
     read_chain(root, "tool_chain", Chain::Tool);
     read_chain(root, "workpiece_chain", Chain::Workpiece);
     order_joints(root);
+    if (model_.tool_axis_coordinate && model_.joint_of(model_.tool_axis_coordinate) >= 0)
+      throw LoadError(tool_axis_at_, std::string("tool_axis_coordinate ") + model_.tool_axis_coordinate +
+                                         " is an axis of this machine: it must be a coordinate without one");
     for (int j = 0; j < model_.joint_count(); ++j) model_.axes[j].moved_by = 1u << j;
     check_axes_span(root);
     read_stiffness(root);
@@ -235,11 +238,21 @@ class MachineReader {
 
   void read_spindle(const toml::table& root) {
     const toml::table& s = *table(root, "spindle", true, "the machine file");
-    check_keys(s, "[spindle]", {"gauge_point_mm", "tool_length_mm", "tool_length_reference_mm", "location"});
+    check_keys(s, "[spindle]",
+               {"gauge_point_mm", "tool_length_mm", "tool_length_reference_mm", "tool_axis_coordinate", "location"});
     Spindle& spindle = model_.spindle;
     spindle.gauge_point_mm = vec3(s, "gauge_point_mm", false, "[spindle]");
     model_.tool_length_mm = scalar(s, "tool_length_mm", 0.0, "[spindle]");
     model_.tool_length_reference_mm = scalar(s, "tool_length_reference_mm", 0.0, "[spindle]");
+    const std::string tool_axis = text(s, "tool_axis_coordinate", false, "[spindle]");
+    if (s.get("tool_axis_coordinate")) {
+      if (tool_axis.size() != 1 || std::string_view("UVW").find(tool_axis[0]) == std::string_view::npos)
+        throw LoadError(where(*s.get("tool_axis_coordinate")),
+                        "tool_axis_coordinate '" + tool_axis + "' must be one of U, V, W (the LinuxCNC coordinate "
+                        "that moves the tool along its own axis, e.g. 5axiskins' W)");
+      model_.tool_axis_coordinate = tool_axis[0];
+      tool_axis_at_ = where(*s.get("tool_axis_coordinate"));
+    }
     read_location(table(s, "location", false, ""), 'S', spindle.location_mm, spindle.location_rad);
     spindle.real = line_placement(spindle.gauge_point_mm, spindle.location_mm, spindle.location_rad);
     spindle.ideal = line_placement(spindle.gauge_point_mm, Vector3d::Zero(), Vector3d::Zero());
@@ -573,6 +586,7 @@ class MachineReader {
   std::vector<int> tool_order_, part_order_;
   std::vector<PendingTables> pending_;
   std::vector<SourceLocation> axis_source_;
+  SourceLocation tool_axis_at_;  // [spindle] tool_axis_coordinate, where given
 };
 
 }  // namespace

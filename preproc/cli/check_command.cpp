@@ -1,6 +1,7 @@
 // `volcomp check MACHINE`: loads and validates a machine, then summarises it: axes, location
 // errors, tables (coverage, slope margin), the largest volumetric error over the travel and
 // whether the correction converges everywhere. Exit 0 only if the machine is usable.
+#include <cctype>
 #include <cmath>
 #include <random>
 
@@ -145,6 +146,10 @@ int run_check(const CheckArgs& args, std::ostream& out) {
       << format_number(model.tool_length_reference_mm) << " mm + the G43 tool length offset; pole fade "
       << format_number(model.fade.start_rad * 180.0 / M_PI) << " .. "
       << format_number(model.fade.full_rad * 180.0 / M_PI) << " deg\n";
+  if (model.tool_axis_coordinate)
+    out << "  tool-axis coordinate " << model.tool_axis_coordinate << ": moves the tool along its own axis (volkins: "
+        << "the nominal TCP tool is L + " << static_cast<char>(std::tolower(model.tool_axis_coordinate))
+        << " long; its joint is passed through)\n";
   print_axes(model, out);
   if (!model.temperatures.empty()) {  // the survey below is at their references
     out << "temperature inputs (degC; surveyed at the reference):";

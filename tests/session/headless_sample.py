@@ -5,13 +5,19 @@ test can run it without X: the display becomes kins/configs/common/headless_driv
 needs X goes (PYVCP panels, the postgui HAL file that nets them, vismach models loaded with
 loadusr and their pins, hal_manualtoolchange), and a sampler records at servo rate the world
 command, the joint commands, volkins' gain (0 without volkins), the tool length offset,
-motion-controller's time and kinstype.is-1 (the trace's "tcp" column: with sparm=identityfirst,
-type 1 is the TCP kinematics, for LinuxCNC's trt modules and for volkins alike).
+motion-controller's time, kinstype.is-N of the TCP type (the trace's "tcp" column: with
+sparm=identityfirst type 1 is the TCP kinematics, for LinuxCNC's trt modules and for volkins
+alike; without it, as in the bridgemill sample, type 0: --tcp-type 0) and, with volkins, the
+L its correction used (volkins.correction-length: it slews to a new G43 offset).
 
     headless_sample.py CONFIG_DIR INI RUN_DIR --program FILE [--compensation on|off]
+                       [--tcp-type N] [--sets SIGNAL=VALUE]...
 
 CONFIG_DIR is copied to RUN_DIR (its INI keeps its name); the program path is relative to it.
-A signal that only connected a vismach model goes with its `sets`.
+The INI's HALCMDs and the HAL files in the folder are filtered alike. A signal that only
+connected a vismach model goes with its `sets`; one that a vismach model drove for others (the
+bridgemill's :gui-pivot-len, 5axisgui's pivot_len) gets its value with --sets, as a user without
+the model would set it.
 """
 import argparse
 import os
@@ -22,13 +28,69 @@ import sys
 DRIVER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "../../kins/configs/common/headless_driver.py")
 
 
-def headless_lines(lines, coordinates, joints, has_volkins):
-    out, section, tool_signal, dropped = [], None, None, set()
+# A vismach model: a userspace program loaded with loadusr whose name ends in "gui"
+# (xyzbc-trt-gui, 5axisgui), and its pins.
+VISMACH_LOAD = re.compile(r"loadusr\b.*\bgui\b|loadusr\b(\s+-\S+)*\s+\S*gui\b")
+VISMACH_PIN = re.compile(r"\S*gui\.")
+
+
+class HalFilter:
+    """Drops what needs X from HAL commands (an INI's HALCMD values or a HAL file's lines)."""
+
+    def __init__(self):
+        self.tool_signal = None  # the signal motion.tooloffset.z is on
+        self.dropped = set()     # signals that only connected a vismach model
+
+    def command(self, value):
+        """The command without what needs X, or None to drop it."""
+        words = value.split()
+        if not words:
+            return value
+        if words[0] == "loadusr" and VISMACH_LOAD.match(value):
+            return None
+        if words[0] == "net":
+            kept = [t for t in words if not VISMACH_PIN.match(t)]
+            if not [t for t in kept[2:] if t not in ("<=", "=>")]:
+                self.dropped.add(words[1])
+                return None
+            if "motion.tooloffset.z" in kept:
+                self.tool_signal = words[1]
+            return " ".join(kept) if len(kept) != len(words) else value
+        if words[0] == "sets" and len(words) > 1 and words[1] in self.dropped:
+            return None
+        return value
+
+
+def filter_hal_file(path, hal_filter):
+    with open(path) as f:
+        lines = f.readlines()
+    out = []
+    for line in lines:
+        code = line.split("#", 1)[0].strip()
+        if code:
+            filtered = hal_filter.command(code)
+            if filtered is None:
+                continue
+            if filtered != code:
+                line = filtered + "\n"
+        out.append(line)
+    with open(path, "w") as f:
+        f.writelines(out)
+
+
+def headless_lines(lines, folder, coordinates, joints, has_volkins, tcp_type, sets):
+    out, section, hal_filter = [], None, HalFilter()
+    # The configuration's own HAL files first (LinuxCNC runs them before the HALCMDs).
+    for line in lines:
+        key, _, value = line.strip().partition("=")
+        name = value.strip().split()[0] if value.strip() else ""
+        if key.strip() == "HALFILE" and not name.startswith("LIB:") and os.path.exists(os.path.join(folder, name)):
+            filter_hal_file(os.path.join(folder, name), hal_filter)
     for line in lines:
         stripped = line.strip()
         if stripped.startswith("["):
             if section == "HAL":
-                out.extend(trace_lines(coordinates, joints, has_volkins, tool_signal))
+                out.extend(trace_lines(coordinates, joints, has_volkins, hal_filter.tool_signal, tcp_type, sets))
             section = stripped.strip("[]")
         key, _, value = stripped.partition("=")
         key, value = key.strip(), value.strip()
@@ -36,33 +98,27 @@ def headless_lines(lines, coordinates, joints, has_volkins):
             line = "DISPLAY = " + os.path.realpath(DRIVER) + "\n"
         elif (section == "DISPLAY" and key == "PYVCP") or (section == "HAL" and key == "POSTGUI_HALFILE"):
             continue
-        elif section == "HAL" and key == "HALCMD" and re.match(r"loadusr\b.*-gui\b", value):
-            continue  # a vismach model: needs X
-        elif section == "HAL" and key == "HALCMD" and value.startswith("net "):
-            value = " ".join(t for t in value.split() if not re.match(r"\S+-gui\.", t))
-            if not [t for t in value.split()[2:] if t not in ("<=", "=>")]:
-                dropped.add(value.split()[1])  # only the vismach model was on it
+        elif section == "HAL" and key == "HALCMD":
+            filtered = hal_filter.command(value)
+            if filtered is None:
                 continue
-            line = "HALCMD = " + value + "\n"
-            m = re.match(r"net\s+(\S+)\s.*\bmotion\.tooloffset\.z\b", value)
-            if m:
-                tool_signal = m.group(1)
-        elif section == "HAL" and key == "HALCMD" and value.startswith("sets ") and value.split()[1] in dropped:
-            continue
+            if filtered != value:
+                line = "HALCMD = " + filtered + "\n"
         elif section == "HAL" and key == "HALFILE" and value.startswith("LIB:basic_sim.tcl"):
             if "-no_use_hal_manualtoolchange" not in value:
                 line = "HALFILE = " + value + " -no_use_hal_manualtoolchange\n"
         out.append(line)
     if section == "HAL":
-        out.extend(trace_lines(coordinates, joints, has_volkins, tool_signal))
+        out.extend(trace_lines(coordinates, joints, has_volkins, hal_filter.tool_signal, tcp_type, sets))
     return out
 
 
-def trace_lines(coordinates, joints, has_volkins, tool_signal):
-    cfg = "f" * (len(coordinates) + joints + 2) + "s" + "b"
-    pins = ["axis.%s.pos-cmd" % c.lower() for c in coordinates]
+def trace_lines(coordinates, joints, has_volkins, tool_signal, tcp_type, sets):
+    cfg = "f" * (len(coordinates) + joints + 2) + "s" + "b" + ("f" if has_volkins else "")
+    pins = ["axis.%s.pos-cmd" % c for c in coordinates]
     pins += ["joint.%d.pos-cmd" % j for j in range(joints)]
-    lines = ["loadrt sampler depth=8000 cfg=" + cfg, "setp sampler.0.enable 0"]
+    lines = ["sets %s %s" % tuple(s.split("=", 1)) for s in sets]
+    lines += ["loadrt sampler depth=8000 cfg=" + cfg, "setp sampler.0.enable 0"]
     n = 0
     for pin in pins:
         lines.append("net :trace-%d %s => sampler.0.pin.%d" % (n, pin, n))
@@ -76,7 +132,9 @@ def trace_lines(coordinates, joints, has_volkins, tool_signal):
     n += 1
     lines.append("net :trace-time motion-controller.time => sampler.0.pin.%d" % n)
     n += 1
-    lines.append("net :trace-tcp kinstype.is-1 => sampler.0.pin.%d" % n)
+    lines.append("net :trace-tcp kinstype.is-%d => sampler.0.pin.%d" % (tcp_type, n))
+    if has_volkins:  # the L volkins' correction used (it slews to a new G43 offset)
+        lines.append("net :trace-correction-length volkins.correction-length => sampler.0.pin.%d" % (n + 1))
     lines.append("addf sampler.0 servo-thread")
     return ["HALCMD = " + l + "\n" for l in lines]
 
@@ -99,18 +157,21 @@ def main():
     p.add_argument("run_dir")
     p.add_argument("--program", required=True)
     p.add_argument("--compensation", default="on")
+    p.add_argument("--tcp-type", type=int, default=1)
+    p.add_argument("--sets", action="append", default=[])
     a = p.parse_args()
     shutil.rmtree(a.run_dir, ignore_errors=True)
     shutil.copytree(a.config_dir, a.run_dir, symlinks=False)
     ini = os.path.join(a.run_dir, a.ini)
     with open(ini) as f:
         lines = f.readlines()
-    coordinates = ini_value(lines, "TRAJ", "COORDINATES").replace(" ", "")
+    # Each axis once (the bridgemill's XYZBCWY names Y twice: a gantry).
+    coordinates = "".join(dict.fromkeys(ini_value(lines, "TRAJ", "COORDINATES").replace(" ", "").lower()))
     joints = int(ini_value(lines, "KINS", "JOINTS"))
     has_volkins = ini_value(lines, "KINS", "KINEMATICS").split()[0] == "volkins"
-    out = headless_lines(lines, coordinates, joints, has_volkins)
-    columns = [c.lower() for c in coordinates] + ["j%d" % j for j in range(joints)]
-    columns += ["gain", "tool_length", "controller_time", "tcp"]
+    out = headless_lines(lines, a.run_dir, coordinates, joints, has_volkins, a.tcp_type, a.sets)
+    columns = list(coordinates) + ["j%d" % j for j in range(joints)]
+    columns += ["gain", "tool_length", "controller_time", "tcp"] + (["correction_length"] if has_volkins else [])
     out.append("\n[DRIVER]\nPROGRAM = %s\nCOMPENSATION = %s\nTRACE = trace.csv\nTRACE_COLUMNS = %s\nRESULT = result.txt\n"
                % (a.program, a.compensation, " ".join(columns)))
     with open(ini, "w") as f:

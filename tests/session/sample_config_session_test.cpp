@@ -1,15 +1,19 @@
-// A LinuxCNC user's own configuration retrofitted with volkins: LinuxCNC's samples
-// table-rotary-tilting/xyzbc-trt.ini and xyzac-trt.ini (switchable kinematics, M428/M429, the
-// pivot on the stock module's HAL pins), as installed. `volcomp init` writes the machine file
-// and the patch, the patch is applied with `patch`, and the configuration's own demo program
-// (demos/xyzbc_switchkins.ngc: helices at B 20 C 45 in TCP, moves in identity, 16 switches; the
-// xyzac one at A 20 C 45) runs headless (tests/session/headless_sample.py) with the stock module
-// and with volkins. The joints of both are checked against an independent transcription of the
-// stock inverse (trtfuncs.c) evaluated on the recorded world commands, in each sample's
+// A LinuxCNC user's own configuration retrofitted with volkins: LinuxCNC's 5-axis samples as
+// installed. table-rotary-tilting's xyzbc-trt.ini and xyzac-trt.ini (table-table, switchable
+// kinematics, M428/M429, the pivot on the stock module's HAL pins) and bridgemill's 5axis.ini
+// (a head-head bridge mill, 5axiskins: X Y Z carry the C-B head, W moves the tool along its own
+// axis, two Y joints, the pivot length from a sum2 of the mechanical length and the tool length
+// offset). `volcomp init` writes the machine file and the patch, the patch is applied with
+// `patch`, and the configuration's own demo program (demos/xyzbc_switchkins.ngc: helices at
+// B 20 C 45 in TCP, moves in identity, 16 switches; the xyzac one at A 20 C 45; 5axisgui.ngc:
+// 128 holes drilled with W around a sphere, B -90..-34, C all round, tool 100 with G43) runs
+// headless (tests/session/headless_sample.py) with the stock module and with volkins. The
+// joints of both are checked against an independent transcription of the stock inverse
+// (trtfuncs.c, 5axiskins.c) evaluated on the recorded world commands, in each sample's
 // kinematics type, through LinuxCNC's joint interpolation: the stock run validates the
 // transcription, the volkins run with zero errors must give the same joints to 1e-9 mm / deg.
-// Then xyzbc with errors (a perturbed copy of the machine file): the module against the core
-// and the real tool tip against the ideal one, as on the MC-300.
+// Then xyzbc and the bridge mill with errors (a perturbed copy of the machine file): the module
+// against the core and the real tool tip against the ideal one, as on the MC-300.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -20,6 +24,7 @@
 #include "linuxcnc_run.hpp"
 #include "session_checks.hpp"
 #include "vc/machine/load_machine.hpp"
+#include "vc/tables/csv.hpp"
 #include "vc/trace/session_trace.hpp"
 
 namespace vc {
@@ -28,12 +33,12 @@ namespace {
 namespace fs = std::filesystem;
 using machine::Joints;
 
-const fs::path kSample = "/usr/share/doc/linuxcnc/examples/sample-configs/sim/axis/vismach/5axis/table-rotary-tilting";
+const fs::path kSamples = "/usr/share/doc/linuxcnc/examples/sample-configs/sim/axis/vismach/5axis";
 
 // xyzbc-trt-kins' inverse (LinuxCNC 2.9 trtfuncs.c, xyzbcKinematicsInverse), written out here
 // from its equations, for the sample's pivot (its HALCMDs: sets :x-offset -20, sets :z-offset
 // -15, rot points 0): TCP world (x y z b c, tool offset on z) to joints.
-Joints xyzbc_inverse(const Joints& w, double tool_offset) {
+Joints xyzbc_inverse(const Joints& w, double tool_offset, double) {
   const double dx = -20, dz = -15 + tool_offset;
   const double b = w[3] * M_PI / 180.0, c = w[4] * M_PI / 180.0;
   const double px = -std::cos(b) * dx - std::sin(b) * dz + dx, pz = std::sin(b) * dx - std::cos(b) * dz + dz;
@@ -46,7 +51,7 @@ Joints xyzbc_inverse(const Joints& w, double tool_offset) {
 
 // xyzac-trt-kins' (xyzacKinematicsInverse), for its sample's pivot (y-offset 20, z-offset 10,
 // rot points 0): TCP world (x y z a c) to joints.
-Joints xyzac_inverse(const Joints& w, double tool_offset) {
+Joints xyzac_inverse(const Joints& w, double tool_offset, double) {
   const double dy = 20, dz = 10 + tool_offset;
   const double a = w[3] * M_PI / 180.0, c = w[4] * M_PI / 180.0;
   Joints q = w;
@@ -58,13 +63,36 @@ Joints xyzac_inverse(const Joints& w, double tool_offset) {
   return q;
 }
 
-// One of the folder's two configurations and its demo program.
+// 5axiskins' inverse (LinuxCNC 2.9 5axiskins.c, fiveaxis_KinematicsInverse), written out here
+// from its equations, for the bridgemill sample's pivot length: 5axisgui's pivot_len 250 plus
+// the tool length offset (its sum2 pivotsum): TCP world (x y z b c, tool offset on z) and the
+// W coordinate to the joints x y z b c.
+Joints bridgemill_inverse(const Joints& world, double tool_offset, double w) {
+  const double pivot = 250 + tool_offset, r = pivot + w;
+  const double t = world[4] * M_PI / 180.0, p = (180.0 - world[3]) * M_PI / 180.0;  // s2r(r, c, 180 - b)
+  Joints q = world;
+  q[0] = world[0] - r * std::sin(p) * std::cos(t);
+  q[1] = world[1] - r * std::sin(p) * std::sin(t);
+  q[2] = world[2] - pivot - r * std::cos(p);
+  return q;
+}
+
+// A sample configuration and its demo program.
 struct Sample {
+  fs::path folder;
   std::string ini, program, machine;
-  Joints (*stock_tcp_inverse)(const Joints&, double);
+  Joints (*stock_tcp_inverse)(const Joints& world, double tool_offset, double tool_axis);
+  std::string headless_options;  // headless_sample.py's: the TCP kinematics type, values of GUI pins
+  std::size_t min_switches;      // kinematics switches the demo makes
 };
-const Sample kXyzbc{"xyzbc-trt.ini", "demos/xyzbc_switchkins.ngc", "xyzbc-trt.toml", xyzbc_inverse};
-const Sample kXyzac{"xyzac-trt.ini", "demos/xyzac_switchkins.ngc", "xyzac-trt.toml", xyzac_inverse};
+const Sample kXyzbc{kSamples / "table-rotary-tilting", "xyzbc-trt.ini", "demos/xyzbc_switchkins.ngc",
+                    "xyzbc-trt.toml", xyzbc_inverse, "", 8};
+const Sample kXyzac{kSamples / "table-rotary-tilting", "xyzac-trt.ini", "demos/xyzac_switchkins.ngc",
+                    "xyzac-trt.toml", xyzac_inverse, "", 8};
+// Its kinematics type 0 is 5axiskins (no sparm=identityfirst); the vismach model 5axisgui, which
+// needs X, gave the pivot's mechanical length (its default pivot_len): the headless copy sets it.
+const Sample kBridgemill{kSamples / "bridgemill", "5axis.ini", "5axisgui.ngc", "5axis.toml", bridgemill_inverse,
+                         " --tcp-type 0 --sets :gui-pivot-len=250", 0};
 
 struct StockComparison {
   double largest = 0;      // joints against the stock kinematics (mm or deg)
@@ -78,7 +106,8 @@ StockComparison compare_with_stock(const Sample& sample, const trace::SessionTra
   std::vector<Joints> p(t.size());
   for (std::size_t k = 0; k < t.size(); ++k) {
     const bool tcp = t.convention[k] == machine::WorldConvention::Tcp;
-    p[k] = tcp ? sample.stock_tcp_inverse(t.world[k], t.tool_length_mm[k == 0 ? 0 : k - 1]) : t.world[k];
+    const double tool_axis = t.tool_axis_mm.empty() ? 0.0 : t.tool_axis_mm[k];
+    p[k] = tcp ? sample.stock_tcp_inverse(t.world[k], t.tool_length_mm[k == 0 ? 0 : k - 1], tool_axis) : t.world[k];
     out.tcp += tcp;
     out.switches += k > 0 && t.convention[k] != t.convention[k - 1];
   }
@@ -93,10 +122,10 @@ void expect_volkins_applied(const trace::SessionTrace& t) {
   EXPECT_EQ(std::count(t.gain.begin(), t.gain.end(), 1.0), static_cast<long>(t.size())) << "volkins.gain is not 1";
 }
 
-class SampleTrt : public ::testing::Test {
+class SampleConfig : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!fs::exists(kSample)) GTEST_SKIP() << "LinuxCNC's sample configurations are not installed: " << kSample;
+    if (!fs::exists(kSamples)) GTEST_SKIP() << "LinuxCNC's sample configurations are not installed: " << kSamples;
   }
 
   // A fresh run folder `dir` with a copy of the sample as the user has it (`user`), retrofitted:
@@ -107,7 +136,7 @@ class SampleTrt : public ::testing::Test {
   static Retrofitted retrofitted(const Sample& sample, const std::string& name) {
     const fs::path dir = test::run_folder(name);
     const fs::path user = dir / "user";
-    fs::copy(kSample, user, fs::copy_options::recursive);
+    fs::copy(sample.folder, user, fs::copy_options::recursive);
     retrofit(sample, dir, user);
     return {dir, user};
   }
@@ -130,7 +159,8 @@ class SampleTrt : public ::testing::Test {
     const fs::path run_dir = dir / "run";
     const test::CommandResult h =
         test::run_in(dir, "python3 " + test::source_path("tests/session/headless_sample.py") + " " + config.string() +
-                              " " + sample.ini + " " + run_dir.string() + " --program " + sample.program);
+                              " " + sample.ini + " " + run_dir.string() + " --program " + sample.program +
+                              sample.headless_options);
     EXPECT_EQ(h.exit_code, 0) << h.out;
     for (const fs::path& f : extra) {
       fs::copy_file(f, run_dir / f.filename(), fs::copy_options::overwrite_existing);
@@ -150,71 +180,128 @@ class SampleTrt : public ::testing::Test {
   static void expect_stock_transcribed(const Sample& sample, const std::string& name) {
     const auto [dir, user] = retrofitted(sample, name);
     const machine::Model model = machine::load_machine((user / sample.machine).string());
-    const trace::SessionTrace t = run(sample, dir, kSample, model);
+    const trace::SessionTrace t = run(sample, dir, sample.folder, model);
     const StockComparison c = compare_with_stock(sample, t);
     // The same equations; the compilers may round a product differently (fused multiply-add).
     EXPECT_LT(c.largest, 1e-12) << "the transcription is not LinuxCNC's " << sample.ini;
     EXPECT_EQ(std::count(t.gain.begin(), t.gain.end(), 0.0), static_cast<long>(t.size())) << "volkins was loaded";
-    EXPECT_GE(c.switches, 8u);
+    EXPECT_GE(c.switches, sample.min_switches);
     EXPECT_GT(c.tcp, 10000u);
     std::cout << sample.ini << " stock: " << t.size() << " samples, " << c.tcp << " in TCP, " << c.switches
               << " switches; joints against the transcription: " << c.largest << "\n";
   }
 
   // Retrofitted, zero errors: the stock module's joints.
-  static void expect_stock_joints(const Sample& sample, const std::string& name) {
+  static trace::SessionTrace expect_stock_joints(const Sample& sample, const std::string& name) {
     const auto [dir, user] = retrofitted(sample, name);
     const machine::Model model = machine::load_machine((user / sample.machine).string());
     const trace::SessionTrace t = run(sample, dir, user, model);
     expect_volkins_applied(t);
     const StockComparison c = compare_with_stock(sample, t);
     EXPECT_LT(c.largest, 1e-9) << "volkins' joints differ from the stock module's";
-    EXPECT_GE(c.switches, 8u);
+    EXPECT_GE(c.switches, sample.min_switches);
     EXPECT_GT(c.tcp, 10000u);
     const trace::TraceSummary s = trace::check_trace(model, machine::WorldConvention::Axes, t);
     EXPECT_LT(test::extremes(s).mismatch, 1e-9);
     std::cout << sample.ini << " volkins, zero errors: " << t.size() << " samples, " << c.tcp << " in TCP, "
               << c.switches << " switches; joints against the stock module: max " << c.largest << "\n";
+    return t;
+  }
+
+  // Retrofitted, then the machine file perturbed (volcomp perturb with `locations` and a table on
+  // X): the tool is corrected along the demo program as on the MC-300.
+  static trace::SessionTrace expect_corrected(const Sample& sample, const std::string& name,
+                                              const std::string& locations) {
+    const auto [dir, user] = retrofitted(sample, name);
+    std::ofstream table(dir / "x_errors.csv");
+    table << "x[mm],EXX[um],EYX[um],EZX[um],EAX[arcsec],EBX[arcsec],ECX[arcsec]\n"
+             "-200,-6,2,-1,1.5,-2,1\n-100,-2,3,0,2,-1,0.5\n0,0,2,1,1,0,0\n100,3,0,1,-0.5,1.5,-0.5\n200,8,-2,0,-2,2.5,-1\n";
+    table.close();
+    const test::CommandResult perturb =
+        test::run_in(dir, std::string(VC_VOLCOMP) + " perturb " + (user / sample.machine).string() + " -o " +
+                              (dir / "measured").string() + " " + locations + " --add-table " +
+                              (dir / "x_errors.csv").string());
+    EXPECT_EQ(perturb.exit_code, 0) << perturb.out;
+    const fs::path measured = dir / "measured" / sample.machine;
+    const machine::Model model = machine::load_machine(measured.string());
+    const trace::SessionTrace t = run(sample, dir, user, model, {measured, dir / "measured/x_errors.csv"});
+    expect_volkins_applied(t);
+    const trace::TraceSummary s = trace::check_trace(model, machine::WorldConvention::Axes, t);
+    test::expect_compensated(s, 2, "sample " + sample.ini + " with errors");
+    // What the correction removed: the model's error along the path (no tool length offset).
+    double uncorrected = 0.0;
+    for (const Joints& q : t.joints)
+      uncorrected = std::max(uncorrected, machine::volumetric_error(model, q, 0.0).position_mm.norm());
+    EXPECT_GT(uncorrected, 0.005);
+    std::cout << "the same path uncompensated: tool tip error up to " << uncorrected * 1e3 << " um\n";
+    return t;
+  }
+
+  // The bridge mill's joints beyond the model's (x y z b c): joint 5 is W's (volkins passes the
+  // world's W through, LinuxCNC interpolates it), joint 6 the gantry's second Y (joint 1's command).
+  static void expect_tool_axis_and_gantry_joints(const trace::SessionTrace& t) {
+    const std::vector<tables::CsvRow> rows = tables::read_csv_rows(t.path, "session trace");
+    const auto column = [&](const std::string& name) {
+      const auto& h = rows.front().cells;
+      const auto it = std::find_if(h.begin(), h.end(), [&](const tables::CsvCell& c) { return c.text == name; });
+      EXPECT_NE(it, h.end()) << name;
+      std::vector<double> v;
+      for (std::size_t r = 1; r < rows.size(); ++r) v.push_back(std::stod(rows[r].cells[it - h.begin()].text));
+      return v;
+    };
+    const std::vector<double> w = column("w"), j1 = column("j1"), j5 = column("j5"), j6 = column("j6");
+    double tool_axis = 0, gantry = 0, drilled = 0;
+    for (std::size_t n = 3; n < w.size(); ++n) {
+      tool_axis = std::max(tool_axis, std::abs(j5[n] - (w[n - 3] + 4 * w[n - 2] + w[n - 1]) / 6));
+      gantry = std::max(gantry, std::abs(j6[n] - j1[n]));
+      drilled = std::min(drilled, w[n]);
+    }
+    EXPECT_LT(tool_axis, 1e-12) << "joint 5 is not the W coordinate";
+    EXPECT_EQ(gantry, 0.0) << "the two Y joints differ";
+    EXPECT_LT(drilled, -9.0) << "the demo did not drill with W";
+    std::cout << "W joint against the W coordinate: " << tool_axis << "; the two Y joints differ by " << gantry
+              << "; W down to " << drilled << " mm\n";
   }
 };
 
-TEST_F(SampleTrt, XyzbcStockKinematicsAreTheTranscribedOnes) { expect_stock_transcribed(kXyzbc, "sample_xyzbc_stock"); }
+TEST_F(SampleConfig, XyzbcStockKinematicsAreTheTranscribedOnes) { expect_stock_transcribed(kXyzbc, "sample_xyzbc_stock"); }
 
-TEST_F(SampleTrt, XyzbcRetrofittedWithZeroErrorsVolkinsGivesTheStockJoints) {
+TEST_F(SampleConfig, XyzbcRetrofittedWithZeroErrorsVolkinsGivesTheStockJoints) {
   expect_stock_joints(kXyzbc, "sample_xyzbc_volkins");
 }
 
-TEST_F(SampleTrt, XyzacStockKinematicsAreTheTranscribedOnes) { expect_stock_transcribed(kXyzac, "sample_xyzac_stock"); }
+TEST_F(SampleConfig, XyzacStockKinematicsAreTheTranscribedOnes) { expect_stock_transcribed(kXyzac, "sample_xyzac_stock"); }
 
-TEST_F(SampleTrt, XyzacRetrofittedWithZeroErrorsVolkinsGivesTheStockJoints) {
+TEST_F(SampleConfig, XyzacRetrofittedWithZeroErrorsVolkinsGivesTheStockJoints) {
   expect_stock_joints(kXyzac, "sample_xyzac_volkins");
 }
 
-TEST_F(SampleTrt, XyzbcRetrofittedWithErrorsVolkinsPutsTheRealToolOnTheCommandedPose) {
-  const auto [dir, user] = retrofitted(kXyzbc, "sample_xyzbc_errors");
+TEST_F(SampleConfig, XyzbcRetrofittedWithErrorsVolkinsPutsTheRealToolOnTheCommandedPose) {
   // The true machine: location errors of every kind and a table on X.
-  std::ofstream table(dir / "x_errors.csv");
-  table << "x[mm],EXX[um],EYX[um],EZX[um],EAX[arcsec],EBX[arcsec],ECX[arcsec]\n"
-           "-200,-6,2,-1,1.5,-2,1\n-100,-2,3,0,2,-1,0.5\n0,0,2,1,1,0,0\n100,3,0,1,-0.5,1.5,-0.5\n200,8,-2,0,-2,2.5,-1\n";
-  table.close();
-  const test::CommandResult perturb = test::run_in(
-      dir, std::string(VC_VOLCOMP) + " perturb " + (user / "xyzbc-trt.toml").string() + " -o " +
-               (dir / "measured").string() +
-               " --location EX0C=15um --location EY0C=-10um --location EA0C=-6arcsec --location EC0B=8arcsec"
-               " --location EC0Y=-5arcsec --location EB0Z=5arcsec --add-table " + (dir / "x_errors.csv").string());
-  ASSERT_EQ(perturb.exit_code, 0) << perturb.out;
-  const fs::path measured = dir / "measured/xyzbc-trt.toml";
-  const machine::Model model = machine::load_machine(measured.string());
-  const trace::SessionTrace t = run(kXyzbc, dir, user, model, {measured, dir / "measured/x_errors.csv"});
-  expect_volkins_applied(t);
-  const trace::TraceSummary s = trace::check_trace(model, machine::WorldConvention::Axes, t);
-  test::expect_compensated(s, 2, "sample xyzbc-trt with errors");
-  // What the correction removed: the model's error along the path (no tool length offset).
-  double uncorrected = 0.0;
-  for (const Joints& q : t.joints)
-    uncorrected = std::max(uncorrected, machine::volumetric_error(model, q, 0.0).position_mm.norm());
-  EXPECT_GT(uncorrected, 0.005);
-  std::cout << "the same path uncompensated: tool tip error up to " << uncorrected * 1e3 << " um\n";
+  expect_corrected(kXyzbc, "sample_xyzbc_errors",
+                   "--location EX0C=15um --location EY0C=-10um --location EA0C=-6arcsec --location EC0B=8arcsec"
+                   " --location EC0Y=-5arcsec --location EB0Z=5arcsec");
+}
+
+TEST_F(SampleConfig, BridgemillStockKinematicsAreTheTranscribedOnes) {
+  expect_stock_transcribed(kBridgemill, "sample_bridgemill_stock");
+}
+
+TEST_F(SampleConfig, BridgemillRetrofittedWithZeroErrorsVolkinsGivesTheStockJoints) {
+  const trace::SessionTrace t = expect_stock_joints(kBridgemill, "sample_bridgemill_volkins");
+  expect_tool_axis_and_gantry_joints(t);
+}
+
+TEST_F(SampleConfig, BridgemillRetrofittedWithErrorsVolkinsPutsTheRealToolOnTheCommandedPose) {
+  // The head's errors: the C line's position and tilt (in Z's frame), the B line's (in C's),
+  // two squarenesses, and the table on X.
+  const trace::SessionTrace t =
+      expect_corrected(kBridgemill, "sample_bridgemill_errors",
+                       "--location EX0C=12um --location EY0C=-8um --location EA0C=5arcsec --location EB0C=-4arcsec"
+                       " --location EX0B=10um --location EZ0B=-6um --location EA0B=6arcsec --location EC0B=-5arcsec"
+                       " --location EC0Y=-5arcsec"
+                       " --location EB0Z=5arcsec");
+  expect_tool_axis_and_gantry_joints(t);
 }
 
 }  // namespace

@@ -160,6 +160,7 @@ class Patcher {
       if (left == 0) {
         f.remove(c.line);
       } else {
+        remove_dangling_arrows(c, tokens);
         f.replace(c.line, rewritten(c, f.file().line(c.line).text, tokens));
         ++kept;
       }
@@ -173,6 +174,29 @@ class Patcher {
       if (is_stock_pin(c.words[w]))
         throw LoadError(c.where(), "`" + c.text + "` names " + c.words[w] + ": init rewrites the setp and net lines of " +
                                        k_.module + " pins only; change this one by hand (volkins has no such pin)");
+  }
+
+  // An arrow left before another arrow or at the end of a net whose pins were removed goes too
+  // (`net :p sum.out => 5axiskins.pivot-length` -> `net :p sum.out`; halcmd ignores arrows).
+  static void remove_dangling_arrows(const HalCommand& c, std::map<int, std::optional<std::string>>& tokens) {
+    auto removed = [&](int word) {
+      const int token = c.word_token[static_cast<std::size_t>(word)];
+      const auto it = tokens.find(token);
+      return token >= 0 && it != tokens.end() && !it->second;
+    };
+    auto arrow = [&](int word) {
+      const std::string& w = c.words[static_cast<std::size_t>(word)];
+      return w == "=>" || w == "<=" || w == "<=>";
+    };
+    bool next_is_arrow_or_end = true;  // of the words kept after this one
+    for (int w = static_cast<int>(c.words.size()) - 1; w >= 2; --w) {
+      if (removed(w)) continue;
+      if (arrow(w) && next_is_arrow_or_end && c.word_is_token(w)) {
+        tokens[c.word_token[static_cast<std::size_t>(w)]] = std::nullopt;
+        continue;
+      }
+      next_is_arrow_or_end = arrow(w);
+    }
   }
 
   // `loadrt <module> ...` written out (not `loadrt [KINS]KINEMATICS`): fine if it loads what

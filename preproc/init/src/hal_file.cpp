@@ -225,6 +225,17 @@ std::optional<Net> net_of(const HalCommand& c) {
   return net;
 }
 
+const HalCommand* net_of_pin(const HalConfig& hal, const std::string& pin, std::string* signal) {
+  for (const HalCommand& c : hal.commands)
+    if (const auto net = net_of(c))
+      for (const NetPin& p : net->pins)
+        if (p.name == pin) {
+          if (signal) *signal = net->signal;
+          return &c;
+        }
+  return nullptr;
+}
+
 std::optional<Assignment> setp_of(const HalCommand& c) {
   if (c.words.size() == 3 && c.words[0] == "setp") return Assignment{c.words[1], c.words[2], 1};
   if (c.words.size() == 3 && c.words[1] == "=") return Assignment{c.words[0], c.words[2], 0};
@@ -234,6 +245,24 @@ std::optional<Assignment> setp_of(const HalCommand& c) {
 std::optional<Assignment> sets_of(const HalCommand& c) {
   if (c.words.size() == 3 && c.words[0] == "sets") return Assignment{c.words[1], c.words[2], 1};
   return std::nullopt;
+}
+
+std::optional<Load> loadrt_of(const HalCommand& c) {
+  if (c.words.size() < 2 || c.words[0] != "loadrt") return std::nullopt;
+  return Load{c.words[1], std::vector<std::string>(c.words.begin() + 2, c.words.end())};
+}
+
+// halcmd's do_loadusr_cmd: getopt "+wWin:", the first other word is the program.
+std::optional<Load> loadusr_of(const HalCommand& c) {
+  if (c.words.empty() || c.words[0] != "loadusr") return std::nullopt;
+  std::size_t w = 1;
+  for (; w < c.words.size() && c.words[w].size() > 1 && c.words[w][0] == '-'; ++w) {
+    const std::string& options = c.words[w];
+    const std::size_t n = options.find('n');
+    if (n != std::string::npos && n + 1 == options.size()) ++w;  // -n NAME, -Wn NAME: the name is the next word
+  }
+  if (w >= c.words.size()) return std::nullopt;
+  return Load{c.words[w], std::vector<std::string>(c.words.begin() + static_cast<long>(w) + 1, c.words.end())};
 }
 
 }  // namespace vc::init

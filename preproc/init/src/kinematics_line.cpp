@@ -5,15 +5,12 @@
 namespace vc::init {
 namespace {
 
-constexpr const char* kKnown = "init knows trivkins, xyzbc-trt-kins and xyzac-trt-kins; ";
+constexpr const char* kKnown = "init knows trivkins, xyzbc-trt-kins, xyzac-trt-kins and 5axiskins; ";
 constexpr const char* kNotASerialChain =
     ": not a serial chain of linear axes plus a rotary table or head, which is what the model expresses";
 
 // Why a module LinuxCNC ships is not one init can describe.
 std::string why_not(const std::string& module) {
-  if (module == "5axiskins")
-    return "5axiskins is refused: its W joint moves the tool along the tool's own axis: a fourth linear axis; the "
-           "model has three";
   if (module == "maxkins")
     return "maxkins is refused: it maps joints by number (0-8 = X Y Z A B C U V W, no coordinates parameter), passes "
            "joint 3 (A) through as a third rotary axis and moves the tool with joints 6-8 (U along the tilted head, V "
@@ -53,9 +50,10 @@ KinematicsLine read_kinematics_line(const LinuxcncIni& ini) {
   if (k.module == "trivkins") k.kind = StockModule::Trivkins;
   else if (k.module == "xyzbc-trt-kins") k.kind = StockModule::XyzbcTrt;
   else if (k.module == "xyzac-trt-kins") k.kind = StockModule::XyzacTrt;
+  else if (k.module == "5axiskins") k.kind = StockModule::FiveAxis;
   else throw LoadError(k.entry->where(), kKnown + why_not(k.module));
 
-  // trivkins: coordinates, kinstype; the trt modules (switchkins): coordinates, sparm.
+  // trivkins: coordinates, kinstype; the trt modules and 5axiskins (switchkins): coordinates, sparm.
   const std::string second = k.kind == StockModule::Trivkins ? "kinstype" : "sparm";
   for (std::string word; words >> word;) {
     const std::size_t equals = word.find('=');

@@ -68,6 +68,8 @@ void write_machine_file(const NominalMachine& m, const MachineFileOrigin& origin
   value(out, "gauge_point_mm", format_vector(m.gauge_point_mm), m.gauge_point_from);
   value(out, "tool_length_mm", format_number(m.tool_length_mm), m.tool_length_from);
   value(out, "tool_length_reference_mm", format_number(m.tool_length_reference_mm), m.tool_length_reference_from);
+  if (m.tool_axis_coordinate)
+    value(out, "tool_axis_coordinate", std::string("\"") + m.tool_axis_coordinate + "\"", m.tool_axis_from);
 
   out << "\n[fixture]\n";
   if (m.fixture_from.size() > 1) comments(out, m.fixture_from);

@@ -78,11 +78,24 @@ double limit(const IniEntry& entry) {
   return v;
 }
 
+// The letters a switchkins module requires, in its default order (its coordinates= without
+// the parameter); "" for trivkins.
+std::string required_coordinates(StockModule kind) {
+  switch (kind) {
+    case StockModule::XyzbcTrt: return "xyzbc";
+    case StockModule::XyzacTrt: return "xyzac";
+    case StockModule::FiveAxis: return "xyzbcw";
+    case StockModule::Trivkins: break;
+  }
+  return "";
+}
+
 // The coordinates the module maps its joints with, checked letter by letter; the number of
 // kinematics joints is needed for trivkins without coordinates= (its default is XYZABCUVW:
 // joint n is the n-th letter).
 void read_coordinates(const KinematicsLine& k, const LinuxcncIni& ini, int kinematics_joints, MachineLayout& layout) {
   const std::string line = ini.cite(*k.entry);
+  const std::string required = required_coordinates(k.kind);
   if (const std::string* given = k.parameter("coordinates")) {
     layout.coordinates = *given;
     layout.coordinates_from = k.module + " coordinates=" + *given + " (" + line + ")";
@@ -94,7 +107,7 @@ void read_coordinates(const KinematicsLine& k, const LinuxcncIni& ini, int kinem
     layout.coordinates_from = "trivkins with its default coordinates=" + layout.coordinates +
                               " (XYZABCUVW, as many as [KINS]JOINTS has joints) (" + line + ")";
   } else {
-    layout.coordinates = k.kind == StockModule::XyzbcTrt ? "xyzbc" : "xyzac";
+    layout.coordinates = required;
     layout.coordinates_from = k.module + " with its default coordinates=" + layout.coordinates + " (" + line + ")";
   }
   for (char c : layout.coordinates)
@@ -102,12 +115,21 @@ void read_coordinates(const KinematicsLine& k, const LinuxcncIni& ini, int kinem
       throw LoadError(k.entry->where(), "coordinates=" + layout.coordinates + ": '" + std::string(1, c) +
                                             "' is not an axis letter (XYZABCUVW)");
   if (layout.coordinates.empty()) throw LoadError(k.entry->where(), "coordinates= names no axis");
-  if (k.kind != StockModule::Trivkins)
-    for (char required : std::string(k.kind == StockModule::XyzbcTrt ? "XYZBC" : "XYZAC"))
-      if (std::none_of(layout.coordinates.begin(), layout.coordinates.end(), [&](char c) { return upper(c) == required; }))
-        throw LoadError(k.entry->where(), "coordinates=" + layout.coordinates + " lacks " + std::string(1, required) + ", which " +
-                                              k.module + " requires (it needs " +
-                                              (k.kind == StockModule::XyzbcTrt ? "xyzbc" : "xyzac") + ")");
+  for (char r : required)
+    if (std::none_of(layout.coordinates.begin(), layout.coordinates.end(), [&](char c) { return upper(c) == upper(r); }))
+      throw LoadError(k.entry->where(), "coordinates=" + layout.coordinates + " lacks " + std::string(1, upper(r)) +
+                                            ", which " + k.module + " requires (it needs " + required + ")");
+  if (k.kind != StockModule::FiveAxis) return;
+  // 5axiskins maps A, U and V one-to-one to their joints (5axiskins.c); volkins' joints are the
+  // machine file's axes and its tool-axis coordinate only.
+  for (char c : layout.coordinates)
+    if (std::strchr("AUV", upper(c)))
+      throw LoadError(k.entry->where(),
+                      layout.coordinates_from + " has " + std::string(1, upper(c)) + ", which 5axiskins passes through " +
+                          "to its joint one-to-one: volkins does not pass it through (its joints are the machine "
+                          "file's axes X Y Z B C and the tool-axis coordinate W); remove the joint");
+  layout.tool_axis = 'W';
+  layout.tool_axis_joint = static_cast<int>(layout.coordinates.find_first_of("Ww"));
 }
 
 // The axes (as a set of letters) of a coordinates string.
@@ -144,9 +166,11 @@ void check_traj_coordinates(const LinuxcncIni& ini, const MachineLayout& layout)
                       "; volkins needs every joint to be an axis of the machine (remove the joint or add the axis)");
 }
 
-// The model: exactly three linear axes X Y Z, at most two rotary ones.
+// The model: exactly three linear axes X Y Z, at most two rotary ones (and the tool-axis
+// coordinate, no axis of its own).
 void check_model_axes(const KinematicsLine& k, const MachineLayout& layout) {
-  const std::string axes = letter_set(layout.coordinates);
+  std::string axes = letter_set(layout.coordinates);
+  if (layout.tool_axis) axes.erase(axes.find(layout.tool_axis), 1);
   const std::string& named = layout.coordinates_from;
   for (char l : std::string("UVW"))
     if (axes.find(l) != std::string::npos)
@@ -228,6 +252,7 @@ MachineLayout read_layout(const LinuxcncIni& ini, const KinematicsLine& k) {
   check_traj_coordinates(ini, layout);
   check_model_axes(k, layout);
   for (const char* l = kLetters; *l; ++l) {
+    if (*l == layout.tool_axis) continue;  // no axis of the model: its joint's limits are LinuxCNC's
     const std::size_t first = layout.coordinates.find_first_of(std::string{*l, static_cast<char>(std::tolower(*l))});
     if (first != std::string::npos) layout.axes.push_back(read_axis(ini, *joints, *l, static_cast<int>(first)));
   }

@@ -7,14 +7,7 @@ namespace vc::init {
 PinValue pin_value(const HalConfig& hal, const std::string& pin, double default_value) {
   PinValue v;
   v.value = default_value;
-  // Its signal: HAL links a pin to one signal at most.
-  for (const HalCommand& c : hal.commands)
-    if (const auto net = net_of(c))
-      for (const NetPin& p : net->pins)
-        if (p.name == pin && !v.net) {
-          v.net = &c;
-          v.signal = net->signal;
-        }
+  v.net = net_of_pin(hal, pin, &v.signal);
   auto assign = [&](const HalCommand& c, const std::string& value, PinValue::Source source) {
     if (!parse_number(value, v.value))
       throw LoadError(c.where(), "'" + value + "' is not a number (the value of " + pin + ")");

@@ -6,6 +6,7 @@
 #include "vc/init/machine_layout.hpp"
 #include "vc/init/number.hpp"
 #include "vc/init/pin_value.hpp"
+#include "vc/init/pivot_length.hpp"
 #include "vc/init/typical_tool.hpp"
 
 namespace vc::init {
@@ -92,6 +93,14 @@ Pin geometry_pin(const HalConfig& hal, const LinuxcncIni& ini, const std::string
   return p;
 }
 
+// The switchable modules (switchkins.c): sparm=identityfirst makes type 0 the identity
+// (volkins: the same parameter); else type 0 is the TCP kinematics (volkins: world=tcp).
+void switchkins_types(const KinematicsLine& k, NominalMachine& m) {
+  const std::string* sparm = k.parameter("sparm");
+  m.identity_first = sparm && sparm->find("identityfirst") != std::string::npos;
+  m.world = m.identity_first ? "" : "tcp";
+}
+
 void trt(const LinuxcncIni& ini, const HalConfig& hal, const KinematicsLine& k, const MachineLayout& layout,
          NominalMachine& m) {
   const bool bc = k.kind == StockModule::XyzbcTrt;
@@ -134,11 +143,51 @@ void trt(const LinuxcncIni& ini, const HalConfig& hal, const KinematicsLine& k, 
   m.gauge_point_from = "the tool tip of " + mod + " is tool-offset below the spindle point, the Z frame's origin";
   m.tool_length_reference_from = "L = the active G43 offset (motion.tooloffset.z), exactly as the tool-offset pin of " + mod;
 
-  // sparm=identityfirst makes type 0 the identity (volkins: the same parameter); else type 0
-  // is the TCP kinematics (volkins: world=tcp).
-  const std::string* sparm = k.parameter("sparm");
-  m.identity_first = sparm && sparm->find("identityfirst") != std::string::npos;
-  m.world = m.identity_first ? "" : "tcp";
+  switchkins_types(k, m);
+}
+
+// 5axiskins (5axiskins.c): the controlled point is (x, y, z + P) + (P + w) d, with d = (sin B
+// cos C, sin B sin C, -cos B) (s2r(P + w, C, 180 - B)) and P = Pm + L (pivot_length.hpp: the
+// mechanical pivot plus the G43 offset); LinuxCNC's world Z has L added, so the tool tip is
+// (x, y, z + Pm) + (Pm + L + w) d: a head. X, Y, Z carry C about +z, its pole (the pivot, on
+// B's line) at [0, 0, Pm]; C carries B about -y (at C = 0, +B swings the tool tip towards +x);
+// the spindle point Pm below the pivot: gauge point [0, 0, -Pm] in B's frame; L the G43 offset;
+// W the tool-axis coordinate, the tool w longer.
+void five_axis(const LinuxcncIni& ini, const HalConfig& hal, const KinematicsLine& k, const MachineLayout& layout,
+               NominalMachine& m) {
+  const std::string& mod = k.module;
+  linear_axes(layout, mod, " (the world is the tool tip)", m);
+  m.pins = {"pivot-length"};
+  const PivotLength pivot = pivot_length(ini, hal, k);
+  const double pm = pivot.mechanical_mm;
+
+  NominalAxis c = axis_from(*layout.axis('C'), layout, "the head's vertical axis, carrying B");
+  c.direction_from = mod + " turns the head about +z (s2r's azimuth C, 5axiskins.c)";
+  c.pole_mm = {0.0, 0.0, pm};
+  c.pole_from = {"[0, 0, Pm] in Z's frame: the pivot (where B's line crosses C's) is Pm above the X, Y, Z joints'",
+                 "point (5axiskins.c: z + pivot-length, pivot-length = Pm + the G43 offset), with"};
+  for (const std::string& line : pivot.from) c.pole_from.push_back("  " + line);
+  m.tool_chain.push_back(c);
+
+  NominalAxis b = axis_from(*layout.axis('B'), layout, "the head's tilting axis, on C, carrying the spindle");
+  b.direction = {0.0, -1.0, 0.0};
+  b.direction_from = mod + " tilts the tool from -z by B, towards +x at C = 0 (s2r's polar angle 180 - B): about -y";
+  b.pole_from = {"the pivot, C's frame's origin"};
+  m.tool_chain.push_back(b);
+
+  m.gauge_point_mm = {0.0, 0.0, -pm};
+  m.gauge_point_from = "[0, 0, -Pm]: the spindle point is Pm below the pivot along the tool (5axiskins.c: s2r(pivot-length "
+                       "+ w, C, 180 - B)); Pm " + format_number(pm) + ", C's pole below";
+  m.tool_length_reference_from = "L = the active G43 offset (motion.tooloffset.z), which 5axiskins' pivot-length adds "
+                                 "through " + pivot.sum2;
+  m.tool_axis_coordinate = layout.tool_axis;
+  m.tool_axis_from = "joint " + std::to_string(layout.tool_axis_joint) + " of " + layout.coordinates_from +
+                     ": 5axiskins' W moves the tool along its own axis by the X, Y, Z joints (s2r(pivot-length + w, ...))";
+  m.fixture_from = {mod + ": the part frame is the bed frame"};
+  m.remarks.push_back(mod + ".pivot-length follows " + pivot.sum2 + ".out, the mechanical pivot length " + format_number(pm) +
+                      " plus the tool offset: the pivot is C's pole and the gauge point below. The patch takes " + mod +
+                      ".pivot-length off its net; " + pivot.sum2 + " stays, driving nothing.");
+  switchkins_types(k, m);
 }
 
 }  // namespace
@@ -161,6 +210,7 @@ NominalMachine nominal_machine(const LinuxcncIni& ini, const HalConfig& hal, con
   if (tool.unreadable) m.remarks.push_back("tool_length_mm is 0: " + tool.from);
   m.tool_length_reference_from = "L = the active G43 offset (motion.tooloffset.z): the tool table holds gauge lengths";
   if (k.kind == StockModule::Trivkins) trivkins(layout, m);
+  else if (k.kind == StockModule::FiveAxis) five_axis(ini, hal, k, layout, m);
   else trt(ini, hal, k, layout, m);
   return m;
 }

@@ -1,5 +1,6 @@
 #include "vc/trace/session_trace.hpp"
 
+#include <cctype>
 #include <cmath>
 
 #include "vc/tables/csv.hpp"
@@ -39,9 +40,12 @@ SessionTrace read_session_trace(const std::string& path, const machine::Model& m
 
   int correction_length = -1;  // optional: traces recorded before volkins slewed the tool length
   int tcp = -1;                 // optional: the kinematics type's world, per sample
+  int tool_axis = -1;           // optional: the tool-axis coordinate (5axiskins' W)
+  const std::string tool_axis_name(1, static_cast<char>(std::tolower(model.tool_axis_coordinate)));
   for (std::size_t c = 0; c < header.cells.size(); ++c) {
     if (header.cells[c].text == "correction_length") correction_length = static_cast<int>(c);
     if (header.cells[c].text == "tcp") tcp = static_cast<int>(c);
+    if (model.tool_axis_coordinate && header.cells[c].text == tool_axis_name) tool_axis = static_cast<int>(c);
   }
 
   // Optional: the filtered temperature each input had (the trace of a machine with [temperatures]).
@@ -71,6 +75,7 @@ SessionTrace read_session_trace(const std::string& path, const machine::Model& m
     t.controller_ticks.push_back(value(2 * n + 2));
     if (correction_length >= 0)
       t.correction_length_mm.push_back(tables::csv_number(path, row.line, row.cells[correction_length]));
+    if (tool_axis >= 0) t.tool_axis_mm.push_back(tables::csv_number(path, row.line, row.cells[tool_axis]));
     if (tcp >= 0)
       t.convention.push_back(tables::csv_number(path, row.line, row.cells[tcp]) != 0.0 ? machine::WorldConvention::Tcp
                                                                                         : machine::WorldConvention::Axes);
@@ -111,9 +116,11 @@ TraceSummary check_trace(const machine::Model& machine_model, machine::WorldConv
     const double L = correction_length(k);  // the tool-length rule (slewed)
     const Joints world = core_world(model, convention, trace.world[k], offset);
     at_temperatures_of(k);
-    // The nominal (TCP) kinematics take the offset at once, the correction its slewed L.
+    // The nominal (TCP) kinematics take the offset at once, the correction its slewed L; the
+    // tool-axis coordinate lengthens the nominal tool only.
     machine::Applied applied{trace.gain[k], nullptr};
-    applied.nominal_tool_length_mm = model.correction_length(offset);
+    applied.nominal_tool_length_mm =
+        model.correction_length(offset) + (trace.tool_axis_mm.size() == count ? trace.tool_axis_mm[k] : 0.0);
     machine::nominal_inverse(model, convention, world, applied.nominal_tool_length_mm, nominal[k]);
     machine::joints_from_world(model, convention, world, L, applied, expected[k], &corrections[k]);
   }

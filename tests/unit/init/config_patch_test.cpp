@@ -1,9 +1,11 @@
 // The patch `volcomp init` writes, applied with the real `patch -p1` to a copy of the
-// configuration: volkins' KINEMATICS line, no stock pin left, volkins.tool-length on the
-// tool-offset signal, volkins.update first in the servo thread, every other byte unchanged
-// (CRLF and trailing blanks too); what it cannot rewrite is refused with its line.
+// configuration (LinuxCNC's xyzbc-trt and bridgemill samples, and one of our own): volkins'
+// KINEMATICS line, no stock pin left, volkins.tool-length on the tool-offset signal,
+// volkins.update first in the servo thread, every other byte unchanged (CRLF and trailing
+// blanks too); what it cannot rewrite is refused with its line.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <set>
 #include <sstream>
@@ -21,6 +23,35 @@ std::vector<std::string> lines_of(const std::string& text) {
   std::istringstream in(text);
   for (std::string line; std::getline(in, line);) lines.push_back(line);
   return lines;
+}
+
+// The lines of `after` that are not lines of `before`, every line of `before` kept in order
+// except those `stock` says the patch may replace or delete (reported as a failure otherwise).
+template <typename Stock>
+std::set<std::string> added_lines(const std::vector<std::string>& before, const std::vector<std::string>& after,
+                                  Stock stock) {
+  std::set<std::string> added;
+  std::size_t i = 0;
+  for (const std::string& line : after) {
+    while (i < before.size() && before[i] != line && stock(before[i])) ++i;  // a stock line, replaced or deleted
+    if (i < before.size() && before[i] == line) {
+      ++i;
+      continue;
+    }
+    added.insert(line);
+  }
+  EXPECT_EQ(i, before.size()) << "an original line went missing: " << (i < before.size() ? before[i] : "");
+  return added;
+}
+
+// No HAL command of the configuration (its INI and HAL files, comments aside) names `prefix`.
+void expect_no_stock_pin(const fs::path& folder, const std::string& prefix) {
+  for (const auto& entry : fs::recursive_directory_iterator(folder)) {
+    if (!entry.is_regular_file()) continue;
+    if (entry.path().extension() != ".ini" && entry.path().extension() != ".hal") continue;
+    for (const std::string& line : lines_of(test::read_file(entry.path())))
+      EXPECT_EQ(line.substr(0, line.find('#')).find(prefix), std::string::npos) << entry.path() << ": " << line;
+  }
 }
 
 // init on `ini`, its machine file in the folder, the patch applied there.
@@ -56,33 +87,52 @@ TEST(ConfigPatch, PutsVolkinsInTheXyzbcSample) {
       "HALCMD = net  :z-offset    xyzbc-trt-gui.z-offset",
       "# volkins (volcomp init): its update function runs first in the servo thread",
       "HALCMD = addf volkins.update servo-thread 1"};
-  std::set<std::string> added;
-  std::size_t i = 0;
-  for (const std::string& line : after) {
-    while (i < before.size() && before[i] != line &&
-           (before[i].find("xyzbc-trt-kins.") != std::string::npos || before[i].rfind("KINEMATICS", 0) == 0))
-      ++i;  // a stock line, replaced or deleted
-    if (i < before.size() && before[i] == line) {
-      ++i;
-      continue;
-    }
-    added.insert(line);
-  }
-  EXPECT_EQ(i, before.size()) << "an original line went missing: " << (i < before.size() ? before[i] : "");
-  EXPECT_EQ(added, changed);
-  // No HAL command of the configuration (its INI and HAL files, comments aside) names a stock
-  // pin; every other file is unchanged. (Its remap_subs/centering.ngc reads the rot-point pins
-  // guarded by `exists`, and its xyzbc-trt.txt names two: init patches no G-code or notes.)
+  EXPECT_EQ(added_lines(before, after, [](const std::string& line) {
+              return line.find("xyzbc-trt-kins.") != std::string::npos || line.rfind("KINEMATICS", 0) == 0;
+            }),
+            changed);
+  // No HAL command of the configuration names a stock pin; every other file is unchanged. (Its
+  // remap_subs/centering.ngc reads the rot-point pins guarded by `exists`, and its
+  // xyzbc-trt.txt names two: init patches no G-code or notes.)
+  expect_no_stock_pin(copy, "xyzbc-trt-kins.");
   for (const auto& entry : fs::recursive_directory_iterator(copy)) {
     if (!entry.is_regular_file()) continue;
-    const std::string text = test::read_file(entry.path());
-    if (entry.path().extension() == ".ini" || entry.path().extension() == ".hal") {
-      for (const std::string& line : lines_of(text))
-        EXPECT_EQ(line.substr(0, line.find('#')).find("xyzbc-trt-kins."), std::string::npos) << entry.path() << ": " << line;
-    }
     const fs::path twin = original / fs::relative(entry.path(), copy);
     if (entry.path().filename() != "xyzbc-trt.ini" && entry.path().filename() != "xyzbc.toml") {
-      EXPECT_EQ(text, test::read_file(twin)) << entry.path();
+      EXPECT_EQ(test::read_file(entry.path()), test::read_file(twin)) << entry.path();
+    }
+  }
+}
+
+// The bridgemill (5axiskins): 5axiskins.pivot-length taken off its net (pivotsum stays, its out
+// driving nothing), volkins.tool-length on :tool-len, the signal motion.tooloffset.z drives.
+TEST(ConfigPatch, PutsVolkinsInTheBridgemillSample) {
+  if (!test::samples_installed()) GTEST_SKIP() << "LinuxCNC's sample configurations are not installed (" << test::kSampleConfigs << ")";
+  const fs::path original = test::kSampleConfigs / "bridgemill";
+  const fs::path copy = test::scratch_folder("bridgemill_patch") / "bridgemill";
+  fs::copy(original, copy, fs::copy_options::recursive);
+  const InitResult r = init_and_patch(copy / "5axis.ini", "5axis.toml");
+  EXPECT_EQ(r.patch.kinematics, "volkins machine=5axis.toml coordinates=xyzbcwy world=tcp");
+
+  const auto stock = [](const std::string& line) {
+    return line.find("5axiskins.") != std::string::npos || line.find("KINEMATICS = 5axiskins") != std::string::npos;
+  };
+  EXPECT_EQ(added_lines(lines_of(test::read_file(original / "5axis.ini")), lines_of(test::read_file(copy / "5axis.ini")), stock),
+            (std::set<std::string>{" KINEMATICS = volkins machine=5axis.toml coordinates=xyzbcwy world=tcp",
+                                   "# volkins (volcomp init): its update function runs first in the servo thread; it "
+                                   "takes LinuxCNC's tool length offset",
+                                   "HALCMD = addf volkins.update servo-thread 1", "HALCMD = net :tool-len volkins.tool-length"}));
+  const std::vector<std::string> hal_before = lines_of(test::read_file(original / "5axisgui.hal"));
+  const std::vector<std::string> hal_after = lines_of(test::read_file(copy / "5axisgui.hal"));
+  EXPECT_EQ(added_lines(hal_before, hal_after, stock), std::set<std::string>{});
+  EXPECT_EQ(hal_after.size() + 1, hal_before.size());  // only `net :pivot-len => 5axiskins.pivot-length` went
+  EXPECT_NE(std::find(hal_after.begin(), hal_after.end(), "net :pivot-len <= pivotsum.out"), hal_after.end());
+  expect_no_stock_pin(copy, "5axiskins.");
+  for (const auto& entry : fs::recursive_directory_iterator(copy)) {
+    if (!entry.is_regular_file()) continue;
+    const std::string name = entry.path().filename().string();
+    if (name != "5axis.ini" && name != "5axisgui.hal" && name != "5axis.toml") {
+      EXPECT_EQ(test::read_file(entry.path()), test::read_file(original / fs::relative(entry.path(), copy))) << entry.path();
     }
   }
 }
@@ -111,6 +161,8 @@ TEST(ConfigPatch, RewritesTheConfigurationsOwnHalFilesByteForByte) {
       "net :tool <= motion.tooloffset.z => xyzac-trt-kins.tool-offset\n"
       "xyzac-trt-kins.z-offset = 7\n"
       "net :kt kinstype.is-1 => gui.led  \n"
+      "net :xoff gui.xoff <= xyzac-trt-kins.x-offset\n"
+      "sets :xoff 1\n"
       "addf motion-controller servo-thread";
   test::write_file(dir / "kins.hal", hal);
   const InitResult r = init_and_patch(dir / "own.ini");
@@ -120,6 +172,8 @@ TEST(ConfigPatch, RewritesTheConfigurationsOwnHalFilesByteForByte) {
             "loadrt [KINS]KINEMATICS\n"
             "net :tool <= motion.tooloffset.z => volkins.tool-length\n"
             "net :kt kinstype.is-1 => gui.led  \n"
+            "net :xoff gui.xoff\n"  // the arrow left dangling goes with the pin
+            "sets :xoff 1\n"
             "addf motion-controller servo-thread");
   std::string patched_ini = ini;
   patched_ini.replace(patched_ini.find("xyzac-trt-kins   "), 17, "volkins machine=machine.toml coordinates=xyzac world=tcp");

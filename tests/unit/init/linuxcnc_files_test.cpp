@@ -130,6 +130,38 @@ TEST(HalFile, RunsHalfilesThenHalcmdsThenPostguiWithReferencesReplaced) {
   EXPECT_EQ(setp->target, "a.pin");
 }
 
+// loadrt and loadusr as halcmd takes them (loadusr's options -w -W -i -n NAME, as getopt
+// "+wWin:"), and the net that puts a pin on its signal.
+TEST(HalFile, ReadsLoadCommandsAndTheSignalOfAPin) {
+  const fs::path ini = configuration("loads", {{"m.ini", "[HAL]\nHALFILE = m.hal\n"},
+                                               {"m.hal",
+                                                "loadrt sum2 names=a,b\n"
+                                                "loadusr -W 5axisgui pivot_len=300\n"
+                                                "loadusr -Wn gui /usr/bin/5axisgui x=1\n"
+                                                "loadusr -i -nname prog\n"
+                                                "net :s a.out => b.in0\n"
+                                                "net :s => k.pin\n"}});
+  const HalConfig hal = read_hal(LinuxcncIni::read(ini.string()));
+  ASSERT_EQ(hal.commands.size(), 6u);
+  const auto rt = loadrt_of(hal.commands[0]);
+  ASSERT_TRUE(rt);
+  EXPECT_EQ(rt->module, "sum2");
+  EXPECT_EQ(rt->arguments, (std::vector<std::string>{"names=a,b"}));
+  EXPECT_FALSE(loadusr_of(hal.commands[0]));
+  const auto gui = loadusr_of(hal.commands[1]);
+  ASSERT_TRUE(gui);
+  EXPECT_EQ(gui->module, "5axisgui");
+  EXPECT_EQ(gui->arguments, (std::vector<std::string>{"pivot_len=300"}));
+  EXPECT_EQ(loadusr_of(hal.commands[2])->module, "/usr/bin/5axisgui");  // -Wn takes the next word
+  EXPECT_EQ(loadusr_of(hal.commands[2])->arguments, (std::vector<std::string>{"x=1"}));
+  EXPECT_EQ(loadusr_of(hal.commands[3])->module, "prog");  // -nname: the name in the option
+  std::string signal;
+  EXPECT_EQ(net_of_pin(hal, "k.pin", &signal), &hal.commands[5]);
+  EXPECT_EQ(signal, ":s");
+  EXPECT_EQ(net_of_pin(hal, "a.out"), &hal.commands[4]);
+  EXPECT_EQ(net_of_pin(hal, "none.pin"), nullptr);
+}
+
 TEST(HalFile, RefusesAnUndefinedIniReferenceWithItsLine) {
   const fs::path ini = configuration("undefined", {{"m.ini", "[HAL]\nHALFILE = m.hal\n"},
                                                    {"m.hal", "# first\nsetp a.b [NOPE]VALUE\n"}});

@@ -2,9 +2,11 @@
 // LinuxCNC's xyzbc-trt and xyzac-trt samples (read in place) and for random rotation points
 // and offsets give, in volkins' TCP world, the tool tip that LinuxCNC's xyzbc-trt-kins and
 // xyzac-trt-kins compute (trtfuncs.c's equations, transcribed below independently of init),
-// forward and inverse, to 1e-9 mm over 2000 random poses. trivkins configurations (a gantry
-// with a duplicated letter) keep each axis once; modules the model cannot express are refused
-// with the reason.
+// forward and inverse, to 1e-9 mm over 2000 random poses; the same for LinuxCNC's 5axiskins
+// (its bridgemill sample and random pivot lengths, W and the tool length offset included), and
+// its pivot lengths init cannot follow refused with their lines. trivkins configurations (a
+// gantry with a duplicated letter) keep each axis once; modules the model cannot express are
+// refused with the reason.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -196,6 +198,196 @@ TEST(StockKinematics, RandomRotationPointsAndOffsetsMatchTheStockModules) {
   }
 }
 
+// LinuxCNC 2.9's 5axiskins.c (commit f1270d6ed7), fiveaxis_KinematicsForward and -Inverse: P
+// the pivot-length pin, s2r(r, t, p) spherical to cartesian (t the azimuth, p the polar angle,
+// deg). The joints and the world are x, y, z, b, c, w.
+using Six = Eigen::Matrix<double, 6, 1>;
+
+Eigen::Vector3d s2r(double r, double t, double p) {
+  t *= kRad;
+  p *= kRad;
+  return {r * std::sin(p) * std::cos(t), r * std::sin(p) * std::sin(t), r * std::cos(p)};
+}
+
+Six five_axis_forward(double P, const Six& j) {
+  const Eigen::Vector3d r = s2r(P + j[5], j[4], 180.0 - j[3]);
+  Six pos;
+  pos << j[0] + r.x(), j[1] + r.y(), j[2] + P + r.z(), j[3], j[4], j[5];
+  return pos;
+}
+
+Six five_axis_inverse(double P, const Six& pos) {
+  const Eigen::Vector3d r = s2r(P + pos[5], pos[4], 180.0 - pos[3]);
+  Six j;
+  j << pos[0] - r.x(), pos[1] - r.y(), pos[2] - P - r.z(), pos[3], pos[4], pos[5];
+  return j;
+}
+
+// The sum2 that drives pivot-length, as LinuxCNC's sum2.comp: out = in0 * gain0 + in1 * gain1 +
+// offset, one input motion.tooloffset.z (gain 1), the other the constant `pivot`.
+struct PivotSum {
+  double pivot = 250.0, gain = 1.0, offset = 0.0;  // of the constant input
+  double out(double tool_offset) const { return pivot * gain + tool_offset * 1.0 + offset; }
+};
+
+// volkins' TCP world against 5axiskins, both ways: LinuxCNC's world Z is the core's plus the
+// tool length offset (G43), the core's nominal tool is the offset plus W (tool_axis_coordinate).
+// Returns the largest difference (mm, deg).
+double expect_five_axis_kinematics(const machine::Model& model, const PivotSum& sum, int poses, unsigned seed) {
+  EXPECT_EQ(model.coordinates(), "xyzbc");
+  EXPECT_EQ(model.tool_axis_coordinate, 'W');
+  if (model.coordinates() != "xyzbc") return INFINITY;
+  std::mt19937_64 rng(seed);
+  auto uniform = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
+  double worst = 0.0;
+  for (int i = 0; i < poses; ++i) {
+    Six j;
+    for (int k = 0; k < 5; ++k) j[k] = uniform(model.axes[k].travel_min, model.axes[k].travel_max);
+    j[5] = uniform(-100.0, 500.0);
+    const double offset = uniform(0.0, 150.0);
+    const double P = sum.out(offset);
+    const double L = model.correction_length(offset) + j[5];  // the nominal TCP tool: L + w
+
+    const Six stock_world = five_axis_forward(P, j);
+    const Joints q = j.head<5>();
+    const Joints world = machine::nominal_forward(model, machine::WorldConvention::Tcp, q, L);
+    for (int k = 0; k < 3; ++k) {
+      const double linuxcnc = world[k] + (k == 2 ? offset : 0.0);
+      EXPECT_NEAR(linuxcnc, stock_world[k], 1e-9) << "forward, pose " << i << " axis " << k;
+      worst = std::max(worst, std::abs(linuxcnc - stock_world[k]));
+    }
+    EXPECT_EQ(world[3], j[3]);
+    EXPECT_EQ(world[4], j[4]);
+
+    const Six stock_joints = five_axis_inverse(P, stock_world);
+    Joints tip = stock_world.head<5>();
+    tip[2] -= offset;  // the core's TCP world: without G43's Z
+    Joints joints;
+    EXPECT_EQ(machine::nominal_inverse(model, machine::WorldConvention::Tcp, tip, L, joints), machine::Status::Ok);
+    for (int k = 0; k < 5; ++k) {
+      EXPECT_NEAR(joints[k], stock_joints[k], 1e-9) << "inverse, pose " << i << " joint " << k;
+      EXPECT_NEAR(joints[k], j[k], 1e-9) << "round trip, pose " << i;
+      worst = std::max(worst, std::abs(joints[k] - stock_joints[k]));
+    }
+  }
+  return worst;
+}
+
+void record_largest_difference(double worst) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", worst);
+  ::testing::Test::RecordProperty("largest_difference_mm", text);
+}
+
+TEST(StockKinematics, BridgemillSampleMatches5axiskins) {
+  if (!test::samples_installed()) GTEST_SKIP() << "LinuxCNC's sample configurations are not installed (" << test::kSampleConfigs << ")";
+  const Generated g = generate(test::kSampleConfigs / "bridgemill/5axis.ini", "bridgemill_sample");
+  // pivot-length = pivotsum.out = 5axisgui.pivot_len (250, its default) + motion.tooloffset.z.
+  expect_vector(g.model.axes[4].pole_mm, {0, 0, 250}, "C pole");
+  expect_vector(g.model.axes[3].pole_mm, {0, 0, 0}, "B pole");
+  expect_vector(g.model.axes[3].direction, {0, -1, 0}, "B direction");
+  expect_vector(g.model.axes[4].direction, {0, 0, 1}, "C direction");
+  expect_vector(g.model.spindle.gauge_point_mm, {0, 0, -250}, "gauge point");
+  EXPECT_EQ(g.model.tool_chain, (std::vector<int>{0, 1, 2, 4, 3}));  // X Y Z C B
+  EXPECT_TRUE(g.model.workpiece_chain.empty());
+  EXPECT_EQ(g.model.tool_length_reference_mm, 0.0);
+  EXPECT_EQ(g.model.axes[3].travel_min, -120.0);  // [JOINT_3]
+  EXPECT_EQ(g.model.axes[1].travel_max, 500.0);   // [JOINT_1], the first Y
+  EXPECT_EQ(g.result.machine.coordinates, "xyzbcwy");
+  EXPECT_EQ(g.result.patch.kinematics, "volkins machine=" + g.result.machine_path + " coordinates=xyzbcwy world=tcp");
+  for (const char* origin : {"5axisgui.hal:29 `net :pivot-len => 5axiskins.pivot-length`",
+                             "5axisgui.hal:28 `net :pivot-len <= pivotsum.out`",
+                             "5axisgui.hal:18 `loadrt sum2 names=pivotsum`",
+                             "5axisgui.hal:25 `net :tool-len => pivotsum.in1`",
+                             "in0 = 250: 5axisgui.pivot_len (5axisgui.hal:22 `net :gui-pivot-len => pivotsum.in0`), "
+                             "5axisgui's pivot_len: 5axisgui.hal:1 `loadusr -W 5axisgui`, no pivot_len=: 5axisgui's "
+                             "default 250",
+                             "tool_axis_coordinate = \"W\"        # joint 5 of 5axiskins coordinates=xyzbcwy (5axis.ini:98 "})
+    EXPECT_NE(g.result.machine_text.find(origin), std::string::npos) << origin << "\n" << g.result.machine_text;
+  record_largest_difference(expect_five_axis_kinematics(g.model, {}, 2000, 3));
+}
+
+// A 5axiskins configuration of our own: the pivot a sum2 of motion.tooloffset.z (input `tool`)
+// and a constant (the other input, by setp or sets), with a gain and an offset.
+struct FiveAxisGeometry {
+  PivotSum sum;
+  int tool = 1;             // the input on motion.tooloffset.z
+  bool names = true;        // loadrt sum2 names=..., else count=2 (sum2.1)
+  bool sets = false;        // the constant by sets on its signal, else setp
+  bool identity_first = false;
+};
+
+fs::path five_axis_configuration(const std::string& name, const FiveAxisGeometry& p, const std::string& extra_hal = "") {
+  const fs::path dir = test::scratch_folder(name);
+  std::string ini = std::string("[EMC]\nMACHINE = random 5axis\n[KINS]\nKINEMATICS = 5axiskins") +
+                    (p.identity_first ? " sparm=identityfirst" : "") +
+                    "\nJOINTS = 6\n[TRAJ]\nCOORDINATES = XYZBCW\nLINEAR_UNITS = mm\nANGULAR_UNITS = deg\n"
+                    "[HAL]\nHALFILE = fiveaxis.hal\n";
+  const double limits[6][2] = {{-400, 300}, {-250, 350}, {-450, 80}, {-110, 95}, {-36000, 36000}, {-100, 500}};
+  for (int j = 0; j < 6; ++j)
+    ini += "[JOINT_" + std::to_string(j) + "]\nTYPE = " + (j < 3 || j == 5 ? "LINEAR" : "ANGULAR") + "\nMIN_LIMIT = " +
+           std::to_string(limits[j][0]) + "\nMAX_LIMIT = " + std::to_string(limits[j][1]) + "\n";
+  test::write_file(dir / "fiveaxis.ini", ini);
+  auto number = [](double v) {
+    char text[40];
+    std::snprintf(text, sizeof text, "%.17g", v);
+    return std::string(text);
+  };
+  const std::string s = p.names ? "pivot" : "sum2.1";
+  const std::string tool = s + ".in" + std::to_string(p.tool), constant = s + ".in" + std::to_string(1 - p.tool);
+  std::string hal = "loadrt [KINS]KINEMATICS\n" + std::string(p.names ? "loadrt sum2 names=other,pivot\n" : "loadrt sum2 count=2\n") +
+                    "addf " + s + " servo-thread\n"
+                    "net :tool-length motion.tooloffset.z => " + tool + "\n" +
+                    (p.sets ? "net :mechanical-pivot => " + constant + "\nsets :mechanical-pivot " + number(p.sum.pivot) + "\n"
+                            : "setp " + constant + " " + number(p.sum.pivot) + "\n") +
+                    "setp " + s + ".gain" + std::to_string(1 - p.tool) + " " + number(p.sum.gain) + "\n"
+                    "setp " + s + ".offset " + number(p.sum.offset) + "\n"
+                    "net :pivot-length " + s + ".out => 5axiskins.pivot-length\n" + extra_hal;
+  test::write_file(dir / "fiveaxis.hal", hal);
+  return dir / "fiveaxis.ini";
+}
+
+TEST(StockKinematics, RandomPivotLengthsMatch5axiskins) {
+  std::mt19937_64 rng(20261129);
+  auto uniform = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
+  double worst = 0.0;
+  for (int geometry = 0; geometry < 5; ++geometry) {
+    FiveAxisGeometry p;
+    p.sum = {uniform(50, 400), uniform(0.5, 2.0), uniform(-50, 50)};
+    p.tool = geometry % 2;
+    p.names = geometry % 2 == 0;
+    p.sets = geometry >= 2;
+    p.identity_first = geometry == 4;
+    SCOPED_TRACE("5axiskins geometry " + std::to_string(geometry));
+    const std::string name = "fiveaxis" + std::to_string(geometry);
+    const Generated g = generate(five_axis_configuration(name, p), name + "_machine");
+    const double pm = p.sum.pivot * p.sum.gain + p.sum.offset;
+    EXPECT_NEAR(g.model.axes[4].pole_mm.z(), pm, 1e-12);
+    EXPECT_NEAR(g.model.spindle.gauge_point_mm.z(), -pm, 1e-12);
+    EXPECT_EQ(g.result.machine.world, p.identity_first ? "" : "tcp");
+    EXPECT_EQ(g.result.patch.kinematics, "volkins machine=" + g.result.machine_path + " coordinates=xyzbcw" +
+                                             (p.identity_first ? " sparm=identityfirst" : " world=tcp"));
+    worst = std::max(worst, expect_five_axis_kinematics(g.model, p.sum, 2000, 200 + static_cast<unsigned>(geometry)));
+  }
+  record_largest_difference(worst);
+}
+
+TEST(StockKinematics, TakesThePivotFrom5axisguisArgument) {
+  // The bridgemill way, with pivot_len= on the loadusr line (-Wn: halcmd's option with a name).
+  const fs::path ini = five_axis_configuration("fiveaxis_gui", {});
+  test::write_file(ini.parent_path() / "fiveaxis.hal",
+                   "loadrt [KINS]KINEMATICS\nloadusr -Wn 5axisgui 5axisgui pivot_len=312.5\nloadrt sum2\n"
+                   "net :gui-pivot-len <= 5axisgui.pivot_len\nnet :gui-pivot-len => sum2.0.in0\nsetp sum2.0.gain0 2\n"
+                   "net :tool-len <= motion.tooloffset.z => sum2.0.in1\nnet :pivot-len sum2.0.out 5axiskins.pivot-length\n");
+  const Generated g = generate(ini, "fiveaxis_gui_machine");
+  expect_vector(g.model.axes[4].pole_mm, {0, 0, 625}, "C pole");  // 2 x 312.5
+  EXPECT_NE(g.result.machine_text.find("in0 = 312.5: 5axisgui.pivot_len (fiveaxis.hal:5 `net :gui-pivot-len => sum2.0.in0`), "
+                                       "5axisgui's pivot_len: fiveaxis.hal:2 `loadusr -Wn 5axisgui 5axisgui pivot_len=312.5`"),
+            std::string::npos)
+      << g.result.machine_text;
+  record_largest_difference(expect_five_axis_kinematics(g.model, {312.5, 2.0, 0.0}, 200, 4));
+}
+
 // The refusal init gives for a configuration: its location and message.
 LoadError refusal(const fs::path& ini) {
   try {
@@ -209,12 +401,7 @@ LoadError refusal(const fs::path& ini) {
 
 TEST(StockKinematics, RefusesTheSamplesTheModelCannotExpress) {
   if (!test::samples_installed()) GTEST_SKIP() << "LinuxCNC's sample configurations are not installed (" << test::kSampleConfigs << ")";
-  const LoadError bridgemill = refusal(test::kSampleConfigs / "bridgemill/5axis.ini");
-  EXPECT_EQ(bridgemill.where().line, 98);
-  EXPECT_NE(bridgemill.message().find("5axiskins is refused: its W joint moves the tool along the tool's own axis: a "
-                                      "fourth linear axis; the model has three"),
-            std::string::npos)
-      << bridgemill.what();
+  // (bridgemill, 5axiskins, is accepted: BridgemillSampleMatches5axiskins.)
   const LoadError max5 = refusal(test::kSampleConfigs / "max5/max5kins.ini");
   EXPECT_EQ(max5.where().line, 4);
   EXPECT_NE(max5.message().find("maxkins is refused: it maps joints by number"), std::string::npos) << max5.what();
@@ -227,6 +414,75 @@ TEST(StockKinematics, RefusesTheSamplesTheModelCannotExpress) {
       << triv.what();
   EXPECT_NE(triv.message().find("joint 3 the axis A, which the trajectory planner does not have"), std::string::npos)
       << triv.what();
+}
+
+// The pivot lengths init cannot follow, and the coordinates volkins cannot pass through.
+TEST(StockKinematics, Refuses5axiskinsPivotLengthsThatDoNotFollowTheToolOffset) {
+  const std::string why = "with a pivot length that does not follow motion.tooloffset.z, G43 moves world Z only, which "
+                          "volkins' TCP world does not express";
+  const fs::path ini = five_axis_configuration("fiveaxis_refused", {});
+  const fs::path hal = ini.parent_path() / "fiveaxis.hal";
+  struct Case {
+    std::string hal;
+    int line;  // in the HAL file; negative: in the INI (KINEMATICS)
+    std::string message;
+  };
+  const std::string head = "loadrt [KINS]KINEMATICS\nloadrt sum2 names=pivot\n";  // lines 1, 2
+  const std::vector<Case> cases{
+      {head + "setp 5axiskins.pivot-length 300\n", 3, "5axiskins.pivot-length is the constant 300: " + why},
+      {head + "net :p => 5axiskins.pivot-length\nsets :p 300\n", 4,
+       "5axiskins.pivot-length is the constant 300 (sets on its signal :p): " + why},
+      {head, -4, "5axiskins.pivot-length is netted nowhere in the HAL files read: it keeps 5axiskins' default 250, a "
+                "constant: " + why},
+      {head + "net :p other.out => 5axiskins.pivot-length\n", 3,
+       "5axiskins.pivot-length follows other.out at run time (signal :p), which is not the out of a sum2 loaded in the "
+       "HAL files read"},
+      // The constant part live from another pin than 5axisgui's pivot_len.
+      {head + "net :t motion.tooloffset.z => pivot.in1\nnet :c gui.pivot => pivot.in0\nnet :p pivot.out => "
+              "5axiskins.pivot-length\n",
+       4, "pivot.in0 follows gui.pivot at run time (both are on signal :c, which no sets gives a value): the pivot "
+          "length's other part must be a constant"},
+      // The tool offset with another gain.
+      {head + "net :t motion.tooloffset.z => pivot.in1\nsetp pivot.in0 250\nsetp pivot.gain1 2\nnet :p pivot.out => "
+              "5axiskins.pivot-length\n",
+       5, "pivot.gain1 = 2: pivot.in1 (the tool offset) must enter the pivot length with gain 1; " + why},
+      // No input on the tool offset.
+      {head + "setp pivot.in0 250\nnet :p pivot.out => 5axiskins.pivot-length\n", 4,
+       "5axiskins.pivot-length follows pivot.out, but neither pivot.in0 nor pivot.in1 is on the signal "
+       "motion.tooloffset.z drives (it is netted nowhere); " + why},
+      // Both.
+      {head + "net :t motion.tooloffset.z => pivot.in1 pivot.in0\nnet :p pivot.out => 5axiskins.pivot-length\n", 4,
+       "5axiskins.pivot-length follows pivot.out, but both pivot.in0 and pivot.in1 are on :t: the pivot length would grow "
+       "by twice the tool offset"},
+      // 5axisgui's pin without its loadusr.
+      {head + "net :t motion.tooloffset.z => pivot.in1\nnet :g 5axisgui.pivot_len => pivot.in0\nnet :p pivot.out => "
+              "5axiskins.pivot-length\n",
+       4, "pivot.in0 follows 5axisgui.pivot_len, but no `loadusr 5axisgui` is in the HAL files read"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.hal);
+    test::write_file(hal, c.hal);
+    const LoadError e = refusal(ini);
+    EXPECT_EQ(e.where().path, c.line < 0 ? ini.string() : hal.string());
+    EXPECT_EQ(e.where().line, std::abs(c.line));
+    EXPECT_EQ(e.message().rfind(c.message, 0), 0u) << e.what();
+  }
+  // A, U and V: 5axiskins passes them through one-to-one, volkins does not.
+  std::string text = test::read_file(ini);
+  text.replace(text.find("KINEMATICS = 5axiskins"), 22, "KINEMATICS = 5axiskins coordinates=xyzbcwu");
+  text.replace(text.find("JOINTS = 6"), 10, "JOINTS = 7");
+  test::write_file(ini, text);
+  const LoadError u = refusal(ini);
+  EXPECT_EQ(u.where().line, 4);
+  EXPECT_EQ(u.message(), "5axiskins coordinates=xyzbcwu (fiveaxis.ini:4 `KINEMATICS = 5axiskins coordinates=xyzbcwu`) has "
+                         "U, which 5axiskins passes through to its joint one-to-one: volkins does not pass it through "
+                         "(its joints are the machine file's axes X Y Z B C and the tool-axis coordinate W); remove the "
+                         "joint");
+  // W is required, as by 5axiskins.
+  text.replace(text.find("coordinates=xyzbcwu"), 19, "coordinates=xyzbc");
+  test::write_file(ini, text);
+  EXPECT_NE(refusal(ini).message().find("coordinates=xyzbc lacks W, which 5axiskins requires (it needs xyzbcw)"),
+            std::string::npos);
 }
 
 TEST(StockKinematics, GantryKeepsEachAxisOnceWithItsFirstJointsTravel) {

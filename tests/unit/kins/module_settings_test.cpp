@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 #include "module_settings.hpp"
@@ -54,6 +55,58 @@ TEST(ModuleSettings, CoordinatesMapLinuxcncJointsToTheMachinesAxes) {
   const ModuleSettings swapped = settings_from_parameters(test::machine_path("mc300").c_str(), "xyzcb", nullptr);
   EXPECT_EQ(swapped.model_joint[3], 4);  // joint 3 drives C, the machine file's fifth axis
   EXPECT_EQ(swapped.principal_joint[3], 4);
+}
+
+// A bridge mill's head as LinuxCNC's 5axiskins has it (X Y Z carry C carrying B; W moves the
+// tool along its axis): the W joint drives no axis of the model, volkins passes it through.
+TEST(ModuleSettings, TheToolAxisCoordinatesJointIsPassedThrough) {
+  const std::filesystem::path file = std::filesystem::temp_directory_path() / "vc_module_settings_head.toml";
+  std::ofstream(file) << R"([machine]
+name = "bridge mill head"
+[spindle]
+gauge_point_mm = [0, 0, -250]
+tool_axis_coordinate = "W"
+[[tool_chain]]
+axis = "X"
+type = "linear"
+direction = [1, 0, 0]
+pole_mm = [0, 0, 0]
+travel_mm = [-500, 500]
+[[tool_chain]]
+axis = "Y"
+type = "linear"
+direction = [0, 1, 0]
+pole_mm = [0, 0, 0]
+travel_mm = [-500, 500]
+[[tool_chain]]
+axis = "Z"
+type = "linear"
+direction = [0, 0, 1]
+pole_mm = [0, 0, 0]
+travel_mm = [-500, 100]
+[[tool_chain]]
+axis = "C"
+type = "rotary"
+direction = [0, 0, 1]
+pole_mm = [0, 0, 250]
+travel_deg = [-360, 360]
+[[tool_chain]]
+axis = "B"
+type = "rotary"
+direction = [0, -1, 0]
+pole_mm = [0, 0, 0]
+travel_deg = [-120, 120]
+)";
+  const ModuleSettings s = settings_from_parameters(file.c_str(), "xyzbcwy", "tcp");
+  EXPECT_EQ(s.joint_count, 7);
+  const std::array<int, 7> axis_of{0, 1, 2, 3, 4, -1, 1};
+  for (int k = 0; k < 7; ++k) EXPECT_EQ(s.model_joint[k], axis_of[k]) << k;
+  EXPECT_EQ(s.tool_axis_joint, 5);
+  EXPECT_EQ(s.tool_axis_field, 8);  // EmcPose's w
+  EXPECT_EQ(settings_from_parameters(file.c_str(), "xyzbc", "tcp").tool_axis_joint, -1);  // W unused: w = 0
+  EXPECT_THROW(settings_from_parameters(file.c_str(), "xyzbcwu", "tcp"), std::runtime_error);  // U is not its coordinate
+  EXPECT_THROW(settings_from_parameters(test::machine_path("mc300").c_str(), "xyzbcw", nullptr), std::runtime_error);
+  std::filesystem::remove(file);
 }
 
 TEST(ModuleSettings, RelativePathsAreMadeAbsolute) {

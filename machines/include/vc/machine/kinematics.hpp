@@ -55,7 +55,9 @@ struct Applied {
   // while LinuxCNC's world position takes it at once (G43 adds it to world Z): the nominal
   // joints take it at once too, as LinuxCNC's own TCP kinematics do, so that a G43 does not
   // move the joints where the stock kinematics would not (at B = 0 the world's Z is the Z
-  // joint's whatever the offset). Only the Tcp convention's nominal joints depend on it.
+  // joint's whatever the offset). With a tool-axis coordinate (Model::tool_axis_coordinate) it
+  // also holds its value w: the nominal kinematics place a tool L + w long, the correction is
+  // for the real tool. Only the Tcp convention's nominal joints depend on it.
   double nominal_tool_length_mm = std::numeric_limits<double>::quiet_NaN();
   static constexpr double kSeedRadius = machine::kSeedRadius;
 };

@@ -135,6 +135,12 @@ struct Model {
   // correction is computed for L = tool_length_reference_mm + the active tool length offset
   // (G43, LinuxCNC's motion.tooloffset.z). 0 where the tool table holds gauge lengths.
   double tool_length_reference_mm = 0.0;
+  // A LinuxCNC coordinate (U, V or W; 0: none) that moves the tool along its own axis without
+  // an axis of its own: the linear joints make the motion (LinuxCNC's 5axiskins' W). Its value
+  // w lengthens the tool the nominal TCP kinematics place on the world point to L + w (the real
+  // tool, L long, stays w short of it); the correction is still for the real tool, L. Not a
+  // joint of the model: volkins passes its LinuxCNC joint through (joint = world).
+  char tool_axis_coordinate = 0;
   PoleFade fade;
   SolverOptions solver;
   std::vector<BoundTable> tables;

@@ -2,9 +2,11 @@
 // unified diff of the configuration's own files (paths relative to its folder, for
 // `patch -p1 -d CONFIG_DIR`), which
 // - makes [KINS]KINEMATICS `volkins machine=<file> coordinates=<joints>`, with world=tcp where
-//   the stock module's type 0 is TCP, or sparm=identityfirst where the stock line had it;
+//   the stock module's type 0 is TCP (the trt modules, 5axiskins), or sparm=identityfirst where
+//   the stock line had it;
 // - deletes every `setp <module>.<pin> ...`, removes `<module>.<pin>` from every net (a net
-//   left without pins is deleted, with the `sets` of a signal no net is left on), except
+//   left without pins is deleted, with the `sets` of a signal no net is left on; an arrow left
+//   dangling goes too; 5axiskins' pivot-length leaves its sum2's out driving nothing), except
 //   `<module>.tool-offset`, which becomes `volkins.tool-length`; a `loadrt <module> ...`
 //   with the INI's parameters becomes `loadrt [KINS]KINEMATICS`;
 // - appends to the INI's [HAL] section, after a comment line, `HALCMD = addf volkins.update

@@ -76,6 +76,9 @@ struct Net {
   std::vector<NetPin> pins;
 };
 std::optional<Net> net_of(const HalCommand& command);
+// The first net that puts `pin` on a signal (HAL links a pin to one signal at most) and that
+// signal, or nullptr.
+const HalCommand* net_of_pin(const HalConfig& hal, const std::string& pin, std::string* signal = nullptr);
 
 // `setp PIN VALUE` or `PIN = VALUE` (halcmd's short form), and `sets SIGNAL VALUE`.
 struct Assignment {
@@ -84,5 +87,14 @@ struct Assignment {
 };
 std::optional<Assignment> setp_of(const HalCommand& command);
 std::optional<Assignment> sets_of(const HalCommand& command);
+
+// `loadrt MODULE ARG...`, and `loadusr [-w] [-W] [-i] [-n NAME] PROGRAM ARG...` (halcmd's
+// options; module: the program as written).
+struct Load {
+  std::string module;
+  std::vector<std::string> arguments;
+};
+std::optional<Load> loadrt_of(const HalCommand& command);
+std::optional<Load> loadusr_of(const HalCommand& command);
 
 }  // namespace vc::init

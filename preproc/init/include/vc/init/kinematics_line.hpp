@@ -11,7 +11,7 @@
 
 namespace vc::init {
 
-enum class StockModule { Trivkins, XyzbcTrt, XyzacTrt };
+enum class StockModule { Trivkins, XyzbcTrt, XyzacTrt, FiveAxis };  // FiveAxis: 5axiskins
 
 struct KinematicsLine {
   const IniEntry* entry = nullptr;

@@ -2,7 +2,8 @@
 // the kinematics module's coordinates, [KINS]JOINTS, [TRAJ]COORDINATES, [TRAJ]LINEAR_UNITS
 // and ANGULAR_UNITS, [JOINT_n] TYPE, MIN_LIMIT and MAX_LIMIT, checked against each other and
 // against what the model takes (exactly three linear axes X Y Z, at most two rotary ones,
-// mm and deg).
+// mm and deg). 5axiskins' W is no axis of the model but its tool-axis coordinate (the X, Y, Z
+// joints move the tool along its own axis; machines/README.md, tool_axis_coordinate).
 #pragma once
 
 #include <string>
@@ -24,7 +25,9 @@ struct LayoutAxis {
 struct MachineLayout {
   std::string coordinates;       // one letter per joint, as the module maps them (duplicates kept)
   std::string coordinates_from;  // where that comes from
-  std::vector<LayoutAxis> axes;  // one per letter, in XYZABC order
+  std::vector<LayoutAxis> axes;  // one per letter, in XYZABC order (not the tool-axis coordinate)
+  char tool_axis = 0;            // 5axiskins: 'W', the tool-axis coordinate; else 0
+  int tool_axis_joint = -1;      // its first joint
   std::string units_from;        // the LINEAR_UNITS line
 
   const LayoutAxis* axis(char letter) const;

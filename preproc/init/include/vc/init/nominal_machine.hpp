@@ -32,6 +32,8 @@ struct NominalMachine {
   std::string tool_length_from;
   double tool_length_reference_mm = 0.0;
   std::string tool_length_reference_from;
+  char tool_axis_coordinate = 0;     // 5axiskins: 'W' (machines/README.md); 0: none
+  std::string tool_axis_from;
   Vector3 fixture_origin_mm{};
   std::vector<std::string> fixture_from;
 

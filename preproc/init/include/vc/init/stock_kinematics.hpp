@@ -13,6 +13,12 @@
 //   (xyzac); fixture origin [-xr, -yr, -zr]. In volkins' TCP world, LinuxCNC's Z is the tool
 //   tip's plus the tool length offset, as the stock module's (tests/unit/init checks both
 //   directions against trtfuncs.c's equations).
+// - 5axiskins (5axiskins.c, a bridge mill: head B on C): the world is the tool tip (TCP), its
+//   pivot-length Pm plus the tool length offset (pivot_length.hpp). Tool chain X, Y, Z, then C
+//   about +z with its pole (the pivot) at [0, 0, Pm], carrying B about -y at [0, 0, 0]; gauge
+//   point [0, 0, -Pm], tool_length_reference_mm 0, W the tool_axis_coordinate (the nominal TCP
+//   tool is L + w long); no workpiece chain (tests/unit/init checks it against 5axiskins.c's
+//   equations, W and the offset included).
 #pragma once
 
 #include "vc/init/hal_file.hpp"

@@ -26,6 +26,9 @@ struct SessionTrace {
   std::vector<double> correction_length_mm;  // volkins.correction-length: the L applied (the offset's,
                                              // slewed); empty in a trace without the column
   std::vector<double> controller_ticks; // motion-controller.time (CPU clock ticks)
+  // The world's tool-axis coordinate (Model::tool_axis_coordinate, e.g. column "w"), per sample;
+  // empty for a machine without one or a trace without the column (0 throughout).
+  std::vector<double> tool_axis_mm;
   // The world convention of each sample (column "tcp": volkins.tcp, 1 in the TCP kinematics type);
   // empty in a trace without the column (the convention the module was loaded with throughout).
   std::vector<machine::WorldConvention> convention;
@@ -37,7 +40,8 @@ struct SessionTrace {
 };
 
 // Reads a trace CSV: header with the machine's axis letters (x,y,z,b,c), joints j0.., gain,
-// tool_length and controller_time; optional correction_length, tcp and temperature_<name>. Throws
+// tool_length and controller_time; optional correction_length, tcp, temperature_<name> and the
+// tool-axis coordinate's letter (w). Throws
 // LoadError naming file, line and column.
 SessionTrace read_session_trace(const std::string& path, const machine::Model& model);
 
