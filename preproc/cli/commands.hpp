@@ -22,6 +22,20 @@ struct BalanceArgs {
   std::string plot;                      // PNG (optional, gnuplot)
 };
 
+struct FitTablesArgs {
+  std::string machine;
+  std::string controller;                      // a shipped controller's name or a controller file
+  std::string output;                          // folder: report.csv, tables.csv, the controller's files
+  std::string criterion = "minimax";           // minimax or ls
+  std::vector<std::string> tool_lengths;       // mm, fitted (default: the machine file's)
+  std::vector<std::string> check_tool_lengths; // mm, judged only (default: midpoints, largest + 50)
+  std::vector<std::string> rotary;             // "B=-90,-60,0": rotary grid positions, deg
+  std::optional<int> nodes;                    // per table (default: the controller's)
+  std::optional<int> levels;                   // grid positions per joint (default: the nodes)
+  int fresh = 2000;                            // random poses per tool length in each fresh set
+  double ridge = 1e-2, smoothness = 1e-2;      // the fit's regularisation (fit.hpp)
+};
+
 struct IdentifyLaserArgs {
   std::string runs;                // laser runs CSV
   std::string error;               // the component error they measure: EXX, EYX, EAX, ECC, ...
@@ -169,6 +183,7 @@ int run_measure(const MeasureArgs& args, std::ostream& report);
 int run_predistort(const PredistortArgs& args, std::ostream& report);
 int run_check(const CheckArgs& args, std::ostream& out);
 int run_balance(const BalanceArgs& args, std::ostream& out);
+int run_fit_tables(const FitTablesArgs& args, std::ostream& out);
 int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out);
 int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out);
 int run_identify_sphere(const IdentifySphereArgs& args, std::ostream& out);

@@ -201,6 +201,39 @@ int main(int argc, char** argv) {
   balance_cmd->add_option("-o,--output", balance.output, "CSV: deviation, M, delta, RMS (um), share (%), direction (urad)");
   balance_cmd->add_option("--plot", balance.plot, "PNG bar chart (gnuplot)");
 
+  vc::cli::FitTablesArgs fit_tables;
+  CLI::App* fit_tables_cmd = app.add_subcommand(
+      "fit-tables", "A stock controller's compensation tables by the source's modified method: all tables fitted "
+                    "together to the whole model; M and Delta of none, usual practice, fit and full correction");
+  fit_tables_cmd->add_option("MACHINE", fit_tables.machine, "machine description file (.toml)")->required();
+  fit_tables_cmd->add_option("--controller", fit_tables.controller,
+                             "the controller's tables: linuxcnc, source14, or a controller file (.toml)")->required();
+  fit_tables_cmd->add_option("-o,--output", fit_tables.output,
+                             "folder for report.csv, tables.csv and the controller's own files (LinuxCNC: COMP_FILEs "
+                             "and the INI lines)")
+      ->required();
+  fit_tables_cmd->add_option("--criterion", fit_tables.criterion, "minimax (smallest M) or ls (least squares)")
+      ->capture_default_str();
+  fit_tables_cmd->add_option("--tool-lengths", fit_tables.tool_lengths,
+                             "tool lengths L fitted together, mm, e.g. 0,100,200 (default: the machine file's)")
+      ->delimiter(',');
+  fit_tables_cmd->add_option("--check-tool-lengths", fit_tables.check_tool_lengths,
+                             "tool lengths judged but not fitted, mm (default: the fitted ones' midpoints and largest + 50)")
+      ->delimiter(',');
+  fit_tables_cmd->add_option("--rotary", fit_tables.rotary,
+                             "rotary grid positions, deg, e.g. --rotary B=-90,-60,-30,0,30 (repeatable; default: --levels "
+                             "positions over the travel)");
+  fit_tables_cmd->add_option("--nodes", fit_tables.nodes, "nodes per table, equally spaced over the travel (default: the controller's)");
+  fit_tables_cmd->add_option("--levels", fit_tables.levels, "grid positions per joint (default: the nodes)");
+  fit_tables_cmd->add_option("--fresh", fit_tables.fresh, "random poses per tool length in each fresh set (refit, check)")
+      ->capture_default_str();
+  fit_tables_cmd->add_option("--ridge", fit_tables.ridge,
+                             "regularisation towards the usual practice, relative to each table's tip effect")
+      ->capture_default_str();
+  fit_tables_cmd->add_option("--smoothness", fit_tables.smoothness,
+                             "regularisation of the second differences of the departure from the usual practice")
+      ->capture_default_str();
+
   CLI::App* identify_cmd = app.add_subcommand("identify", "From measurements to the machine file")->require_subcommand(1);
   vc::cli::IdentifyLaserArgs laser;
   CLI::App* laser_cmd = identify_cmd->add_subcommand(
@@ -267,6 +300,7 @@ int main(int argc, char** argv) {
   try {
     if (*check_cmd) return vc::cli::run_check(check, std::cout);
     if (*balance_cmd) return vc::cli::run_balance(balance, std::cout);
+    if (*fit_tables_cmd) return vc::cli::run_fit_tables(fit_tables, std::cout);
     if (*laser_cmd) return vc::cli::run_identify_laser(laser, std::cout);
     if (*circle_cmd) return vc::cli::run_identify_circle(circle, std::cout);
     if (*sphere_cmd) return vc::cli::run_identify_sphere(sphere, std::cout);

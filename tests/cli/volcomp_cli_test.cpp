@@ -373,7 +373,7 @@ TEST(VolcompCli, ProbePlanRefusesATouchThatCannotWork) {
 }
 
 TEST(VolcompCli, HelpIsEverywhere) {
-  for (const char* sub : {"", "check ", "error ", "correct ", "balance ", "identify laser ", "identify circle ", "identify sphere ", "probe-plan ", "perturb "}) {
+  for (const char* sub : {"", "check ", "error ", "correct ", "balance ", "identify laser ", "identify circle ", "identify sphere ", "probe-plan ", "perturb ", "fit-tables "}) {
     const auto r = test::run_volcomp(std::string(sub) + "--help");
     EXPECT_EQ(r.exit_code, 0) << sub;
     EXPECT_NE(r.out.find("Usage"), std::string::npos) << sub;

@@ -1,0 +1,123 @@
+// `volcomp fit-tables MACHINE --controller C -o DIR`: the source's modified method for a stock
+// controller (preproc/fit_tables/README.md): the controller's tables filled so that the whole
+// model's tool-tip error is smallest, judged against no compensation, the usual practice and
+// the full correction; DIR/report.csv and DIR/tables.csv, a summary on stdout.
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+
+#include "atomic_output.hpp"
+#include "commands.hpp"
+#include "format.hpp"
+#include "vc/fit_tables/comp_file.hpp"
+#include "vc/fit_tables/study_csv.hpp"
+#include "vc/machine/load_machine.hpp"
+
+namespace vc::cli {
+namespace {
+
+double parse_number(const std::string& text, const std::string& option) {
+  double v = 0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, v);
+  if (text.empty() || ec != std::errc() || ptr != end || !std::isfinite(v))
+    throw std::invalid_argument(option + ": '" + text + "' is not a number");
+  return v;
+}
+
+// "B=-90,-60,0" -> 'B', {-90, -60, 0}
+std::pair<char, std::vector<double>> parse_rotary(const std::string& text) {
+  if (text.size() < 3 || text[1] != '=' || !std::isalpha(static_cast<unsigned char>(text[0])))
+    throw std::invalid_argument("--rotary " + text +
+                                ": expected LETTER=POSITIONS, e.g. --rotary B=-90,-60,-30,0,30 (deg)");
+  std::vector<double> positions;
+  std::stringstream list(text.substr(2));
+  for (std::string v; std::getline(list, v, ',');) positions.push_back(parse_number(v, "--rotary " + text));
+  return {static_cast<char>(std::toupper(static_cast<unsigned char>(text[0]))), positions};
+}
+
+std::string figure(const fit_tables::Figures& f) {
+  std::string s = format_fixed(f.max_um, 1) + " / " + format_fixed(f.delta_um, 1);
+  return std::string(s.size() < 15 ? 15 - s.size() : 1, ' ') + s;
+}
+
+}  // namespace
+
+int run_fit_tables(const FitTablesArgs& args, std::ostream& out) {
+  namespace fs = std::filesystem;
+  fit_tables::StudyOptions o;
+  if (args.criterion == "ls") {
+    o.fit.criterion = fit_tables::Criterion::LeastSquares;
+  } else if (args.criterion != "minimax") {
+    throw std::invalid_argument("--criterion " + args.criterion + ": ls (least squares) or minimax (smallest M)");
+  }
+  o.nodes = args.nodes;
+  o.levels = args.levels;
+  o.fresh_poses = args.fresh;
+  if (!(args.ridge >= 0) || !(args.smoothness >= 0) || !std::isfinite(args.ridge) || !std::isfinite(args.smoothness))
+    throw std::invalid_argument("--ridge and --smoothness must be numbers >= 0");
+  o.fit.ridge = args.ridge;
+  o.fit.smoothness = args.smoothness;
+  for (const std::string& t : args.tool_lengths) o.tool_lengths_mm.push_back(parse_number(t, "--tool-lengths"));
+  if (!args.check_tool_lengths.empty()) {
+    o.check_tool_lengths_mm.emplace();
+    for (const std::string& t : args.check_tool_lengths)
+      o.check_tool_lengths_mm->push_back(parse_number(t, "--check-tool-lengths"));
+  }
+  for (const std::string& r : args.rotary) {
+    auto [letter, positions] = parse_rotary(r);
+    if (o.rotary.count(letter)) throw std::invalid_argument(std::string("--rotary ") + letter + " is given twice");
+    o.rotary[letter] = positions;
+  }
+  if (fs::exists(args.output) && !fs::is_directory(args.output))
+    throw std::invalid_argument("-o " + args.output + ": exists and is not a folder");
+
+  const machine::Model model = machine::load_machine(args.machine);
+  const fit_tables::Controller controller = fit_tables::load_controller(fit_tables::controller_file(args.controller));
+  const fit_tables::Study study = fit_tables::run_study(model, controller, o);
+
+  // Every file is complete in memory before any is written.
+  std::vector<std::pair<std::string, std::string>> files;  // name, text
+  std::ostringstream report, tables;
+  fit_tables::write_report_csv(study, model, controller, o, report);
+  fit_tables::write_tables_csv(study, model, controller, tables);
+  files.emplace_back("report.csv", report.str());
+  files.emplace_back("tables.csv", tables.str());
+  std::string ini_lines;
+  if (controller.format == "linuxcnc-comp-file") {
+    const auto comp = fit_tables::linuxcnc_comp_files(model, study.set, study.modified);
+    for (const fit_tables::LinuxcncCompFile& f : comp) files.emplace_back(f.file_name, f.text);
+    ini_lines = fit_tables::linuxcnc_ini_lines(comp);
+    files.emplace_back("linuxcnc_ini_lines.txt", ini_lines);
+  }
+  fs::create_directories(args.output);
+  for (const auto& [name, text] : files)
+    write_atomically((fs::path(args.output) / name).string(), [&](std::ostream& f) { f << text; });
+
+  out << "fit-tables: " << model.info.name << " with " << controller.name << " (" << controller.title << ")\n";
+  for (const std::string& note : study.set.notes) out << "note: " << note << '\n';
+  out << study.set.tables.size() << " tables, " << study.set.unknowns << " values; criterion " << args.criterion << "; "
+      << study.grid_poses << " grid poses (" << study.levels << " per joint) + " << study.added_poses
+      << " worst fresh poses refitted\n";
+  if (o.fit.criterion == fit_tables::Criterion::Minimax && study.fit.lower_bound_mm > 0)
+    out << "minimax (Lawson): " << study.fit.iterations << " solves; the linearised M is within "
+        << format_fixed(100.0 * (study.fit.linear_max_mm / study.fit.lower_bound_mm - 1.0), 2)
+        << " % of the minimax's lower bound\n";
+  out << "M / Delta of the tool-tip error, um (nonlinear model):\n"
+      << "  L [mm]  fitted  set             none           usual        modified            full\n";
+  for (const fit_tables::ReportRow& r : study.rows) {
+    std::string l = format_number(r.tool_length_mm);
+    out << "  " << std::string(l.size() < 6 ? 6 - l.size() : 1, ' ') << l << "  "
+        << (r.fitted_length ? "  yes " : "   no ") << "  " << r.set << (r.set == "grid" ? " " : "") << figure(r.none)
+        << figure(r.usual) << figure(r.modified) << figure(r.full) << '\n';
+  }
+  if (!ini_lines.empty()) out << "the INI lines (" << args.output << "/linuxcnc_ini_lines.txt):\n" << ini_lines;
+  out << "written in " << args.output << ":";
+  for (const auto& f : files) out << ' ' << f.first;
+  out << '\n';
+  return 0;
+}
+
+}  // namespace vc::cli

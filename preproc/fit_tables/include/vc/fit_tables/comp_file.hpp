@@ -1,0 +1,60 @@
+// LinuxCNC's [JOINT_n]COMP_FILE: the writer, and a reader and evaluator that do what LinuxCNC
+// 2.9 does with the file (checked in its source, f1270d6ed7):
+//   - usrmotLoadComp (src/emc/motion/usrmotintf.cc) reads "%lf %lf %lf" triplets line by line
+//     and STOPS at the first line that is not three numbers (a comment line ends the table: the
+//     written files have none); COMP_FILE_TYPE 0: nominal, actual position moving up, actual
+//     moving down, turned into trims nominal - actual; type 1: nominal, forward trim, reverse
+//     trim, taken as they are;
+//   - EMCMOT_SET_JOINT_COMP (src/emc/motion/command.c) refuses a nominal that does not increase
+//     and more than EMCMOT_COMP_SIZE (256) entries, and stores trims and the slopes to the next
+//     entry as float (the value below the first entry is the first trim);
+//   - compute_screw_comp (src/emc/motion/control.c): at the joint's commanded position pos_cmd,
+//     trim + slope x (pos_cmd - nominal) of the entry at or below it, the forward values while the
+//     joint moves up, the reverse ones while it moves down, held while it stands; the last
+//     entry's slope stays 0 (held above it); the result is added to the motor command.
+// The docs (docs/src/config/ini-config.adoc) call type 1's values "offset from nominal": the
+// source adds them to the command, so they are corrections, as the fit's values are.
+// Joint n is the machine's n-th axis in XYZABC order (trivkins and xyzbc-trt-kins
+// configurations number them so, as kins/configs/mc300/mc300.ini does); values in machine units
+// (mm and deg).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "vc/fit_tables/table_set.hpp"
+
+namespace vc::fit_tables {
+
+struct LinuxcncCompFile {
+  int joint = 0;
+  char axis = 0;
+  std::string file_name;  // "joint_0_x.comp"
+  std::string text;       // COMP_FILE_TYPE 1 triplets, both directions the same values
+};
+
+// One file per joint with a positioning table in `set` (values x). Throws std::invalid_argument
+// for a table LinuxCNC has no place for (cross, squareness) or more than 256 nodes.
+std::vector<LinuxcncCompFile> linuxcnc_comp_files(const machine::Model& model, const TableSet& set,
+                                                  const Eigen::VectorXd& x);
+
+// The lines to put in the configuration's INI file, per joint:
+//   [JOINT_n]
+//   COMP_FILE = joint_n_x.comp
+//   COMP_FILE_TYPE = 1
+std::string linuxcnc_ini_lines(const std::vector<LinuxcncCompFile>& files);
+
+// A COMP_FILE as LinuxCNC holds it after loading.
+struct LinuxcncComp {
+  std::vector<double> nominal;
+  std::vector<float> forward_trim, reverse_trim, forward_slope, reverse_slope;
+};
+
+// Reads `text` as usrmotLoadComp + EMCMOT_SET_JOINT_COMP do. Throws std::invalid_argument
+// where LinuxCNC would report an error (a nominal that does not increase, > 256 entries).
+LinuxcncComp read_linuxcnc_comp(const std::string& text, int comp_file_type);
+
+// compute_screw_comp's correction at `position` while the joint moves up (forward) or down.
+double linuxcnc_comp_value(const LinuxcncComp& comp, double position, bool forward);
+
+}  // namespace vc::fit_tables

@@ -1,0 +1,94 @@
+#include "vc/fit_tables/comp_file.hpp"
+
+#include <cctype>
+#include <charconv>
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+
+namespace vc::fit_tables {
+namespace {
+
+constexpr int kCompSize = 256;  // EMCMOT_COMP_SIZE
+
+std::string number(double v) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return std::string(buffer, result.ptr);
+}
+
+}  // namespace
+
+std::vector<LinuxcncCompFile> linuxcnc_comp_files(const machine::Model& model, const TableSet& set,
+                                                  const Eigen::VectorXd& x) {
+  std::vector<LinuxcncCompFile> files;
+  for (const Table& t : set.tables) {
+    if (t.kind != TableKind::Positioning)
+      throw std::invalid_argument("a LinuxCNC COMP_FILE holds a joint's own positioning only, not the " +
+                                  std::string(kind_name(t.kind)) + " table " + set.name(model, t));
+    if (static_cast<int>(t.nodes.size()) > kCompSize)
+      throw std::invalid_argument("LinuxCNC takes at most 256 points per COMP_FILE (EMCMOT_COMP_SIZE); table " +
+                                  set.name(model, t) + " has " + std::to_string(t.nodes.size()));
+    LinuxcncCompFile f;
+    f.joint = t.input;
+    f.axis = model.axes[static_cast<std::size_t>(t.input)].letter;
+    f.file_name = "joint_" + std::to_string(f.joint) + "_" +
+                  static_cast<char>(std::tolower(static_cast<unsigned char>(f.axis))) + ".comp";
+    // No comment or header line: LinuxCNC stops reading at the first line that is not three numbers.
+    for (std::size_t k = 0; k < t.nodes.size(); ++k) {
+      const std::string trim = number(x[t.unknown_of_node(static_cast<int>(k))]);
+      f.text += number(t.nodes[k]) + " " + trim + " " + trim + "\n";
+    }
+    files.push_back(std::move(f));
+  }
+  return files;
+}
+
+std::string linuxcnc_ini_lines(const std::vector<LinuxcncCompFile>& files) {
+  std::string s =
+      "# volcomp fit-tables: the joints' compensation tables (COMP_FILE_TYPE 1: nominal position, forward and\n"
+      "# reverse correction added to the joint's command, machine units). Paths are relative to the INI's\n"
+      "# folder (linuxcnc runs there). A joint with a COMP_FILE ignores its BACKLASH.\n";
+  for (const LinuxcncCompFile& f : files)
+    s += "[JOINT_" + std::to_string(f.joint) + "]\nCOMP_FILE = " + f.file_name + "\nCOMP_FILE_TYPE = 1\n";
+  return s;
+}
+
+LinuxcncComp read_linuxcnc_comp(const std::string& text, int type) {
+  LinuxcncComp c;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    double nom, fwd, rev;
+    if (std::sscanf(line.c_str(), "%lf %lf %lf", &nom, &fwd, &rev) != 3) break;  // as usrmotLoadComp
+    const double forward_trim = type == 0 ? nom - fwd : fwd, reverse_trim = type == 0 ? nom - rev : rev;
+    if (static_cast<int>(c.nominal.size()) >= kCompSize)
+      throw std::invalid_argument("more than 256 compensation entries (LinuxCNC: too many compensation entries)");
+    if (!c.nominal.empty() && nom <= c.nominal.back())
+      throw std::invalid_argument("compensation nominal " + number(nom) +
+                                  " does not increase (LinuxCNC: compensation "
+                                  "values must increase)");
+    if (!c.nominal.empty()) {  // the slope from the previous entry, stored as float
+      const double width = nom - c.nominal.back();
+      c.forward_slope.back() = static_cast<float>((static_cast<float>(forward_trim) - c.forward_trim.back()) / width);
+      c.reverse_slope.back() = static_cast<float>((static_cast<float>(reverse_trim) - c.reverse_trim.back()) / width);
+    }
+    c.nominal.push_back(nom);
+    c.forward_trim.push_back(static_cast<float>(forward_trim));
+    c.reverse_trim.push_back(static_cast<float>(reverse_trim));
+    c.forward_slope.push_back(0.0f);
+    c.reverse_slope.push_back(0.0f);
+  }
+  return c;
+}
+
+double linuxcnc_comp_value(const LinuxcncComp& c, double position, bool forward) {
+  if (c.nominal.empty()) return 0.0;
+  const std::vector<float>& trim = forward ? c.forward_trim : c.reverse_trim;
+  const std::vector<float>& slope = forward ? c.forward_slope : c.reverse_slope;
+  if (position < c.nominal.front()) return trim.front();  // the -DBL_MAX entry: the first trim, slope 0
+  std::size_t k = 0;
+  while (k + 1 < c.nominal.size() && position >= c.nominal[k + 1]) ++k;
+  return trim[k] + slope[k] * (position - c.nominal[k]);
+}
+
+}  // namespace vc::fit_tables

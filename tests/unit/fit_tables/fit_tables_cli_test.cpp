@@ -1,0 +1,146 @@
+// `volcomp fit-tables`: the files it writes read back (the tables.csv values, applied with the
+// controller's interpolation, give the report's M on the grid), and bad input leaves nothing
+// behind and exits non-zero with a message.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "test_support.hpp"
+#include "vc/fit_tables/comp_file.hpp"
+#include "vc/fit_tables/study.hpp"
+#include "vc/machine/load_machine.hpp"
+
+namespace vc::fit_tables {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The rows of a CSV after its '#' lines and header, split at commas.
+std::vector<std::vector<std::string>> rows(const fs::path& file, std::vector<std::string>& header) {
+  std::ifstream in(file);
+  std::vector<std::vector<std::string>> out;
+  bool first = true;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> cells;
+    std::stringstream s(line);
+    for (std::string c; std::getline(s, c, ',');) cells.push_back(c);
+    if (line.back() == ',') cells.emplace_back();
+    if (first) {
+      header = cells;
+      first = false;
+    } else {
+      out.push_back(cells);
+    }
+  }
+  return out;
+}
+
+std::size_t column(const std::vector<std::string>& header, const std::string& name) {
+  for (std::size_t c = 0; c < header.size(); ++c)
+    if (header[c] == name) return c;
+  throw std::runtime_error("no column " + name);
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("vc_fit_tables_cli_test_" + std::to_string(::getpid())) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir.parent_path());
+  return dir;
+}
+
+TEST(FitTablesCli, WritesFilesThatReadBack) {
+  const fs::path out = scratch("mill3");
+  const test::CommandResult run = test::run_volcomp("fit-tables " + test::machine_path("mill3") +
+                                                    " --controller source14 -o " + out.string() + " --fresh 200");
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  EXPECT_NE(run.out.find("M / Delta of the tool-tip error"), std::string::npos) << run.out;
+
+  std::vector<std::string> rh, th;
+  const auto report = rows(out / "report.csv", rh);
+  const auto tables = rows(out / "tables.csv", th);
+  ASSERT_EQ(report.size(), 4u);  // L = 100 (fitted), 150 (not): grid and fresh
+  EXPECT_EQ(rh[column(rh, "modified_M[um]")], "modified_M[um]");
+
+  // The values back into x, in the fit's units (mm, or a ratio for a squareness).
+  const machine::Model model = machine::load_machine(test::machine_path("mill3"));
+  const TableSet set = resolve_tables(load_controller(controller_file("source14")), model);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(set.unknowns);
+  ASSERT_EQ(static_cast<int>(tables.size()), set.unknowns);  // no modulo table on mill3: one row per value
+  for (const auto& r : tables) {
+    const Table& t = set.tables.at(std::stoul(r[column(th, "table")]) - 1);
+    const double value = std::stod(r[column(th, "modified")]);
+    const std::string unit = r[column(th, "value_unit")];
+    x[t.unknown_of_node(std::stoi(r[column(th, "node")]))] =
+        unit == "um" ? value * 1e-3 : std::tan(value / 3600.0 * M_PI / 180.0);
+    if (t.kind != TableKind::Squareness) {
+      EXPECT_NEAR(std::stod(r[column(th, "position")]), t.nodes.at(std::stoul(r[column(th, "node")])), 1e-6);
+    }
+  }
+  GridSpec grid;
+  grid.levels = 7;
+  grid.tool_lengths_mm = {100};
+  const double m = figures(table_errors(model, set, x, grid_poses(model, grid))).max_um;
+  EXPECT_NEAR(m, std::stod(report[0][column(rh, "modified_M[um]")]), 1e-3);
+  EXPECT_EQ(report[0][column(rh, "set")], "grid");
+  fs::remove_all(out.parent_path());
+}
+
+// For LinuxCNC: one COMP_FILE per joint (mill3: X Y Z, joints 0 1 2) and the INI lines; the
+// files' trims are the tables.csv values.
+TEST(FitTablesCli, WritesLinuxcncCompFiles) {
+  const fs::path out = scratch("mill3_linuxcnc");
+  const test::CommandResult run =
+      test::run_volcomp("fit-tables " + test::machine_path("mill3") + " --controller linuxcnc -o " + out.string() +
+                        " --fresh 200 --nodes 11");
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  EXPECT_NE(run.out.find("[JOINT_2]\nCOMP_FILE = joint_2_z.comp\nCOMP_FILE_TYPE = 1\n"), std::string::npos) << run.out;
+  EXPECT_TRUE(fs::exists(out / "linuxcnc_ini_lines.txt"));
+  std::vector<std::string> th;
+  const auto tables = rows(out / "tables.csv", th);
+  for (const char* name : {"joint_0_x.comp", "joint_1_y.comp", "joint_2_z.comp"}) {
+    std::ifstream in(out / name);
+    std::stringstream text;
+    text << in.rdbuf();
+    const LinuxcncComp comp = read_linuxcnc_comp(text.str(), 1);
+    ASSERT_EQ(comp.nominal.size(), 11u) << name;
+    const std::string axis(1, static_cast<char>(std::toupper(name[8])));
+    for (const auto& r : tables) {
+      if (r[column(th, "input")] != axis) continue;
+      const std::size_t node = std::stoul(r[column(th, "node")]);
+      EXPECT_NEAR(comp.nominal.at(node), std::stod(r[column(th, "position")]), 1e-6);
+      EXPECT_NEAR(comp.forward_trim.at(node) * 1e3, std::stod(r[column(th, "modified")]), 1e-5);
+      EXPECT_EQ(comp.forward_trim.at(node), comp.reverse_trim.at(node));
+    }
+  }
+  fs::remove_all(out.parent_path());
+}
+
+TEST(FitTablesCli, BadInputWritesNothing) {
+  const std::string mill3 = test::machine_path("mill3");
+  for (const auto& [arguments, message] : std::vector<std::pair<std::string, std::string>>{
+           {"--controller fanuc", "--controller fanuc: no such controller"},
+           {"--controller linuxcnc --nodes 300",
+            "--nodes 300: the positioning table X of linuxcnc takes 2 .. 256 nodes"},
+           {"--controller linuxcnc --tool-lengths 1,x", "--tool-lengths: 'x' is not a number"},
+           {"--controller linuxcnc --rotary B=0", "--rotary B: mill3 has no rotary axis B"},
+           {"--controller linuxcnc --criterion max", "--criterion max: ls (least squares) or minimax"}}) {
+    const fs::path out = scratch("bad");
+    const test::CommandResult run = test::run_volcomp("fit-tables " + mill3 + " " + arguments + " -o " + out.string());
+    EXPECT_NE(run.exit_code, 0) << arguments;
+    EXPECT_NE(run.out.find(message), std::string::npos) << run.out;
+    EXPECT_FALSE(fs::exists(out)) << arguments;
+  }
+  const fs::path out = scratch("mc300");
+  const test::CommandResult run = test::run_volcomp("fit-tables " + test::machine_path("mc300") +
+                                                    " --controller linuxcnc --rotary B=-200,0 -o " + out.string());
+  EXPECT_NE(run.out.find("--rotary B=-200: outside the travel -120 .. 30 deg"), std::string::npos) << run.out;
+  EXPECT_FALSE(fs::exists(out));
+  fs::remove_all(out.parent_path());
+}
+
+}  // namespace
+}  // namespace vc::fit_tables
