@@ -57,9 +57,9 @@ inline constexpr std::array<double, 6> kBoundToolLengthsMm{0.0, 100.0, 200.0, 30
 // machine: the machine file (required). coordinates: LinuxCNC's axis letters, one per joint
 // (optional; default the machine's own, in its order): every axis of the machine file at least
 // once, no other letter but its tool_axis_coordinate; a letter twice gives two joints the same
-// command. world: the world of
-// kinematics type 0, "axes" (default) or "tcp" (needs a Z axis). sparm: LinuxCNC's switchable
-// modules' parameter; "identityfirst" makes type 0 the identity (axes) world, as world=axes.
+// command. world: the world of kinematics type 0, "axes" (default) or "tcp" (needs a Z axis).
+// sparm: LinuxCNC's switchable modules' parameter; "identityfirst" makes type 0 the identity
+// (axes) world, as world=axes.
 ModuleSettings settings_from_parameters(const char* machine, const char* coordinates, const char* world,
                                         const char* sparm = nullptr);
 
