@@ -3,7 +3,8 @@
 # the driver's result line ("ok N samples" or "error: ...").
 #
 #   run_headless.sh CONFIG.ini RUN_DIR [--kinematics "volkins machine=... world=tcp"]
-#                   [--without-volkins] [--without-update] [--expect-message TEXT] [--program FILE]
+#                   [--without-volkins] [--without-update] [--expect-message TEXT]
+#                   [--allow-message TEXT] [--program FILE]
 #                   [--compensation on|off|toggle]
 #                   [--set SECTION.KEY=VALUE]... [--add SECTION.KEY=VALUE]... [--halfile FILE]...
 #
@@ -18,7 +19,7 @@
 # Exit 0 if the program ran cleanly.
 set -euo pipefail
 
-usage() { echo "usage: $0 CONFIG.ini RUN_DIR [--kinematics LINE] [--without-volkins] [--without-update] [--expect-message TEXT] [--program FILE] [--compensation on|off|toggle] [--set SECTION.KEY=VALUE]... [--add SECTION.KEY=VALUE]... [--halfile FILE]..." >&2; exit 2; }
+usage() { echo "usage: $0 CONFIG.ini RUN_DIR [--kinematics LINE] [--without-volkins] [--without-update] [--expect-message TEXT] [--allow-message TEXT] [--program FILE] [--compensation on|off|toggle] [--set SECTION.KEY=VALUE]... [--add SECTION.KEY=VALUE]... [--halfile FILE]..." >&2; exit 2; }
 [ $# -ge 2 ] || usage
 ini_src=$(realpath "$1"); run_dir=$2; shift 2
 kinematics="" ; without_volkins=0; without_update=0; program=""; compensation=""; settings=(); additions=(); halfiles=()
@@ -28,6 +29,7 @@ while [ $# -gt 0 ]; do
     --without-volkins) without_volkins=1; shift ;;
     --without-update) without_update=1; shift ;;  # a HAL file that forgot volkins.update
     --expect-message) export VOLKINS_EXPECT_MESSAGE=$2; shift 2 ;;
+    --allow-message) export VOLKINS_ALLOW_MESSAGE=$2; shift 2 ;;
     --program) program=$(realpath "$2"); shift 2 ;;
     --compensation) compensation=$2; shift 2 ;;
     --set) settings+=("$2"); shift 2 ;;
