@@ -3,7 +3,8 @@
 # the driver's result line ("ok N samples" or "error: ...").
 #
 #   run_headless.sh CONFIG.ini RUN_DIR [--kinematics "volkins machine=... world=tcp"]
-#                   [--without-volkins] [--without-update] [--expect-message TEXT]
+#                   [--without-volkins] [--without-update] [--without-comp-files]
+#                   [--expect-message TEXT]
 #                   [--allow-message TEXT] [--program FILE]
 #                   [--compensation on|off|toggle]
 #                   [--set SECTION.KEY=VALUE]... [--add SECTION.KEY=VALUE]... [--halfile FILE]...
@@ -19,15 +20,16 @@
 # Exit 0 if the program ran cleanly.
 set -euo pipefail
 
-usage() { echo "usage: $0 CONFIG.ini RUN_DIR [--kinematics LINE] [--without-volkins] [--without-update] [--expect-message TEXT] [--allow-message TEXT] [--program FILE] [--compensation on|off|toggle] [--set SECTION.KEY=VALUE]... [--add SECTION.KEY=VALUE]... [--halfile FILE]..." >&2; exit 2; }
+usage() { echo "usage: $0 CONFIG.ini RUN_DIR [--kinematics LINE] [--without-volkins] [--without-update] [--without-comp-files] [--expect-message TEXT] [--allow-message TEXT] [--program FILE] [--compensation on|off|toggle] [--set SECTION.KEY=VALUE]... [--add SECTION.KEY=VALUE]... [--halfile FILE]..." >&2; exit 2; }
 [ $# -ge 2 ] || usage
 ini_src=$(realpath "$1"); run_dir=$2; shift 2
-kinematics="" ; without_volkins=0; without_update=0; program=""; compensation=""; settings=(); additions=(); halfiles=()
+kinematics="" ; without_volkins=0; without_update=0; without_comp_files=0; program=""; compensation=""; settings=(); additions=(); halfiles=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --kinematics) kinematics=$2; shift 2 ;;
     --without-volkins) without_volkins=1; shift ;;
     --without-update) without_update=1; shift ;;  # a HAL file that forgot volkins.update
+    --without-comp-files) without_comp_files=1; shift ;;  # the joints' [JOINT_n]COMP_FILEs left out
     --expect-message) export VOLKINS_EXPECT_MESSAGE=$2; shift 2 ;;
     --allow-message) export VOLKINS_ALLOW_MESSAGE=$2; shift 2 ;;
     --program) program=$(realpath "$2"); shift 2 ;;
@@ -80,6 +82,9 @@ for halfile in "${halfiles[@]}"; do  # after the [HAL] section's last HALFILE
 done
 if [ "$without_volkins" = 1 ]; then
   sed -i '/^HALFILE = ..\/common\/volkins.hal/d' "$ini"
+fi
+if [ "$without_comp_files" = 1 ]; then
+  sed -i '/^COMP_FILE\(_TYPE\)\? = /d' "$ini"
 fi
 if [ "$without_update" = 1 ]; then
   sed -i '/^addf volkins.update/d' "$run_dir/kins/configs/common/volkins.hal"

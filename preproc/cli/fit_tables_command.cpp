@@ -1,7 +1,8 @@
 // `volcomp fit-tables MACHINE --controller C -o DIR`: the source's modified method for a stock
 // controller (preproc/fit_tables/README.md): the controller's tables filled so that the whole
 // model's tool-tip error is smallest, judged against no compensation, the usual practice and
-// the full correction; DIR/report.csv and DIR/tables.csv, a summary on stdout.
+// the full correction; DIR/report.csv and DIR/tables.csv, the controller's own files
+// (LinuxCNC COMP_FILEs, Sinumerik AX_EEC.INI / NC_CEC.INI), a summary on stdout.
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include "commands.hpp"
 #include "format.hpp"
 #include "vc/fit_tables/comp_file.hpp"
+#include "vc/fit_tables/sinumerik_file.hpp"
 #include "vc/fit_tables/study_csv.hpp"
 #include "vc/machine/load_machine.hpp"
 
@@ -91,10 +93,23 @@ int run_fit_tables(const FitTablesArgs& args, std::ostream& out) {
     for (const fit_tables::LinuxcncCompFile& f : comp) files.emplace_back(f.file_name, f.text);
     ini_lines = fit_tables::linuxcnc_ini_lines(comp);
     files.emplace_back("linuxcnc_ini_lines.txt", ini_lines);
+    // The usual practice's tables too, to run the comparison on the machine itself.
+    for (const fit_tables::LinuxcncCompFile& f : fit_tables::linuxcnc_comp_files(model, study.set, study.usual))
+      files.emplace_back("usual_practice/" + f.file_name, f.text);
   }
-  fs::create_directories(args.output);
-  for (const auto& [name, text] : files)
-    write_atomically((fs::path(args.output) / name).string(), [&](std::ostream& f) { f << text; });
+  std::string sinumerik_setup;
+  if (controller.format == "sinumerik-lec-cec") {
+    const auto sinumerik = fit_tables::sinumerik_files(model, study.set, study.modified,
+                                                       fit_tables::sinumerik_resolution(controller));
+    for (const fit_tables::SinumerikFile& f : sinumerik) files.emplace_back(f.file_name, f.text);
+    sinumerik_setup = fit_tables::sinumerik_setup_lines(study.set, sinumerik);
+    files.emplace_back("sinumerik_setup.txt", sinumerik_setup);
+  }
+  for (const auto& [name, text] : files) {
+    const fs::path path = fs::path(args.output) / name;
+    fs::create_directories(path.parent_path());
+    write_atomically(path.string(), [&](std::ostream& f) { f << text; });
+  }
 
   out << "fit-tables: " << model.info.name << " with " << controller.name << " (" << controller.title << ")\n";
   for (const std::string& note : study.set.notes) out << "note: " << note << '\n';
@@ -114,6 +129,8 @@ int run_fit_tables(const FitTablesArgs& args, std::ostream& out) {
         << figure(r.usual) << figure(r.modified) << figure(r.full) << '\n';
   }
   if (!ini_lines.empty()) out << "the INI lines (" << args.output << "/linuxcnc_ini_lines.txt):\n" << ini_lines;
+  if (!sinumerik_setup.empty())
+    out << "the Sinumerik steps (" << args.output << "/sinumerik_setup.txt):\n" << sinumerik_setup;
   out << "written in " << args.output << ":";
   for (const auto& f : files) out << ' ' << f.first;
   out << '\n';

@@ -83,19 +83,6 @@ TEST_F(Mc300Session, CompensationOffLeavesTheModelsVolumetricError) {
   std::cout << "mc300 compensation off: tool tip error max " << largest * 1e3 << " um\n";
 }
 
-// INI value of [section] key.
-double ini_value(const std::string& ini, const std::string& section, const std::string& key) {
-  std::ifstream in(test::source_path(ini));
-  std::string line, current;
-  while (std::getline(in, line)) {
-    if (!line.empty() && line[0] == '[') current = line.substr(1, line.find(']') - 1);
-    std::smatch m;
-    if (current == section && std::regex_match(line, m, std::regex(key + R"(\s*=\s*(\S+)\s*)")))
-      return std::stod(m[1]);
-  }
-  throw std::runtime_error("no [" + section + "] " + key + " in " + ini);
-}
-
 // Peak joint velocity and acceleration (finite differences at the 1 ms servo period).
 std::pair<double, double> joint_peaks(const std::vector<Joints>& q, int j) {
   const double dt = 1e-3;
@@ -149,8 +136,8 @@ TEST_F(Mc300Session, TogglingWhileMovingStaysWithinJointLimits) {
   EXPECT_GT(tool_changes, 0u) << "the program changes the tool length while the compensation toggles";
   for (int j = 0; j < model_->joint_count(); ++j) {
     const std::string section = "JOINT_" + std::to_string(j);
-    const double v_max = ini_value(kMc300Ini, section, "MAX_VELOCITY");
-    const double a_max = ini_value(kMc300Ini, section, "MAX_ACCELERATION");
+    const double v_max = test::ini_value(kMc300Ini, section, "MAX_VELOCITY");
+    const double a_max = test::ini_value(kMc300Ini, section, "MAX_ACCELERATION");
     const auto [v, a] = joint_peaks(t.joints, j);
     const auto [v_ramp, a_ramp] = ramp_peaks(j);
     EXPECT_LE(v, v_max) << section;
@@ -208,7 +195,7 @@ TEST_F(Mc300Session, ToolLengthChangesInQuickSuccessionKeepTheJointsSmooth) {
       for (std::size_t i = 0; i < 3; ++i) by_length[k][i] = full_correction(*model_, t.world[k], t.correction_length_mm[k + i - 1]);
   for (int j = 0; j < model_->joint_count(); ++j) {
     const std::string section = "JOINT_" + std::to_string(j);
-    const double a_max = ini_value(kMc300Ini, section, "MAX_ACCELERATION");
+    const double a_max = test::ini_value(kMc300Ini, section, "MAX_ACCELERATION");
     double a = 0.0, a_slew = 0.0, per_mm = 0.0;
     for (std::size_t k = 9; k + 1 < t.size(); ++k) {
       a = std::max(a, std::abs(t.joints[k + 1][j] - 2 * t.joints[k][j] + t.joints[k - 1][j]) / (dt * dt));
@@ -234,8 +221,8 @@ void expect_within_joint_limits(const std::vector<Joints>& q, int joints, const 
   for (int j = 0; j < joints; ++j) {
     const std::string section = "JOINT_" + std::to_string(j);
     const auto [v, a] = joint_peaks(q, j);
-    EXPECT_LE(v, ini_value(kMc300Ini, section, "MAX_VELOCITY")) << what << " " << section;
-    EXPECT_LE(a, ini_value(kMc300Ini, section, "MAX_ACCELERATION")) << what << " " << section;
+    EXPECT_LE(v, test::ini_value(kMc300Ini, section, "MAX_VELOCITY")) << what << " " << section;
+    EXPECT_LE(a, test::ini_value(kMc300Ini, section, "MAX_ACCELERATION")) << what << " " << section;
     std::cout << what << " " << section << ": peak velocity " << v << ", peak acceleration " << a << "\n";
   }
 }
@@ -454,7 +441,7 @@ TEST(Mc300ThermalSession, JointsFollowTheRampedTemperaturesAndAFaultySensorIsHel
   // starts or ends), and its acceleration stays within the 5 % the INI leaves between axis and
   // joint limits.
   EXPECT_LT(step_worst, 6.7e-3 * temperature_step * 1.01);
-  EXPECT_LT(acceleration_worst, 0.05 * ini_value(kMc300Ini, "JOINT_2", "MAX_ACCELERATION"));
+  EXPECT_LT(acceleration_worst, 0.05 * test::ini_value(kMc300Ini, "JOINT_2", "MAX_ACCELERATION"));
   std::cout << "mc300 thermal: coolant up to " << coolant_top << " degC, spindle up to " << spindle_top
             << " degC (filtered); faulty readings held for " << nan_samples << " (NaN) + " << out_of_range_samples
             << " (40 degC) samples; thermal share of Z up to " << z_top * 1e3 << " um; against the tables by hand "

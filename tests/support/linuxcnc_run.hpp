@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <stdexcept>
 #include <string>
 
@@ -71,6 +72,19 @@ inline CommandResult halrun(const std::string& name, std::string script) {
   CommandResult r = run_in(dir, "halrun -k -f test.hal", 120);
   for (std::size_t at; (at = r.out.find(src)) != std::string::npos;) r.out.erase(at, src.size());
   return r;
+}
+
+// The number of [section] key in the INI file `ini` (relative to the source tree).
+inline double ini_value(const std::string& ini, const std::string& section, const std::string& key) {
+  std::ifstream in(test::source_path(ini));
+  std::string line, current;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line[0] == '[') current = line.substr(1, line.find(']') - 1);
+    std::smatch m;
+    if (current == section && std::regex_match(line, m, std::regex(key + R"(\s*=\s*(\S+)\s*)")))
+      return std::stod(m[1]);
+  }
+  throw std::runtime_error("no [" + section + "] " + key + " in " + ini);
 }
 
 }  // namespace vc::test

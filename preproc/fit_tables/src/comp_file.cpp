@@ -91,4 +91,48 @@ double linuxcnc_comp_value(const LinuxcncComp& c, double position, bool forward)
   return trim[k] + slope[k] * (position - c.nominal[k]);
 }
 
+double LinuxcncCompJoint::next(double position, double velocity) {
+  if (velocity != 0.0) {
+    target_ = linuxcnc_comp_value(*comp_, position, velocity > 0.0);
+    moved_ = true;
+  }
+  ramp();
+  return output_;
+}
+
+// The ramp, written for a target above the output; a target below is the mirror image (output,
+// target and rate negated), which is how LinuxCNC's two branches relate.
+void LinuxcncCompJoint::ramp() {
+  const double sign = target_ >= output_ ? 1.0 : -1.0;
+  const double to_go = sign * (target_ - output_);
+  if (to_go <= 0.0) return;
+  double v = sign * rate_;  // towards the target
+  const double cruise = v * dt_;
+  double dv = a_max_ * dt_;
+  double stop = 0.5 * (v + dv) * (v + dv) / a_max_;
+  double step = 0.0;
+  if (to_go <= stop + cruise) {  // time to decelerate
+    if (v > dv) {
+      step = cruise - 0.5 * dv * dt_;
+      v -= dv;
+    } else {  // one period's deceleration covers the rest: land on the target
+      output_ = target_;
+      rate_ = 0.0;
+      return;
+    }
+  } else {
+    if (v + dv > v_max_) dv = v_max_ - v;
+    const double accelerate = 0.5 * dv * dt_;
+    stop = 0.5 * (v + dv) * (v + dv) / a_max_;
+    if (to_go > stop + cruise + accelerate) {
+      step = cruise + accelerate;
+      v += dv;
+    } else {
+      step = cruise;
+    }
+  }
+  output_ += sign * step;
+  rate_ = sign * v;
+}
+
 }  // namespace vc::fit_tables

@@ -57,10 +57,10 @@ class ControllerReader {
     c.checked_against = text(*head, "checked_against", false);
     if (c.name.empty()) throw LoadError(where(*head->get("name")), "the controller's name must not be empty");
     c.format = text(*head, "format", false);
-    if (!c.format.empty() && c.format != "linuxcnc-comp-file")
+    if (!c.format.empty() && c.format != "linuxcnc-comp-file" && c.format != "sinumerik-lec-cec")
       throw LoadError(where(*head->get("format")), "unknown format '" + c.format +
-                                                       "' (the writers there are: linuxcnc-comp-file; leave it out for "
-                                                       "the generic CSV only)");
+                                                       "' (the writers there are: linuxcnc-comp-file, sinumerik-lec-cec; "
+                                                       "leave it out for the generic CSV only)");
 
     TableSpec defaults;
     defaults.max_nodes = 256;

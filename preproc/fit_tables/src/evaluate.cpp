@@ -6,15 +6,12 @@
 #include "vc/machine/forward.hpp"
 
 namespace vc::fit_tables {
-namespace {
 
 double tip_error_um(const machine::Model& truth, const machine::Joints& commanded, const Pose& p) {
   const Eigen::Vector3d real = machine::tool_pose(truth, machine::Machine::Real, commanded, p.tool_length_mm).tip_mm;
   const Eigen::Vector3d ideal = machine::tool_pose(truth, machine::Machine::Ideal, p.q, p.tool_length_mm).tip_mm;
   return (real - ideal).norm() * 1e3;
 }
-
-}  // namespace
 
 Figures figures(const std::vector<double>& errors_um) {
   Figures f;

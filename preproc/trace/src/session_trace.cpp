@@ -27,7 +27,7 @@ SessionTrace read_session_trace(const std::string& path, const machine::Model& m
   std::vector<std::string> wanted;
   for (char a : axes) wanted.emplace_back(1, a);
   for (int j = 0; j < n; ++j) wanted.push_back("j" + std::to_string(j));
-  for (const char* extra : {"gain", "tool_length", "controller_time"}) wanted.emplace_back(extra);
+  for (const char* extra : {"tool_length", "controller_time"}) wanted.emplace_back(extra);
 
   std::vector<int> column(wanted.size(), -1);
   const tables::CsvRow& header = rows.front();
@@ -38,11 +38,13 @@ SessionTrace read_session_trace(const std::string& path, const machine::Model& m
     if (column[w] < 0)
       throw LoadError({path, header.line, 1}, "no column '" + wanted[w] + "' (the machine's axes are " + axes + ")");
 
+  int gain = -1;                // optional: a session without volkins (stock kinematics) has none
   int correction_length = -1;  // optional: traces recorded before volkins slewed the tool length
   int tcp = -1;                 // optional: the kinematics type's world, per sample
   int tool_axis = -1;           // optional: the tool-axis coordinate (5axiskins' W)
   const std::string tool_axis_name(1, static_cast<char>(std::tolower(model.tool_axis_coordinate)));
   for (std::size_t c = 0; c < header.cells.size(); ++c) {
+    if (header.cells[c].text == "gain") gain = static_cast<int>(c);
     if (header.cells[c].text == "correction_length") correction_length = static_cast<int>(c);
     if (header.cells[c].text == "tcp") tcp = static_cast<int>(c);
     if (model.tool_axis_coordinate && header.cells[c].text == tool_axis_name) tool_axis = static_cast<int>(c);
@@ -56,6 +58,7 @@ SessionTrace read_session_trace(const std::string& path, const machine::Model& m
 
   SessionTrace t;
   t.path = path;
+  t.with_volkins = gain >= 0;
   t.temperature_degC.resize(model.temperatures.size());
   for (std::size_t r = 1; r < rows.size(); ++r) {
     const tables::CsvRow& row = rows[r];
@@ -70,9 +73,9 @@ SessionTrace read_session_trace(const std::string& path, const machine::Model& m
     }
     t.world.push_back(world);
     t.joints.push_back(joints);
-    t.gain.push_back(value(2 * n));
-    t.tool_length_mm.push_back(value(2 * n + 1));
-    t.controller_ticks.push_back(value(2 * n + 2));
+    t.gain.push_back(gain >= 0 ? tables::csv_number(path, row.line, row.cells[gain]) : 0.0);
+    t.tool_length_mm.push_back(value(2 * n));
+    t.controller_ticks.push_back(value(2 * n + 1));
     if (correction_length >= 0)
       t.correction_length_mm.push_back(tables::csv_number(path, row.line, row.cells[correction_length]));
     if (tool_axis >= 0) t.tool_axis_mm.push_back(tables::csv_number(path, row.line, row.cells[tool_axis]));

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "test_support.hpp"
@@ -100,6 +102,38 @@ TEST(FitTablesLinuxcncCompFile, ReaderKeepsLinuxcncsRules) {
   std::ostringstream many;
   for (int k = 0; k < 257; ++k) many << k << " 0 0\n";
   EXPECT_THROW(read_linuxcnc_comp(many.str(), 1), std::invalid_argument);  // EMCMOT_COMP_SIZE 256
+}
+
+// The joint's correction period by period: nothing until the joint moves, the table's value held
+// while it stands, and a jump reached along LinuxCNC's ramp at half the joint's acceleration
+// (checked against the kinematics of a bang-bang move, not the ramp's own formulas).
+TEST(FitTablesLinuxcncCompFile, JointCorrectionStartsAtZeroHoldsAndRamps) {
+  const LinuxcncComp comp = read_linuxcnc_comp("-100 0.05 -0.05\n100 0.05 -0.05\n", 1);  // 50 um, -50 um reversing
+  const double v_max = 100, a_max = 1000, dt = 1e-3;  // INI values: the ramp uses half of each
+  LinuxcncCompJoint joint(comp, v_max, a_max, dt);
+  for (int n = 0; n < 10; ++n) EXPECT_EQ(joint.next(0.0, 0.0), 0.0) << "standing since the start: no correction";
+  EXPECT_FALSE(joint.settled());
+  // It moves up: the 50 um are reached as a move at 500 mm/s^2 from rest to rest would, in
+  // 2 sqrt(s / a) = 20 ms (the speed limit, 50 mm/s, is not reached), landing exactly.
+  int periods = 0;
+  double previous = 0.0, fastest = 0.0;
+  while (!joint.settled() && periods < 1000) {
+    const double c = joint.next(0.001 * periods, 1.0);
+    fastest = std::max(fastest, (c - previous) / dt);
+    previous = c;
+    ++periods;
+  }
+  EXPECT_EQ(joint.next(0.5, 1.0), 0.05f);
+  EXPECT_NEAR(periods * dt, 2 * std::sqrt(0.05 / (0.5 * a_max)), 2 * dt);
+  EXPECT_LE(fastest, 0.5 * a_max * (periods * dt / 2) + 0.5 * a_max * dt);  // a triangle's peak speed
+  // Standing: held, whatever the position.
+  EXPECT_EQ(joint.next(0.5, 0.0), 0.05f);
+  // Moving down: the reverse value, -50 um, mirrored: the same time for twice the distance is
+  // sqrt(2) longer.
+  periods = 0;
+  while (joint.next(0.5, -1.0) != -0.05f && periods < 1000) ++periods;
+  EXPECT_NEAR((periods + 1) * dt, 2 * std::sqrt(0.1 / (0.5 * a_max)), 2 * dt);
+  EXPECT_TRUE(joint.settled());
 }
 
 TEST(FitTablesLinuxcncCompFile, HoldsPositioningTablesOnly) {

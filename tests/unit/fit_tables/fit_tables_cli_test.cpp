@@ -10,6 +10,7 @@
 
 #include "test_support.hpp"
 #include "vc/fit_tables/comp_file.hpp"
+#include "vc/fit_tables/sinumerik_file.hpp"
 #include "vc/fit_tables/study.hpp"
 #include "vc/machine/load_machine.hpp"
 
@@ -86,6 +87,43 @@ TEST(FitTablesCli, WritesFilesThatReadBack) {
   const double m = figures(table_errors(model, set, x, grid_poses(model, grid))).max_um;
   EXPECT_NEAR(m, std::stod(report[0][column(rh, "modified_M[um]")]), 1e-3);
   EXPECT_EQ(report[0][column(rh, "set")], "grid");
+  fs::remove_all(out.parent_path());
+}
+
+// For source14 (a Sinumerik's LEC and CEC): AX_EEC.INI and NC_CEC.INI that the project's reader
+// takes back, whose LEC values are the tables.csv values negated (mill3: X Y Z are AX1 AX2 AX3),
+// and the commissioning steps on stdout and in sinumerik_setup.txt.
+TEST(FitTablesCli, WritesSinumerikFiles) {
+  const fs::path out = scratch("mill3_sinumerik");
+  const test::CommandResult run = test::run_volcomp("fit-tables " + test::machine_path("mill3") +
+                                                    " --controller source14 -o " + out.string() + " --fresh 200");
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  EXPECT_NE(run.out.find("the Sinumerik steps"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("MD32700 $MA_ENC_COMP_ENABLE"), std::string::npos) << run.out;
+  EXPECT_TRUE(fs::exists(out / "sinumerik_setup.txt"));
+  auto text = [&](const char* name) {
+    std::ifstream in(out / name);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  };
+  const std::vector<SinumerikTable> lec = read_sinumerik_file(text("AX_EEC.INI"), (out / "AX_EEC.INI").string());
+  const std::vector<SinumerikTable> cec = read_sinumerik_file(text("NC_CEC.INI"), (out / "NC_CEC.INI").string());
+  ASSERT_EQ(lec.size(), 3u);
+  EXPECT_EQ(cec.size(), 9u);  // 6 straightness, 3 squareness
+  std::vector<std::string> th;
+  int compared = 0;
+  for (const auto& r : rows(out / "tables.csv", th)) {
+    if (r[column(th, "kind")] != "positioning") continue;
+    const int axis = std::string("XYZ").find(r[column(th, "input")][0]);
+    const SinumerikTable& t = lec.at(static_cast<std::size_t>(axis));
+    ASSERT_EQ(t.input_axis, axis);
+    const std::size_t node = std::stoul(r[column(th, "node")]);
+    EXPECT_NEAR(t.min + node * t.step, std::stod(r[column(th, "position")]), 1e-6);
+    EXPECT_NEAR(-t.values.at(node) * 1e3, std::stod(r[column(th, "modified")]), 1e-9);
+    ++compared;
+  }
+  EXPECT_EQ(compared, 21);  // 3 axes x 7 nodes
   fs::remove_all(out.parent_path());
 }
 

@@ -57,4 +57,34 @@ LinuxcncComp read_linuxcnc_comp(const std::string& text, int comp_file_type);
 // compute_screw_comp's correction at `position` while the joint moves up (forward) or down.
 double linuxcnc_comp_value(const LinuxcncComp& comp, double position, bool forward);
 
+// One joint's correction servo period by servo period, as compute_screw_comp keeps it (the
+// controller simulator of a LinuxCNC joint with a COMP_FILE):
+//   - the target: the forward value while the commanded velocity is > 0, the reverse value while
+//     it is < 0, the last target while it is 0; 0 until the joint first moves after LinuxCNC
+//     starts (a joint the program never moves, or one homed without motion, is not corrected);
+//   - what reaches the motor: the target through LinuxCNC's ramp, which moves towards it at
+//     most at half the joint's MAX_VELOCITY and MAX_ACCELERATION (accelerating, cruising,
+//     decelerating to stop on it, and landing on it at once when one period's deceleration
+//     covers what is left). A table's values change by far less per period than that; only the
+//     jump from 0 when a joint first moves (tens of um) takes a few periods.
+class LinuxcncCompJoint {
+ public:
+  // max_velocity / max_acceleration: the joint's INI values (units/s, units/s^2).
+  LinuxcncCompJoint(const LinuxcncComp& comp, double max_velocity, double max_acceleration, double servo_period_s)
+      : comp_(&comp), v_max_(0.5 * max_velocity), a_max_(0.5 * max_acceleration), dt_(servo_period_s) {}
+  // The correction added to the motor command in the period whose commanded position and
+  // velocity (joint.N.pos-cmd, joint.N.vel-cmd) are given.
+  double next(double position, double velocity);
+  // The joint has moved and the ramp has reached the table's value: the correction is the
+  // table's (what the fit assumes everywhere).
+  bool settled() const { return moved_ && output_ == target_; }
+
+ private:
+  void ramp();
+  const LinuxcncComp* comp_;
+  double v_max_, a_max_, dt_;
+  double target_ = 0.0, output_ = 0.0, rate_ = 0.0;  // rate_: the ramp's signed velocity
+  bool moved_ = false;
+};
+
 }  // namespace vc::fit_tables

@@ -40,7 +40,7 @@ struct Controller {
   std::string title;            // one line for reports
   std::string checked_against;  // which documentation or source the file's details were checked against
   // The controller's own file format the tables are also written in: "linuxcnc-comp-file"
-  // (comp_file.hpp), or empty (the generic CSV only).
+  // (comp_file.hpp), "sinumerik-lec-cec" (sinumerik_file.hpp), or empty (the generic CSV only).
   std::string format;
   std::vector<TableSpec> tables;
 };

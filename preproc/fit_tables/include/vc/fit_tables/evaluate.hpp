@@ -23,6 +23,9 @@ struct Figures {
 
 Figures figures(const std::vector<double>& errors_um);
 
+// |tip error| (um) of `truth` at the joints a compensation commands for pose p.
+double tip_error_um(const machine::Model& truth, const machine::Joints& commanded, const Pose& p);
+
 // |tip error| (um) per pose: no compensation.
 std::vector<double> uncompensated_errors(const machine::Model& truth, const std::vector<Pose>& poses);
 // ... with the tables holding x (the controller's interpolation, joints q + c(q, x)).

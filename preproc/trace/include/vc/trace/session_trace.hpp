@@ -21,7 +21,8 @@ struct SessionTrace {
   std::string path;
   std::vector<machine::Joints> world;   // axis.<letter>.pos-cmd (mm, deg), joint order
   std::vector<machine::Joints> joints;  // joint.<j>.motor-pos-cmd
-  std::vector<double> gain;             // volkins.gain (0 if the session ran without volkins)
+  bool with_volkins = true;             // false: a session without volkins (no gain column)
+  std::vector<double> gain;             // volkins.gain (0 throughout a session without volkins)
   std::vector<double> tool_length_mm;   // motion.tooloffset.z: the offset (L by Model::correction_length)
   std::vector<double> correction_length_mm;  // volkins.correction-length: the L applied (the offset's,
                                              // slewed); empty in a trace without the column
@@ -39,9 +40,10 @@ struct SessionTrace {
   std::size_t size() const { return world.size(); }
 };
 
-// Reads a trace CSV: header with the machine's axis letters (x,y,z,b,c), joints j0.., gain,
-// tool_length and controller_time; optional correction_length, tcp, temperature_<name> and the
-// tool-axis coordinate's letter (w). Throws
+// Reads a trace CSV: header with the machine's axis letters (x,y,z,b,c), joints j0..,
+// tool_length and controller_time; optional gain (volkins.gain; a session with LinuxCNC's own
+// kinematics has none), correction_length, tcp, temperature_<name> and the tool-axis coordinate's
+// letter (w). Throws
 // LoadError naming file, line and column.
 SessionTrace read_session_trace(const std::string& path, const machine::Model& model);
 
