@@ -1,18 +1,14 @@
 // `volcomp balance MACHINE`: the accuracy balance (preproc/identify/include/vc/identify/balance.hpp):
 // each deviation's effect at the tool tip over the travel, largest first, as a table, a CSV a
-// spreadsheet opens, and a bar chart (gnuplot).
-#include <cstdio>
-#include <cstdlib>
-#include <filesystem>
-#include <unistd.h>
-#include <fstream>
-#include <stdexcept>
+// spreadsheet opens, and a bar chart (gnuplot; with the same CSV beside it).
+#include <sstream>
 
 #include "atomic_output.hpp"
 #include "commands.hpp"
 #include "format.hpp"
 #include "vc/identify/balance.hpp"
 #include "vc/machine/load_machine.hpp"
+#include "vc/plot/gnuplot.hpp"
 
 namespace vc::cli {
 namespace {
@@ -28,36 +24,21 @@ void write_csv(const identify::Balance& b, std::ostream& out) {
         << '\n';
 }
 
-// A bar chart of M and RMS per deviation, largest first, drawn by gnuplot into `png`.
-void plot(const identify::Balance& b, const std::string& machine_name, const std::string& png) {
-  namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("volcomp-balance-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const std::string data = (dir / "balance.csv").string(), script = (dir / "balance.gp").string();
-  const std::string temporary = png + ".part";
-  {
-    std::ofstream out(data);
-    write_csv(b, out);
-  }
-  {
-    std::ofstream gp(script);
-    gp << "set terminal pngcairo size 1400,700 font 'sans,11'\n"
-       << "set output '" << temporary << "'\n"
-       << "set title 'Accuracy balance of " << machine_name << ": each deviation alone at the tool tip (" << b.poses
-       << " poses, L = " << format_number(b.tool_length_mm) << " mm)'\n"
-       << "set datafile separator ','\nset style data histograms\nset style histogram clustered gap 1\n"
-       << "set style fill solid 0.8 border -1\nset boxwidth 0.9\nset grid ytics\nset key top right\n"
-       << "set ylabel 'tool-tip error (um)'\nset xtics rotate by -60 font 'sans,9'\n"
-       << "plot '" << data << "' using 2:xtic(1) title 'M = max |error|' lc rgb '#c0392b', "
-       << "'' using 4 title 'RMS' lc rgb '#2e86c1'\n";
-  }
-  const int status = std::system(("gnuplot '" + script + "' 2>&1").c_str());
-  fs::remove_all(dir);
-  if (status != 0) {
-    std::remove(temporary.c_str());
-    throw std::runtime_error("gnuplot failed (is it installed?): the plot " + png + " was not written");
-  }
-  fs::rename(temporary, png);
+// A bar chart of M and RMS per deviation, largest first (gnuplot, preproc/plot).
+void draw_bar_chart(const identify::Balance& b, const std::string& machine_name, const std::string& image) {
+  std::ostringstream data;
+  write_csv(b, data);
+  std::ostringstream gp;
+  gp << "set datafile separator ','\n"
+     << "set title " << plot::text_literal("Accuracy balance of " + machine_name + ": each deviation alone at the tool tip (" +
+                                     std::to_string(b.poses) + " poses, L = " + format_number(b.tool_length_mm) + " mm)")
+     << "\nset style data histograms\nset style histogram clustered gap 1\n"
+     << "set style fill solid 0.8 border -1\nset boxwidth 0.9\nset grid ytics\nset key top right\n"
+     << "set ylabel 'tool-tip error (um)'\nset xtics rotate by -60 font 'sans,9'\n"
+     // every ::1: the header line is not a bar (it would leave an empty slot at the left)
+     << "plot DATA every ::1 using 2:xtic(1) title 'M = max |error|' lc rgb '#c0392b', "
+     << "'' every ::1 using 4 title 'RMS' lc rgb '#2e86c1'\n";
+  plot::draw({image, data.str(), gp.str(), 1400, 700});
 }
 
 }  // namespace
@@ -88,8 +69,9 @@ int run_balance(const BalanceArgs& args, std::ostream& out) {
   }
   out << "(M = max |error| and delta = M - min |error|, the source's criteria; share = RMS^2 over the sum of all RMS^2:\n"
          " measure the top of the list first)\n";
+  // The plot first: a failing gnuplot leaves no output at all.
+  if (!args.plot.empty()) draw_bar_chart(b, model.info.name, args.plot);
   if (!args.output.empty()) write_atomically(args.output, [&](std::ostream& csv) { write_csv(b, csv); });
-  if (!args.plot.empty()) plot(b, model.info.name, args.plot);
   return 0;
 }
 

@@ -19,7 +19,7 @@ struct BalanceArgs {
   int levels = 5;                        // positions per joint over the travel
   std::optional<double> tool_length_mm;  // default: the machine file's tool_length_mm
   std::string output;                    // CSV (optional)
-  std::string plot;                      // PNG (optional, gnuplot)
+  std::string plot;                      // bar chart, .png or .svg (optional, gnuplot; its data: .csv beside it)
 };
 
 struct FitTablesArgs {
@@ -44,6 +44,7 @@ struct IdentifyLaserArgs {
   bool keep_all = false;           // keep the suspicious runs in the evaluation
   std::string machine;             // machine file whose axis takes the table (optional)
   std::string machine_out;         // folder: the table and a copy of the machine file using it
+  std::string plot;                // the ISO 230-2 graph, .png or .svg (optional, gnuplot; its data: .csv beside it)
 };
 
 struct IdentifyCircleArgs {
@@ -53,6 +54,13 @@ struct IdentifyCircleArgs {
   std::string machine;             // to express the squareness in its terms (optional)
   std::string machine_out;         // folder for the machine file with the squareness set
   std::string symbol;              // which term takes it (default: the one the file uses)
+  std::string plot;                // the polar plot, .png or .svg (optional, gnuplot; its data: .csv beside it)
+};
+
+struct PlotArgs {
+  std::string machine;
+  std::string folder;              // per axis <letter>_axis.png (or .svg) and .csv; location_errors.csv
+  std::string format = "png";      // png or svg
 };
 
 struct IdentifySphereArgs {
@@ -188,6 +196,7 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out);
 int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out);
 int run_identify_sphere(const IdentifySphereArgs& args, std::ostream& out);
 int run_probe_plan(const ProbePlanArgs& args, std::ostream& out);
+int run_plot(const PlotArgs& args, std::ostream& out);
 // The patch goes to `patch_out` unless args.patch names a file; the summary to `report`.
 int run_init(const InitArgs& args, std::ostream& patch_out, std::ostream& report);
 int run_trace(const TraceArgs& args, std::ostream& out);

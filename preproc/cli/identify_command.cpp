@@ -3,11 +3,13 @@
 // table written in the project's CSV format with the measurement's metadata
 // (preproc/identify/README.md).
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -21,6 +23,9 @@
 #include "vc/identify/sphere_centres.hpp"
 #include "vc/identify/laser_runs.hpp"
 #include "vc/machine/load_machine.hpp"
+#include "vc/plot/circle_plot.hpp"
+#include "vc/plot/component_names.hpp"
+#include "vc/plot/laser_plot.hpp"
 #include "vc/tables/csv.hpp"
 #include "vc/tables/source_error.hpp"
 #include "vc/shop/table_set.hpp"
@@ -33,6 +38,19 @@ namespace {
 std::string shown(double v, tables::Quantity q) {
   return q == tables::Quantity::Length ? format_fixed(v * 1e3, 2) + " um"
                                        : format_fixed(v * 648000.0 / M_PI, 2) + " arcsec (" + format_fixed(v * 1e6, 1) + " urad)";
+}
+
+// A plot's image or its data CSV (the image's name with .csv) must not be one of the command's
+// other files: `identify circle run.csv --plot run.png` would overwrite the run with the plot's data.
+void refuse_plot_over(const std::string& image, const std::vector<std::string>& files) {
+  namespace fs = std::filesystem;
+  const auto same = [](const std::string& a, const std::string& b) {
+    return fs::absolute(a).lexically_normal() == fs::absolute(b).lexically_normal();
+  };
+  for (const std::string& file : files)
+    if (!file.empty() && (same(plot::data_path(image), file) || same(image, file)))
+      throw std::runtime_error("--plot " + image + " writes " + (same(image, file) ? image : plot::data_path(image)) +
+                               ", which is " + file + ", a file of this command: give the plot another name");
 }
 
 // The text of a table file with one column's cells 0, everything else as it is (comments,
@@ -110,6 +128,7 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
                              "straightness, EAX angular, ECC a rotary axis's positioning ...)");
   if (args.direction != "both" && args.direction != "up" && args.direction != "down")
     throw std::runtime_error("--direction must be both, up or down");
+  if (!args.plot.empty()) refuse_plot_over(args.plot, {args.runs, args.output});
   const identify::LaserRuns runs = identify::read_laser_runs(args.runs);
   const bool rotary_axis = symbol->axis == 'A' || symbol->axis == 'B' || symbol->axis == 'C';
   if (runs.rotary != rotary_axis)
@@ -133,16 +152,21 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
   for (const auto& [key, value] : runs.metadata) out << "  " << key << ": " << value << "\n";
   for (const auto& s : suspicious)
     out << "  " << (args.keep_all ? "suspicious (kept): " : "left out: ") << s.reason << "\n";
-  out << "ISO 230-2 evaluation:\n"
-      << "  reversal value B            " << shown(e.reversal, q) << " (mean " << shown(e.mean_reversal, q) << ")\n"
-      << "  repeatability R             " << shown(e.repeatability, q) << " (up " << shown(e.repeatability_up, q)
-      << ", down " << shown(e.repeatability_down, q) << ")\n"
-      << "  systematic deviation E      " << shown(e.systematic, q) << " (up " << shown(e.systematic_up, q) << ", down "
-      << shown(e.systematic_down, q) << ")\n"
-      << "  mean bidirectional range M  " << shown(e.range, q) << "\n"
-      << "  accuracy A                  " << shown(e.accuracy, q) << " (up " << shown(e.accuracy_up, q) << ", down "
-      << shown(e.accuracy_down, q) << ")\n"
-      << "  target " << (runs.rotary ? "[deg]" : "[mm]") << "   mean up   mean down   bidirectional   B_i   R_i  ("
+  // The figures, printed and (--plot) written on the graph: the same text.
+  const auto up_down = [&](double up, double down) { return " (up " + shown(up, q) + ", down " + shown(down, q) + ")"; };
+  const std::vector<std::array<std::string, 3>> figures = {
+      {"reversal value", "B", shown(e.reversal, q) + " (mean " + shown(e.mean_reversal, q) + ")"},
+      {"repeatability", "R", shown(e.repeatability, q) + up_down(e.repeatability_up, e.repeatability_down)},
+      {"systematic deviation", "E", shown(e.systematic, q) + up_down(e.systematic_up, e.systematic_down)},
+      {"mean bidirectional range", "M", shown(e.range, q)},
+      {"accuracy", "A", shown(e.accuracy, q) + up_down(e.accuracy_up, e.accuracy_down)}};
+  out << "ISO 230-2 evaluation:\n";
+  for (const auto& [name, letter, text] : figures) {
+    std::string label = name + " " + letter;
+    label.resize(std::max<std::size_t>(label.size() + 1, 28), ' ');
+    out << "  " << label << text << "\n";
+  }
+  out << "  target " << (runs.rotary ? "[deg]" : "[mm]") << "   mean up   mean down   bidirectional   B_i   R_i  ("
       << (q == tables::Quantity::Length ? "um" : "urad") << ")\n";
   const double unit = q == tables::Quantity::Length ? 1e3 : 1e6;
   for (const identify::TargetStatistics& t : e.targets)
@@ -178,6 +202,30 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
                      "; reversal B " + shown(e.reversal, q) + ", repeatability R " + shown(e.repeatability, q) +
                      ", accuracy A " + shown(e.accuracy, q));
 
+  if (!args.machine_out.empty() && args.machine.empty())
+    throw std::runtime_error("--machine-out needs --machine: the machine file whose axis takes the table");
+  std::optional<machine::Model> model;
+  int joint = -1;
+  if (!args.machine.empty()) {
+    model = machine::load_machine(args.machine);
+    joint = model->joint_of(symbol->axis);
+    if (joint < 0)
+      throw std::runtime_error(args.error + " is an error of axis " + std::string(1, symbol->axis) + ", which " +
+                               model->info.name + " (" + args.machine + ") does not have");
+  }
+  // The graph before any other output: a failing gnuplot leaves nothing written.
+  if (!args.plot.empty()) {
+    plot::LaserPlotText text;
+    text.title = "ISO 230-2: " + args.error + " " + plot::component_meaning(*symbol) + " of axis " +
+                 std::string(1, symbol->axis) + (model ? ", " + model->info.name : std::string());
+    for (const auto& [key, note] : runs.metadata) text.notes.push_back(key + ": " + note);
+    for (const auto& s : suspicious)
+      text.notes.push_back((args.keep_all ? "suspicious (kept): " : "left out (not drawn): ") + s.reason);
+    for (const auto& [name, figure_symbol, figure_text] : figures) text.figures.emplace_back(figure_symbol, figure_text);
+    plot::draw(plot::laser_plot(runs, left_out, e, text, args.plot));
+    out << "plot written: " << args.plot << " (its data: " << plot::data_path(args.plot) << ")\n";
+  }
+
   if (!args.output.empty()) {
     write_atomically(args.output, [&](std::ostream& csv) {
       for (const std::string& c : comments) csv << "# " << c << "\n";
@@ -196,14 +244,6 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
     else
       out << "  # measured_at_mm = [x, y, z] if the optics sat away from the tool (machines/README.md section 5)\n";
   }
-  if (!args.machine_out.empty() && args.machine.empty())
-    throw std::runtime_error("--machine-out needs --machine: the machine file whose axis takes the table");
-  if (args.machine.empty()) return 0;
-  const machine::Model model = machine::load_machine(args.machine);
-  const int joint = model.joint_of(symbol->axis);
-  if (joint < 0)
-    throw std::runtime_error(args.error + " is an error of axis " + std::string(1, symbol->axis) + ", which " +
-                             model.info.name + " (" + args.machine + ") does not have");
   if (args.machine_out.empty()) return 0;
   tables::GridVariable grid;
   grid.axis = symbol->axis;
@@ -216,10 +256,10 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
   }
   const std::string name = std::string(1, static_cast<char>(std::tolower(symbol->axis))) + "_" + args.error + "_laser.csv";
   const std::vector<shop::ExtraTable> extras = replacing_tables(
-      model, joint, *symbol,
+      *model, joint, *symbol,
       {joint, name, tables::ErrorTable(name, {grid}, {{*symbol, {name}}}, values, tables::Interpolation::Linear), comments},
       args.machine_out);
-  const std::string written = shop::write_machine_with_tables(model, args.machine_out, extras,
+  const std::string written = shop::write_machine_with_tables(*model, args.machine_out, extras,
                                                               "volcomp identify laser from " + args.runs);
   machine::load_machine(written);  // it loads
   out << "machine file written: " << written << " (axis " << symbol->axis << ": " << args.error << " from " << name;
@@ -230,6 +270,7 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
 }
 
 int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
+  if (!args.plot.empty()) refuse_plot_over(args.plot, {args.run});
   identify::CircularTest test = identify::read_circular_test(args.run);
   if (!args.plane.empty()) test.plane = args.plane;
   if (args.radius_mm) test.radius_mm = *args.radius_mm;
@@ -240,25 +281,58 @@ int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
   out << "volcomp identify circle: " << args.run << ", plane " << test.plane << ", radius " << format_number(test.radius_mm)
       << " mm\n";
   for (const auto& [key, value] : test.metadata) out << "  " << key << ": " << value << "\n";
-  out << "ISO 230-4:\n  bidirectional circular deviation G(b) " << um(e.circular_deviation_mm)
-      << (test.runs.size() == 2 ? ", circular hysteresis H " + um(e.hysteresis_mm) : std::string()) << "\n";
+  // Each figure's text once: printed (joined as before) and, with --plot, written on the plot.
+  const std::string both = "bidirectional circular deviation G(b) " + um(e.circular_deviation_mm);
+  const std::string hysteresis = "circular hysteresis H " + um(e.hysteresis_mm);
+  std::vector<std::string> plotted = {both};
+  if (test.runs.size() == 2) plotted.push_back(hysteresis);
+  out << "ISO 230-4:\n  " << both << (test.runs.size() == 2 ? ", " + hysteresis : std::string()) << "\n";
   for (const identify::CircleFit& f : e.fits) {
-    out << "  " << (f.ccw ? "ccw" : "cw ") << ": circular deviation G " << um(f.circular_deviation_mm)
-        << ", radial deviation F " << um(f.radial_deviation_mm) << "; centre offset " << first << " "
-        << um(f.centre_first_mm) << ", " << second << " " << um(f.centre_second_mm) << "; squareness "
-        << arcsec(f.squareness_rad) << ", scale mismatch " << format_fixed(f.scale_mismatch * 1e6, 2)
-        << " um/m; left by the first-order fit RMS " << um(f.residual_rms_mm) << "\n    reversal spikes:";
-    for (const auto& [angle, height] : f.spikes) out << " " << format_number(angle) << " deg " << um(height);
-    out << "\n";
+    const std::string deviation = "circular deviation G " + um(f.circular_deviation_mm),
+                      radial = "radial deviation F " + um(f.radial_deviation_mm),
+                      centre = "centre offset " + first + " " + um(f.centre_first_mm) + ", " + second + " " +
+                               um(f.centre_second_mm),
+                      square = "squareness " + arcsec(f.squareness_rad) + ", scale mismatch " +
+                               format_fixed(f.scale_mismatch * 1e6, 2) + " um/m",
+                      residual = "left by the first-order fit RMS " + um(f.residual_rms_mm);
+    std::string spikes = "reversal spikes:";
+    std::vector<std::string> spike_texts;
+    for (const auto& [angle, height] : f.spikes) {
+      spike_texts.push_back(format_number(angle) + " deg " + um(height));
+      spikes += " " + spike_texts.back();
+    }
+    out << "  " << (f.ccw ? "ccw" : "cw ") << ": " << deviation << ", " << radial << "; " << centre << "; " << square << "; "
+        << residual << "\n    " << spikes << "\n";
+    plotted.push_back(std::string(f.ccw ? "ccw" : "cw") + ":");
+    for (const std::string& line : {deviation, radial, centre, square, residual}) plotted.push_back("   " + line);
+    plotted.push_back("   reversal spikes:");  // two a line: the plot's column is narrower than the printout
+    for (std::size_t k = 0; k < spike_texts.size(); k += 2)
+      plotted.push_back("      " + spike_texts[k] + (k + 1 < spike_texts.size() ? ",  " + spike_texts[k + 1] : ""));
   }
-  out << "squareness (both directions' mean; " << first << "' = " << first << " + theta " << second << "): theta = "
-      << arcsec(e.squareness_rad) << "; scale mismatch e" << first << " - e" << second << " = "
-      << format_fixed(e.scale_mismatch * 1e6, 2) << " um/m (a positioning table's slope: measure it with the laser)\n";
-  if (args.machine.empty()) return 0;
-
-  const machine::Model model = machine::load_machine(args.machine);
+  const std::string theta = "theta = " + arcsec(e.squareness_rad),
+                    mismatch = "scale mismatch e" + first + " - e" + second + " = " + format_fixed(e.scale_mismatch * 1e6, 2) +
+                               " um/m";
+  out << "squareness (both directions' mean; " << first << "' = " << first << " + theta " << second << "): " << theta
+      << "; " << mismatch << " (a positioning table's slope: measure it with the laser)\n";
+  plotted.push_back("squareness (both directions' mean): " + theta);
+  plotted.push_back(mismatch);
+  std::optional<machine::Model> model;
+  if (!args.machine.empty()) model = machine::load_machine(args.machine);
+  if (!args.plot.empty()) {
+    plot::CirclePlotText text;
+    text.title = "Circular test (ISO 230-4), plane " + test.plane + ", radius " + format_number(test.radius_mm) + " mm" +
+                 (model ? ", " + model->info.name : std::string());
+    std::string metadata;
+    for (const auto& [key, value] : test.metadata)
+      if (key != "plane" && key != "radius_mm") metadata += (metadata.empty() ? "" : "; ") + key + ": " + value;
+    if (!metadata.empty()) text.notes.push_back(metadata);
+    text.figures = plotted;
+    plot::draw(plot::circle_plot(test, text, args.plot));
+    out << "plot written: " << args.plot << " (its data: " << plot::data_path(args.plot) << ")\n";
+  }
+  if (!model) return 0;
   const std::vector<identify::SquarenessTerm> terms =
-      identify::squareness_terms(model, test.plane, test.radius_mm, e.squareness_rad);
+      identify::squareness_terms(*model, test.plane, test.radius_mm, e.squareness_rad);
   out << "in " << args.machine << "'s terms (measured with the compensation off: the machine's own squareness):\n";
   for (const auto& t : terms)
     out << "  " << t.symbol << " = " << arcsec(t.value_rad) << " alone (the file has " << arcsec(t.in_file_rad) << ")\n";
@@ -273,10 +347,10 @@ int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
   std::vector<shop::LocationValue> values;
   for (const auto& t : terms) {
     const auto s = tables::parse_error_symbol(t.symbol);
-    values.push_back({model.joint_of(s->axis), s->component, &t == chosen ? t.value_rad : 0.0});
+    values.push_back({model->joint_of(s->axis), s->component, &t == chosen ? t.value_rad : 0.0});
   }
   const std::string written = shop::write_machine_with_tables(
-      model, args.machine_out, {}, "volcomp identify circle from " + args.run, values);
+      *model, args.machine_out, {}, "volcomp identify circle from " + args.run, values);
   machine::load_machine(written);  // it loads
   out << "machine file written: " << written << " (" << chosen->symbol << " = " << arcsec(chosen->value_rad) << ")\n";
   return 0;

@@ -199,7 +199,16 @@ int main(int argc, char** argv) {
   balance_cmd->add_option("--levels", balance.levels, "positions per joint over its travel (2..21)")->capture_default_str();
   balance_cmd->add_option("--tool-length", balance.tool_length_mm, "tool length L, mm (default: the machine file's)");
   balance_cmd->add_option("-o,--output", balance.output, "CSV: deviation, M, delta, RMS (um), share (%), direction (urad)");
-  balance_cmd->add_option("--plot", balance.plot, "PNG bar chart (gnuplot)");
+  balance_cmd->add_option("--plot", balance.plot, "bar chart, .png or .svg (gnuplot); the data it draws goes to a .csv beside it");
+
+  vc::cli::PlotArgs plot;
+  CLI::App* plot_cmd = app.add_subcommand(
+      "plot", "Draw a machine file's errors: per axis its component errors against its position (PNG or SVG with "
+              "the data as CSV), and the location errors listed with units");
+  plot_cmd->add_option("MACHINE", plot.machine, "machine description file (.toml)")->required();
+  plot_cmd->add_option("-o,--output", plot.folder, "folder for <axis>_axis.png and .csv and location_errors.csv")
+      ->required();
+  plot_cmd->add_option("--format", plot.format, "png or svg")->capture_default_str();
 
   vc::cli::FitTablesArgs fit_tables;
   CLI::App* fit_tables_cmd = app.add_subcommand(
@@ -248,6 +257,8 @@ int main(int argc, char** argv) {
   laser_cmd->add_option("--machine", laser.machine, "machine file whose axis takes the identified table");
   laser_cmd->add_option("--machine-out", laser.machine_out,
                         "folder: the table and a copy of the machine file with it in place of the error's old values");
+  laser_cmd->add_option("--plot", laser.plot,
+                        "the ISO 230-2 graph, .png or .svg (gnuplot); the data it draws goes to a .csv beside it");
   vc::cli::IdentifyCircleArgs circle;
   CLI::App* circle_cmd = identify_cmd->add_subcommand(
       "circle", "Circular test / ballbar (ISO 230-4): G, H, centre, squareness, scale mismatch, reversal spikes");
@@ -257,6 +268,8 @@ int main(int argc, char** argv) {
   circle_cmd->add_option("--machine", circle.machine, "machine file: the squareness in its location errors");
   circle_cmd->add_option("--machine-out", circle.machine_out, "folder: a copy of the machine file with the squareness set");
   circle_cmd->add_option("--symbol", circle.symbol, "the location error that takes it (default: the one the file uses)");
+  circle_cmd->add_option("--plot", circle.plot,
+                         "the ballbar polar plot, .png or .svg (gnuplot); the data it draws goes to a .csv beside it");
   vc::cli::IdentifySphereArgs sphere;
   CLI::App* sphere_cmd = identify_cmd->add_subcommand(
       "sphere", "Rotary axes' location errors from a sphere's centre probed at several rotary positions");
@@ -300,6 +313,7 @@ int main(int argc, char** argv) {
   try {
     if (*check_cmd) return vc::cli::run_check(check, std::cout);
     if (*balance_cmd) return vc::cli::run_balance(balance, std::cout);
+    if (*plot_cmd) return vc::cli::run_plot(plot, std::cout);
     if (*fit_tables_cmd) return vc::cli::run_fit_tables(fit_tables, std::cout);
     if (*laser_cmd) return vc::cli::run_identify_laser(laser, std::cout);
     if (*circle_cmd) return vc::cli::run_identify_circle(circle, std::cout);
