@@ -61,6 +61,15 @@ struct PlotArgs {
   std::string machine;
   std::string folder;              // per axis <letter>_axis.png (or .svg) and .csv; location_errors.csv
   std::string format = "png";      // png or svg
+  bool volume = false;             // also the volume map: volume_L<mm>_rotary0 / _worst images and CSVs
+  std::vector<double> tool_lengths_mm;  // of the volume map (default: the machine file's)
+};
+
+struct ReportArgs {
+  std::string machine;
+  std::string measurements;        // folder of laser runs and circular tests (optional)
+  std::string output;              // the HTML page
+  std::vector<double> tool_lengths_mm;  // of the volume map (default: 0 and the machine file's)
 };
 
 struct IdentifySphereArgs {
@@ -197,6 +206,7 @@ int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out);
 int run_identify_sphere(const IdentifySphereArgs& args, std::ostream& out);
 int run_probe_plan(const ProbePlanArgs& args, std::ostream& out);
 int run_plot(const PlotArgs& args, std::ostream& out);
+int run_report(const ReportArgs& args, std::ostream& out);
 // The patch goes to `patch_out` unless args.patch names a file; the summary to `report`.
 int run_init(const InitArgs& args, std::ostream& patch_out, std::ostream& report);
 int run_trace(const TraceArgs& args, std::ostream& out);

@@ -16,6 +16,7 @@
 #include "vc/fit_tables/sinumerik_file.hpp"
 #include "vc/fit_tables/study_csv.hpp"
 #include "vc/machine/load_machine.hpp"
+#include "vc/plot/gnuplot.hpp"
 
 namespace vc::cli {
 namespace {
@@ -38,6 +39,42 @@ std::pair<char, std::vector<double>> parse_rotary(const std::string& text) {
   std::stringstream list(text.substr(2));
   for (std::string v; std::getline(list, v, ',');) positions.push_back(parse_number(v, "--rotary " + text));
   return {static_cast<char>(std::toupper(static_cast<unsigned char>(text[0]))), positions};
+}
+
+// The report's four compensations per tool length, on the fresh poses (never fitted): M and
+// Delta as clustered bars (gnuplot, preproc/plot; the drawn numbers in figures.csv beside it).
+void draw_figures(const fit_tables::Study& study, const std::string& machine_name, const std::string& controller_title,
+                  const std::string& image) {
+  std::ostringstream data;
+  data << "# volcomp fit-tables: M and Delta of the tool-tip error (um) on fresh poses (not fitted), per tool length\n"
+       << "label,L[mm],fitted,none_M[um],usual_M[um],modified_M[um],full_M[um],none_Delta[um],usual_Delta[um],"
+          "modified_Delta[um],full_Delta[um]\n";
+  for (const fit_tables::ReportRow& r : study.rows) {
+    if (r.set != "fresh") continue;
+    data << format_number(r.tool_length_mm) << " mm" << (r.fitted_length ? "" : " (check)")
+         << ',' << format_number(r.tool_length_mm) << ',' << (r.fitted_length ? "yes" : "no");
+    for (const auto* f : {&r.none, &r.usual, &r.modified, &r.full}) data << ',' << format_fixed(f->max_um, 3);
+    for (const auto* f : {&r.none, &r.usual, &r.modified, &r.full}) data << ',' << format_fixed(f->delta_um, 3);
+    data << '\n';
+  }
+  std::ostringstream gp;
+  gp << "set datafile separator ','\nset style data histograms\nset style histogram clustered gap 1\n"
+     << "set style fill solid 0.85 border -1\nset boxwidth 0.9\nset grid ytics\nset key outside right top\n"
+     << "set multiplot layout 2,1 title " << plot::text_literal(machine_name + ", " + controller_title +
+                                                               ":\ntool-tip error on poses never fitted") << '\n'
+     << "set xlabel 'tool length L (check: not fitted)'\n";
+  const char* names[] = {"none", "usual practice", "modified method", "full correction (volkins): 0"};
+  const char* colours[] = {"#c0392b", "#e67e22", "#2471a3", "#1e8449"};
+  for (const auto& [first_column, label] : {std::pair{4, "M = max |error| (um)"}, std::pair{8, "Delta = max - min (um)"}}) {
+    gp << "set ylabel '" << label << "'\nplot ";
+    for (int k = 0; k < 4; ++k)
+      gp << (k ? ", '' " : "DATA ") << "every ::1 using " << first_column + k << (k ? "" : ":xtic(1)")
+         << " title " << plot::text_literal(names[k]) << " lc rgb '" << colours[k] << "'";
+    gp << '\n';
+  }
+  gp
+     << "unset multiplot\n";
+  plot::draw({image, data.str(), gp.str(), 1400, 900});
 }
 
 std::string figure(const fit_tables::Figures& f) {
@@ -105,6 +142,10 @@ int run_fit_tables(const FitTablesArgs& args, std::ostream& out) {
     sinumerik_setup = fit_tables::sinumerik_setup_lines(study.set, sinumerik);
     files.emplace_back("sinumerik_setup.txt", sinumerik_setup);
   }
+  // The plot first (it writes figures.png and figures.csv, each atomically): a failing gnuplot
+  // leaves nothing behind.
+  fs::create_directories(args.output);
+  draw_figures(study, model.info.name, controller.title, (fs::path(args.output) / "figures.png").string());
   for (const auto& [name, text] : files) {
     const fs::path path = fs::path(args.output) / name;
     fs::create_directories(path.parent_path());
@@ -131,7 +172,7 @@ int run_fit_tables(const FitTablesArgs& args, std::ostream& out) {
   if (!ini_lines.empty()) out << "the INI lines (" << args.output << "/linuxcnc_ini_lines.txt):\n" << ini_lines;
   if (!sinumerik_setup.empty())
     out << "the Sinumerik steps (" << args.output << "/sinumerik_setup.txt):\n" << sinumerik_setup;
-  out << "written in " << args.output << ":";
+  out << "written in " << args.output << ": figures.png figures.csv";
   for (const auto& f : files) out << ' ' << f.first;
   out << '\n';
   return 0;

@@ -209,6 +209,22 @@ int main(int argc, char** argv) {
   plot_cmd->add_option("-o,--output", plot.folder, "folder for <axis>_axis.png and .csv and location_errors.csv")
       ->required();
   plot_cmd->add_option("--format", plot.format, "png or svg")->capture_default_str();
+  plot_cmd->add_flag("--volume", plot.volume,
+                     "also the volume map: the tool-tip error |e| (um) over X-Y at three Z levels, rotary axes at 0 "
+                     "and at their worst, before correction and with LinuxCNC's tables (usual practice, modified method)");
+  plot_cmd->add_option("--tool-lengths", plot.tool_lengths_mm, "the volume map's tool lengths, mm, e.g. 0,100 "
+                       "(default: the machine file's)")->delimiter(',');
+
+  vc::cli::ReportArgs report;
+  CLI::App* report_cmd = app.add_subcommand(
+      "report", "One self-contained HTML page of the machine's accuracy: its file and checksums, tables, location "
+                "errors, accuracy balance, volume map, and the laser runs and circular tests of --measurements");
+  report_cmd->add_option("MACHINE", report.machine, "machine description file (.toml)")->required();
+  report_cmd->add_option("--measurements", report.measurements,
+                         "folder of laser runs (ISO 230-2) and circular tests (ISO 230-4), CSV (preproc/report/README.md)");
+  report_cmd->add_option("-o,--output", report.output, "the HTML page to write")->required();
+  report_cmd->add_option("--tool-lengths", report.tool_lengths_mm, "the volume map's tool lengths, mm (default: 0 and "
+                         "the machine file's)")->delimiter(',');
 
   vc::cli::FitTablesArgs fit_tables;
   CLI::App* fit_tables_cmd = app.add_subcommand(
@@ -314,6 +330,7 @@ int main(int argc, char** argv) {
     if (*check_cmd) return vc::cli::run_check(check, std::cout);
     if (*balance_cmd) return vc::cli::run_balance(balance, std::cout);
     if (*plot_cmd) return vc::cli::run_plot(plot, std::cout);
+    if (*report_cmd) return vc::cli::run_report(report, std::cout);
     if (*fit_tables_cmd) return vc::cli::run_fit_tables(fit_tables, std::cout);
     if (*laser_cmd) return vc::cli::run_identify_laser(laser, std::cout);
     if (*circle_cmd) return vc::cli::run_identify_circle(circle, std::cout);

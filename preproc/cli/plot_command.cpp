@@ -1,9 +1,12 @@
 // `volcomp plot MACHINE -o FOLDER`: the machine file's errors as pictures (preproc/plot/README.md):
 // per axis its component errors against its position (<letter>_axis.png or .svg, with the
 // data drawn beside it as <letter>_axis.csv), and the location errors listed with their units
-// (location_errors.csv, the non-zero ones printed).
+// (location_errors.csv, the non-zero ones printed). With --volume also the volume map
+// (volume_<L>_rotary0.png, volume_<L>_worst.png and their CSVs): the tool-tip error over the
+// working volume per tool length, before correction and with a stock controller's tables.
 #include <cctype>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 #include "atomic_output.hpp"
@@ -11,13 +14,45 @@
 #include "format.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/plot/machine_plot.hpp"
+#include "vc/plot/volume_map.hpp"
+#include "vc/plot/volume_map_plot.hpp"
 
 namespace vc::cli {
+namespace {
+
+// The volume map's sheets drawn, and their largest errors printed.
+void draw_volume_map(const plot::VolumeMap& map, const machine::Model& model, const PlotArgs& args, std::ostream& out) {
+  namespace fs = std::filesystem;
+  out << "volume map: " << map.poses << " poses (" << map.first_mm.size() << " x " << map.second_mm.size() << " x "
+      << map.levels_mm.size() << " levels per sheet), " << format_fixed(map.seconds, 1) << " s; largest |e| in um:\n";
+  for (std::size_t s = 0; s < map.sheets.size(); ++s) {
+    const plot::MapSheet& sheet = map.sheets[s];
+    const std::string image = (fs::path(args.folder) / (plot::volume_map_name(sheet) + "." + args.format)).string();
+    plot::draw(plot::volume_map_plot(map, s, model, image));
+    out << "  L " << format_number(sheet.tool_length_mm) << " mm, " << sheet.rotary.label << ":";
+    for (std::size_t c = 0; c < map.compensations.size(); ++c)
+      out << (c ? ", " : " ") << map.compensations[c] << " " << format_fixed(sheet.max_um[c], 1);
+    out << "  (" << image << ")\n";
+  }
+  if (!map.controller_title.empty()) out << "  (tables: " << map.controller_title << ", fitted over these tool lengths)\n";
+  out << "  " << plot::full_correction_statement(map) << "\n";
+}
+
+}  // namespace
 
 int run_plot(const PlotArgs& args, std::ostream& out) {
   namespace fs = std::filesystem;
   if (args.format != "png" && args.format != "svg") throw std::runtime_error("--format must be png or svg");
+  if (!args.tool_lengths_mm.empty() && !args.volume) throw std::runtime_error("--tool-lengths is for the volume map: add --volume");
   const machine::Model model = machine::load_machine(args.machine);
+  // The map before any picture: its bad input (a tool length, a machine without three linear
+  // axes) leaves no file behind.
+  std::optional<plot::VolumeMap> map;
+  if (args.volume) {
+    plot::VolumeMapOptions options;
+    options.tool_lengths_mm = args.tool_lengths_mm;
+    map = plot::volume_map(model, options);
+  }
   fs::create_directories(args.folder);
   out << "volcomp plot: " << model.info.name << " (" << args.machine << ") into " << args.folder << "\n";
   for (int joint = 0; joint < model.joint_count(); ++joint) {
@@ -39,6 +74,7 @@ int run_plot(const PlotArgs& args, std::ostream& out) {
   for (const plot::LocationRow& r : plot::location_errors(model))
     if (r.value != 0.0)
       out << "  " << r.symbol << " = " << format_fixed(r.value, 3) << " " << r.unit << "  (" << r.meaning << ")\n";
+  if (map) draw_volume_map(*map, model, args, out);
   return 0;
 }
 

@@ -136,7 +136,8 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
       report << "  " << summary.written_as_is_moves
              << " moves written as they are (G28/G30, or rapids before every axis was set)\n";
     if (c.tolerance_misses) report << "  warning: " << c.tolerance_misses << " moves could not meet the tolerance\n";
-    if (c.out_of_table) report << "  warning: " << c.out_of_table << " points outside the error tables' grids\n";
+    // The tool lengths used and where they came from; moves without G43; points off the grids.
+    for (const std::string& note : predistort::correction_notes(summary, job)) report << "  " << note << '\n';
   }
   return 0;
 }

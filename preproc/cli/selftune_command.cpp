@@ -12,7 +12,9 @@
 #include "format.hpp"
 #include "program_files.hpp"
 #include "vc/machine/load_machine.hpp"
+#include "vc/predistort/missing_tool_offset.hpp"
 #include "vc/predistort/predistort.hpp"
+#include "vc/predistort/tool_lengths.hpp"
 #include "vc/shop/first_part.hpp"
 #include "vc/shop/selftune_local.hpp"
 #include "vc/shop/selftune_model.hpp"
@@ -73,6 +75,32 @@ void print_tilt(const shop::TiltSummary& t, std::ostream& report) {
   report << "\n";
 }
 
+// The tool lengths a program's path was simulated (and corrected) for, and where they came from.
+predistort::ToolLengthLog tool_lengths_of(const std::string& program, const interpreter::Setup& setup) {
+  std::ifstream in = open_program(program);
+  return predistort::read_tool_lengths(in, setup);
+}
+
+// What a refusal adds about L: the path lies where a tool of that length cuts; a part cut
+// with a longer tool and no G43 lies its length below it, outside the region the path cuts.
+std::string tool_length_cause(const predistort::ToolLengthLog& log, const machine::Model& model,
+                              const ProgramFiles& files, const std::string& program, const std::string& tool_table) {
+  std::string text = "\n  the path was simulated for the program's " + log.describe(model, program, tool_table);
+  const auto first = log.first_without_offset();
+  if (!first) return text;
+  const auto tool = predistort::likely_tool(model, files.tools ? &*files.tools : nullptr, first->tool);
+  if (!tool || tool->length_mm == model.correction_length(0.0)) return text;
+  const std::string reference = format_number(model.tool_length_reference_mm) + " mm";
+  text += "\n  corrected for L = " + reference + " (no G43 in " + program + " from line " +
+          std::to_string(first->line) + "); if the part was cut with a " + format_number(tool->length_mm) +
+          " mm tool (" +
+          (tool->tool >= 0 ? "tool " + std::to_string(tool->tool) + " in the tool table"
+                           : std::string("the machine file's tool_length_mm")) +
+          "), add G43" + (tool->tool >= 0 ? " H" + std::to_string(tool->tool) : std::string()) +
+          " or set tool_length_reference_mm";
+  return text;
+}
+
 }  // namespace
 
 int run_selftune(const SelftuneArgs& args, std::ostream& report) {
@@ -112,6 +140,9 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
   std::string layout;
   const std::vector<shop::CmmPoint> measured = shop::read_cmm_points(args.report, true, format, &layout);
   report << "volcomp selftune: " << args.report << " read as " << layout << "\n";
+  const interpreter::Setup input_setup = files.setup(args.input, model, tcp);
+  const predistort::ToolLengthLog input_lengths = tool_lengths_of(args.input, input_setup);
+  report << "  " << args.input << ": " << input_lengths.describe(model, args.input, args.tool_table) << "\n";
   // Points matched to a program's cuts; a refusal names the points' file (a LoadError names its own).
   const auto analyse = [&](const std::string& program, const std::string& points_file,
                            const std::vector<shop::CmmPoint>& points) {
@@ -120,7 +151,9 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
       return shop::analyse_first_part(model, in, files.setup(program, model, tcp), points, options);
     } catch (const std::runtime_error& e) {
       if (dynamic_cast<const LoadError*>(&e)) throw;
-      throw std::runtime_error(points_file + ": " + e.what());
+      const predistort::ToolLengthLog lengths = tool_lengths_of(program, files.setup(program, model, tcp));
+      throw std::runtime_error(points_file + ": " + e.what() +
+                               tool_length_cause(lengths, model, files, program, args.tool_table));
     }
   };
   const shop::FirstPart part = analyse(args.input, args.report, measured);
@@ -216,6 +249,7 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
   predistort::Summary summary;
   write_atomically(args.output, [&](std::ostream& out) { summary = predistort::predistort(in, out, job); });
   report << "  " << nominal << " pre-distorted with the updated tables: " << summary.corrector.pieces << " pieces\n";
+  for (const std::string& note : predistort::correction_notes(summary, job)) report << "  " << note << "\n";
   return 0;
 }
 

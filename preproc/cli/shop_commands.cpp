@@ -11,6 +11,7 @@
 #include "format.hpp"
 #include "program_files.hpp"
 #include "vc/machine/load_machine.hpp"
+#include "vc/predistort/tool_lengths.hpp"
 #include "vc/shop/cmm.hpp"
 #include "vc/shop/machined_surface.hpp"
 #include "vc/shop/table_set.hpp"
@@ -57,6 +58,12 @@ int run_simulate(const SimulateArgs& args, std::ostream& report) {
   });
   report << "volcomp simulate: " << samples << " samples (" << cutting << " cutting), largest tool-tip error while cutting "
          << format_fixed(largest * 1e3, 3) << " um\n";
+  if (compensation) {  // it corrects: for which L, and from where (a second, interpreting-only pass)
+    std::ifstream again(args.input, std::ios::binary);
+    const predistort::ToolLengthLog lengths = predistort::read_tool_lengths(
+        again, files.setup(args.input, machine, world == machine::WorldConvention::Tcp));
+    report << "  compensation " << lengths.describe(*compensation, args.input, args.tool_table) << "\n";
+  }
   return 0;
 }
 

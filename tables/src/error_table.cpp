@@ -34,7 +34,9 @@ inline Cell locate(const GridVariable& g, double x) noexcept {
   }
   if (step > 0.0) {
     const double u = (x - g.first) * g.inverse_step;
-    const int i = std::clamp(static_cast<int>(u), 0, last - 1);
+    // Converted only inside [0, last): a NaN position (a broken input upstream) must give a NaN
+    // value, not undefined behaviour in the conversion.
+    const int i = u >= 0.0 && u < last ? static_cast<int>(u) : (u >= last ? last - 1 : 0);
     return {i, u - i, step, g.inverse_step};
   }
   const std::vector<double>& n = g.nodes;

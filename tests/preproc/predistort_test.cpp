@@ -165,7 +165,7 @@ std::vector<test::CanonMove> read_output(const machine::Model& model, const Case
               : m.kind == interpreter::MoveKind::Line ? test::CanonMove::Feed
                                                       : test::CanonMove::Arc;
     cm.end = m.frame.world(m.end);
-    cm.tool_length_mm = m.tool_length_mm;
+    cm.tool_length_mm = m.tool_offset_mm;
     if (m.kind == interpreter::MoveKind::Arc) {
       cm.first = m.arc.first;
       cm.second = m.arc.second;
@@ -336,10 +336,10 @@ TEST_F(Predistorted, TcpProgramPointsAgreeWithTheModuleCorrection) {
   for (const interpreter::Move& m : input) {
     machine::Joints joints;
     ASSERT_EQ(machine::joints_from_world(model, machine::WorldConvention::Tcp, joints_of(model, m.frame.world(m.end)),
-                                         m.tool_length_mm, joints),
+                                         m.tool_offset_mm, joints),
               machine::Status::Ok);
     const machine::Joints expected =
-        machine::nominal_forward(model, machine::WorldConvention::Tcp, joints, m.tool_length_mm);
+        machine::nominal_forward(model, machine::WorldConvention::Tcp, joints, m.tool_offset_mm);
     for (std::size_t k = next; k < output.size(); ++k) {
       const double d = (joints_of(model, output[k].frame.world(output[k].end)) - expected).cwiseAbs().maxCoeff();
       if (d < 2e-6) {
@@ -389,7 +389,7 @@ TEST_F(Predistorted, CuttingForceDeflectionIsTakenOff) {
       const int n = 200;
       for (int k = 0; k <= n; ++k) {
         joints.push_back(joints_of(model, m.frame.world(interpreter::point_at(m, static_cast<double>(k) / n))));
-        tip.push_back(machine::tool_pose(model, machine::Machine::Real, joints.back(), m.tool_length_mm).tip_mm);
+        tip.push_back(machine::tool_pose(model, machine::Machine::Real, joints.back(), m.tool_offset_mm).tip_mm);
       }
       const double length = (tip.back() - tip.front()).norm();
       for (int k = 0; k <= n; ++k) {

@@ -67,6 +67,12 @@ ProbeLog read_probe_log(const std::string& path, const machine::Model& model, do
   }
   if (!(log.sphere_diameter_mm > 0) || !(log.ball_diameter_mm >= 0))
     throw LoadError({path}, "the header gives no sphere_diameter_mm and ball_diameter_mm");
+  // A calibration sphere and a probe ball are millimetres to a few centimetres: a larger number
+  // is a typo (or metres), and it would send the sphere fit far outside the machine.
+  constexpr double kLargestDiameterMm = 1000.0;
+  if (log.sphere_diameter_mm > kLargestDiameterMm || log.ball_diameter_mm > kLargestDiameterMm)
+    throw LoadError({path}, "sphere_diameter_mm " + std::to_string(log.sphere_diameter_mm) + " or ball_diameter_mm " +
+                                std::to_string(log.ball_diameter_mm) + " is not a sphere's diameter (at most 1000 mm)");
   const double radius = (log.sphere_diameter_mm + log.ball_diameter_mm) / 2;
 
   const double length = log.probe_length_mm > 0 ? log.probe_length_mm : model.tool_length_mm;
@@ -112,6 +118,9 @@ ProbeLog read_probe_log(const std::string& path, const machine::Model& model, do
       c += dc;
       if (dc.norm() < 1e-10) break;
     }
+    if (!c.allFinite())
+      throw LoadError({path, p.line}, "pose " + std::to_string(index) + ": no sphere of diameter " +
+                                          std::to_string(log.sphere_diameter_mm) + " (+ the ball) fits its points");
     for (std::size_t i = 0; i < at.size(); ++i) {
       const double off = std::abs((at[i] - c).norm() - radius);
       log.largest_residual_um = std::max(log.largest_residual_um, off * 1e3);

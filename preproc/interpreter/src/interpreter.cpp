@@ -76,7 +76,7 @@ Frame Interpreter::frame_for(int system, bool with_g92, bool with_tool_length) c
     const Position g92 = Frame{{}, f.rotation_deg}.world(g92_);
     for (int i = 0; i < kAxes; ++i) f.offset[i] += g92[i];
   }
-  if (with_tool_length && setup_.tool_length_in_world) f.offset[2] += tool_length_;
+  if (with_tool_length && setup_.tool_length_in_world) f.offset[2] += tool_offset_;
   return f;
 }
 
@@ -318,7 +318,9 @@ Move Interpreter::new_move(int line, const Frame& in) const {
   m.start = position_;
   m.known_start = known_;
   m.frame = in;
-  m.tool_length_mm = tool_length_;
+  m.tool_offset_mm = tool_offset_;
+  m.tool_offset_from = tool_offset_from_;
+  m.tool_offset_tool = tool_offset_tool_;
   m.tool = tool_in_spindle_;
   m.inverse_time = inverse_time_;
   m.feed = feed_;
@@ -403,7 +405,7 @@ void Interpreter::move(const Words& w, int line, Effect& effect) {
     if (incremental_) refuse(line, g53->offset, "G53 is only allowed in absolute mode (G90)");
     // Machine coordinates: the given axes are world positions; the others stay where they are.
     Frame machine;
-    if (!setup_.tool_length_in_world) machine.offset[2] = -tool_length_;
+    if (!setup_.tool_length_in_world) machine.offset[2] = -tool_offset_;
     Position world_start = m.frame.world(m.start), world_end = world_start;
     for (int i = 0; i < kAxes; ++i)
       if (named >> i & 1u) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <charconv>
 #include <fstream>
+#include <limits>
 #include <string_view>
 
 #include "vc/tables/source_error.hpp"
@@ -61,7 +62,7 @@ ToolTable read_tool_table(const std::string& path, double machine_unit_mm) {
       if (!read_number(s, pos, value))
         throw LoadError({path, line, column + 1}, std::string("expected a number after '") + letter + "'");
       if (letter == 'T') {
-        if (value != std::floor(value) || value < 0)
+        if (value != std::floor(value) || value < 0 || value > std::numeric_limits<int>::max())
           throw LoadError({path, line, column}, "tool number must be a whole number >= 0");
         tool.number = static_cast<int>(value);
         has_number = true;

@@ -35,7 +35,7 @@ Interpreter::ModalState Interpreter::modal_state() const {
   s.g[2] = incremental_ ? 910 : 900;
   s.g[3] = inverse_time_ ? 930 : 940;
   s.g[4] = coordinate_system_ < 7 ? 530 + 10 * coordinate_system_ : 584 + coordinate_system_;
-  s.g[5] = tool_length_ != 0.0 ? 430 : 490;
+  s.g[5] = tool_offset_ != 0.0 ? 430 : 490;
   s.g[6] = retract_to_r_ ? 990 : 980;
   s.g[7] = constant_surface_speed_ ? 960 : 970;
   s.g[8] = arc_absolute_ ? 901 : 911;

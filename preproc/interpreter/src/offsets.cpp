@@ -9,10 +9,12 @@ void Interpreter::set_tool_length(const Words& w, int line) {
   const Position world = world_position();
   const auto* g = w.find_g({430, 431, 490});
   if (g->code == 490) {
-    tool_length_ = 0.0;
+    tool_offset_ = 0.0;
+    tool_offset_from_ = ToolOffsetFrom::None;
   } else if (g->code == 431) {
     if (!w.has('Z')) refuse(line, g->offset, "G43.1 needs a Z word (tool length)");
-    tool_length_ = w.get('Z') * (inches_ ? kInch : 1.0);
+    tool_offset_ = w.get('Z') * (inches_ ? kInch : 1.0);
+    tool_offset_from_ = ToolOffsetFrom::G43_1;
   } else {
     int tool = tool_in_spindle_;
     if (w.has('H')) tool = w.whole('H');
@@ -20,7 +22,7 @@ void Interpreter::set_tool_length(const Words& w, int line) {
     else if (tool < 0)
       refuse(line, g->offset, "G43 without H and no tool in the spindle yet (use G43 Hn, or M6 Tn first)");
     if (tool == 0 && !(tools_ && tools_->count(0))) {
-      tool_length_ = 0.0;  // tool 0: no tool, LinuxCNC's empty spindle with zero offsets
+      tool_offset_ = 0.0;  // tool 0: no tool, LinuxCNC's empty spindle with zero offsets
     } else {
       if (!tools_)
         refuse(line, g->offset, "G43 needs the tool table: pass --tool-table FILE (LinuxCNC's .tbl)");
@@ -33,8 +35,10 @@ void Interpreter::set_tool_length(const Words& w, int line) {
                "tool " + std::to_string(tool) + " has an offset in " + other +
                    " in the tool table, which LinuxCNC's G43 applies too: the pre-distorter takes the Z "
                    "(length) offset only (not translated yet)");
-      tool_length_ = it->second.z_offset();
+      tool_offset_ = it->second.z_offset();
     }
+    tool_offset_from_ = ToolOffsetFrom::G43;
+    tool_offset_tool_ = tool;
   }
   set_world_position(world);  // LinuxCNC keeps the machine still; the program position changes
 }
@@ -122,7 +126,7 @@ void Interpreter::set_tool_entry(const Words& w, int l, int line) {
     // tool length offset, in the destination system's coordinates without it.
     const int system = l == 11 ? 9 : coordinate_system_;
     Position world = world_position();
-    if (!setup_.tool_length_in_world) world[2] += tool_length_;
+    if (!setup_.tool_length_in_world) world[2] += tool_offset_;
     const Frame destination = frame_for(system, /*with_g92=*/l != 11, /*with_tool_length=*/false);
     Position t = destination.program(world);
     const Frame rotation{{}, destination.rotation_deg};

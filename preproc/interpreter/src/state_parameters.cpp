@@ -57,7 +57,7 @@ std::optional<double> Interpreter::StateView::named(const std::string& name) con
     Position p = i.position_;
     if (absolute) {
       p = i.frame().world(p);
-      if (!i.setup_.tool_length_in_world) p[2] += i.tool_length_;  // LinuxCNC's world holds it
+      if (!i.setup_.tool_length_in_world) p[2] += i.tool_offset_;  // LinuxCNC's world holds it
     }
     return p[static_cast<std::size_t>(axis)] / (is_linear(axis) && i.inches_ ? kInch : 1.0);
   }
@@ -73,7 +73,7 @@ std::optional<double> Interpreter::StateView::named(const std::string& name) con
   if (name == "_units_per_minute") return flag(!i.inverse_time_);
   if (name == "_units_per_rev") return 0.0;
   if (name == "_coord_system") return i.coordinate_system_ < 7 ? 530 + 10 * i.coordinate_system_ : 584 + i.coordinate_system_;
-  if (name == "_tool_offset") return flag(i.tool_length_ != 0.0);
+  if (name == "_tool_offset") return flag(i.tool_offset_ != 0.0);
   if (name == "_retract_r_plane") return flag(i.retract_to_r_);
   if (name == "_retract_old_z") return flag(!i.retract_to_r_);
   if (name == "_spindle_rpm_mode") return flag(!i.constant_surface_speed_);

@@ -54,7 +54,8 @@ PathCorrector::PathCorrector(const machine::Model& model, CorrectorOptions optio
       checks_direction_(model.rotary_count() > 0 && options.tolerance_rad > 0),
       axes_(model),
       bounds_(model, shared),
-      one_step_(model) {}
+      one_step_(model),
+      missing_offset_(model, options.tools) {}
 
 Joints PathCorrector::joints_of(const Position& world) const { return axes_.joints_of(world); }
 
@@ -70,7 +71,7 @@ Eigen::Vector3d PathCorrector::force_at(const Move& move, double s) {
   const double h = 1e-4;
   const double s0 = std::max(0.0, s - h), s1 = std::min(1.0, s + h);
   Joints q0, q1;
-  const double L = model_.correction_length(move.tool_length_mm);  // the tool-length rule
+  const double L = model_.correction_length(move.tool_offset_mm);  // the tool-length rule
   machine::nominal_inverse(model_, options_.world, joints_of(move.frame.world(interpreter::point_at(move, s0))), L, q0);
   machine::nominal_inverse(model_, options_.world, joints_of(move.frame.world(interpreter::point_at(move, s1))), L, q1);
   const machine::ToolPose p0 = machine::tool_pose(model_, Machine::Ideal, q0, L);
@@ -86,7 +87,7 @@ PathCorrector::Node PathCorrector::node_at(const Move& move, double s) {
   Node n;
   n.s = s;
   const Position p = interpreter::point_at(move, s);
-  const double L = model_.correction_length(move.tool_length_mm);  // the tool-length rule
+  const double L = model_.correction_length(move.tool_offset_mm);  // the tool-length rule
   n.input = joints_of(move.frame.world(p));
   Status status = machine::nominal_inverse(model_, options_.world, n.input, L, n.nominal);
   if (status != Status::Ok) fail(move, "no nominal joints for a point of the move", status);
@@ -108,7 +109,9 @@ PathCorrector::Node PathCorrector::node_at(const Move& move, double s) {
     n.corrected = c.joints;
   }
   solved(n.target, n.corrected, L);
-  if (machine::outside_tables(model_, n.corrected)) ++stats_.out_of_table;
+  stats_.grids.note(model_, n.corrected, move.line);
+  if (move.tool_offset_from == interpreter::ToolOffsetFrom::None)
+    missing_offset_.at(move, n.target, n.corrected, stats_.missing_offset);
   n.world = machine::nominal_forward(model_, options_.world, n.corrected, L);
   n.program = program_of(move, n.world, p);
   return n;
@@ -193,7 +196,7 @@ PathCorrector::PieceError PathCorrector::error_between(const Move& move, const N
                                                       const Piece& piece, double t,
                                                       const DirectionErrors* exact_direction_errors) {
   ++stats_.checks;
-  const double L = model_.correction_length(move.tool_length_mm);  // the tool-length rule
+  const double L = model_.correction_length(move.tool_offset_mm);  // the tool-length rule
   const double s = a.s + t * (b.s - a.s);
   Joints nominal, commanded;
   machine::nominal_inverse(model_, options_.world, joints_of(move.frame.world(interpreter::point_at(move, s))), L,
@@ -213,7 +216,7 @@ PathCorrector::PieceError PathCorrector::error_between(const Move& move, const N
 }
 
 Eigen::Vector3d PathCorrector::direction_error(const Move& move, const Node& n) const {
-  const double L = model_.correction_length(move.tool_length_mm);
+  const double L = model_.correction_length(move.tool_offset_mm);
   return machine::tool_pose(model_, Machine::Real, n.corrected, L).direction -
          machine::tool_pose(model_, Machine::Ideal, n.nominal, L).direction;
 }
@@ -242,7 +245,7 @@ bool PathCorrector::piece_within_tolerance(const Move& move, const Node& a, cons
 // straight between the ends (world = joints) and no cutting force.
 bool PathCorrector::within_bounds(const Move& move, const Node& a, const Node& b) {
   if (move.kind != MoveKind::Line || deflection_) return false;
-  const double share = kUncheckedShare * options_.tolerance_mm, L = model_.correction_length(move.tool_length_mm);
+  const double share = kUncheckedShare * options_.tolerance_mm, L = model_.correction_length(move.tool_offset_mm);
   const double share_rad = checks_direction_ ? kUncheckedShare * options_.tolerance_rad : HUGE_VAL;
   const CorrectionBounds::Bound slope = bounds_.slope_bound(a.nominal, b.nominal, L);
   if (slope.mm <= share && slope.rad <= share_rad) return true;
@@ -274,7 +277,7 @@ void PathCorrector::correct(const Move& move, std::vector<Piece>& pieces) {
   // The start is where the previous move ended: its correction is known, unless the tool
   // length or the cutting force changed.
   Node a;
-  const bool continues = have_last_ && !last_loaded_ && last_tool_length_ == move.tool_length_mm &&
+  const bool continues = have_last_ && !last_loaded_ && last_tool_length_ == move.tool_offset_mm &&
                          (!deflection_ || move.kind == MoveKind::Rapid) &&
                          last_.input == joints_of(move.frame.world(move.start));
   if (continues) {
@@ -329,7 +332,7 @@ void PathCorrector::correct(const Move& move, std::vector<Piece>& pieces) {
 void PathCorrector::ended(const Move& move, const Node& end) {
   last_ = end;
   have_last_ = true;
-  last_tool_length_ = move.tool_length_mm;
+  last_tool_length_ = move.tool_offset_mm;
   last_loaded_ = end.deflection_mm.squaredNorm() > 0;
 }
 
@@ -341,7 +344,8 @@ void CorrectorStats::add(const CorrectorStats& other) {
   corrections += other.corrections;
   checks += other.checks;
   tolerance_misses += other.tolerance_misses;
-  out_of_table += other.out_of_table;
+  grids.add(other.grids);
+  missing_offset.add(other.missing_offset);
   max_checked_error_mm = std::max(max_checked_error_mm, other.max_checked_error_mm);
   max_checked_error_rad = std::max(max_checked_error_rad, other.max_checked_error_rad);
   max_deflection_mm = std::max(max_deflection_mm, other.max_deflection_mm);

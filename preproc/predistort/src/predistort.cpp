@@ -211,8 +211,10 @@ Summary predistort(std::istream& in, std::ostream& out, const Job& job,
   CorrectionBounds::Shared shared_bounds;
   std::deque<PathCorrector> correctors;
   const int lanes = corrector_lanes(job);
+  CorrectorOptions options = job.corrector;
+  if (!options.tools) options.tools = job.setup.tools;
   for (int lane = 0; lane < lanes; ++lane)
-    correctors.emplace_back(*job.model, job.corrector, job.deflection, lanes > 1 ? &shared_bounds : nullptr);
+    correctors.emplace_back(*job.model, options, job.deflection, lanes > 1 ? &shared_bounds : nullptr);
   Writer writer(out, job.setup.machine_axes, job.corrector.tolerance_mm);
   Summary summary;
   long bytes = 0;
@@ -239,6 +241,7 @@ Summary predistort(std::istream& in, std::ostream& out, const Job& job,
       if (effect.translate) {
         writer.translated(line.raw, line.block, effect, line.pieces);
         ++summary.translated_lines;
+        for (const interpreter::Move& m : effect.moves) summary.tool_lengths.add(m, *line.file);
       } else {
         writer.verbatim(line.raw, line.block, effect, line.position, line.frame);
         if (effect.moved_as_written) ++summary.written_as_is_moves;
@@ -264,6 +267,20 @@ Summary predistort(std::istream& in, std::ostream& out, const Job& job,
   if (progress) progress(bytes);
   for (const PathCorrector& corrector : correctors) summary.corrector.add(corrector.stats());
   return summary;
+}
+
+std::vector<std::string> correction_notes(const Summary& summary, const Job& job) {
+  std::vector<std::string> notes;
+  const std::string& program = job.setup.file;
+  const std::string& tool_table = job.provenance.tool_table;
+  if (std::string lengths = summary.tool_lengths.describe(*job.model, program, tool_table); !lengths.empty())
+    notes.push_back(std::move(lengths));
+  if (std::string missing = missing_offset_warning(summary.corrector.missing_offset, summary.tool_lengths, *job.model,
+                                                   program, tool_table, job.corrector.tolerance_mm);
+      !missing.empty())
+    notes.push_back(std::move(missing));
+  for (std::string& grid : summary.corrector.grids.warnings(*job.model)) notes.push_back(std::move(grid));
+  return notes;
 }
 
 }  // namespace vc::predistort

@@ -165,6 +165,9 @@ FirstPart analyse_first_part(const machine::Model& model, std::istream& program,
     for (std::size_t k = 0; k < shown; ++k)
       message += "\n  " + where(part.left_out[k].point) + ": " + part.left_out[k].reason;
     if (part.left_out.size() > shown) message += "\n  ... and " + std::to_string(part.left_out.size() - shown) + " more";
+    // report_wide_cause found none of these for the report as a whole.
+    message += "\n  tested and not the cause: the program cuts (feed moves with the spindle on), its tool has a "
+               "diameter, the report's unit (read as inches or millimetres no more of its points lie on cuts)";
     throw std::runtime_error(message);
   }
 

@@ -31,7 +31,7 @@ class Simulator {
     sample.radius_mm = radius_of(m.tool);
     sample.end = options_.ball_end_tools.count(m.tool) ? ToolEnd::Ball : ToolEnd::Flat;
     sample.cutting = cutting;
-    const double L = machine_.correction_length(m.tool_length_mm);  // the tool-length rule
+    const double L = machine_.correction_length(m.tool_offset_mm);  // the tool-length rule
     sample.tool_length_mm = L;
     for (int k = 0; k <= n; ++k) {
       sample.s = static_cast<double>(k) / n;
@@ -42,7 +42,7 @@ class Simulator {
       if (options_.compensation) {
         const machine::Status status =
             machine::joints_from_world(*options_.compensation, options_.world, world,
-                                       options_.compensation->correction_length(m.tool_length_mm), sample.joints);
+                                       options_.compensation->correction_length(m.tool_offset_mm), sample.joints);
         if (status != machine::Status::Ok)
           throw LoadError({setup_.file, m.line}, "the compensation does not converge at this move");
       }
@@ -77,7 +77,7 @@ class Simulator {
     const Eigen::Vector3d force = options_.deflection->force(m, feed.normalized(), ideal.direction, std::sqrt(length));
     machine::Joints shift;
     Eigen::Vector3d delta;
-    options_.deflection->at(nominal, machine_.correction_length(m.tool_length_mm), force, shift, delta);
+    options_.deflection->at(nominal, machine_.correction_length(m.tool_offset_mm), force, shift, delta);
     return delta;
   }
 

@@ -32,7 +32,7 @@ std::pair<double, std::size_t> worst_direction(const machine::Model& model, doub
   rapid.kind = MoveKind::Rapid;
   rapid.end = {-300, -160, -200, 0, -0.5, 0};
   rapid.start = rapid.end;
-  rapid.tool_length_mm = 100.0;
+  rapid.tool_offset_mm = 100.0;
   std::vector<Piece> pieces;
   corrector.correct(rapid, pieces);
   Position from = pieces.back().end;

@@ -89,7 +89,7 @@ TEST(Interpreter, ToolLengthKeepsTheMachineStillAndShiftsWorldZ) {
   EXPECT_DOUBLE_EQ(r.moves[1].start[2], -100.0);  // program Z after G43: the tip, machine unmoved
   EXPECT_DOUBLE_EQ(r.moves[1].frame.world(r.moves[1].end)[2], 0.0);
   EXPECT_DOUBLE_EQ(r.moves[2].frame.world(r.moves[2].end)[2], 100.0);
-  EXPECT_DOUBLE_EQ(r.moves[2].tool_length_mm, 100.0);
+  EXPECT_DOUBLE_EQ(r.moves[2].tool_offset_mm, 100.0);
 }
 
 TEST(Interpreter, MachineCoordinatesIgnoreWorkOffsets) {
@@ -249,7 +249,7 @@ TEST(Interpreter, DynamicToolLengthDoesNotMove) {
   const Interpreted r = interpret(kStart + "G43.1 Z10\nG0 X1\n", nullptr, &var);
   ASSERT_EQ(r.moves.size(), 2u);
   EXPECT_DOUBLE_EQ(r.moves[1].frame.world(r.moves[1].end)[2], 0.0);
-  EXPECT_DOUBLE_EQ(r.moves[1].tool_length_mm, 10.0);
+  EXPECT_DOUBLE_EQ(r.moves[1].tool_offset_mm, 10.0);
 }
 
 // G92, G52 and G92.1-G92.3 keep the machine still and shift later moves (LinuxCNC's
@@ -309,9 +309,9 @@ TEST(Interpreter, ToolTableChangesTakeEffectAtTheNextG43) {
   gcode::Parameters var;
   const Interpreted r = interpret(kStart + "G43 H1\nG0 X1\nG10 L1 P1 Z20\nG0 X2\nG43 H1\nG0 X3\n", &tools, &var);
   ASSERT_EQ(r.moves.size(), 4u);
-  EXPECT_DOUBLE_EQ(r.moves[1].tool_length_mm, 12.7);
-  EXPECT_DOUBLE_EQ(r.moves[2].tool_length_mm, 12.7);  // not before the G43
-  EXPECT_DOUBLE_EQ(r.moves[3].tool_length_mm, 20.0);
+  EXPECT_DOUBLE_EQ(r.moves[1].tool_offset_mm, 12.7);
+  EXPECT_DOUBLE_EQ(r.moves[2].tool_offset_mm, 12.7);  // not before the G43
+  EXPECT_DOUBLE_EQ(r.moves[3].tool_offset_mm, 20.0);
   EXPECT_DOUBLE_EQ(tools.at(1).z_offset(), 12.7);  // the caller's table is not changed
   EXPECT_NE(refusal(kStart + "G10 L1 P7 Z1\n", &tools).find("tool 7 is not in the tool table"), std::string::npos);
 }
@@ -338,7 +338,7 @@ TEST(Interpreter, OnAnInchMachineTheParameterFileAndToolTableAreInInches) {
   EXPECT_DOUBLE_EQ(locals[0], 1.0);                                  // the program reads inches
   EXPECT_NEAR(locals[1], 0.1, 1e-15);                                // G10 L2 writes them
   EXPECT_DOUBLE_EQ(moves.at(1).frame.world(moves[1].end)[0], 2.54);
-  EXPECT_DOUBLE_EQ(moves[1].tool_length_mm, 50.8);
+  EXPECT_DOUBLE_EQ(moves[1].tool_offset_mm, 50.8);
   EXPECT_THROW(run_on_inch_machine("G21 G90\n#1 = #5403\n", tools, var), LoadError);  // no M6 yet
 }
 

@@ -271,7 +271,9 @@ class Interpreter {
   // the interpreter with the tool changer; after M61 they depend on when the task does (the
   // standalone rs274 keeps the previous tool's), so they are not given then.
   bool tool_data_known_ = false;
-  double tool_length_ = 0.0;   // mm, G43
+  double tool_offset_ = 0.0;   // mm: LinuxCNC's tool length offset (G43, G43.1; 0: G49), not L
+  ToolOffsetFrom tool_offset_from_ = ToolOffsetFrom::None;  // where it comes from
+  int tool_offset_tool_ = -1;  // G43's tool (its table entry), if from the tool table
   int coordinate_system_ = 1;  // 1..9: G54..G59.3
   bool offsets_known_ = false; // the active system's offsets came from the .var file or G10
   unsigned offsets_set_ = 0;   // bit n: system n set by G10 in this program

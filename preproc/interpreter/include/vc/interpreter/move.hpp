@@ -49,6 +49,10 @@ struct Frame {
 
 enum class MoveKind { Rapid, Line, Arc };
 
+// Where a move's tool length offset comes from: no G43 in force (none yet, or G49), G43 (H or
+// the tool in the spindle: the tool table's Z of that tool), or G43.1 Z (the program's own).
+enum class ToolOffsetFrom : unsigned char { None, G43, G43_1 };
+
 // A circular or helical arc (G2/G3) in the plane of two program axes. `first`, `second`
 // and `normal` are axis indices with normal = first x second (G17: X Y Z, G18: Z X Y,
 // G19: Y Z X), so counter-clockwise is a positive angle. The other axes move linearly.
@@ -66,7 +70,12 @@ struct Move {
   unsigned known_start = 0;     // bit i: start[i] is known (the program has set that axis)
   Frame frame;                  // program -> world for this move (identity offset for G53)
   bool machine_coordinates = false;  // G53
-  double tool_length_mm = 0.0;  // active tool length offset (G43), L of the correction
+  // LinuxCNC's active tool length offset (G43, G43.1; 0 without G43 or after G49), not the
+  // physical tool length L: the correction is for L = Model::correction_length(tool_offset_mm)
+  // (the tool-length rule, machines/README.md).
+  double tool_offset_mm = 0.0;
+  ToolOffsetFrom tool_offset_from = ToolOffsetFrom::None;  // where tool_offset_mm comes from
+  int tool_offset_tool = -1;    // the tool whose table entry G43 applied (ToolOffsetFrom::G43)
   int tool = 0;                 // tool in the spindle
   Arc arc;                      // kind == Arc
   // Feed: units/min in program units (G94), or 1/min (G93 inverse time).

@@ -24,7 +24,9 @@
 #include "vc/machine/kinematics.hpp"
 #include "vc/predistort/correction_bounds.hpp"
 #include "vc/predistort/deflection.hpp"
+#include "vc/predistort/grid_excursions.hpp"
 #include "vc/predistort/joint_axes.hpp"
+#include "vc/predistort/missing_tool_offset.hpp"
 #include "vc/predistort/one_step_correction.hpp"
 
 namespace vc::predistort {
@@ -38,6 +40,9 @@ struct CorrectorOptions {
   double tolerance_rad = 2e-5;  // tool direction, machines with rotary axes (0: not bounded)
   machine::WorldConvention world = machine::WorldConvention::Axes;
   int max_depth = 24;  // halvings of one move (2^24 pieces) before giving up on the tolerance
+  // The tool table the program runs with (none: not given): the likely length of a tool that
+  // moves without G43 (missing_tool_offset.hpp).
+  const interpreter::ToolTable* tools = nullptr;
 };
 
 // One output piece of a move: go from the previous piece's end to `end` (program
@@ -54,7 +59,8 @@ struct Piece {
 struct CorrectorStats {
   long moves = 0, pieces = 0, corrections = 0, checks = 0;
   long tolerance_misses = 0;      // moves where max_depth was reached
-  long out_of_table = 0;          // corrected points outside a table's grid
+  GridExcursions grids;           // corrected points outside a table's grid
+  MissingOffsetError missing_offset;  // moves without G43: the error left at the likely tool
   double max_checked_error_mm = 0.0;  // largest error at an accepted piece's check points
   double max_checked_error_rad = 0.0;  // largest tool direction error there
   double max_deflection_mm = 0.0;
@@ -137,6 +143,7 @@ class PathCorrector {
   int recent_count_ = 0;
   CorrectionBounds bounds_;
   OneStepCorrection one_step_;
+  MissingOffsetCheck missing_offset_;
 };
 
 }  // namespace vc::predistort

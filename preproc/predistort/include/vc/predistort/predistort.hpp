@@ -9,6 +9,7 @@
 
 #include "vc/interpreter/interpreter.hpp"
 #include "vc/predistort/path_corrector.hpp"
+#include "vc/predistort/tool_lengths.hpp"
 #include "vc/predistort/writer.hpp"
 
 namespace vc::predistort {
@@ -30,6 +31,7 @@ struct Job {
 struct Summary {
   long lines = 0, translated_lines = 0, written_as_is_moves = 0;
   CorrectorStats corrector;
+  ToolLengthLog tool_lengths;  // the L of each corrected move, and where it came from
 };
 
 // `progress(bytes_read)` is called every few thousand lines. Throws vc::LoadError
@@ -39,5 +41,11 @@ Summary predistort(std::istream& in, std::ostream& out, const Job& job,
 
 // The program axes (bit i of XYZABC) a machine has.
 unsigned program_axes(const machine::Model& model);
+
+// What a correcting command says about the corrections beyond its figures, one line each (no
+// line ends): the tool lengths L the moves were corrected for and where each came from, the
+// warning for moves without G43 whose likely tool keeps errors beyond the tolerance, and one
+// warning per axis whose corrected points left an error table's grid.
+std::vector<std::string> correction_notes(const Summary& summary, const Job& job);
 
 }  // namespace vc::predistort

@@ -1,0 +1,43 @@
+// `volcomp report MACHINE [--measurements DIR] -o report.html`: the machine's accuracy on one
+// self-contained HTML page (preproc/report/README.md). Everything is computed and drawn first;
+// the page is written last, atomically: on any error there is no file (and an older one stays).
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+
+#include "atomic_output.hpp"
+#include "commands.hpp"
+#include "format.hpp"
+#include "vc/machine/load_machine.hpp"
+#include "vc/report/accuracy_report.hpp"
+
+namespace vc::cli {
+
+int run_report(const ReportArgs& args, std::ostream& out) {
+  namespace fs = std::filesystem;
+  if (fs::is_directory(args.output)) throw std::runtime_error("-o " + args.output + ": a folder; give the page's file name");
+  const fs::path folder = fs::path(args.output).parent_path();
+  if (!folder.empty() && !fs::is_directory(folder))
+    throw std::runtime_error("-o " + args.output + ": its folder " + folder.string() + " does not exist");
+  const machine::Model model = machine::load_machine(args.machine);
+  report::ReportOptions options;
+  options.measurements = args.measurements;
+  options.tool_lengths_mm = args.tool_lengths_mm;
+  std::ostringstream command;
+  command << "volcomp report " << args.machine;
+  if (!args.measurements.empty()) command << " --measurements " << args.measurements;
+  if (!args.tool_lengths_mm.empty()) {
+    command << " --tool-lengths ";
+    for (std::size_t k = 0; k < args.tool_lengths_mm.size(); ++k) command << (k ? "," : "") << format_number(args.tool_lengths_mm[k]);
+  }
+  command << " -o " << args.output;
+  options.command = command.str();
+  out << "volcomp report: " << model.info.name << " (" << args.machine << ")\n";
+  const report::Report r = report::accuracy_report(model, options, out);
+  write_atomically(args.output, [&](std::ostream& html) { html << r.html; });
+  out << "report written: " << args.output << " (" << r.sections << " sections, " << r.figures << " figures, "
+      << r.measurements << " measurements, " << r.html.size() / 1024 << " KiB)\n";
+  return 0;
+}
+
+}  // namespace vc::cli
