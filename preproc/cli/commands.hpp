@@ -34,6 +34,10 @@ struct FitTablesArgs {
   std::optional<int> levels;                   // grid positions per joint (default: the nodes)
   int fresh = 2000;                            // random poses per tool length in each fresh set
   double ridge = 1e-2, smoothness = 1e-2;      // the fit's regularisation (fit.hpp)
+  std::vector<std::string> programs;           // part programs whose poses are fitted too
+  bool programs_only = false;                  // ... and nothing else (the volume judged only)
+  std::string tool_table, var_file;            // LinuxCNC's files the programs are read with
+  std::string machine_units = "mm";
 };
 
 struct IdentifyLaserArgs {

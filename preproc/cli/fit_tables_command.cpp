@@ -6,17 +6,21 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 #include "atomic_output.hpp"
 #include "commands.hpp"
 #include "format.hpp"
+#include "program_files.hpp"
 #include "vc/fit_tables/comp_file.hpp"
 #include "vc/fit_tables/sinumerik_file.hpp"
 #include "vc/fit_tables/study_csv.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/plot/gnuplot.hpp"
+#include "vc/shop/tool_path.hpp"
+#include "vc/tables/source_error.hpp"
 
 namespace vc::cli {
 namespace {
@@ -77,6 +81,33 @@ void draw_figures(const fit_tables::Study& study, const std::string& machine_nam
   plot::draw({image, data.str(), gp.str(), 1400, 900});
 }
 
+// The poses of part programs as a stock machine runs them (program coordinates = the joints,
+// LinuxCNC's trivkins; the tool length from G43): every sample of shop::simulate's path (at most
+// 2 mm apart), thinned evenly to at most `most` per program.
+std::vector<fit_tables::Pose> program_poses(const machine::Model& model, const FitTablesArgs& args, std::size_t most) {
+  const ProgramFiles files(args.tool_table, args.var_file, args.machine_units);
+  std::vector<fit_tables::Pose> all;
+  for (const std::string& program : args.programs) {
+    std::ifstream in(program, std::ios::binary);
+    if (!in) throw LoadError({program}, "cannot open the program");
+    shop::SimulationOptions options;
+    options.step_mm = 2.0;
+    options.world = machine::WorldConvention::Axes;
+    std::vector<fit_tables::Pose> poses;
+    shop::simulate(model, in, files.setup(program, model, false), options,
+                   [&](const shop::PathSample& sample) { poses.push_back({sample.joints, sample.tool_length_mm}); });
+    if (poses.empty()) throw LoadError({program}, "the program has no moves");
+    const std::size_t keep = std::min(poses.size(), most);
+    for (std::size_t k = 0; k < keep; ++k) all.push_back(poses[k * poses.size() / keep]);
+  }
+  return all;
+}
+
+std::string padded(std::string text, std::size_t width) {
+  if (text.size() < width) text.resize(width, ' ');
+  return text;
+}
+
 std::string figure(const fit_tables::Figures& f) {
   std::string s = format_fixed(f.max_um, 1) + " / " + format_fixed(f.delta_um, 1);
   return std::string(s.size() < 15 ? 15 - s.size() : 1, ' ') + s;
@@ -114,6 +145,9 @@ int run_fit_tables(const FitTablesArgs& args, std::ostream& out) {
     throw std::invalid_argument("-o " + args.output + ": exists and is not a folder");
 
   const machine::Model model = machine::load_machine(args.machine);
+  if (!args.programs.empty()) o.program_poses = program_poses(model, args, 5000);
+  if (args.programs_only && args.programs.empty()) throw std::invalid_argument("--programs-only needs --programs");
+  o.programs_only = args.programs_only;
   const fit_tables::Controller controller = fit_tables::load_controller(fit_tables::controller_file(args.controller));
   const fit_tables::Study study = fit_tables::run_study(model, controller, o);
 
@@ -154,19 +188,23 @@ int run_fit_tables(const FitTablesArgs& args, std::ostream& out) {
 
   out << "fit-tables: " << model.info.name << " with " << controller.name << " (" << controller.title << ")\n";
   for (const std::string& note : study.set.notes) out << "note: " << note << '\n';
-  out << study.set.tables.size() << " tables, " << study.set.unknowns << " values; criterion " << args.criterion << "; "
-      << study.grid_poses << " grid poses (" << study.levels << " per joint) + " << study.added_poses
-      << " worst fresh poses refitted\n";
+  out << study.set.tables.size() << " tables, " << study.set.unknowns << " values; criterion " << args.criterion << "; ";
+  if (o.programs_only)
+    out << "fitted to " << study.program_poses << " poses of the part programs alone (the grid's " << study.grid_poses
+        << " poses and the fresh ones judged only: see what the tables leave there)\n";
+  else
+    out << study.grid_poses << " grid poses (" << study.levels << " per joint) + " << study.program_poses
+        << " poses of the part programs + " << study.added_poses << " worst fresh poses refitted\n";
   if (o.fit.criterion == fit_tables::Criterion::Minimax && study.fit.lower_bound_mm > 0)
     out << "minimax (Lawson): " << study.fit.iterations << " solves; the linearised M is within "
         << format_fixed(100.0 * (study.fit.linear_max_mm / study.fit.lower_bound_mm - 1.0), 2)
         << " % of the minimax's lower bound\n";
   out << "M / Delta of the tool-tip error, um (nonlinear model):\n"
-      << "  L [mm]  fitted  set             none           usual        modified            full\n";
+      << "  L [mm]  fitted  set                none           usual        modified            full\n";
   for (const fit_tables::ReportRow& r : study.rows) {
     std::string l = format_number(r.tool_length_mm);
     out << "  " << std::string(l.size() < 6 ? 6 - l.size() : 1, ' ') << l << "  "
-        << (r.fitted_length ? "  yes " : "   no ") << "  " << r.set << (r.set == "grid" ? " " : "") << figure(r.none)
+        << (r.fitted_length ? "  yes " : "   no ") << "  " << padded(r.set, 8) << figure(r.none)
         << figure(r.usual) << figure(r.modified) << figure(r.full) << '\n';
   }
   if (!ini_lines.empty()) out << "the INI lines (" << args.output << "/linuxcnc_ini_lines.txt):\n" << ini_lines;

@@ -258,6 +258,15 @@ int main(int argc, char** argv) {
   fit_tables_cmd->add_option("--smoothness", fit_tables.smoothness,
                              "regularisation of the second differences of the departure from the usual practice")
       ->capture_default_str();
+  fit_tables_cmd->add_option("--programs", fit_tables.programs,
+                             "part programs (G-code, as the stock machine runs them: no TCP) whose poses are fitted "
+                             "with the grid and judged as the set 'programs'")
+      ->check(CLI::ExistingFile);
+  fit_tables_cmd->add_flag("--programs-only", fit_tables.programs_only,
+                           "fit the programs' poses alone: best for those parts, the volume only judged");
+  fit_tables_cmd->add_option("--tool-table", fit_tables.tool_table, "LinuxCNC tool table the programs are read with");
+  fit_tables_cmd->add_option("--var", fit_tables.var_file, "LinuxCNC parameter file (.var) the programs are read with");
+  fit_tables_cmd->add_option("--machine-units", fit_tables.machine_units, "mm or inch: LinuxCNC's [TRAJ]LINEAR_UNITS");
 
   CLI::App* identify_cmd = app.add_subcommand("identify", "From measurements to the machine file")->require_subcommand(1);
   vc::cli::IdentifyLaserArgs laser;

@@ -74,8 +74,14 @@ Study run_study(const machine::Model& model, const Controller& controller, const
   grid.rotary = o.rotary;
   grid.full_turn_once = modulo;
   grid.tool_lengths_mm = s.fitted_lengths_mm;
-  const std::vector<Pose> fitted = grid_poses(model, grid);
-  s.grid_poses = static_cast<int>(fitted.size());
+  const std::vector<Pose> grid_set = grid_poses(model, grid);
+  s.grid_poses = static_cast<int>(grid_set.size());
+  s.program_poses = static_cast<int>(o.program_poses.size());
+  // What is fitted: the volume (the grid) with the part programs' poses, or (programs_only)
+  // those alone, the grid then only judged.
+  const bool for_programs = o.programs_only && !o.program_poses.empty();
+  std::vector<Pose> fitted = for_programs ? std::vector<Pose>{} : grid_set;
+  fitted.insert(fitted.end(), o.program_poses.begin(), o.program_poses.end());
 
   FreshPoses fresh(model);
   const std::vector<Pose> probe = fresh.next(o.fresh_poses, s.fitted_lengths_mm);
@@ -85,10 +91,10 @@ Study run_study(const machine::Model& model, const Controller& controller, const
 
   s.usual = rounded(s.set, usual_practice(model, s.set));
 
-  // The fit, then once more with the probe poses worse than the grid's M added.
+  // The fit, then (for the volume) once more with the probe poses worse than the grid's M added.
   LinearSystem system = linearise(model, s.set, fitted);
   s.fit = fit(system, s.set, o.fit, s.usual);
-  {
+  if (!for_programs) {
     const Eigen::VectorXd x = rounded(s.set, s.fit.x);
     const double grid_max = figures(table_errors(model, s.set, x, fitted)).max_um;
     const std::vector<double> probe_errors = table_errors(model, s.set, x, probe);
@@ -119,13 +125,25 @@ Study run_study(const machine::Model& model, const Controller& controller, const
         std::find(s.fitted_lengths_mm.begin(), s.fitted_lengths_mm.end(), l) != s.fitted_lengths_mm.end();
     for (const char* which : {"grid", "fresh"}) {
       const std::vector<Pose> poses =
-          std::string(which) == "fresh" ? at_length(check, l) : at_length(is_fitted ? fitted : unfitted_grid, l);
+          std::string(which) == "fresh" ? at_length(check, l) : at_length(is_fitted ? grid_set : unfitted_grid, l);
       ReportRow row = judge(model, truth, s, poses);
       row.tool_length_mm = l;
       row.fitted_length = is_fitted;
       row.set = which;
       s.rows.push_back(row);
     }
+  }
+  // The part programs' poses (all fitted), per tool length they use.
+  std::vector<double> program_lengths;
+  for (const Pose& p : o.program_poses) program_lengths.push_back(p.tool_length_mm);
+  std::sort(program_lengths.begin(), program_lengths.end());
+  program_lengths.erase(std::unique(program_lengths.begin(), program_lengths.end()), program_lengths.end());
+  for (double l : program_lengths) {
+    ReportRow row = judge(model, truth, s, at_length(o.program_poses, l));
+    row.tool_length_mm = l;
+    row.fitted_length = true;
+    row.set = "programs";
+    s.rows.push_back(row);
   }
   return s;
 }

@@ -64,7 +64,8 @@ void write_report_csv(const Study& s, const machine::Model& model, const Control
       << " positions per joint (" << s.grid_poses << " poses) plus " << s.added_poses
       << " worst fresh poses (refit); judged also at L = " << lengths(s.check_lengths_mm) << " mm (not fitted)\n"
       << "# set grid: the grid's poses at that L; set fresh: " << options.fresh_poses
-      << " random poses over the travel at that L, never fitted\n"
+      << " random poses over the travel at that L, never fitted; set programs: the poses of the part programs "
+         "given (--programs) at that L, fitted with the grid\n"
       << "# M = max |tool-tip error|, Delta = max - min |tool-tip error| over the set (seeds/000 sec. 3.3.3), computed "
          "on the "
          "nonlinear model\n"

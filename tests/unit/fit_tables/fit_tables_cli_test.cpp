@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 
 #include "test_support.hpp"
@@ -51,6 +52,56 @@ fs::path scratch(const std::string& name) {
   fs::remove_all(dir);
   fs::create_directories(dir.parent_path());
   return dir;
+}
+
+// --programs: the part programs' poses (as a stock machine runs them: the tool length from G43)
+// are fitted with the grid and judged as the set "programs"; --programs-only fits them alone,
+// which is best for that part and leaves the rest of the volume worse (said in the report).
+TEST(FitTablesCli, ProgramsAreFittedAndJudged) {
+  const std::string common = "fit-tables " + test::machine_path("mc300") + " --controller linuxcnc --tool-lengths 100" +
+                             " --fresh 200 --programs " + test::source_path("kins/configs/mc300/nc/sample_part.ngc") +
+                             " --var " + test::source_path("kins/configs/mc300/mc300.var") + " --tool-table " +
+                             test::source_path("kins/configs/mc300/mc300.tbl");
+  struct Figures {
+    double programs_usual = 0, programs_modified = 0, programs_none = 0, grid_modified = 0;
+    int programs_poses = 0;
+  };
+  const auto run = [&](const std::string& name, const std::string& extra) {
+    const fs::path out = scratch(name);
+    const test::CommandResult r = test::run_volcomp(common + extra + " -o " + out.string());
+    EXPECT_EQ(r.exit_code, 0) << r.out;
+    std::vector<std::string> h;
+    Figures f;
+    for (const auto& row : rows(out / "report.csv", h)) {
+      const auto value = [&](const char* c) { return std::stod(row[column(h, c)]); };
+      if (row[column(h, "set")] == "programs") {
+        EXPECT_EQ(row[column(h, "tool_length[mm]")], "100");  // G43 H1: tool 1, 100 mm
+        f.programs_none = value("none_M[um]");
+        f.programs_usual = value("usual_M[um]");
+        f.programs_modified = value("modified_M[um]");
+        f.programs_poses = std::stoi(row[column(h, "poses")]);
+      } else if (row[column(h, "set")] == "grid" && row[column(h, "tool_length[mm]")] == "100") {
+        f.grid_modified = value("modified_M[um]");
+      }
+    }
+    return f;
+  };
+  const Figures with_grid = run("programs", ""), alone = run("programs_only", " --programs-only");
+  EXPECT_GT(with_grid.programs_poses, 1000);
+  EXPECT_LT(with_grid.programs_modified, with_grid.programs_usual);
+  EXPECT_LT(with_grid.programs_usual, with_grid.programs_none + 1e-9);
+  EXPECT_LT(alone.programs_modified, with_grid.programs_modified);  // best for the part ...
+  EXPECT_GT(alone.grid_modified, with_grid.grid_modified);          // ... at the volume's cost
+  std::cout << "sample part, M (um): none " << with_grid.programs_none << ", usual " << with_grid.programs_usual
+            << ", modified with the grid " << with_grid.programs_modified << " (volume " << with_grid.grid_modified
+            << "), the part alone " << alone.programs_modified << " (volume " << alone.grid_modified << ")\n";
+
+  const fs::path refused = scratch("programs_only_alone");
+  const test::CommandResult r = test::run_volcomp("fit-tables " + test::machine_path("mc300") +
+                                                  " --controller linuxcnc --programs-only -o " + refused.string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.out.find("--programs-only needs --programs"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(refused));
 }
 
 TEST(FitTablesCli, WritesFilesThatReadBack) {

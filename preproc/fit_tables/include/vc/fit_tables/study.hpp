@@ -27,6 +27,13 @@ struct StudyOptions {
   std::vector<double> tool_lengths_mm;         // fitted; default: the machine file's tool_length_mm
   // Judged but not fitted; default: the midpoints of the fitted ones and their largest + 50 mm.
   std::optional<std::vector<double>> check_tool_lengths_mm;
+  // Poses of the user's part programs (nominal joints, the L of the tool each move uses):
+  // fitted with the grid, or with programs_only alone (the grid and the fresh poses then only
+  // judged: on the MC-300 at L = 100 mm the sample part's M falls from 29 to 13 um, and the
+  // volume's rises from 38 to 300 um: such tables are for that part only); judged as the set
+  // "programs" per tool length.
+  std::vector<Pose> program_poses;
+  bool programs_only = false;
   int fresh_poses = 2000;     // per tool length, in each of the probe and check sets
   int refit_max_poses = 200;  // worst probe poses added to the fit, at most
   FitOptions fit;
@@ -35,7 +42,7 @@ struct StudyOptions {
 struct ReportRow {
   double tool_length_mm = 0.0;
   bool fitted_length = false;  // a tool length the tables were fitted at
-  std::string set;             // "grid" or "fresh"
+  std::string set;             // "grid", "fresh" or "programs"
   Figures none, usual, modified, full;
 };
 
@@ -46,6 +53,7 @@ struct Study {
   FitResult fit;             // the final fit (after the refit)
   int levels = 0;
   int grid_poses = 0;   // all tool lengths
+  int program_poses = 0;  // of the part programs, fitted (with the grid unless programs_only)
   int added_poses = 0;  // probe poses added by the refit
   std::vector<double> fitted_lengths_mm, check_lengths_mm;
   std::vector<ReportRow> rows;  // per tool length (fitted ones first, ascending), grid then fresh
