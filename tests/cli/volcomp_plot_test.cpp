@@ -30,17 +30,10 @@ fs::path folder(const std::string& name) {
   return f;
 }
 
-std::string read(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // A PNG file: its signature, and the width and height of its IHDR chunk (big-endian).
 void expect_png(const fs::path& path, int width, int height) {
   ASSERT_TRUE(fs::exists(path)) << path;
-  const std::string png = read(path);
+  const std::string png = test::file_text(path);
   ASSERT_GT(png.size(), 20000u) << path << ": a plot, not an empty frame";
   EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << path;
   EXPECT_EQ(png.substr(12, 4), "IHDR") << path;
@@ -122,7 +115,7 @@ TEST(VolcompPlot, LaserGraphDrawsThePrintedEvaluation) {
                                    (dir / "exx_table.csv").string() + " --plot " + (dir / "exx.png").string());
   ASSERT_EQ(r.exit_code, 0) << r.out;
   expect_png(dir / "exx.png", 1400, 820);
-  const std::string data = read(dir / "exx.csv");
+  const std::string data = test::file_text(dir / "exx.csv");
   // The figures on the graph are the printed ones, text for text.
   for (const auto& [printed, symbol] : std::vector<std::pair<std::string, std::string>>{
            {"reversal value B", "B"}, {"repeatability R", "R"}, {"systematic deviation E", "E"},
@@ -168,7 +161,7 @@ TEST(VolcompPlot, LaserGraphDrawsThePrintedEvaluation) {
   auto s = test::run_volcomp("identify laser " + (dir / "runs.csv").string() + " --error EXX --plot " +
                              (dir / "exx.svg").string());
   ASSERT_EQ(s.exit_code, 0) << s.out;
-  EXPECT_NE(read(dir / "exx.svg").find("<svg"), std::string::npos);
+  EXPECT_NE(test::file_text(dir / "exx.svg").find("<svg"), std::string::npos);
   s = test::run_volcomp("identify laser " + (dir / "runs.csv").string() + " --error EXX --plot " + (dir / "exx.pdf").string());
   EXPECT_EQ(s.exit_code, 2);
   EXPECT_NE(s.out.find("the picture is a .png or an .svg file"), std::string::npos) << s.out;
@@ -204,7 +197,7 @@ TEST(VolcompPlot, BallbarPolarPlotDrawsTheRunAtItsStatedScale) {
                                    (dir / "ballbar.png").string());
   ASSERT_EQ(r.exit_code, 0) << r.out;
   expect_png(dir / "ballbar.png", 1400, 900);
-  const std::string data = read(dir / "ballbar.csv");
+  const std::string data = test::file_text(dir / "ballbar.csv");
   // The printed figures are written on the plot as printed.
   for (const std::string label : {"bidirectional circular deviation G(b) ", "circular hysteresis H "}) {
     const std::string printed = label + test::trimmed(after(r.out, label)).substr(0, after(r.out, label).find(" um") + 3);
@@ -240,7 +233,7 @@ TEST(VolcompPlot, BallbarPolarPlotDrawsTheRunAtItsStatedScale) {
   const auto same = test::run_volcomp("identify circle " + (dir / "run.csv").string() + " --plot " + (dir / "run.png").string());
   EXPECT_EQ(same.exit_code, 2);
   EXPECT_NE(same.out.find("a file of this command: give the plot another name"), std::string::npos) << same.out;
-  EXPECT_EQ(read(dir / "run.csv"), run.str());
+  EXPECT_EQ(test::file_text(dir / "run.csv"), run.str());
   EXPECT_FALSE(fs::exists(dir / "run.png"));
 }
 
@@ -301,7 +294,7 @@ TEST(VolcompPlot, MachinePlotDrawsTheFilesTablesAtTheirNodes) {
   }
 
   // The location errors with units, as the machine file gives them (mc300.toml's arcsec keys).
-  const std::string listing = read(dir / "location_errors.csv");
+  const std::string listing = test::file_text(dir / "location_errors.csv");
   for (const char* row : {"\nY,EC0Y,", "\nZ,EA0Z,", "\nZ,EB0Z,", "\nB,EA0B,", "\nB,EC0B,", "\nC,EA0C,", "\nC,EC0C,"})
     EXPECT_NE(listing.find(row), std::string::npos) << row;
   EXPECT_NE(listing.find("\nY,EC0Y,squareness: the Y line turned about z,-5,arcsec\n"), std::string::npos) << listing;
@@ -312,7 +305,7 @@ TEST(VolcompPlot, MachinePlotDrawsTheFilesTablesAtTheirNodes) {
   const fs::path svg = folder("machine_svg");
   auto s = test::run_volcomp("plot " + test::machine_path("mill3") + " -o " + svg.string() + " --format svg");
   ASSERT_EQ(s.exit_code, 0) << s.out;
-  EXPECT_NE(read(svg / "x_axis.svg").find("</svg>"), std::string::npos);
+  EXPECT_NE(test::file_text(svg / "x_axis.svg").find("</svg>"), std::string::npos);
   s = test::run_volcomp("plot " + test::machine_path("mill3") + " -o " + svg.string() + " --format pdf");
   EXPECT_EQ(s.exit_code, 2);
   EXPECT_NE(s.out.find("--format must be png or svg"), std::string::npos) << s.out;

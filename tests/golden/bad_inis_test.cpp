@@ -28,11 +28,6 @@ namespace fs = std::filesystem;
 using test::relative_message;
 using test::trimmed;
 
-std::string read(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
 fs::path scratch(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / ("vc_bad_inis_" + std::to_string(::getpid()) + "_" + name);
   fs::remove_all(dir);
@@ -64,7 +59,7 @@ TEST(BadInis, EveryBadConfigurationIsRefusedWithItsMessage) {
       continue;
     }
     ASSERT_TRUE(fs::exists(expect)) << "no " << expect << " (run with VC_UPDATE_GOLDEN=1 and read it)";
-    EXPECT_EQ(message, trimmed(read(expect)));
+    EXPECT_EQ(message, trimmed(test::file_text(expect)));
   }
   fs::remove_all(out);
 }
@@ -78,14 +73,14 @@ TEST(BadInis, TheGoodBaseIsAcceptedAndWritesBothOutputs) {
   const auto to_file = test::run_volcomp_stdout("init " + (dir / "xyzbc.ini").string() + " -o " + (dir / "xyzbc.toml").string() +
                                       " --patch " + (dir.parent_path() / "config.diff").string(),
                                   summary);
-  ASSERT_EQ(to_file.exit_code, 0) << read(summary);
+  ASSERT_EQ(to_file.exit_code, 0) << test::file_text(summary);
   EXPECT_EQ(to_file.out, "");
-  EXPECT_NE(read(summary).find("volcomp init: golden xyzbc"), std::string::npos) << read(summary);
+  EXPECT_NE(test::file_text(summary).find("volcomp init: golden xyzbc"), std::string::npos) << test::file_text(summary);
   const machine::Model model = machine::load_machine((dir / "xyzbc.toml").string());
   EXPECT_EQ(model.coordinates(), "xyzbc");
   EXPECT_EQ(model.axes[3].pole_mm, Eigen::Vector3d(-20, 0, 35));  // [xr + dx, yr, zr + dz]
   EXPECT_EQ(model.fixture.translation(), Eigen::Vector3d(0, 0, -50));
-  const std::string diff = read(dir.parent_path() / "config.diff");
+  const std::string diff = test::file_text(dir.parent_path() / "config.diff");
   EXPECT_NE(diff.find("+KINEMATICS = volkins machine=xyzbc.toml coordinates=xyzbc world=tcp\n"), std::string::npos)
       << diff;
   const auto check = test::run_volcomp("check " + (dir / "xyzbc.toml").string() + " --samples 200");
@@ -93,10 +88,10 @@ TEST(BadInis, TheGoodBaseIsAcceptedAndWritesBothOutputs) {
 
   // No --patch: stdout is the patch alone (the summary on stderr).
   const auto to_stdout = test::run_volcomp_stdout("init " + (dir / "xyzbc.ini").string() + " -o " + (dir / "again.toml").string(), summary);
-  ASSERT_EQ(to_stdout.exit_code, 0) << read(summary);
+  ASSERT_EQ(to_stdout.exit_code, 0) << test::file_text(summary);
   EXPECT_EQ(to_stdout.out, std::string(diff).replace(diff.find("xyzbc.toml"), 10, "again.toml"));
-  EXPECT_EQ(read(dir / "again.toml").substr(read(dir / "again.toml").find("[machine]")),
-            read(dir / "xyzbc.toml").substr(read(dir / "xyzbc.toml").find("[machine]")));
+  EXPECT_EQ(test::file_text(dir / "again.toml").substr(test::file_text(dir / "again.toml").find("[machine]")),
+            test::file_text(dir / "xyzbc.toml").substr(test::file_text(dir / "xyzbc.toml").find("[machine]")));
   fs::remove_all(dir.parent_path());
 }
 

@@ -31,13 +31,6 @@ fs::path scratch(const std::string& name) {
   return f;
 }
 
-std::string read(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 void write(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
 std::size_t count(const std::string& text, const std::string& what) {
@@ -110,7 +103,7 @@ constexpr int kFigures = 12;
 TEST_F(VolcompReport, PageHoldsEveryPartAndNeedsNothingElse) {
   ASSERT_EQ(output_->exit_code, 0) << output_->out;
   EXPECT_NE(output_->out.find("(6 sections, 12 figures, 2 measurements"), std::string::npos) << output_->out;
-  const std::string html = read(*page_);
+  const std::string html = test::file_text(*page_);
   for (const char* id : {"machine", "tables", "location", "balance", "volume", "measurements"})
     EXPECT_NE(html.find("<section id=\"" + std::string(id) + "\">"), std::string::npos) << id;
   // Self-contained: no script, style sheet, font or frame from elsewhere, no address at all.
@@ -147,7 +140,7 @@ TEST_F(VolcompReport, PageHoldsEveryPartAndNeedsNothingElse) {
 // The checksums on the page are the files' (coreutils' sha256sum, the tool a reader uses).
 TEST_F(VolcompReport, ChecksumsAreTheFilesOwn) {
   ASSERT_EQ(output_->exit_code, 0) << output_->out;
-  const std::string html = read(*page_);
+  const std::string html = test::file_text(*page_);
   for (const std::string& file :
        {test::machine_path("mc300"), test::source_path("tables/data/mc300/x.csv"), test::source_path("tables/data/mc300/y.csv"),
         test::source_path("tables/data/mc300/z.csv"), test::source_path("tables/data/mc300/b.csv"),
@@ -186,7 +179,7 @@ test::CommandResult chromium(const std::string& options, const fs::path& page, c
 // (no D-Bus, no GPU) are not the page's.
 std::vector<std::string> page_messages(const fs::path& log) {
   std::vector<std::string> found;
-  std::istringstream lines(read(log));
+  std::istringstream lines(test::file_text(log));
   for (std::string line; std::getline(lines, line);)
     if (line.find("CONSOLE") != std::string::npos || line.find("net::ERR_") != std::string::npos ||
         line.find("Uncaught") != std::string::npos)
@@ -211,7 +204,7 @@ window.addEventListener('load', function () {
 });
 </script>
 )";
-  std::string html = read(page);
+  std::string html = test::file_text(page);
   const std::size_t end = html.rfind("</body>");
   html.insert(end == std::string::npos ? html.size() : end, probe);
   const fs::path copy = folder / "probed.html";
@@ -224,7 +217,7 @@ TEST_F(VolcompReport, BrowserDecodesEveryPictureWithoutRequestsOrConsoleMessages
   ASSERT_EQ(output_->exit_code, 0) << output_->out;
   const fs::path folder = scratch("dom");
   const test::CommandResult dom = chromium("--dump-dom", probed_copy(*page_, folder), folder / "chromium.log");
-  ASSERT_EQ(dom.exit_code, 0) << read(folder / "chromium.log");
+  ASSERT_EQ(dom.exit_code, 0) << test::file_text(folder / "chromium.log");
   const std::size_t at = dom.out.find("<pre id=\"vc-probe\">");
   ASSERT_NE(at, std::string::npos) << "the probe did not run: " << dom.out.substr(0, 300);
   const std::string probe = dom.out.substr(at + 19, dom.out.find("</pre>", at) - at - 19);
@@ -245,7 +238,7 @@ TEST(VolcompReportBrowser, ProbeSeesBrokenPicturesRequestsAndConsoleErrors) {
   const test::CommandResult dom = chromium("--dump-dom", probed_copy(folder / "bad.html", folder), folder / "chromium.log");
   ASSERT_EQ(dom.exit_code, 0);
   EXPECT_NE(dom.out.find("images=2 decoded=0 fetched=1 [http://192.0.2.1/x.png]"), std::string::npos) << dom.out;
-  EXPECT_EQ(page_messages(folder / "chromium.log").size(), 2u) << read(folder / "chromium.log");
+  EXPECT_EQ(page_messages(folder / "chromium.log").size(), 2u) << test::file_text(folder / "chromium.log");
   fs::remove_all(folder);
 }
 
@@ -260,8 +253,8 @@ TEST_F(VolcompReport, PrintsToFourteenA4Pages) {
   const fs::path pdf = folder / "report.pdf";
   const test::CommandResult r =
       chromium("--no-pdf-header-footer --print-to-pdf='" + pdf.string() + "'", *page_, folder / "chromium.log");
-  ASSERT_EQ(r.exit_code, 0) << read(folder / "chromium.log");
-  const std::string bytes = read(pdf);
+  ASSERT_EQ(r.exit_code, 0) << test::file_text(folder / "chromium.log");
+  const std::string bytes = test::file_text(pdf);
   ASSERT_EQ(bytes.rfind("%PDF-", 0), 0u) << "not a PDF";
   const std::regex page_object("/Type\\s*/Page[^s]");
   const auto pages = std::distance(std::sregex_iterator(bytes.begin(), bytes.end(), page_object), std::sregex_iterator());
@@ -279,8 +272,8 @@ TEST_F(VolcompReport, ScreenshotShowsThePage) {
   const fs::path png = folder / "report.png";
   const test::CommandResult r = chromium("--hide-scrollbars --window-size=1280,1600 --screenshot='" + png.string() + "'",
                                          *page_, folder / "chromium.log");
-  ASSERT_EQ(r.exit_code, 0) << read(folder / "chromium.log");
-  const std::string bytes = read(png);
+  ASSERT_EQ(r.exit_code, 0) << test::file_text(folder / "chromium.log");
+  const std::string bytes = test::file_text(png);
   ASSERT_GT(bytes.size(), 50000u) << "an empty page";
   EXPECT_EQ(bytes.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
   const auto be32 = [&](std::size_t at) {
@@ -381,11 +374,11 @@ TEST(VolcompPlotVolume, BadToolLengthsAreRefusedWithoutFiles) {
 // Runs a report that must fail: non-zero exit, `message` in what it printed, and the page at
 // -o as it was before (absent, or an older page left untouched).
 void expect_refused(const std::string& arguments, const std::string& message, const fs::path& page) {
-  const std::string before = fs::exists(page) ? read(page) : std::string("(none)");
+  const std::string before = fs::exists(page) ? test::file_text(page) : std::string("(none)");
   const test::CommandResult r = test::run_volcomp("report " + arguments + " -o " + page.string());
   EXPECT_NE(r.exit_code, 0) << arguments;
   EXPECT_NE(r.out.find(message), std::string::npos) << "expected \"" << message << "\" in: " << r.out;
-  EXPECT_EQ(fs::exists(page) ? read(page) : std::string("(none)"), before) << "the page was written or changed";
+  EXPECT_EQ(fs::exists(page) ? test::file_text(page) : std::string("(none)"), before) << "the page was written or changed";
   // No temporary left beside it either.
   for (const auto& entry : fs::directory_iterator(page.parent_path()))
     EXPECT_NE(entry.path().filename().string().rfind("." + page.filename().string(), 0), 0u) << entry.path();
@@ -412,7 +405,7 @@ TEST(VolcompReportBadInput, ClearErrorAndNoPage) {
   // An older page stays as it was.
   write(page, "<html>an older report</html>\n");
   expect_refused(mc300 + " --measurements " + (folder / "nowhere").string(), "no such folder", page);
-  EXPECT_EQ(read(page), "<html>an older report</html>\n");
+  EXPECT_EQ(test::file_text(page), "<html>an older report</html>\n");
   fs::remove_all(folder);
 }
 

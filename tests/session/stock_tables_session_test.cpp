@@ -32,14 +32,6 @@ const std::string kStockIni = "kins/configs/mc300/mc300_stock.ini";
 const std::string kTables = "kins/configs/mc300/stock_tables";
 const char kAxes[] = "xyzbc";
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read " + path.string());
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 std::string comp_file_name(int joint) { return "joint_" + std::to_string(joint) + "_" + kAxes[joint] + ".comp"; }
 
 class StockTablesSession : public ::testing::Test {
@@ -83,7 +75,7 @@ class StockTablesSession : public ::testing::Test {
     std::vector<fit_tables::LinuxcncComp> comps;
     for (int j = 0; j < 5; ++j)
       comps.push_back(folder.empty() ? fit_tables::LinuxcncComp{}
-                                     : fit_tables::read_linuxcnc_comp(read_text(fs::path(folder) / comp_file_name(j)), 1));
+                                     : fit_tables::read_linuxcnc_comp(test::file_text(fs::path(folder) / comp_file_name(j)), 1));
     std::vector<fit_tables::LinuxcncCompJoint> joints;
     for (int j = 0; j < 5; ++j) {
       const std::string section = "JOINT_" + std::to_string(j);
@@ -134,7 +126,7 @@ TEST_F(StockTablesSession, ShippedTablesAreTheFitsTables) {
     const std::vector<fit_tables::LinuxcncCompFile> fitted = fit_tables::linuxcnc_comp_files(*model_, study_->set, x);
     ASSERT_EQ(fitted.size(), 5u);
     for (const fit_tables::LinuxcncCompFile& f : fitted) {
-      const fit_tables::LinuxcncComp shipped = fit_tables::read_linuxcnc_comp(read_text(folder / f.file_name), 1);
+      const fit_tables::LinuxcncComp shipped = fit_tables::read_linuxcnc_comp(test::file_text(folder / f.file_name), 1);
       const fit_tables::LinuxcncComp now = fit_tables::read_linuxcnc_comp(f.text, 1);
       ASSERT_EQ(shipped.nominal, now.nominal) << what << " " << f.file_name;
       for (std::size_t i = 0; i < now.nominal.size(); ++i)

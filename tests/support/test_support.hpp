@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -89,6 +90,12 @@ inline CommandResult run_volcomp(const std::string& args) { return run_command(s
 // The same with stdout alone (stderr to `stderr_file`).
 inline CommandResult run_volcomp_stdout(const std::string& args, const std::string& stderr_file) {
   return run_command(std::string(VC_VOLCOMP) + " " + args + " 2>'" + stderr_file + "'");
+}
+
+// A file's bytes; empty if it cannot be read (a test that expects the file says so itself).
+inline std::string file_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
 inline std::string trimmed(const std::string& s) {

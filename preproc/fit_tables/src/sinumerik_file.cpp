@@ -335,6 +335,28 @@ class SinumerikReader {
     field = Field{v, {path_, line, col}};
   }
 
+  // The entries LEC and CEC tables share, by the variable's name after its prefix: "" a node's
+  // value (its index N the second one), _STEP, _MIN, _MAX, _IS_MODULO. False for any other.
+  bool set_shared(PendingTable& t, const std::string& name, const std::string& suffix,
+                  const std::vector<std::pair<std::string, int>>& args, double v, int line, int value_col) {
+    if (suffix.empty()) {
+      const int n = integer(args[1].first, line, args[1].second, "the node N");
+      if (t.values.count(n))
+        fail(line, args[1].second, "node " + std::to_string(n) + " is set twice (first at " +
+                                       t.values.at(n).where.to_string() + ")");
+      t.values[n] = Field{v, {path_, line, args[1].second}};
+      return true;
+    }
+    std::optional<Field>* field = suffix == "_STEP"        ? &t.step
+                                  : suffix == "_MIN"       ? &t.min
+                                  : suffix == "_MAX"       ? &t.max
+                                  : suffix == "_IS_MODULO" ? &t.modulo
+                                                           : nullptr;
+    if (!field) return false;
+    set(*field, v, "$" + name, line, value_col);
+    return true;
+  }
+
   void lec(const std::string& name, const std::vector<std::pair<std::string, int>>& args, const std::string& value,
            int line, int col, int name_col, int value_col) {
     const bool values = name == "AA_ENC_COMP";
@@ -351,22 +373,8 @@ class SinumerikReader {
     const auto& axis_arg = args.back();
     const int a = axis(axis_arg.first, line, axis_arg.second);
     PendingTable& t = table(a, line, col);
-    const double v = number(value, line, value_col);
-    if (values) {
-      const int n = integer(args[1].first, line, args[1].second, "the node N");
-      if (t.values.count(n))
-        fail(line, args[1].second, "node " + std::to_string(n) + " is set twice (first at " +
-                                       t.values.at(n).where.to_string() + ")");
-      t.values[n] = Field{v, {path_, line, args[1].second}};
-    } else if (name == "AA_ENC_COMP_STEP") {
-      set(t.step, v, "$" + name, line, value_col);
-    } else if (name == "AA_ENC_COMP_MIN") {
-      set(t.min, v, "$" + name, line, value_col);
-    } else if (name == "AA_ENC_COMP_MAX") {
-      set(t.max, v, "$" + name, line, value_col);
-    } else {
-      set(t.modulo, v, "$" + name, line, value_col);
-    }
+    set_shared(t, name, name.substr(std::string("AA_ENC_COMP").size()), args, number(value, line, value_col), line,
+               value_col);  // every LEC variable is a shared one (checked above)
   }
 
   void cec(const std::string& name, const std::vector<std::pair<std::string, int>>& args, const std::string& value,
@@ -392,21 +400,8 @@ class SinumerikReader {
       return;
     }
     const double v = number(value, line, value_col);
-    if (values) {
-      const int n = integer(args[1].first, line, args[1].second, "the node N");
-      if (t.values.count(n))
-        fail(line, args[1].second, "node " + std::to_string(n) + " is set twice (first at " +
-                                       t.values.at(n).where.to_string() + ")");
-      t.values[n] = Field{v, {path_, line, args[1].second}};
-    } else if (name == "AN_CEC_STEP") {
-      set(t.step, v, "$" + name, line, value_col);
-    } else if (name == "AN_CEC_MIN") {
-      set(t.min, v, "$" + name, line, value_col);
-    } else if (name == "AN_CEC_MAX") {
-      set(t.max, v, "$" + name, line, value_col);
-    } else if (name == "AN_CEC_IS_MODULO") {
-      set(t.modulo, v, "$" + name, line, value_col);
-    } else if (v != 0.0) {  // DIRECTION, MULT_BY_TABLE
+    if (set_shared(t, name, name.substr(std::string("AN_CEC").size()), args, v, line, value_col)) return;
+    if (v != 0.0) {  // DIRECTION, MULT_BY_TABLE
       fail(line, value_col, "$" + name + " other than 0 is not read here (the writer writes 0: both directions, "
                                          "no table multiplication)");
     }

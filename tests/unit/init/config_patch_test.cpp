@@ -49,7 +49,7 @@ void expect_no_stock_pin(const fs::path& folder, const std::string& prefix) {
   for (const auto& entry : fs::recursive_directory_iterator(folder)) {
     if (!entry.is_regular_file()) continue;
     if (entry.path().extension() != ".ini" && entry.path().extension() != ".hal") continue;
-    for (const std::string& line : lines_of(test::read_file(entry.path())))
+    for (const std::string& line : lines_of(test::file_text(entry.path())))
       EXPECT_EQ(line.substr(0, line.find('#')).find(prefix), std::string::npos) << entry.path() << ": " << line;
   }
 }
@@ -71,8 +71,8 @@ TEST(ConfigPatch, PutsVolkinsInTheXyzbcSample) {
   const InitResult r = init_and_patch(copy / "xyzbc-trt.ini", "xyzbc.toml");
   EXPECT_EQ(r.machine_path, "xyzbc.toml");  // inside the folder: relative to it
 
-  const std::vector<std::string> before = lines_of(test::read_file(original / "xyzbc-trt.ini"));
-  const std::vector<std::string> after = lines_of(test::read_file(copy / "xyzbc-trt.ini"));
+  const std::vector<std::string> before = lines_of(test::file_text(original / "xyzbc-trt.ini"));
+  const std::vector<std::string> after = lines_of(test::file_text(copy / "xyzbc-trt.ini"));
   EXPECT_NE(std::find(after.begin(), after.end(),
                       "KINEMATICS = volkins machine=xyzbc.toml coordinates=xyzbc sparm=identityfirst"),
             after.end());
@@ -99,7 +99,7 @@ TEST(ConfigPatch, PutsVolkinsInTheXyzbcSample) {
     if (!entry.is_regular_file()) continue;
     const fs::path twin = original / fs::relative(entry.path(), copy);
     if (entry.path().filename() != "xyzbc-trt.ini" && entry.path().filename() != "xyzbc.toml") {
-      EXPECT_EQ(test::read_file(entry.path()), test::read_file(twin)) << entry.path();
+      EXPECT_EQ(test::file_text(entry.path()), test::file_text(twin)) << entry.path();
     }
   }
 }
@@ -117,13 +117,13 @@ TEST(ConfigPatch, PutsVolkinsInTheBridgemillSample) {
   const auto stock = [](const std::string& line) {
     return line.find("5axiskins.") != std::string::npos || line.find("KINEMATICS = 5axiskins") != std::string::npos;
   };
-  EXPECT_EQ(added_lines(lines_of(test::read_file(original / "5axis.ini")), lines_of(test::read_file(copy / "5axis.ini")), stock),
+  EXPECT_EQ(added_lines(lines_of(test::file_text(original / "5axis.ini")), lines_of(test::file_text(copy / "5axis.ini")), stock),
             (std::set<std::string>{" KINEMATICS = volkins machine=5axis.toml coordinates=xyzbcwy world=tcp",
                                    "# volkins (volcomp init): its update function runs first in the servo thread; it "
                                    "takes LinuxCNC's tool length offset",
                                    "HALCMD = addf volkins.update servo-thread 1", "HALCMD = net :tool-len volkins.tool-length"}));
-  const std::vector<std::string> hal_before = lines_of(test::read_file(original / "5axisgui.hal"));
-  const std::vector<std::string> hal_after = lines_of(test::read_file(copy / "5axisgui.hal"));
+  const std::vector<std::string> hal_before = lines_of(test::file_text(original / "5axisgui.hal"));
+  const std::vector<std::string> hal_after = lines_of(test::file_text(copy / "5axisgui.hal"));
   EXPECT_EQ(added_lines(hal_before, hal_after, stock), std::set<std::string>{});
   EXPECT_EQ(hal_after.size() + 1, hal_before.size());  // only `net :pivot-len => 5axiskins.pivot-length` went
   EXPECT_NE(std::find(hal_after.begin(), hal_after.end(), "net :pivot-len <= pivotsum.out"), hal_after.end());
@@ -132,7 +132,7 @@ TEST(ConfigPatch, PutsVolkinsInTheBridgemillSample) {
     if (!entry.is_regular_file()) continue;
     const std::string name = entry.path().filename().string();
     if (name != "5axis.ini" && name != "5axisgui.hal" && name != "5axis.toml") {
-      EXPECT_EQ(test::read_file(entry.path()), test::read_file(original / fs::relative(entry.path(), copy))) << entry.path();
+      EXPECT_EQ(test::file_text(entry.path()), test::file_text(original / fs::relative(entry.path(), copy))) << entry.path();
     }
   }
 }
@@ -168,7 +168,7 @@ TEST(ConfigPatch, RewritesTheConfigurationsOwnHalFilesByteForByte) {
   const InitResult r = init_and_patch(dir / "own.ini");
   ::unsetenv("HALLIB_DIR");
 
-  EXPECT_EQ(test::read_file(dir / "kins.hal"),
+  EXPECT_EQ(test::file_text(dir / "kins.hal"),
             "loadrt [KINS]KINEMATICS\n"
             "net :tool <= motion.tooloffset.z => volkins.tool-length\n"
             "net :kt kinstype.is-1 => gui.led  \n"
@@ -180,7 +180,7 @@ TEST(ConfigPatch, RewritesTheConfigurationsOwnHalFilesByteForByte) {
   patched_ini.insert(patched_ini.find("[EMCIO]"),
                      "# volkins (volcomp init): its update function runs first in the servo thread\r\n"
                      "HALCMD = addf volkins.update servo-thread 1\r\n");
-  EXPECT_EQ(test::read_file(dir / "own.ini"), patched_ini);
+  EXPECT_EQ(test::file_text(dir / "own.ini"), patched_ini);
   // The geometry: A's pole [xr, yr + dy, zr + dz], C's [0, -dy, -dz], the fixture [-xr, -yr, -zr].
   const NominalMachine& m = r.machine;
   EXPECT_EQ(m.workpiece_chain[0].pole_mm, (Vector3{10, 5, 7}));

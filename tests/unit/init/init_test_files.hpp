@@ -1,4 +1,4 @@
-// Helpers of the `volcomp init` tests: scratch folders, files written and read whole, the
+// Helpers of the `volcomp init` tests: scratch folders, files written whole (read: file_text), the
 // installed LinuxCNC sample configurations, and `patch -p1` run on a folder.
 #pragma once
 
@@ -9,6 +9,8 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+
+#include "test_support.hpp"
 
 namespace vc::test {
 
@@ -41,11 +43,6 @@ inline fs::path scratch_folder(const std::string& name) {
 inline void write_file(const fs::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   out << text;
-}
-
-inline std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
 // `patch -p1 -d folder < diff_file`, quietly; its exit code.

@@ -468,7 +468,7 @@ TEST(StockKinematics, Refuses5axiskinsPivotLengthsThatDoNotFollowTheToolOffset) 
     EXPECT_EQ(e.message().rfind(c.message, 0), 0u) << e.what();
   }
   // A, U and V: 5axiskins passes them through one-to-one, volkins does not.
-  std::string text = test::read_file(ini);
+  std::string text = test::file_text(ini);
   text.replace(text.find("KINEMATICS = 5axiskins"), 22, "KINEMATICS = 5axiskins coordinates=xyzbcwu");
   text.replace(text.find("JOINTS = 6"), 10, "JOINTS = 7");
   test::write_file(ini, text);

@@ -41,7 +41,7 @@ std::string patched(const std::string& name, const std::string& original, const 
   if (diff_out) *diff_out = diff;
   test::write_file(dir / "change.diff", diff);
   EXPECT_EQ(test::apply_patch(dir, dir / "change.diff"), 0) << diff;
-  const std::string result = test::read_file(dir / "f.txt");
+  const std::string result = test::file_text(dir / "f.txt");
   EXPECT_EQ(result, joined(edits.result())) << diff;
   return result;
 }
