@@ -3,7 +3,7 @@
 // spreadsheet opens, and a bar chart (gnuplot; with the same CSV beside it).
 #include <sstream>
 
-#include "atomic_output.hpp"
+#include "vc/tables/atomic_file.hpp"
 #include "commands.hpp"
 #include "format.hpp"
 #include "vc/identify/balance.hpp"
@@ -71,7 +71,7 @@ int run_balance(const BalanceArgs& args, std::ostream& out) {
          " measure the top of the list first)\n";
   // The plot first: a failing gnuplot leaves no output at all.
   if (!args.plot.empty()) draw_bar_chart(b, model.info.name, args.plot);
-  if (!args.output.empty()) write_atomically(args.output, [&](std::ostream& csv) { write_csv(b, csv); });
+  if (!args.output.empty()) tables::write_atomically(args.output, [&](std::ostream& csv) { write_csv(b, csv); });
   return 0;
 }
 

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "atomic_output.hpp"
+#include "vc/tables/atomic_file.hpp"
 #include "commands.hpp"
 #include "format.hpp"
 #include "program_files.hpp"
@@ -183,7 +183,7 @@ int run_fit_tables(const FitTablesArgs& args, std::ostream& out) {
   for (const auto& [name, text] : files) {
     const fs::path path = fs::path(args.output) / name;
     fs::create_directories(path.parent_path());
-    write_atomically(path.string(), [&](std::ostream& f) { f << text; });
+    tables::write_atomically(path.string(), [&](std::ostream& f) { f << text; });
   }
 
   out << "fit-tables: " << model.info.name << " with " << controller.name << " (" << controller.title << ")\n";

@@ -13,7 +13,7 @@
 #include <set>
 #include <sstream>
 
-#include "atomic_output.hpp"
+#include "vc/tables/atomic_file.hpp"
 #include "commands.hpp"
 #include "format.hpp"
 #include "vc/identify/circular_test.hpp"
@@ -227,7 +227,7 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
   }
 
   if (!args.output.empty()) {
-    write_atomically(args.output, [&](std::ostream& csv) {
+    tables::write_atomically(args.output, [&](std::ostream& csv) {
       for (const std::string& c : comments) csv << "# " << c << "\n";
       csv << "# error = actual - nominal\n";
       csv << static_cast<char>(std::tolower(symbol->axis)) << (runs.rotary ? "[deg]" : "[mm]") << "," << args.error
@@ -451,7 +451,7 @@ int run_probe_plan(const ProbePlanArgs& args, std::ostream& out) {
   if (args.output.empty() || args.output == "-") {
     out << program;
   } else {
-    write_atomically(args.output, [&](std::ostream& file) { file << program; });
+    tables::write_atomically(args.output, [&](std::ostream& file) { file << program; });
     std::cerr << "volcomp probe-plan: " << args.output << ", " << o.rotary_positions.size() << " poses, 5 points each\n";
   }
   return 0;

@@ -10,7 +10,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "atomic_output.hpp"
+#include "vc/tables/atomic_file.hpp"
 #include "commands.hpp"
 #include "vc/init/init.hpp"
 #include "vc/machine/load_machine.hpp"
@@ -60,8 +60,8 @@ int run_init(const InitArgs& args, std::ostream& patch_out, std::ostream& report
   check_folder(args.output, "-o");
   if (patch_to_file) check_folder(args.patch, "--patch");
 
-  write_atomically(args.output, [&](std::ostream& out) { out << r.machine_text; });
-  if (patch_to_file) write_atomically(args.patch, [&](std::ostream& out) { out << r.patch.diff; });
+  tables::write_atomically(args.output, [&](std::ostream& out) { out << r.machine_text; });
+  if (patch_to_file) tables::write_atomically(args.patch, [&](std::ostream& out) { out << r.patch.diff; });
   else patch_out << r.patch.diff << std::flush;
 
   report << "volcomp init: " << r.machine.name << " (" << fs::absolute(args.ini).lexically_normal().string() << ")\n"

@@ -9,7 +9,7 @@
 #include <optional>
 #include <stdexcept>
 
-#include "atomic_output.hpp"
+#include "vc/tables/atomic_file.hpp"
 #include "commands.hpp"
 #include "format.hpp"
 #include "vc/machine/load_machine.hpp"
@@ -69,7 +69,7 @@ int run_plot(const PlotArgs& args, std::ostream& out) {
     for (const std::string& n : p.not_drawn) out << "    not drawn: " << n << "\n";
   }
   const std::string listing = (fs::path(args.folder) / "location_errors.csv").string();
-  write_atomically(listing, [&](std::ostream& csv) { csv << plot::location_errors_csv(model); });
+  tables::write_atomically(listing, [&](std::ostream& csv) { csv << plot::location_errors_csv(model); });
   out << "location errors: " << listing << " (every axis line and the spindle line; the non-zero ones:)\n";
   for (const plot::LocationRow& r : plot::location_errors(model))
     if (r.value != 0.0)

@@ -13,7 +13,7 @@
 #include <vector>
 #include <unistd.h>
 
-#include "atomic_output.hpp"
+#include "vc/tables/atomic_file.hpp"
 #include "commands.hpp"
 #include "format.hpp"
 #include "program_files.hpp"
@@ -116,11 +116,11 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
     std::cout.flush();
     if (!std::cout) throw std::runtime_error("cannot write to stdout");
   } else {
-    write_atomically(args.output, [&](std::ostream& out) { summary = predistort::predistort(in, out, job, std::ref(progress)); });
+    tables::write_atomically(args.output, [&](std::ostream& out) { summary = predistort::predistort(in, out, job, std::ref(progress)); });
   }
 
   if (!args.line_map.empty())
-    write_atomically(args.line_map, [&](std::ostream& out) { out << line_map.str(); });
+    tables::write_atomically(args.line_map, [&](std::ostream& out) { out << line_map.str(); });
   if (!args.quiet) {
     const auto& c = summary.corrector;
     report << "volcomp predistort: " << summary.lines << " lines, " << c.moves << " moves corrected into "

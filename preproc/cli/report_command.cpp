@@ -5,7 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "atomic_output.hpp"
+#include "vc/tables/atomic_file.hpp"
 #include "commands.hpp"
 #include "format.hpp"
 #include "vc/machine/load_machine.hpp"
@@ -34,7 +34,7 @@ int run_report(const ReportArgs& args, std::ostream& out) {
   options.command = command.str();
   out << "volcomp report: " << model.info.name << " (" << args.machine << ")\n";
   const report::Report r = report::accuracy_report(model, options, out);
-  write_atomically(args.output, [&](std::ostream& html) { html << r.html; });
+  tables::write_atomically(args.output, [&](std::ostream& html) { html << r.html; });
   out << "report written: " << args.output << " (" << r.sections << " sections, " << r.figures << " figures, "
       << r.measurements << " measurements, " << r.html.size() / 1024 << " KiB)\n";
   return 0;

@@ -7,7 +7,7 @@
 #include <optional>
 #include <sstream>
 
-#include "atomic_output.hpp"
+#include "vc/tables/atomic_file.hpp"
 #include "commands.hpp"
 #include "format.hpp"
 #include "program_files.hpp"
@@ -172,7 +172,7 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
     local.min_support = args.min_support;
     shop::LocalSummary summary;
     std::ifstream in = open_program(args.input);
-    write_atomically(args.output, [&](std::ostream& out) {
+    tables::write_atomically(args.output, [&](std::ostream& out) {
       summary = shop::shift_program(model, part, in, files.setup(args.input, model, tcp), provenance, out, local);
     });
     report << "  local: " << summary.moves_shifted << " moves shifted (" << summary.pieces << " pieces), coverage "
@@ -247,7 +247,7 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
   for (const auto& t : tuned.tables) job.provenance.tables.push_back(t.table.path());
   std::ifstream in = open_program(nominal);
   predistort::Summary summary;
-  write_atomically(args.output, [&](std::ostream& out) { summary = predistort::predistort(in, out, job); });
+  tables::write_atomically(args.output, [&](std::ostream& out) { summary = predistort::predistort(in, out, job); });
   report << "  " << nominal << " pre-distorted with the updated tables: " << summary.corrector.pieces << " pieces\n";
   for (const std::string& note : predistort::correction_notes(summary, job)) report << "  " << note << "\n";
   return 0;

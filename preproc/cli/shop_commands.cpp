@@ -6,7 +6,7 @@
 #include <map>
 #include <optional>
 
-#include "atomic_output.hpp"
+#include "vc/tables/atomic_file.hpp"
 #include "commands.hpp"
 #include "format.hpp"
 #include "program_files.hpp"
@@ -41,7 +41,7 @@ int run_simulate(const SimulateArgs& args, std::ostream& report) {
   if (!in) throw LoadError({args.input}, "cannot open the program");
   long samples = 0, cutting = 0;
   double largest = 0;
-  write_atomically(args.output, [&](std::ostream& out) {
+  tables::write_atomically(args.output, [&](std::ostream& out) {
     shop::write_path_header(out, {"volcomp simulate: tool tip and axis in the part frame, error = tip - ideal tip",
                             "machine " + args.machine + ", program " + args.input,
                             "compensation " + (args.compensation.empty() ? std::string("none") : args.compensation) +
@@ -87,7 +87,7 @@ int run_measure(const MeasureArgs& args, std::ostream& report) {
   }
   double largest = 0;
   for (const auto& p : measured) largest = std::max(largest, std::abs(*p.deviation_mm));
-  write_atomically(args.output, [&](std::ostream& out) {
+  tables::write_atomically(args.output, [&](std::ostream& out) {
     shop::write_cmm_report(out, measured,
                      {"volcomp measure: virtual CMM, deviation along the normal, + = material left",
                       "tool path " + args.path + ", plan " + args.plan,

@@ -9,6 +9,7 @@
 #include "format.hpp"
 #include "program_files.hpp"
 #include "vc/machine/load_machine.hpp"
+#include "vc/tables/atomic_file.hpp"
 #include "vc/trace/session_trace.hpp"
 
 namespace vc::cli {
@@ -34,9 +35,7 @@ int run_trace(const TraceArgs& args, std::ostream& out) {
   }
   const double rms = std::sqrt(sum_sq / static_cast<double>(summary.samples.size()));
 
-  if (!args.output.empty()) {
-    std::ofstream csv(args.output);
-    if (!csv) throw std::runtime_error("cannot write " + args.output);
+  if (!args.output.empty()) tables::write_atomically(args.output, [&](std::ostream& csv) {
     csv << "t_s,ex_um,ey_um,ez_um,e_um,ek_urad,gain\n";
     for (const trace::SampleCheck& s : summary.samples) {
       csv << format_fixed(static_cast<double>(s.sample) * args.servo_period_s, 3);
@@ -45,7 +44,7 @@ int run_trace(const TraceArgs& args, std::ostream& out) {
       csv << ',' << format_number(s.tip_error_mm.norm() * 1e3) << ',' << format_number(s.direction_error_rad * 1e6)
           << ',' << format_number(session.gain[s.sample]) << '\n';
     }
-  }
+  });
   out << "trace: " << args.trace << " (" << summary.samples.size() << " samples checked, " << summary.skipped
       << " skipped at tool changes)\n"
       << "tool tip error: max " << format_fixed(max_tip * 1e3, 3) << " um, RMS " << format_fixed(rms * 1e3, 3)

@@ -71,7 +71,8 @@ LaserRuns read_laser_runs(const std::string& path) {
       if (name.rfind("run", 0) == 0) name = name.substr(3);
       const char sign = name.empty() ? ' ' : name.back();
       const std::string number = name.substr(0, name.empty() ? 0 : name.size() - 1);
-      if ((sign != '+' && sign != '-') || number.empty() ||
+      // At most 6 digits: a run's number is a count of runs, and std::stoi must not overflow.
+      if ((sign != '+' && sign != '-') || number.empty() || number.size() > 6 ||
           !std::all_of(number.begin(), number.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); }))
         throw LoadError({path, header.line, header.cells[i].column},
                         "'" + header.cells[i].text + "' is neither a run column (1+[um], 1-[um], run2+[um], ...) nor target");

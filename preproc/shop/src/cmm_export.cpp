@@ -79,7 +79,8 @@ double last_digit(std::string text) {
   int exponent = 0;
   const std::size_t e = text.find_first_of("eE");
   if (e != std::string::npos) {
-    exponent = std::atoi(text.c_str() + e + 1);
+    // Clamped: the cell was read as a finite number, but its exponent's digits may not fit an int.
+    exponent = static_cast<int>(std::clamp(std::strtol(text.c_str() + e + 1, nullptr, 10), -400L, 400L));
     text.erase(e);
   }
   const std::size_t point = text.find_first_of(".,");

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <toml++/toml.h>
 
+#include "vc/tables/atomic_file.hpp"
 #include "vc/tables/symbols.hpp"
 #include "vc/tables/units.hpp"
 
@@ -95,8 +96,10 @@ void write_location(const LocationValue& v, char letter, const std::string& chai
 }  // namespace
 
 void write_table_csv(const tables::ErrorTable& table, const std::string& path, const std::vector<std::string>& comments) {
-  std::ofstream out(path, std::ios::trunc);
-  if (!out) throw std::runtime_error("cannot write " + path);
+  tables::write_atomically(path, [&](std::ostream& out) { write_table_csv(table, out, comments); });
+}
+
+void write_table_csv(const tables::ErrorTable& table, std::ostream& out, const std::vector<std::string>& comments) {
   for (const std::string& c : comments) out << "# " << c << '\n';
   const auto& grid = table.grid();
   for (std::size_t v = 0; v < grid.size(); ++v)
@@ -120,7 +123,6 @@ void write_table_csv(const tables::ErrorTable& table, const std::string& path, c
     }
     out << '\n';
   }
-  if (!out) throw std::runtime_error("cannot write " + path);
 }
 
 tables::ErrorTable zero_table(const machine::Model& model, int joint, int nodes,
@@ -204,9 +206,7 @@ std::string write_machine_with_tables(const machine::Model& model, const std::st
     if (e.text.empty()) {
       write_table_csv(e.table, (out_dir / e.file_name).string(), comments);
     } else {
-      std::ofstream copy(out_dir / e.file_name, std::ios::trunc);
-      copy << e.text;
-      if (!copy) throw std::runtime_error("cannot write " + (out_dir / e.file_name).string());
+      tables::write_atomically((out_dir / e.file_name).string(), [&](std::ostream& copy) { copy << e.text; });
     }
     if (std::find(existing.begin(), existing.end(), std::pair(letter, e.file_name)) != existing.end()) continue;
     const auto section = std::find_if(sections.begin(), sections.end(), [&](const AxisSection& s) { return s.letter == letter; });
@@ -229,10 +229,12 @@ std::string write_machine_with_tables(const machine::Model& model, const std::st
   }
   for (const auto& [at, text] : insertions) lines.insert(lines.begin() + at, text.begin(), text.end());
 
+  // The machine file last: killed before it, the folder keeps the old machine file, complete,
+  // beside the new tables (each also complete).
   const fs::path machine_out = out_dir / source.filename();
-  std::ofstream out(machine_out, std::ios::trunc);
-  for (const std::string& l : lines) out << l << '\n';
-  if (!out) throw std::runtime_error("cannot write " + machine_out.string());
+  tables::write_atomically(machine_out.string(), [&](std::ostream& out) {
+    for (const std::string& l : lines) out << l << '\n';
+  });
   return machine_out.string();
 }
 

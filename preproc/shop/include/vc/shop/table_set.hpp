@@ -5,6 +5,7 @@
 // and the tuning is a separate, visible table per axis, summed with them.
 #pragma once
 
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -28,9 +29,11 @@ struct LocationValue {
   double value = 0.0;
 };
 
-// Writes a table as CSV: positions in mm or deg, translations in um, rotations in urad.
+// Writes a table as CSV: positions in mm or deg, translations in um, rotations in urad; to a
+// file (atomically: the old file or the complete new one) or to a stream.
 void write_table_csv(const tables::ErrorTable& table, const std::string& path,
                      const std::vector<std::string>& comments);
+void write_table_csv(const tables::ErrorTable& table, std::ostream& out, const std::vector<std::string>& comments);
 
 // Writes `folder`/<machine file name> and the extra tables beside it; returns the machine
 // file's path. A table already listed under the same axis with the same file name (an

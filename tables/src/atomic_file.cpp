@@ -1,12 +1,29 @@
-#include "atomic_output.hpp"
+#include "vc/tables/atomic_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
-#include <unistd.h>
 
-namespace vc::cli {
+namespace vc::tables {
+
+namespace {
+
+// The data on disk before the rename makes it visible: without it a power cut can leave the
+// new name on an empty file (ext4's delayed allocation). A process kill alone would not need it.
+void sync_to_disk(const std::string& path) {
+  const int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0 || fsync(fd) != 0) {
+    if (fd >= 0) close(fd);
+    throw std::runtime_error("cannot flush " + path + " to disk");
+  }
+  close(fd);
+}
+
+}  // namespace
 
 void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
   namespace fs = std::filesystem;
@@ -23,6 +40,7 @@ void write_atomically(const std::string& path, const std::function<void(std::ost
     if (!out) throw std::runtime_error("cannot write " + temporary);
     fs::permissions(temporary, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read |
                                    fs::perms::others_read);
+    sync_to_disk(temporary);
     fs::rename(temporary, output);
   } catch (...) {
     std::error_code ignored;
@@ -31,4 +49,4 @@ void write_atomically(const std::string& path, const std::function<void(std::ost
   }
 }
 
-}  // namespace vc::cli
+}  // namespace vc::tables
