@@ -175,9 +175,16 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
     tables::write_atomically(args.output, [&](std::ostream& out) {
       summary = shop::shift_program(model, part, in, files.setup(args.input, model, tcp), provenance, out, local);
     });
-    report << "  local: " << summary.moves_shifted << " moves shifted (" << summary.pieces << " pieces), coverage "
-           << format_fixed(summary.covered_fraction * 100, 1) << " % of " << format_fixed(summary.cutting_length_mm, 1)
-           << " mm of cutting path, largest shift " << um(summary.largest_shift_mm) << "\n";
+    report << "  local: " << summary.moves_shifted << " moves shifted (" << summary.pieces << " pieces); the tool tip "
+           << "cuts " << format_fixed(summary.cutting_length_mm, 1) << " mm of path on the part, "
+           << format_fixed(summary.covered_fraction * 100, 1) << " % of it within " << format_number(args.radius_mm)
+           << " mm of measured points\n"
+           << "  largest shift of the tool tip on the part " << um(summary.largest_tip_shift_mm)
+           << "; of the linear axes' words " << um(summary.largest_axis_shift_mm)
+           << (summary.largest_axis_shift_mm > 1.5 * summary.largest_tip_shift_mm
+                   ? " (they carry the tool axis's turn times the rotary axes' lever arms too)"
+                   : "")
+           << "\n";
     print_tilt(summary.tilt, report);
     return 0;
   }
@@ -207,10 +214,30 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
     report << "  noise: no freedom left to estimate it (" << fit.points << " points, "
            << format_fixed(fit.effective_unknowns, 1) << " effective unknowns)\n";
   }
-  if (next && fit.scatter_mm >= 0.0)
-    report << "  carried to " << args.next_points << " (" << fit.next_points << " points on " << args.next_program
-           << "'s cuts, " << next->left_out.size() << " on none): " << um(fit.next_carried_median_mm) << " median, "
-           << um(fit.next_carried_largest_mm) << " largest (1 sigma)\n";
+  if (next) {
+    report << "  the next part, " << args.next_points << " (" << fit.next_points << " points on " << args.next_program
+           << "'s cuts, " << next->left_out.size() << " on none), gets two things from this tuning:\n";
+    if (fit.scatter_mm >= 0.0)
+      report << "    this report's noise, carried: " << um(fit.next_carried_median_mm) << " median, "
+             << um(fit.next_carried_largest_mm) << " largest (1 sigma)\n";
+    else
+      report << "    this report's noise, carried: not known (no freedom left to estimate the noise)\n";
+    // The deviations this part could not determine, as the next part's points feel them.
+    std::string felt;
+    int listed = 0;
+    for (const shop::ModelFit::Unseen& u : fit.next_unseen) {
+      if (u.largest_mm_per_unit * 1e3 < 0.05 || listed == 6) break;
+      felt += (listed++ ? ", " : " ") + u.symbol + " " + format_fixed(u.largest_mm_per_unit * 1e3, 2) + " um per " +
+              (u.angle ? "urad" : "um");
+    }
+    report << "    what this part cannot see: the deviations it did not determine stay as the machine file has them, "
+              "and their error is not known from this report, so it cannot be bounded here. ";
+    if (felt.empty())
+      report << "The next part's points hardly feel them (under 0.05 um per um or urad of each)\n";
+    else
+      report << "The next part's points feel it most from (largest move per unit of the undetermined part):" << felt
+             << "; measure those (laser, ballbar, probing) or cut a first part that exercises them\n";
+  }
   if (fit.effective_unknowns > 0.5 * fit.points)
     report << "  warning: the fit spends " << format_fixed(fit.effective_unknowns, 0) << " of " << fit.points
            << " points on its unknowns, so much of the report's noise goes into the tables: measure more points, "

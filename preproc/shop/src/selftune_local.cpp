@@ -50,6 +50,8 @@ bool turns_rotary_axes(const Move& m, unsigned axes) {
 // What the path shift does at a point of a move.
 struct PointChange {
   Position change{};  // program coordinates
+  Eigen::Vector3d tip_on_part = Eigen::Vector3d::Zero();  // the programmed tool tip, part frame
+  double tip_shift_mm = 0.0;                              // how far the change moves it on the part
   bool covered = false;
   enum class Tilt { NotAsked, Done, Unseen, BelowNoise, Singular } tilt = Tilt::NotAsked;
   double tilt_rad = 0.0;
@@ -64,6 +66,10 @@ class PathShift {
 
   // Rotary axes that can turn the tool (any of A B C).
   bool machine_tilts() const { return (axes_ >> 3) != 0; }
+
+  Eigen::Vector3d tip_on_part(const Move& m, const Position& program) const {
+    return points_.ideal_pose(m, program).translation();
+  }
 
   // The change of a point of a move: the tip moved by -gain v and, on a 5-axis move where
   // the points tell it, the tool axis turned by -gain w (selftune_local.hpp).
@@ -89,6 +95,7 @@ class PathShift {
       fit = fit_tool_displacement(anchors_, pose.translation(), pose.linear(), narrow);
     }
     PointChange c;
+    c.tip_on_part = pose.translation();
     c.covered = fit.covered;
     if (!c.covered) return c;
     switch (tilt.tilt) {
@@ -97,9 +104,11 @@ class PathShift {
       case TiltFit::BelowNoise: c.tilt = PointChange::Tilt::BelowNoise; break;
       case TiltFit::Estimated: {
         const Eigen::Vector3d turn = -options_.gain * (pose.linear() * tilt.tilt_rad);
-        if (tilted(m, program, pose, -options_.gain * (pose.linear() * fit.shift_mm), turn, c.change)) {
+        const Eigen::Vector3d tip_change = -options_.gain * (pose.linear() * fit.shift_mm);
+        if (tilted(m, program, pose, tip_change, turn, c.change)) {
           c.tilt = PointChange::Tilt::Done;
           c.tilt_rad = turn.norm();
+          c.tip_shift_mm = tip_change.norm();
           return c;
         }
         // The rotary axes cannot give the turn here: the tip's shift as without it.
@@ -110,6 +119,7 @@ class PathShift {
       }
     }
     const Eigen::Vector3d tip_change = -options_.gain * (pose.linear() * fit.shift_mm);
+    c.tip_shift_mm = tip_change.norm();
     const Eigen::Vector3d dp = tip_jacobian(m, program).colPivHouseholderQr().solve(tip_change);
     for (int i = 0; i < 3; ++i) c.change[static_cast<std::size_t>(i)] = dp[i];
     return c;
@@ -204,8 +214,9 @@ void shifted_pieces(const Move& m, const PathShift& shift, const LocalOptions& o
     return;
   }
   const int n = piece_count(m, options.step_mm, options.tolerance_mm, 0.05);
-  const double length = path_length(m);
-  summary.cutting_length_mm += length;
+  // Lengths on the part (the tool tip in the part frame, piece by piece): where a rotary axis
+  // turns the part, the linear axes' travel is not the length of the contour cut.
+  Eigen::Vector3d tip = shift.tip_on_part(m, m.start);
   bool any = false;
   for (int i = 1; i <= n; ++i) {
     predistort::Piece piece;
@@ -213,12 +224,16 @@ void shifted_pieces(const Move& m, const PathShift& shift, const LocalOptions& o
     piece.fraction = 1.0 / n;
     piece.end = interpreter::point_at(m, static_cast<double>(i) / n);
     const PointChange c = shift.change_at(m, piece.end);
+    const double length = (c.tip_on_part - tip).norm();
+    tip = c.tip_on_part;
+    summary.cutting_length_mm += length;
     const Position& d = c.change;
     for (std::size_t a = 0; a < static_cast<std::size_t>(interpreter::kAxes); ++a) piece.end[a] += d[a];
     const double size = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    summary.largest_shift_mm = std::max(summary.largest_shift_mm, size);
+    summary.largest_axis_shift_mm = std::max(summary.largest_axis_shift_mm, size);
+    summary.largest_tip_shift_mm = std::max(summary.largest_tip_shift_mm, c.tip_shift_mm);
     any = any || size > 0 || c.tilt_rad > 0;
-    if (c.covered) covered_length += length / n;
+    if (c.covered) covered_length += length;
     count_tilt(c, shift.machine_tilts(), summary);
     pieces.push_back(piece);
   }

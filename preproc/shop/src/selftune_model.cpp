@@ -261,28 +261,38 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
   // How much of each deviation the part determines: the diagonal of the resolution matrix
   // (data + prior)^-1 data, 1 where the points alone fix an unknown, 0 where only the prior
   // does, averaged over the deviation's unknowns.
-  const Eigen::VectorXd resolution = solver.solve(data).diagonal();
+  const Eigen::MatrixXd resolution_matrix = solver.solve(data);
+  const Eigen::VectorXd resolution = resolution_matrix.diagonal();
   // The noise: the influence matrix H = A (A^T A + prior)^-1 A^T maps the report onto the
   // tuned model's prediction at the points; its trace is what the fit spends of them, and a
   // scatter s per point reaches prediction k as s |H row k|.
   fit.effective_unknowns = resolution.sum();
   const double freedom = static_cast<double>(rows) - fit.effective_unknowns;
+  // The next part's sensitivities (mm per scaled unknown), for both the noise and the unseen.
+  Eigen::MatrixXd next_scaled;
+  if (next && !next->points.empty()) {
+    Eigen::MatrixXd a_next(static_cast<Eigen::Index>(next->points.size()), cols);
+    for (std::size_t k = 0; k < next->points.size(); ++k)
+      sensitivities(next->points[k], next->path, a_next.row(static_cast<Eigen::Index>(k)));
+    fit.next_points = static_cast<int>(next->points.size());
+    next_scaled = a_next * scale.asDiagonal();
+  }
   if (rows > 0 && freedom > 0.5) {
     fit.scatter_mm = residual_norm / std::sqrt(freedom);
     const Eigen::MatrixXd gain = solver.solve(as.transpose());  // report -> scaled unknowns
     const Eigen::MatrixXd influence = as * gain;
     std::tie(fit.carried_median_mm, fit.carried_largest_mm) = carried(fit.scatter_mm, influence);
     // The next part's points: the same map from this report onto the tuned model there.
-    if (next && !next->points.empty()) {
-      Eigen::MatrixXd a_next(static_cast<Eigen::Index>(next->points.size()), cols);
-      for (std::size_t k = 0; k < next->points.size(); ++k)
-        sensitivities(next->points[k], next->path, a_next.row(static_cast<Eigen::Index>(k)));
-      fit.next_points = static_cast<int>(next->points.size());
-      const Eigen::MatrixXd next_influence = a_next * scale.asDiagonal() * gain;
-      std::tie(fit.next_carried_median_mm, fit.next_carried_largest_mm) = carried(fit.scatter_mm, next_influence);
-    }
+    if (next_scaled.size() > 0)
+      std::tie(fit.next_carried_median_mm, fit.next_carried_largest_mm) = carried(fit.scatter_mm, next_scaled * gain);
   }
+  // The tuned model's error at the next part's points is next_scaled (resolution - I) x_true
+  // plus the noise: the first term is what this part cannot see.
+  const Eigen::MatrixXd next_unseen =
+      next_scaled.size() > 0 ? Eigen::MatrixXd(next_scaled * (Eigen::MatrixXd::Identity(cols, cols) - resolution_matrix))
+                             : Eigen::MatrixXd();
   std::map<std::string, std::pair<double, int>> by_symbol;
+  std::map<std::string, std::vector<Eigen::Index>> columns_of;
   for (Eigen::Index u = 0; u < cols; ++u) {
     const Unknown& k = unknowns[static_cast<std::size_t>(u)];
     const tables::ErrorSymbol symbol =
@@ -291,9 +301,24 @@ ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const Mo
     auto& [sum, count] = by_symbol[symbol.name()];
     sum += std::clamp(resolution[u], 0.0, 1.0);
     ++count;
+    columns_of[symbol.name()].push_back(u);
   }
   for (const auto& [name, value] : by_symbol) fit.seen.push_back({name, value.first / value.second});
   std::sort(fit.seen.begin(), fit.seen.end(), [](const auto& l, const auto& r) { return l.share > r.share; });
+  // Per deviation: the largest move of a next point for a unit (norm over its unknowns) of it.
+  for (const auto& [name, columns] : columns_of) {
+    if (next_unseen.size() == 0) break;
+    double largest = 0.0;
+    for (Eigen::Index r = 0; r < next_unseen.rows(); ++r) {
+      double sum = 0.0;
+      for (const Eigen::Index c : columns) sum += next_unseen(r, c) * next_unseen(r, c);
+      largest = std::max(largest, std::sqrt(sum));
+    }
+    const bool angle = quantity(unknowns[static_cast<std::size_t>(columns.front())]) != tables::Quantity::Length;
+    fit.next_unseen.push_back({name, angle, largest});
+  }
+  std::sort(fit.next_unseen.begin(), fit.next_unseen.end(),
+            [](const auto& l, const auto& r) { return l.largest_mm_per_unit > r.largest_mm_per_unit; });
 
   // The location errors: the model's plus the change.
   for (Eigen::Index u = 0; u < cols; ++u) {

@@ -8,11 +8,13 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
 
 #include "test_support.hpp"
 #include "vc/machine/forward.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/shop/cmm.hpp"
+#include "vc/shop/selftune_local.hpp"
 #include "vc/shop/selftune_model.hpp"
 #include "vc/shop/table_set.hpp"
 #include "vc/tables/source_error.hpp"
@@ -453,6 +455,68 @@ TEST_F(Files, ModelFitReportsTheNoiseItCarriesHonestly) {
   EXPECT_NEAR(scatter, 0.001, 0.00005);
   EXPECT_NEAR(at_points.median() / carried, 1.0, 0.15);
   EXPECT_NEAR(at_next.median() / next_carried, 1.0, 0.15);
+}
+
+// What the first part cannot see (issue 36): the ring at X-300 determines C's line (EX0C,
+// EY0C) but not X's positioning EXX away from X-300 (5 nodes over X's travel, -600..0 mm:
+// only the ridge and the smoothness hold those at -150 and 0). Another part at X-200 feels EXX
+// about 1:1 along its X normals and hardly C's line: the report names EXX first, with a move
+// per um near 1, and C's line far below it.
+TEST_F(Files, ModelFitNamesWhatTheNextPartFeelsAndThisPartCannotSee) {
+  const CLineOff setup = c_line_off(36);
+  const machine::Model& model = setup.model;
+  shop::FirstPart next;
+  for (int k = 0; k <= 12; ++k) {
+    shop::PathSample s = setup.part.path.front();
+    s.joints[model.joint_of('X')] = -200;
+    s.joints[setup.c] = 30.0 * k;
+    next.path.push_back(s);
+  }
+  for (int k = 0; k < 12; ++k) {
+    shop::MatchedPoint m;
+    m.point.normal = k % 2 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+    m.cuts = {shop::Contact{k, 0.0, 0.0}};
+    next.points.push_back(m);
+  }
+  shop::ModelOptions options;
+  options.deviations = {"EX0C", "EY0C", "EXX"};
+  const shop::ModelFit fit = shop::fit_tables(model, setup.part, options, &next);
+  ASSERT_EQ(fit.next_unseen.size(), 3u);
+  EXPECT_EQ(fit.next_unseen[0].symbol, "EXX");
+  EXPECT_FALSE(fit.next_unseen[0].angle);
+  EXPECT_GT(fit.next_unseen[0].largest_mm_per_unit * 1e3, 0.5);  // um per um
+  EXPECT_LT(fit.next_unseen[0].largest_mm_per_unit * 1e3, 1.5);
+  for (std::size_t k = 1; k < 3; ++k)
+    EXPECT_LT(fit.next_unseen[k].largest_mm_per_unit, 0.1 * fit.next_unseen[0].largest_mm_per_unit)
+        << fit.next_unseen[k].symbol;
+}
+
+// selftune's "path on the part" (issue 36): the tool tip's path in the part frame, not the
+// linear axes' travel. On the MC-300 in the axes world, C turning 90 deg with the linear axes
+// still draws a quarter circle on the part, of the radius the core gives between C = 0 and
+// C = 180 (half the distance of the two tips); then 50 mm of X is 50 mm on the part too.
+TEST(SelftuneLocal, ThePathIsMeasuredOnThePart) {
+  const machine::Model model = machine::load_machine(test::machine_path("mc300"));
+  const std::string program =
+      "G21 G90 G17 G49\nG10 L2 P1 X0 Y0 Z0 B0 C0\nG54 M3 S1000\nG0 X-400 Y-160 Z-200 B0 C0\nG1 C90 F100\nG1 X-350\nM5\nM30\n";
+  std::istringstream in(program);
+  interpreter::Setup setup;
+  setup.file = "quarter_turn.ngc";
+  setup.machine_axes = 0b110111;  // X Y Z B C
+  std::ostringstream out;
+  const shop::FirstPart no_points;
+  const shop::LocalSummary summary = shop::shift_program(model, no_points, in, setup, {}, out, {});
+
+  machine::Joints at0(5), at180(5);
+  at0 << -400, -160, -200, 0, 0;
+  at180 << -400, -160, -200, 0, 180;
+  const double radius = (machine::part_T_tool(model, machine::Machine::Ideal, at0, 0.0).translation() -
+                         machine::part_T_tool(model, machine::Machine::Ideal, at180, 0.0).translation()).norm() / 2;
+  ASSERT_GT(radius, 50.0);
+  // The pieces are chords of at most 0.05 deg: shorter than the arc by under 1e-7 of it.
+  EXPECT_NEAR(summary.cutting_length_mm, M_PI / 2 * radius + 50.0, 1e-6 * radius);
+  EXPECT_EQ(summary.largest_tip_shift_mm, 0.0);  // no measured point: nothing shifted
+  EXPECT_EQ(summary.covered_fraction, 0.0);
 }
 
 }  // namespace

@@ -56,6 +56,16 @@ struct ModelFit {
   // there, before it is cut.
   int next_points = 0;
   double next_carried_median_mm = -1.0, next_carried_largest_mm = -1.0;
+  // What this part cannot see and the next part feels: per deviation, how far its part the fit
+  // could not determine (I - resolution) moves the next part's points, at most, per um (length)
+  // or urad (angle) of it; largest first. The size of that part is not known from this part's
+  // points: a sensitivity, not a bound.
+  struct Unseen {
+    std::string symbol;
+    bool angle = false;
+    double largest_mm_per_unit = 0.0;
+  };
+  std::vector<Unseen> next_unseen;
   double largest_change_mm = 0.0, largest_change_rad = 0.0;
 };
 
