@@ -402,7 +402,8 @@ int run_identify_sphere(const IdentifySphereArgs& args, std::ostream& out) {
   out << "\n  RMS " << format_fixed(fit.rms_before_um, 3) << " -> " << format_fixed(fit.rms_after_um, 3) << " um\n";
   if (args.machine_out.empty()) return 0;
   std::vector<shop::LocationValue> values;
-  for (const identify::LocationEstimate& e : fit.estimates) values.push_back({e.joint, e.component, e.value});
+  for (const identify::LocationEstimate& e : fit.estimates)
+    values.push_back({e.joint, e.component, e.value, e.uncertainty});
   const std::string written =
       shop::write_machine_with_tables(model, args.machine_out, {}, "volcomp identify sphere from " + args.centres, values);
   machine::load_machine(written);  // it loads

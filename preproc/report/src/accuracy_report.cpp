@@ -4,6 +4,7 @@
 #include <cctype>
 #include <ctime>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "report_style.hpp"
@@ -122,13 +123,31 @@ std::string tables_section(const machine::Model& model, const Drawings& drawings
   return html;
 }
 
+// The comment on the machine file's line that sets `symbol` (EX0C_um = ... # comment): where
+// the value came from, e.g. "volcomp identify sphere from probe.txt +- 0.44 um (standard
+// uncertainty)"; empty if the file has no such line or no comment on it.
+std::string location_comment(const std::vector<std::string>& lines, const std::string& symbol) {
+  for (const std::string& line : lines) {
+    const std::size_t start = line.find_first_not_of(" \t");
+    if (start == std::string::npos || line.compare(start, symbol.size() + 1, symbol + "_") != 0) continue;
+    const std::size_t hash = line.find('#');
+    return hash == std::string::npos ? std::string() : line.substr(line.find_first_not_of(" #", hash));
+  }
+  return {};
+}
+
 std::string location_section(const machine::Model& model) {
+  std::vector<std::string> lines;
+  std::ifstream file(model.path);
+  for (std::string line; std::getline(file, line);) lines.push_back(line);
   std::vector<std::vector<std::string>> rows;
   for (const plot::LocationRow& r : plot::location_errors(model))
-    rows.push_back({r.line, r.symbol, r.meaning, r.value == 0.0 ? "0" : fixed(r.value, 3), r.unit});
+    rows.push_back({r.line, r.symbol, r.meaning, r.value == 0.0 ? "0" : fixed(r.value, 3), r.unit,
+                    r.value == 0.0 ? "" : location_comment(lines, r.symbol)});
   return "<p>Every location error of every axis line and of the spindle line (ISO 230-1 symbols): lengths in um, "
-         "angles in arcsec; 0 means the error is not in the machine file.</p>\n" +
-         html_table({"line", "symbol", "meaning", "value", "unit"}, rows, false);
+         "angles in arcsec; 0 means the error is not in the machine file. Where from: the machine file's comment on "
+         "the value's line (an identification writes its source and standard uncertainty there).</p>\n" +
+         html_table({"line", "symbol", "meaning", "value", "unit", "where from"}, rows, false);
 }
 
 // The accuracy balance's largest effects: a table and a bar chart of M and RMS.

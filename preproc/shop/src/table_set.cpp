@@ -56,6 +56,12 @@ void write_location(const LocationValue& v, char letter, const std::string& chai
                     std::map<int, std::vector<std::string>, std::greater<>>& insertions, const std::string& comment) {
   const std::string symbol = tables::ErrorSymbol{v.component, letter, true}.name();
   const toml::table* location = axis["location"].as_table();
+  // The uncertainty in the unit of the key that receives the value (mm or um, arcsec or urad ...).
+  const auto with_uncertainty = [&](const std::string& text, const tables::Unit& unit) {
+    if (v.uncertainty < 0) return text;
+    return text + " +- " + number(std::round(v.uncertainty / unit.to_core * 1e6) / 1e6 + 0.0) + " " + std::string(unit.name) +
+           " (standard uncertainty)";
+  };
   int last_key_line = -1;
   if (location) {
     for (auto&& [key, node] : *location) {
@@ -73,14 +79,14 @@ void write_location(const LocationValue& v, char letter, const std::string& chai
         throw std::runtime_error("line " + std::to_string(line + 1) + ": cannot rewrite the value of " + k);
       const std::string old = text.substr(begin, end - begin);
       text = text.substr(0, begin) + number(std::round(v.value / unit->to_core * 1e6) / 1e6 + 0.0) + text.substr(end);
-      text += (text.find('#') == std::string::npos ? "   # " : "; ") + comment + ", was " + old;
+      text += (text.find('#') == std::string::npos ? "   # " : "; ") + with_uncertainty(comment, *unit) + ", was " + old;
       return;
     }
   }
   const bool length = v.component < 3;
   const std::string line = symbol + (length ? "_um = " : "_arcsec = ") +
                            number(std::round(v.value * (length ? 1e3 : 648000.0 / M_PI) * 1e6) / 1e6 + 0.0) +
-                           "   # " + comment;
+                           "   # " + with_uncertainty(comment, *tables::find_unit(length ? "um" : "arcsec"));
   if (location && last_key_line >= 0) {
     insertions[last_key_line + 1].push_back(line);
   } else if (location) {

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <regex>
 #include <sstream>
 #include <iostream>
 #include <random>
@@ -236,6 +237,15 @@ TEST(SphereCentres, CommandLineWritesAMachineFileThatLoads) {
   EXPECT_NE(r.out.find("3 of 3 location errors identified"), std::string::npos) << r.out;
   const machine::Model written = machine::load_machine((dir / "out" / "mc300.toml").string());
   EXPECT_NEAR(written.axes[written.joint_of('C')].location_mm[0], 0.020, 0.002);
+  // The standard uncertainty printed goes into the written line's comment, in the key's unit
+  // (EX0C_mm: mm), where the report's "where from" shows it.
+  std::smatch printed, in_file;
+  ASSERT_TRUE(std::regex_search(r.out, printed, std::regex(R"(EX0C = [-0-9.]+ um \+- ([0-9.]+) um \(standard uncertainty)")))
+      << r.out;
+  const std::string text = test::file_text(dir / "out" / "mc300.toml");
+  ASSERT_TRUE(std::regex_search(text, in_file, std::regex(R"(EX0C_mm = .*\+- ([0-9.]+) mm \(standard uncertainty\))")))
+      << text;
+  EXPECT_NEAR(std::stod(in_file[1]) * 1e3, std::stod(printed[1]), 0.006);
   std::filesystem::remove_all(dir);
 }
 

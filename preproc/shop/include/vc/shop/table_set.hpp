@@ -27,6 +27,7 @@ struct LocationValue {
   int joint = 0;
   int component = 0;  // 0..5: X Y Z (mm), A B C (rad)
   double value = 0.0;
+  double uncertainty = -1.0;  // standard uncertainty, value's unit; < 0: none, else written in the comment
 };
 
 // Writes a table as CSV: positions in mm or deg, translations in um, rotations in urad; to a
