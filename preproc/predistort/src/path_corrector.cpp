@@ -209,8 +209,15 @@ PathCorrector::PieceError PathCorrector::error_between(const Move& move, const N
   PieceError e;
   e.mm = (real.tip_mm + deflection - ideal.tip_mm).norm();
   if (exact_direction_errors) {
+    // The exact correction's own direction error at the point: none where neither the ends nor
+    // the point are in the pole fade band (full correction), else the exact correction's
+    // there (one more exact inverse): the fade is not linear along a piece, so the ends'
+    // values interpolated miss it by tens of urad across the band.
     const auto& [at_a, at_b] = *exact_direction_errors;
-    e.rad = (real.direction - ideal.direction - (at_a + t * (at_b - at_a))).norm();
+    Eigen::Vector3d exact = Eigen::Vector3d::Zero();
+    if (at_a.squaredNorm() > 0 || at_b.squaredNorm() > 0 || machine::pole_angle(model_, nominal, L) < model_.fade.full_rad)
+      exact = direction_error(move, node_at(move, s));
+    e.rad = (real.direction - ideal.direction - exact).norm();
   }
   return e;
 }

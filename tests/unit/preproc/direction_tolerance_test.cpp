@@ -23,14 +23,16 @@ Joints joints_of(const Position& p) {  // MC-300: X Y Z B C
 
 // Largest direction deviation (rad) from the exact correction over a move through the fade band,
 // and the number of pieces written.
-std::pair<double, std::size_t> worst_direction(const machine::Model& model, double tolerance_rad) {
+std::pair<double, std::size_t> worst_direction(const machine::Model& model, double tolerance_rad,
+                                              const Position& start = {-300, -160, -200, 0, -0.5, 0},
+                                              const Position& end = {-290, -150, -195, 0, -14, 60}) {
   CorrectorOptions options;
   options.tolerance_rad = tolerance_rad;
   PathCorrector corrector(model, options, nullptr);
   const double L = model.correction_length(100.0);
   Move rapid;
   rapid.kind = MoveKind::Rapid;
-  rapid.end = {-300, -160, -200, 0, -0.5, 0};
+  rapid.end = start;
   rapid.start = rapid.end;
   rapid.tool_offset_mm = 100.0;
   std::vector<Piece> pieces;
@@ -41,7 +43,7 @@ std::pair<double, std::size_t> worst_direction(const machine::Model& model, doub
   Move move = rapid;
   move.kind = MoveKind::Line;
   move.start = rapid.end;
-  move.end = {-290, -150, -195, 0, -14, 60};
+  move.end = end;
   corrector.correct(move, pieces);
   double worst = 0.0, s0 = 0.0;
   for (const Piece& piece : pieces) {
@@ -74,6 +76,20 @@ TEST(DirectionTolerance, BoundsTheToolDirectionBetweenWrittenPoints) {
   EXPECT_LE(tight, 5e-6);
   EXPECT_GT(unbounded, 5e-6);  // the position tolerance alone does not bound it
   EXPECT_GT(pieces_tight, pieces_unbounded);
+}
+
+// Issue 36's move: B -12 to -1 deg with C +40 deg in one G1, from outside the band (B -12,
+// full correction) to inside its start (B -1: no orientation correction), sampled at 200
+// points per piece against the core's exact (faded) correction at each point.
+TEST(DirectionTolerance, AMoveAcrossTheWholeFadeBandStaysOnTheExactFade) {
+  const machine::Model model = machine::load_machine(test::machine_path("mc300"));
+  for (const double tolerance : {2e-5, 5e-6}) {
+    const auto [worst, pieces] =
+        worst_direction(model, tolerance, {-300, -160, -200, 0, -12, 0}, {-300, -160, -200, 0, -1, 40});
+    std::printf("B -12 -> -1, C +40: direction deviation from the exact fade %.3g rad in %zu pieces at %.0e rad\n",
+                worst, pieces, tolerance);
+    EXPECT_LE(worst, tolerance);
+  }
 }
 
 }  // namespace

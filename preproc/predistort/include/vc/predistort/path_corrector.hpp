@@ -13,8 +13,9 @@
 // On machines with rotary axes the tool direction is bounded the same way (tolerance_rad): at
 // the check points, the real machine's direction at the interpolated joints against the
 // direction the exact correction gives there (the ideal direction plus the exact correction's
-// own direction error, which the pole fade leaves, interpolated between the piece's ends);
-// such pieces are not accepted by the position bounds alone.
+// own direction error, which the pole fade leaves: computed at the check point itself where
+// the fade acts, at the piece's ends or at the point, since the fade is not linear along a
+// piece); such pieces are not accepted by the position bounds alone.
 #pragma once
 
 #include <utility>
@@ -108,8 +109,9 @@ class PathCorrector {
   // The real minus the ideal tool direction of the exact correction at a node.
   Eigen::Vector3d direction_error(const Move& move, const Node& n) const;
   using DirectionErrors = std::pair<Eigen::Vector3d, Eigen::Vector3d>;  // at a piece's two ends
-  // Position error at t of a piece, and the direction error against the exact correction's
-  // (interpolated from `exact_direction_errors`, if given).
+  // Position error at t of a piece, and, if `exact_direction_errors` (at the piece's ends) are
+  // given, the direction error against the exact correction's own there: zero outside the
+  // pole fade band, else the exact correction's at the point.
   PieceError error_between(const Move& move, const Node& a, const Node& b, const Piece& piece, double t,
                            const DirectionErrors* exact_direction_errors);
   // Worst error of a piece at its check points; true if within the tolerances' accept share.
