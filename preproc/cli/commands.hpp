@@ -67,6 +67,8 @@ struct PlotArgs {
   std::string format = "png";      // png or svg
   bool volume = false;             // also the volume map: volume_L<mm>_rotary0 / _worst images and CSVs
   std::vector<double> tool_lengths_mm;  // of the volume map (default: the machine file's)
+  std::string plane;                    // of the volume map: "xz", "yz" ... (default: the first two linear axes)
+  std::string controller = "linuxcnc";  // whose tables the volume map judges; "none" for none
 };
 
 struct ReportArgs {

@@ -214,6 +214,10 @@ int main(int argc, char** argv) {
                      "and at their worst, before correction and with LinuxCNC's tables (usual practice, modified method)");
   plot_cmd->add_option("--tool-lengths", plot.tool_lengths_mm, "the volume map's tool lengths, mm, e.g. 0,100 "
                        "(default: the machine file's)")->delimiter(',');
+  plot_cmd->add_option("--plane", plot.plane, "the volume map's plane, two linear axes, e.g. xz or yz, the third "
+                       "giving the levels (default: the first two, X-Y)");
+  plot_cmd->add_option("--controller", plot.controller, "the stock controller whose tables the volume map judges "
+                       "(as fit-tables --controller), or none")->capture_default_str();
 
   vc::cli::ReportArgs report;
   CLI::App* report_cmd = app.add_subcommand(

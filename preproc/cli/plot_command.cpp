@@ -27,7 +27,10 @@ void draw_volume_map(const plot::VolumeMap& map, const machine::Model& model, co
       << map.levels_mm.size() << " levels per sheet), " << format_fixed(map.seconds, 1) << " s; largest |e| in um:\n";
   for (std::size_t s = 0; s < map.sheets.size(); ++s) {
     const plot::MapSheet& sheet = map.sheets[s];
-    const std::string image = (fs::path(args.folder) / (plot::volume_map_name(sheet) + "." + args.format)).string();
+    // Another plane than the default gets its own names: volume_xz_L100_rotary0.png.
+    std::string name = plot::volume_map_name(sheet);
+    if (!args.plane.empty()) name.insert(std::string("volume_").size(), args.plane + "_");
+    const std::string image = (fs::path(args.folder) / (name + "." + args.format)).string();
     plot::draw(plot::volume_map_plot(map, s, model, image));
     out << "  L " << format_number(sheet.tool_length_mm) << " mm, " << sheet.rotary.label << ":";
     for (std::size_t c = 0; c < map.compensations.size(); ++c)
@@ -43,7 +46,8 @@ void draw_volume_map(const plot::VolumeMap& map, const machine::Model& model, co
 int run_plot(const PlotArgs& args, std::ostream& out) {
   namespace fs = std::filesystem;
   if (args.format != "png" && args.format != "svg") throw std::runtime_error("--format must be png or svg");
-  if (!args.tool_lengths_mm.empty() && !args.volume) throw std::runtime_error("--tool-lengths is for the volume map: add --volume");
+  if ((!args.tool_lengths_mm.empty() || !args.plane.empty() || args.controller != "linuxcnc") && !args.volume)
+    throw std::runtime_error("--tool-lengths, --plane and --controller are for the volume map: add --volume");
   const machine::Model model = machine::load_machine(args.machine);
   // The map before any picture: its bad input (a tool length, a machine without three linear
   // axes) leaves no file behind.
@@ -51,6 +55,8 @@ int run_plot(const PlotArgs& args, std::ostream& out) {
   if (args.volume) {
     plot::VolumeMapOptions options;
     options.tool_lengths_mm = args.tool_lengths_mm;
+    options.plane = args.plane;
+    options.controller = args.controller == "none" ? "" : args.controller;
     map = plot::volume_map(model, options);
   }
   fs::create_directories(args.folder);

@@ -355,12 +355,57 @@ TEST(VolcompPlotVolume, MapAgreesWithTheModelAndIsQuick) {
   fs::remove_all(folder);
 }
 
+// --plane xz --controller none: the X-Z sheets at three Y levels, no compensation only, named
+// volume_xz_...; a point of the lowest Y level is the |e| `volcomp error` gives there. A plane
+// that is not two linear axes is refused before any picture.
+TEST(VolcompPlotVolume, AnotherPlaneIsTheModelsErrorThere) {
+  const fs::path folder = scratch("volume_xz");
+  const test::CommandResult r = test::run_volcomp("plot " + test::machine_path("mc300") + " -o " + folder.string() +
+                                                  " --volume --plane xz --controller none --tool-lengths 0");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  std::vector<std::vector<std::array<double, 3>>> blocks;
+  std::ifstream csv(folder / "volume_xz_L0_rotary0.csv");
+  ASSERT_TRUE(csv) << r.out;
+  int blank = 0;
+  for (std::string line; std::getline(csv, line);) {
+    if (line.empty()) {
+      ++blank;
+      continue;
+    }
+    if (line[0] == '#') continue;
+    if (blocks.empty() || blank >= 2) blocks.emplace_back();
+    blank = 0;
+    std::array<double, 3> row{};
+    std::sscanf(line.c_str(), "%lf,%lf,%lf", &row[0], &row[1], &row[2]);
+    blocks.back().push_back(row);
+  }
+  ASSERT_EQ(blocks.size(), 3u);  // none at Y -320, -160, 0
+  const auto& low = blocks[0];
+  ASSERT_EQ(low.size(), 441u);
+  const fs::path poses = folder / "poses.csv";
+  write(poses, "x,y,z,b,c\n" + std::to_string(low[123][0]) + ",-320," + std::to_string(low[123][1]) + ",0,0\n");
+  const test::CommandResult e =
+      test::run_volcomp("error " + test::machine_path("mc300") + " --poses " + poses.string() + " --tool-length 0");
+  ASSERT_EQ(e.exit_code, 0) << e.out;
+  write(folder / "errors.csv", e.out);
+  const test::CsvTable errors((folder / "errors.csv").string());
+  EXPECT_NEAR(low[123][2], 1e3 * std::hypot(errors.at(0, "ex"), errors.at(0, "ey"), errors.at(0, "ez")), 1e-6);
+  const test::CommandResult bad = test::run_volcomp("plot " + test::machine_path("mc300") + " -o " +
+                                                    (folder / "bad").string() + " --volume --plane xb");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.out.find("the volume map's plane 'xb' is not two of MC-300's linear axes (xyz)"), std::string::npos)
+      << bad.out;
+  EXPECT_FALSE(fs::exists(folder / "bad"));
+  fs::remove_all(folder);
+}
+
 TEST(VolcompPlotVolume, BadToolLengthsAreRefusedWithoutFiles) {
   const fs::path folder = scratch("volume_refused");
   const test::CommandResult r =
       test::run_volcomp("plot " + test::machine_path("mc300") + " -o " + folder.string() + " --tool-lengths 0,100");
   EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.out.find("--tool-lengths is for the volume map: add --volume"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--tool-lengths, --plane and --controller are for the volume map: add --volume"), std::string::npos)
+      << r.out;
   // A negative tool length is refused before any picture is drawn: the folder stays empty.
   const test::CommandResult negative = test::run_volcomp("plot " + test::machine_path("mc300") + " -o " +
                                                          folder.string() + " --volume --tool-lengths 0,-5");

@@ -1,6 +1,7 @@
 #include "vc/plot/volume_map.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -115,6 +116,24 @@ VolumeMap volume_map(const machine::Model& model, const VolumeMapOptions& option
   map.first_joint = linear[0];
   map.second_joint = linear[1];
   map.level_joint = linear[2];
+  if (!options.plane.empty()) {
+    std::string names;
+    for (const int j : linear) names += static_cast<char>(std::tolower(static_cast<unsigned char>(model.axes[static_cast<std::size_t>(j)].letter)));
+    const auto joint_of = [&](char letter) {
+      const std::size_t at = names.find(static_cast<char>(std::tolower(static_cast<unsigned char>(letter))));
+      return at == std::string::npos ? -1 : linear[at];
+    };
+    const int first = options.plane.size() == 2 ? joint_of(options.plane[0]) : -1;
+    const int second = options.plane.size() == 2 ? joint_of(options.plane[1]) : -1;
+    if (first < 0 || second < 0 || first == second || linear.size() != 3)
+      throw std::invalid_argument("the volume map's plane '" + options.plane + "' is not two of " + model.info.name +
+                                  "'s linear axes (" + names + ")" +
+                                  (linear.size() != 3 ? ": a plane is chosen on machines with three linear axes" : ""));
+    map.first_joint = first;
+    map.second_joint = second;
+    for (const int j : linear)
+      if (j != first && j != second) map.level_joint = j;
+  }
   const auto travel = [&](int joint, int count) {
     const machine::Axis& a = model.axes[static_cast<std::size_t>(joint)];
     return spaced(a.travel_min, a.travel_max, count);

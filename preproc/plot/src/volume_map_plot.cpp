@@ -59,8 +59,10 @@ Figure volume_map_plot(const VolumeMap& map, std::size_t sheet_index, const mach
   const std::string title = map.machine_name + ": tool-tip error |e| (um) over " + x + "-" + y + ", L = " +
                             number(sheet.tool_length_mm) + " mm, " + sheet.rotary.label +
                             (sheet.rotary.worst ? " (the worst rotary position)" : "") +
-                            (map.controller_title.empty() ? "" : "\nrows: no compensation; " + map.controller_title +
-                                                                      " tables by the usual practice; by the modified method") +
+                            (map.controller_title.empty()
+                                 ? ""
+                                 : "\nrows: no compensation; the tables by the usual practice; by the modified method"
+                                   "\ntables: " + map.controller_title) +
                             "\n" + full_correction_statement(map);
   gp << "set datafile separator ','\n"
      << "set multiplot layout " << rows << "," << columns << " title " << text_literal(title) << " font 'sans,12'\n"

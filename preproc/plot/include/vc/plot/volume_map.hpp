@@ -25,6 +25,9 @@ struct VolumeMapOptions {
   std::vector<double> tool_lengths_mm;  // default: the machine file's tool_length_mm
   int grid = 21;                        // positions per joint of the map's plane (2..101)
   int levels = 3;                       // positions of the third linear joint (1..7): ends and between
+  // The map's plane: two letters of linear axes ("xy", "xz", "yz", any case); the third linear
+  // axis gives the levels. Empty: the first two linear joints (X-Y on the shipped machines).
+  std::string plane;
   std::string controller = "linuxcnc";  // the stock controller whose tables are judged; "" for none
   int fresh_poses = 1000;               // the study's fresh poses per tool length (fit_tables::StudyOptions)
 };
@@ -61,7 +64,8 @@ struct VolumeMap {
 };
 
 // Throws std::invalid_argument for a machine with fewer than three linear joints, a grid or
-// level count out of range, or no tool length; the controller's own errors (unknown name) pass.
+// level count out of range, no tool length, or a plane that is not two of the machine's linear
+// axes; the controller's own errors (unknown name) pass.
 VolumeMap volume_map(const machine::Model& model, const VolumeMapOptions& options);
 
 // The line the report and `volcomp plot --volume` print for the full correction.
