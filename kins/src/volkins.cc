@@ -65,6 +65,7 @@ struct HalData {
   hal_bit_t* out_of_table;                    // out: last inverse beyond a table's grid
   hal_bit_t* limit_exceeded;                  // out: last inverse refused (max correction)
   hal_s32_t* failures;                        // out: inverse and forward calls refused so far
+  hal_s32_t* inverse_time;                    // out: ns the last kinematicsInverse took (rtapi_get_time)
   hal_float_t* temperature[kMaxTemperatures];           // in: volkins.temperature.<name>, degC
   hal_float_t* temperature_filtered[kMaxTemperatures];  // out: what the correction uses, degC
   hal_bit_t* temperature_fault;               // out: an input is missing or out of its range (held)
@@ -273,12 +274,8 @@ double applied_gain() {
   return gain;
 }
 
-}  // namespace
-
-extern "C" {
-
-int kinematicsInverse(const EmcPose* pose, double* joints, const KINEMATICS_INVERSE_FLAGS*,
-                      KINEMATICS_FORWARD_FLAGS*) {
+// kinematicsInverse's work; the exported function times it.
+int inverse(const EmcPose* pose, double* joints) {
   const vm::Model& model = settings->model;
   const int n = model.joint_count();
   const double offset = *hal->tool_length;       // LinuxCNC's tool length offset (G43)
@@ -324,6 +321,20 @@ int kinematicsInverse(const EmcPose* pose, double* joints, const KINEMATICS_INVE
     joints[k] = j >= 0 ? q[j] : w;  // the tool-axis joint: the world's coordinate
   }
   return 0;
+}
+
+}  // namespace
+
+extern "C" {
+
+// Timed (volkins.inverse-time, ns, the monotonic clock rtapi_get_time reads: no allocation, lock
+// or I/O; clamped to the pin's range).
+int kinematicsInverse(const EmcPose* pose, double* joints, const KINEMATICS_INVERSE_FLAGS*,
+                      KINEMATICS_FORWARD_FLAGS*) {
+  const long long start = rtapi_get_time();
+  const int result = inverse(pose, joints);
+  *hal->inverse_time = static_cast<hal_s32_t>(std::min(rtapi_get_time() - start, 2147483647LL));
+  return result;
 }
 
 int kinematicsForward(const double* joints, EmcPose* pose, const KINEMATICS_FORWARD_FLAGS*,
@@ -416,6 +427,7 @@ bool export_hal(const vm::Model& model) {
   r |= hal_pin_bit_newf(HAL_OUT, &hal->out_of_table, comp_id, "volkins.out-of-table");
   r |= hal_pin_bit_newf(HAL_OUT, &hal->limit_exceeded, comp_id, "volkins.limit-exceeded");
   r |= hal_pin_s32_newf(HAL_OUT, &hal->failures, comp_id, "volkins.failures");
+  r |= hal_pin_s32_newf(HAL_OUT, &hal->inverse_time, comp_id, "volkins.inverse-time");
   r |= hal_param_float_newf(HAL_RW, &hal->ramp_time, comp_id, "volkins.ramp-time");
   r |= hal_param_float_newf(HAL_RW, &hal->max_correction_mm, comp_id, "volkins.max-correction-mm");
   r |= hal_param_float_newf(HAL_RW, &hal->max_correction_deg, comp_id, "volkins.max-correction-deg");
