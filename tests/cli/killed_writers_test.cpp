@@ -117,7 +117,8 @@ class KilledWriters : public ::testing::Test {
   }
 
   // Kills `args` (which writes into OUT, the text replaced by a folder) `kills` times at delays
-  // spread over its unkilled run (the fastest of 3), each time over the old files, and checks every file.
+  // within its unkilled run (the fastest of 3), half of them near its end, each time over the
+  // old files, and checks every file.
   static void check_writer(const std::string& name, std::string args, int kills) {
     const fs::path out = dir_ / (name + "_out");
     const auto with_out = [&](const fs::path& folder) {
@@ -144,11 +145,13 @@ class KilledWriters : public ::testing::Test {
     old["notes.txt"] = "the user's own file\n";
 
     std::mt19937 random(static_cast<unsigned>(std::hash<std::string>{}(name)));
-    std::uniform_int_distribution<long> delay_us(0, duration.count());
+    // Half the kills anywhere in the run, half near its end, where most commands write.
+    std::uniform_int_distribution<long> anywhere_us(0, duration.count());
+    std::uniform_int_distribution<long> near_end_us(duration.count() * 4 / 5, duration.count() * 11 / 10);
     int killed = 0, all_old = 0, all_new = 0, mixed = 0, with_temporaries = 0;
     for (int k = 0; k < kills; ++k) {
       write_files(out, old);
-      const long delay = delay_us(random);
+      const long delay = k % 2 ? near_end_us(random) : anywhere_us(random);
       killed += run_and_kill(with_out(out), std::chrono::microseconds(delay));
       const Snapshot after = snapshot(out);
       with_temporaries += after.temporaries > 0;
@@ -203,6 +206,12 @@ TEST_F(KilledWriters, IdentifyMachineOut) {
   check_writer("identify", "identify laser " + path("laser_runs.csv") + " --error EXX --machine " +
                                test::machine_path("mc300") + " --machine-out OUT -o OUT/x_runs.csv",
                kKills);
+}
+
+// Many files (COMP_FILEs, the INI lines, report.csv, tables.csv, the usual practice's, the
+// figures drawn by gnuplot), about 0.7 s: fewer kills.
+TEST_F(KilledWriters, FitTables) {
+  check_writer("fit-tables", "fit-tables " + test::machine_path("mc300") + " --controller linuxcnc -o OUT", 15);
 }
 
 TEST_F(KilledWriters, Perturb) {

@@ -288,6 +288,27 @@ TEST_F(VolcompReport, ScreenshotShowsThePage) {
 
 // ---- the volume map ------------------------------------------------------------------------
 
+// A volume map's CSV: its blocks (gnuplot's index: two blank lines apart), rows first, second,
+// e[um].
+std::vector<std::vector<std::array<double, 3>>> map_blocks(const fs::path& path) {
+  std::vector<std::vector<std::array<double, 3>>> blocks;
+  std::ifstream csv(path);
+  int blank = 0;
+  for (std::string line; std::getline(csv, line);) {
+    if (line.empty()) {
+      ++blank;
+      continue;
+    }
+    if (line[0] == '#') continue;
+    if (blocks.empty() || blank >= 2) blocks.emplace_back();
+    blank = 0;
+    std::array<double, 3> row{};
+    std::sscanf(line.c_str(), "%lf,%lf,%lf", &row[0], &row[1], &row[2]);
+    blocks.back().push_back(row);
+  }
+  return blocks;
+}
+
 // volcomp plot --volume: the sheets drawn with their data; the uncompensated |e| in the CSV at a
 // pose is what `volcomp error` gives there; the printed maxima are the CSV's; the modified
 // method's tables leave less than the usual practice's on every sheet (the MC-300's known gain).
@@ -304,21 +325,7 @@ TEST(VolcompPlotVolume, MapAgreesWithTheModelAndIsQuick) {
   for (const char* sheet : {"volume_L100_rotary0", "volume_L100_worst"}) {
     ASSERT_TRUE(fs::exists(folder / (std::string(sheet) + ".png"))) << sheet;
     // The blocks: none, usual, modified at Z = -310, -155, 0 mm; 21 x 21 rows each.
-    std::vector<std::vector<std::array<double, 3>>> blocks;
-    std::ifstream csv(folder / (std::string(sheet) + ".csv"));
-    int blank = 0;
-    for (std::string line; std::getline(csv, line);) {
-      if (line.empty()) {
-        ++blank;
-        continue;
-      }
-      if (line[0] == '#') continue;
-      if (blocks.empty() || blank >= 2) blocks.emplace_back();
-      blank = 0;
-      std::array<double, 3> row{};
-      std::sscanf(line.c_str(), "%lf,%lf,%lf", &row[0], &row[1], &row[2]);
-      blocks.back().push_back(row);
-    }
+    const auto blocks = map_blocks(folder / (std::string(sheet) + ".csv"));
     ASSERT_EQ(blocks.size(), 9u) << sheet;
     for (const auto& b : blocks) EXPECT_EQ(b.size(), 441u);
     // The printed line: "  L 100 mm, <rotary>: none N, usual practice U, modified method M  (<image>)".
@@ -363,22 +370,7 @@ TEST(VolcompPlotVolume, AnotherPlaneIsTheModelsErrorThere) {
   const test::CommandResult r = test::run_volcomp("plot " + test::machine_path("mc300") + " -o " + folder.string() +
                                                   " --volume --plane xz --controller none --tool-lengths 0");
   ASSERT_EQ(r.exit_code, 0) << r.out;
-  std::vector<std::vector<std::array<double, 3>>> blocks;
-  std::ifstream csv(folder / "volume_xz_L0_rotary0.csv");
-  ASSERT_TRUE(csv) << r.out;
-  int blank = 0;
-  for (std::string line; std::getline(csv, line);) {
-    if (line.empty()) {
-      ++blank;
-      continue;
-    }
-    if (line[0] == '#') continue;
-    if (blocks.empty() || blank >= 2) blocks.emplace_back();
-    blank = 0;
-    std::array<double, 3> row{};
-    std::sscanf(line.c_str(), "%lf,%lf,%lf", &row[0], &row[1], &row[2]);
-    blocks.back().push_back(row);
-  }
+  const auto blocks = map_blocks(folder / "volume_xz_L0_rotary0.csv");
   ASSERT_EQ(blocks.size(), 3u);  // none at Y -320, -160, 0
   const auto& low = blocks[0];
   ASSERT_EQ(low.size(), 441u);
