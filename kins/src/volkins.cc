@@ -29,6 +29,7 @@
 #include <array>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <exception>
 
 #include "gain_ramp.hpp"
@@ -333,7 +334,7 @@ int kinematicsInverse(const EmcPose* pose, double* joints, const KINEMATICS_INVE
                       KINEMATICS_FORWARD_FLAGS*) {
   const long long start = rtapi_get_time();
   const int result = inverse(pose, joints);
-  *hal->inverse_time = static_cast<hal_s32_t>(std::min(rtapi_get_time() - start, 2147483647LL));
+  *hal->inverse_time = static_cast<std::int32_t>(std::min(rtapi_get_time() - start, 2147483647LL));
   return result;
 }
 
