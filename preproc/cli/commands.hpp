@@ -120,6 +120,9 @@ struct TraceArgs {
   std::string world = "axes";      // the module's world convention
   std::string output;              // per-sample errors CSV (optional)
   double servo_period_s = 0.001;   // for the time column
+  std::string comp_files;          // a folder of fit-tables' COMP_FILEs to replay on the trace (optional)
+  std::string ini;                 // the configuration's INI: the joints' limits for the replay
+  std::string replay_output;       // the replay's per-sample errors CSV (t_s,e_um; optional)
 };
 
 struct PredistortArgs {

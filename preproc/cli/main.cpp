@@ -41,6 +41,13 @@ int main(int argc, char** argv) {
   trace_cmd->add_option("--world", trace.world, "the module's world convention: axes or tcp")->capture_default_str();
   trace_cmd->add_option("-o,--output", trace.output,
                         "write t_s,ex_um,ey_um,ez_um,e_um,ek_urad,gain per sample to this CSV");
+  trace_cmd->add_option("--comp-files", trace.comp_files,
+                        "a session without correction: also its tool-tip error with these COMP_FILEs (fit-tables' "
+                        "joint_N_<axis>.comp) replayed as LinuxCNC applies them");
+  trace_cmd->add_option("--replay-output", trace.replay_output, "with --comp-files: write t_s,e_um per sample of the "
+                        "replay to this CSV");
+  trace_cmd->add_option("--ini", trace.ini, "with --comp-files: the configuration's INI ([JOINT_n] MAX_VELOCITY, "
+                        "MAX_ACCELERATION: LinuxCNC's ramp of the correction)");
 
   vc::cli::PredistortArgs predistort;
   CLI::App* predistort_cmd = app.add_subcommand(

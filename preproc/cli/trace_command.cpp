@@ -2,19 +2,83 @@
 // exactly what the core computes (see vc/trace/session_trace.hpp for the comparison).
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
 
 #include "commands.hpp"
 #include "format.hpp"
 #include "program_files.hpp"
+#include "vc/fit_tables/comp_file.hpp"
+#include "vc/fit_tables/comp_file_replay.hpp"
+#include "vc/init/linuxcnc_ini.hpp"
+#include "vc/init/number.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/tables/atomic_file.hpp"
 #include "vc/trace/session_trace.hpp"
 
 namespace vc::cli {
+namespace {
+
+// The COMP_FILEs of args.comp_files replayed on the session (fit_tables::replay_comp_files):
+// the tool-tip error it would have had with them loaded.
+void print_comp_file_replay(const TraceArgs& args, const machine::Model& model, const trace::SessionTrace& session,
+                            const trace::TraceSummary& summary, std::ostream& out) {
+  namespace fs = std::filesystem;
+  if (args.ini.empty()) throw std::runtime_error("--comp-files needs --ini: the joints' limits, which LinuxCNC's ramp uses");
+  if (!fs::is_directory(args.comp_files)) throw std::runtime_error(args.comp_files + ": no such folder");
+  const init::LinuxcncIni ini = init::LinuxcncIni::read(args.ini);
+  std::vector<fit_tables::LinuxcncComp> comps;
+  std::vector<fit_tables::JointLimits> limits;
+  std::string with, without;
+  for (int j = 0; j < model.joint_count(); ++j) {
+    const std::string section = "JOINT_" + std::to_string(j);
+    double limit[2] = {0.0, 0.0};
+    const char* keys[2] = {"MAX_VELOCITY", "MAX_ACCELERATION"};
+    for (int k = 0; k < 2; ++k) {
+      const init::IniEntry* entry = ini.find(section, keys[k]);
+      if (!entry) throw LoadError(ini.where_missing(section), "[" + section + "]" + keys[k] + " is missing");
+      if (!init::parse_number(entry->value, limit[k]) || limit[k] <= 0)
+        throw LoadError(entry->where(), "[" + section + "]" + keys[k] + " is not a number > 0");
+    }
+    limits.push_back({limit[0], limit[1]});
+    const fs::path file = fs::path(args.comp_files) / fit_tables::linuxcnc_comp_file_name(model, j);
+    if (!fs::exists(file)) {
+      comps.emplace_back();
+      without += " " + std::string(1, model.axes[static_cast<std::size_t>(j)].letter);
+      continue;
+    }
+    std::ifstream in(file, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    try {
+      comps.push_back(fit_tables::read_linuxcnc_comp(text, 1));
+    } catch (const std::invalid_argument& e) {
+      throw LoadError({file.string()}, e.what());
+    }
+    with += " " + file.filename().string();
+  }
+  const fit_tables::CompReplay replay =
+      fit_tables::replay_comp_files(model, session, summary, comps, limits, args.servo_period_s);
+  if (!args.replay_output.empty()) tables::write_atomically(args.replay_output, [&](std::ostream& csv) {
+    csv << "t_s,e_um\n";
+    for (std::size_t k = 0; k < replay.tip_error_um.size(); ++k)
+      csv << format_fixed(static_cast<double>(summary.samples[k].sample) * args.servo_period_s, 3) << ','
+          << format_number(replay.tip_error_um[k]) << '\n';
+  });
+  double max_um = 0, sum_sq = 0;
+  for (const double e : replay.tip_error_um) max_um = std::max(max_um, e), sum_sq += e * e;
+  const double rms_um = std::sqrt(sum_sq / static_cast<double>(std::max<std::size_t>(1, replay.tip_error_um.size())));
+  out << "with the COMP_FILEs of " << args.comp_files << " replayed as LinuxCNC applies them (" << with.substr(1)
+      << (without.empty() ? "" : "; none on" + without) << "): tool tip error: max " << format_fixed(max_um, 3)
+      << " um, RMS " << format_fixed(rms_um, 3) << " um\n";
+}
+
+}  // namespace
 
 int run_trace(const TraceArgs& args, std::ostream& out) {
+  if (args.comp_files.empty() && (!args.ini.empty() || !args.replay_output.empty()))
+    throw std::runtime_error("--ini and --replay-output go with --comp-files");
   const machine::Model model = machine::load_machine(args.machine);
   const machine::WorldConvention convention = world_convention(args.world);
   const trace::SessionTrace session = trace::read_session_trace(args.trace, model);
@@ -49,6 +113,7 @@ int run_trace(const TraceArgs& args, std::ostream& out) {
       << " skipped at tool changes)\n"
       << "tool tip error: max " << format_fixed(max_tip * 1e3, 3) << " um, RMS " << format_fixed(rms * 1e3, 3)
       << " um; tool direction error: max " << format_fixed(max_dir * 1e6, 2) << " urad\n";
+  if (!args.comp_files.empty()) print_comp_file_replay(args, model, session, summary, out);
   if (!session.with_volkins) {
     // LinuxCNC's own kinematics: what moves the joints off them is the joints' COMP_FILEs.
     out << "joints beyond the nominal kinematics' (COMP_FILE corrections; mm or deg): max "

@@ -17,6 +17,7 @@
 
 #include "linuxcnc_run.hpp"
 #include "vc/fit_tables/comp_file.hpp"
+#include "vc/fit_tables/comp_file_replay.hpp"
 #include "vc/fit_tables/controller.hpp"
 #include "vc/fit_tables/study.hpp"
 #include "vc/machine/load_machine.hpp"
@@ -64,39 +65,23 @@ class StockTablesSession : public ::testing::Test {
   }
 
   // What the simulated controller predicts, |tip error| (um) at each checked sample: the tables
-  // in `folder` as LinuxCNC reads them (float values) and applies them period by period
-  // (fit_tables::LinuxcncCompJoint: held while a joint stands, 0 until it first moves, through
-  // LinuxCNC's ramp) at its
-  // interpolation of the nominal joints (trivkins: the commanded axes), for the tool in use.
-  // `settled`: per checked sample, whether every joint's correction is its table's value (it has
-  // moved since the start and LinuxCNC's ramp has reached the value).
+  // in `folder` as LinuxCNC reads them (float values) replayed on the session's nominal joints
+  // (fit_tables::replay_comp_files: LinuxCNC's rules, period by period). `settled`: per checked
+  // sample, whether every joint's correction is its table's value.
   static std::vector<double> simulated_um(const trace::SessionTrace& t, const trace::TraceSummary& s,
                                           const std::string& folder, std::vector<bool>& settled) {
     std::vector<fit_tables::LinuxcncComp> comps;
-    for (int j = 0; j < 5; ++j)
+    std::vector<fit_tables::JointLimits> limits;
+    for (int j = 0; j < 5; ++j) {
       comps.push_back(folder.empty() ? fit_tables::LinuxcncComp{}
                                      : fit_tables::read_linuxcnc_comp(test::file_text(fs::path(folder) / comp_file_name(j)), 1));
-    std::vector<fit_tables::LinuxcncCompJoint> joints;
-    for (int j = 0; j < 5; ++j) {
       const std::string section = "JOINT_" + std::to_string(j);
-      joints.emplace_back(comps[j], test::ini_value(kStockIni, section, "MAX_VELOCITY"),
-                          test::ini_value(kStockIni, section, "MAX_ACCELERATION"), 1e-3);
+      limits.push_back({test::ini_value(kStockIni, section, "MAX_VELOCITY"),
+                        test::ini_value(kStockIni, section, "MAX_ACCELERATION")});
     }
-    std::vector<double> out;
-    settled.clear();
-    std::size_t next_check = 0;
-    for (std::size_t n = 3; n < t.size() && next_check < s.samples.size(); ++n) {
-      const Joints q = trace::interpolated(t.world, n);
-      // LinuxCNC's joint.N.vel-cmd: the cubic interpolator's slope, (p[n-1] - p[n-3]) / 2T.
-      const Joints velocity = (t.world[n - 1] - t.world[n - 3]) / 2e-3;
-      Joints commanded = q;
-      for (int j = 0; j < 5; ++j) commanded[j] += joints[j].next(q[j], velocity[j]);
-      if (s.samples[next_check].sample != n) continue;
-      out.push_back(fit_tables::tip_error_um(*model_, commanded, {q, model_->correction_length(t.tool_length_mm[n - 1])}));
-      settled.push_back(std::all_of(joints.begin(), joints.end(), [](const auto& j) { return j.settled(); }));
-      ++next_check;
-    }
-    return out;
+    fit_tables::CompReplay replay = fit_tables::replay_comp_files(*model_, t, s, comps, limits, 1e-3);
+    settled = std::move(replay.settled);
+    return std::move(replay.tip_error_um);
   }
 
   // The fit's own prediction (its TableSet and interpolation, values x) at the same nominal joints.

@@ -32,8 +32,7 @@ std::vector<LinuxcncCompFile> linuxcnc_comp_files(const machine::Model& model, c
     LinuxcncCompFile f;
     f.joint = t.input;
     f.axis = model.axes[static_cast<std::size_t>(t.input)].letter;
-    f.file_name = "joint_" + std::to_string(f.joint) + "_" +
-                  static_cast<char>(std::tolower(static_cast<unsigned char>(f.axis))) + ".comp";
+    f.file_name = linuxcnc_comp_file_name(model, f.joint);
     // No comment or header line: LinuxCNC stops reading at the first line that is not three numbers.
     for (std::size_t k = 0; k < t.nodes.size(); ++k) {
       const std::string trim = number(x[t.unknown_of_node(static_cast<int>(k))]);
@@ -52,6 +51,12 @@ std::string linuxcnc_ini_lines(const std::vector<LinuxcncCompFile>& files) {
   for (const LinuxcncCompFile& f : files)
     s += "[JOINT_" + std::to_string(f.joint) + "]\nCOMP_FILE = " + f.file_name + "\nCOMP_FILE_TYPE = 1\n";
   return s;
+}
+
+std::string linuxcnc_comp_file_name(const machine::Model& model, int joint) {
+  return "joint_" + std::to_string(joint) + "_" +
+         static_cast<char>(std::tolower(static_cast<unsigned char>(model.axes[static_cast<std::size_t>(joint)].letter))) +
+         ".comp";
 }
 
 LinuxcncComp read_linuxcnc_comp(const std::string& text, int type) {

@@ -44,6 +44,9 @@ std::vector<LinuxcncCompFile> linuxcnc_comp_files(const machine::Model& model, c
 //   COMP_FILE_TYPE = 1
 std::string linuxcnc_ini_lines(const std::vector<LinuxcncCompFile>& files);
 
+// The name fit-tables gives joint `joint`'s COMP_FILE: joint_<n>_<axis letter>.comp.
+std::string linuxcnc_comp_file_name(const machine::Model& model, int joint);
+
 // A COMP_FILE as LinuxCNC holds it after loading.
 struct LinuxcncComp {
   std::vector<double> nominal;

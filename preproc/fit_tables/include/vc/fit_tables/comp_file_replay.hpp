@@ -1,0 +1,36 @@
+// LinuxCNC's COMP_FILEs replayed on a session recorded without any correction (stock
+// kinematics, or volkins with its gain 0 throughout; axes world: the joints are the commanded
+// axes): the tool-tip error each checked sample would have had with the tables loaded, as
+// LinuxCNC applies them period by period (LinuxcncCompJoint: direction from the commanded
+// velocity, held while a joint stands, 0 until it first moves, through LinuxCNC's ramp).
+// Session tests show the replay equals a real stock session with the tables to 0 um at every
+// sample (tests/session/stock_tables_session_test.cpp), so the main job can show the tables'
+// effect without a session of its own per table set.
+#pragma once
+
+#include <vector>
+
+#include "vc/fit_tables/comp_file.hpp"
+#include "vc/machine/model.hpp"
+#include "vc/trace/session_trace.hpp"
+
+namespace vc::fit_tables {
+
+// A joint's [JOINT_n] limits, which LinuxCNC's ramp of the correction uses.
+struct JointLimits {
+  double max_velocity = 0.0, max_acceleration = 0.0;  // units/s, units/s^2
+};
+
+struct CompReplay {
+  std::vector<double> tip_error_um;  // per checked sample of `summary`, |e|
+  std::vector<bool> settled;         // per checked sample: every joint carries its table's value
+};
+
+// `comps`, `limits`: per joint (an empty LinuxcncComp: no table on that joint). Throws
+// std::invalid_argument if their sizes are not the model's joint count, or the trace has a
+// correction active (volkins' gain not 0) somewhere.
+CompReplay replay_comp_files(const machine::Model& model, const trace::SessionTrace& session,
+                             const trace::TraceSummary& summary, const std::vector<LinuxcncComp>& comps,
+                             const std::vector<JointLimits>& limits, double servo_period_s);
+
+}  // namespace vc::fit_tables
