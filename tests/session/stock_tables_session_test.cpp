@@ -13,6 +13,7 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <regex>
 #include <sstream>
 
 #include "linuxcnc_run.hpp"
@@ -165,6 +166,19 @@ TEST_F(StockTablesSession, SamplePartRunsAsTheFitPredictsAndBeatsTheUsualPractic
 
   EXPECT_LT(max_um(modified), 0.6 * max_um(none));
   EXPECT_LT(max_um(modified), max_um(usual));
+
+  // What the main job shows: volcomp trace --comp-files replays each table set on the session
+  // without tables; its largest error is the session's with those tables.
+  for (const auto& [folder, session] : {std::pair{tables, &modified}, std::pair{tables + "/usual_practice", &usual}}) {
+    const test::CommandResult r = test::run_volcomp(
+        "trace " + test::machine_path("mc300") + " " + (test::run_folder_path("stock_none") / "run/kins/configs/mc300/trace.csv").string() +
+        " --comp-files " + folder + " --ini " + test::source_path(kStockIni));
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(r.out, m, std::regex("replayed as LinuxCNC applies them .*: tool tip error: max ([0-9.]+) um")))
+        << r.out;
+    EXPECT_NEAR(std::stod(m[1]), max_um(*session), 0.01) << folder;
+  }
 }
 
 }  // namespace

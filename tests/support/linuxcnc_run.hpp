@@ -19,11 +19,16 @@
 
 namespace vc::test {
 
+// Where run_folder(name) is: /tmp/volcomp-test-runs/<name>.
+inline std::filesystem::path run_folder_path(const std::string& name) {
+  return std::filesystem::temp_directory_path() / "volcomp-test-runs" / name;
+}
+
 // A fresh, empty folder /tmp/volcomp-test-runs/<name>, open to everyone: as root, rtapi_app
 // runs under another uid, which must reach it wherever the checkout lives.
 inline std::filesystem::path run_folder(const std::string& name) {
-  const std::filesystem::path base = std::filesystem::temp_directory_path() / "volcomp-test-runs";
-  const std::filesystem::path dir = base / name;
+  const std::filesystem::path dir = run_folder_path(name);
+  const std::filesystem::path base = dir.parent_path();
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   std::filesystem::permissions(base, std::filesystem::perms::all);
