@@ -113,7 +113,12 @@ int run_trace(const TraceArgs& args, std::ostream& out) {
       << " skipped at tool changes)\n"
       << "tool tip error: max " << format_fixed(max_tip * 1e3, 3) << " um, RMS " << format_fixed(rms * 1e3, 3)
       << " um; tool direction error: max " << format_fixed(max_dir * 1e6, 2) << " urad\n";
-  if (!args.comp_files.empty()) print_comp_file_replay(args, model, session, summary, out);
+  if (!args.comp_files.empty()) {
+    // LinuxCNC's COMP_FILEs act on the joints; the replay takes them to be the commanded axes.
+    if (convention != machine::WorldConvention::Axes)
+      throw std::runtime_error("--comp-files replays a session in the axes world (the joints are the commanded axes)");
+    print_comp_file_replay(args, model, session, summary, out);
+  }
   if (!session.with_volkins) {
     // LinuxCNC's own kinematics: what moves the joints off them is the joints' COMP_FILEs.
     out << "joints beyond the nominal kinematics' (COMP_FILE corrections; mm or deg): max "
