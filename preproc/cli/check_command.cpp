@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "format.hpp"
+#include "vc/init/home_position.hpp"
 #include "vc/machine/correct.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/tables/slope.hpp"
@@ -133,6 +134,22 @@ Survey survey(const Model& model, int samples) {
   return s;
 }
 
+// Where the configuration leaves each axis after homing; false if one is beyond a limit.
+bool print_home_position(const Model& model, const std::string& ini_path, std::ostream& out) {
+  const init::LinuxcncIni ini = init::LinuxcncIni::read(ini_path);
+  const init::HomeCheck check = init::check_home_position(ini, model, init::read_volkins_parameters(ini));
+  out << "after homing in " << ini_path << " (each joint at its HOME, no tool length offset, world="
+      << (check.convention == machine::WorldConvention::Tcp ? "tcp" : "axes") << "):\n";
+  for (std::size_t j = 0; j < check.axes.size(); ++j) {
+    const init::HomedAxis& a = check.axes[j];
+    const bool rotary = model.axes[j].type == AxisType::Rotary;
+    out << "  " << a.letter << "  HOME " << format_number(a.home) << " -> world " << format_fixed(a.world, 4) << (rotary ? " deg" : " mm") << ", limits "
+        << format_number(a.min_limit) << " .. " << format_number(a.max_limit) << '\n';
+  }
+  for (const std::string& p : check.problems) out << "  error: " << p << '\n';
+  return check.problems.empty();
+}
+
 }  // namespace
 
 int run_check(const CheckArgs& args, std::ostream& out) {
@@ -178,7 +195,8 @@ int run_check(const CheckArgs& args, std::ostream& out) {
     out << "FAILED at " << s.failures << " of " << s.poses << " poses, first at "
         << pose_text(model, s.first_failure) << '\n';
   }
-  const bool usable = s.failures == 0;
+  bool usable = s.failures == 0;
+  if (!args.ini.empty()) usable = print_home_position(model, args.ini, out) && usable;
   out << (usable ? "usable\n" : "NOT usable\n");
   return usable ? 0 : 1;
 }

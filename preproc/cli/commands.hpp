@@ -12,6 +12,7 @@ namespace vc::cli {
 struct CheckArgs {
   std::string machine;
   int samples = 10000;  // random poses over the travel, besides the grid of corners and mids
+  std::string ini;      // a LinuxCNC configuration loading this machine: where it homes, or ""
 };
 
 struct BalanceArgs {

@@ -15,6 +15,10 @@ int main(int argc, char** argv) {
   check_cmd->add_option("MACHINE", check.machine, "machine description file (.toml)")->required();
   check_cmd->add_option("--samples", check.samples, "random poses sampled over the travel")
       ->capture_default_str();
+  check_cmd->add_option("--ini", check.ini,
+                        "a LinuxCNC configuration that loads this machine with volkins: is every axis inside its "
+                        "limits after homing?")
+      ->check(CLI::ExistingFile);
 
   vc::cli::PoseArgs error;
   CLI::App* error_cmd = app.add_subcommand(

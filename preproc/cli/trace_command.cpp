@@ -86,6 +86,8 @@ int run_trace(const TraceArgs& args, std::ostream& out) {
   if (summary.samples.empty()) throw std::runtime_error(args.trace + ": fewer than 4 usable samples");
 
   double max_tip = 0, sum_sq = 0, max_dir = 0, max_mismatch = 0, max_pose_mm = 0, max_pose_rad = 0;
+  double max_dir_corrected = 0;  // where volkins corrects the tool direction too
+  std::size_t corrected = 0;
   for (const trace::SampleCheck& s : summary.samples) {
     const double e = s.tip_error_mm.norm();
     max_tip = std::max(max_tip, e);
@@ -93,6 +95,8 @@ int run_trace(const TraceArgs& args, std::ostream& out) {
     max_dir = std::max(max_dir, s.direction_error_rad);
     max_mismatch = std::max(max_mismatch, s.module_mismatch);
     if (s.full_correction) {
+      ++corrected;
+      max_dir_corrected = std::max(max_dir_corrected, s.direction_error_rad);
       max_pose_mm = std::max(max_pose_mm, s.command_pose_mm);
       max_pose_rad = std::max(max_pose_rad, s.command_pose_rad);
     }
@@ -113,6 +117,13 @@ int run_trace(const TraceArgs& args, std::ostream& out) {
       << " skipped at tool changes)\n"
       << "tool tip error: max " << format_fixed(max_tip * 1e3, 3) << " um, RMS " << format_fixed(rms * 1e3, 3)
       << " um; tool direction error: max " << format_fixed(max_dir * 1e6, 2) << " urad\n";
+  if (corrected > 0 && corrected < summary.samples.size())
+    // Near the pole (the tool along the C axis) C cannot turn the tool: volkins fades the
+    // direction correction out there and corrects the tip only (model.md, pole fade).
+    out << "  where the tool direction is corrected too (gain 1, beyond the pole fade band: "
+        << format_fixed(100.0 * static_cast<double>(corrected) / static_cast<double>(summary.samples.size()), 1)
+        << " % of the samples): tool direction error max " << format_fixed(max_dir_corrected * 1e6, 2)
+        << " urad; elsewhere the tip only\n";
   if (!args.comp_files.empty()) {
     // LinuxCNC's COMP_FILEs act on the joints; the replay takes them to be the commanded axes.
     if (convention != machine::WorldConvention::Axes)

@@ -41,11 +41,15 @@ inline void expect_compensated(const trace::TraceSummary& s, int model_rotaries,
   if (model_rotaries == 2) {
     EXPECT_GT(e.full, s.samples.size() / 3) << what << ": too few samples with the full correction";
   }
+  double direction_where_full = 0;  // `volcomp trace` prints it: the tool direction where it is corrected
   for (const trace::SampleCheck& c : s.samples) {
     if (!c.full_correction) {
       ASSERT_LT(c.command_pose_mm, 1e-6) << what << " sample " << c.sample;
+    } else {
+      direction_where_full = std::max(direction_where_full, c.direction_error_rad);
     }
   }
+  EXPECT_LT(direction_where_full, 1e-6) << what << ": the tool direction where it is corrected";
   // What remains at the tool is LinuxCNC's joint smoothing of a corrected path (~1e-5 mm).
   EXPECT_LT(e.tip_mm, 1e-4) << what;
   std::cout << what << ": module-core max " << e.mismatch << ", commanded pose residual max " << e.pose_mm
