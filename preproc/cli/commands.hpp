@@ -39,6 +39,7 @@ struct FitTablesArgs {
   bool programs_only = false;                  // ... and nothing else (the volume judged only)
   std::string tool_table, var_file;            // LinuxCNC's files the programs are read with
   std::string machine_units = "mm";
+  std::vector<std::string> reversal;           // "X=runs.csv": laser runs whose reversal the COMP_FILE takes
 };
 
 struct IdentifyLaserArgs {

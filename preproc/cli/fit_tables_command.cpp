@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -17,6 +18,7 @@
 #include "vc/fit_tables/comp_file.hpp"
 #include "vc/fit_tables/sinumerik_file.hpp"
 #include "vc/fit_tables/study_csv.hpp"
+#include "vc/identify/iso230_2.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/plot/gnuplot.hpp"
 #include "vc/shop/tool_path.hpp"
@@ -113,6 +115,38 @@ std::string figure(const fit_tables::Figures& f) {
   return std::string(s.size() < 15 ? 15 - s.size() : 1, ' ') + s;
 }
 
+// "--reversal X=runs.csv": the joint's reversal B_i at the laser's targets (ISO 230-2, the
+// suspicious runs left out as identify laser leaves them), in machine units (mm or deg).
+fit_tables::JointReversal read_reversal(const machine::Model& model, const std::string& text, std::ostream& out) {
+  const char letter = text.size() > 2 && text[1] == '=' ? static_cast<char>(std::toupper(static_cast<unsigned char>(text[0]))) : 0;
+  const int joint = letter ? model.joint_of(letter) : -1;
+  if (joint < 0)
+    throw std::invalid_argument("--reversal " + text + ": AXIS=RUNS.csv, AXIS one of the machine's (" +
+                                model.coordinates() + ")");
+  const std::string path = text.substr(2);
+  const identify::LaserRuns runs = identify::read_laser_runs(path);
+  const bool rotary = model.axes[static_cast<std::size_t>(joint)].type == machine::AxisType::Rotary;
+  if (runs.rotary != rotary || runs.quantity != (rotary ? tables::Quantity::Angle : tables::Quantity::Length))
+    throw std::invalid_argument(path + ": not " + letter + "'s positioning (" + (rotary ? "targets in deg, deviations angles" : "targets in mm, deviations lengths") + ")");
+  std::set<identify::RunKey> left_out;
+  for (const identify::SuspiciousRun& s : identify::suspicious_runs(runs)) left_out.insert(s.run);
+  const identify::Iso230_2 e = identify::evaluate_iso230_2(runs, left_out);
+  const double unit = rotary ? 180.0 / M_PI : 1.0;  // core units (mm, rad) -> machine units (mm, deg)
+  fit_tables::JointReversal r;
+  r.joint = joint;
+  for (const identify::TargetStatistics& t : e.targets) {
+    r.target.push_back(t.target);
+    r.reversal.push_back(t.reversal * unit);
+  }
+  const double shown = rotary ? 3600.0 * 180.0 / M_PI : 1e3;
+  const char* symbol = rotary ? " arcsec" : " um";
+  out << "reversal of " << letter << " from " << path << " (" << e.targets.size() << " targets, "
+      << e.runs_up << " + " << e.runs_down << " runs" << (left_out.empty() ? "" : ", " + std::to_string(left_out.size()) + " left out")
+      << "): B = " << format_fixed(e.reversal * shown, 2) << symbol << ", mean " << format_fixed(e.mean_reversal * shown, 2)
+      << symbol << ": its COMP_FILE's forward column is the value - B/2, the reverse one + B/2\n";
+  return r;
+}
+
 }  // namespace
 
 int run_fit_tables(const FitTablesArgs& args, std::ostream& out) {
@@ -149,6 +183,16 @@ int run_fit_tables(const FitTablesArgs& args, std::ostream& out) {
   if (args.programs_only && args.programs.empty()) throw std::invalid_argument("--programs-only needs --programs");
   o.programs_only = args.programs_only;
   const fit_tables::Controller controller = fit_tables::load_controller(fit_tables::controller_file(args.controller));
+  // The reversals are read (and refused) before the study's minutes.
+  if (!args.reversal.empty() && controller.format != "linuxcnc-comp-file")
+    throw std::invalid_argument("--reversal: the tables of " + controller.title +
+                                " have one value per node for both directions; set the drive's backlash instead");
+  std::vector<fit_tables::JointReversal> reversals;
+  for (const std::string& r : args.reversal) {
+    reversals.push_back(read_reversal(model, r, out));
+    for (std::size_t k = 0; k + 1 < reversals.size(); ++k)
+      if (reversals[k].joint == reversals.back().joint) throw std::invalid_argument("--reversal " + r + ": that axis is given twice");
+  }
   const fit_tables::Study study = fit_tables::run_study(model, controller, o);
 
   // Every file is complete in memory before any is written.
@@ -160,12 +204,12 @@ int run_fit_tables(const FitTablesArgs& args, std::ostream& out) {
   files.emplace_back("tables.csv", tables.str());
   std::string ini_lines;
   if (controller.format == "linuxcnc-comp-file") {
-    const auto comp = fit_tables::linuxcnc_comp_files(model, study.set, study.modified);
+    const auto comp = fit_tables::linuxcnc_comp_files(model, study.set, study.modified, reversals);
     for (const fit_tables::LinuxcncCompFile& f : comp) files.emplace_back(f.file_name, f.text);
     ini_lines = fit_tables::linuxcnc_ini_lines(comp);
     files.emplace_back("linuxcnc_ini_lines.txt", ini_lines);
     // The usual practice's tables too, to run the comparison on the machine itself.
-    for (const fit_tables::LinuxcncCompFile& f : fit_tables::linuxcnc_comp_files(model, study.set, study.usual))
+    for (const fit_tables::LinuxcncCompFile& f : fit_tables::linuxcnc_comp_files(model, study.set, study.usual, reversals))
       files.emplace_back("usual_practice/" + f.file_name, f.text);
   }
   std::string sinumerik_setup;

@@ -178,8 +178,11 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
         << shown(e.targets.front().mean, q) << " and " << shown(e.targets.back().mean, q) << ".\n";
   out << "The table holds the " << (args.direction == "both" ? "mean bidirectional deviation" : args.direction + " runs' mean")
       << " at each target. The reversal (B = " << shown(e.reversal, q)
-      << ") is not part of the geometric model: it stays uncorrected (a backlash compensation in the drive's INI takes "
-         "it).\n";
+      << ") is not part of the geometric model: volkins leaves it (the drive's backlash compensation takes it)";
+  if (std::string("XYZABC")[static_cast<std::size_t>(symbol->component)] == symbol->axis)  // positioning
+    out << "; for a stock LinuxCNC, volcomp fit-tables --reversal " << symbol->axis << "=" << args.runs
+        << " puts it into the COMP_FILE";
+  out << ".\n";
 
   // The table: one row per target, ascending (a rotary axis over exactly one turn: 0 and 360 deg
   // are one position, whose two readings are averaged, as the loader requires of a periodic table).

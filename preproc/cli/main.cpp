@@ -282,6 +282,9 @@ int main(int argc, char** argv) {
   fit_tables_cmd->add_option("--tool-table", fit_tables.tool_table, "LinuxCNC tool table the programs are read with");
   fit_tables_cmd->add_option("--var", fit_tables.var_file, "LinuxCNC parameter file (.var) the programs are read with");
   fit_tables_cmd->add_option("--machine-units", fit_tables.machine_units, "mm or inch: LinuxCNC's [TRAJ]LINEAR_UNITS");
+  fit_tables_cmd->add_option("--reversal", fit_tables.reversal,
+                             "AXIS=RUNS.csv: laser runs of that axis in both directions (identify laser's format); "
+                             "its COMP_FILE's forward and reverse columns take their reversal B (LinuxCNC only; repeatable)");
 
   CLI::App* identify_cmd = app.add_subcommand("identify", "From measurements to the machine file")->require_subcommand(1);
   vc::cli::IdentifyLaserArgs laser;

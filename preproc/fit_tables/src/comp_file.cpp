@@ -1,5 +1,6 @@
 #include "vc/fit_tables/comp_file.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cstdio>
@@ -19,8 +20,19 @@ std::string number(double v) {
 
 }  // namespace
 
+double reversal_at(const JointReversal& r, double position) {
+  if (r.target.empty()) return 0.0;
+  if (position <= r.target.front()) return r.reversal.front();
+  if (position >= r.target.back()) return r.reversal.back();
+  const std::size_t k = static_cast<std::size_t>(
+      std::upper_bound(r.target.begin(), r.target.end(), position) - r.target.begin());  // 1 .. size - 1
+  const double f = (position - r.target[k - 1]) / (r.target[k] - r.target[k - 1]);
+  return r.reversal[k - 1] + f * (r.reversal[k] - r.reversal[k - 1]);
+}
+
 std::vector<LinuxcncCompFile> linuxcnc_comp_files(const machine::Model& model, const TableSet& set,
-                                                  const Eigen::VectorXd& x) {
+                                                  const Eigen::VectorXd& x,
+                                                  const std::vector<JointReversal>& reversals) {
   std::vector<LinuxcncCompFile> files;
   for (const Table& t : set.tables) {
     if (t.kind != TableKind::Positioning)
@@ -33,13 +45,20 @@ std::vector<LinuxcncCompFile> linuxcnc_comp_files(const machine::Model& model, c
     f.joint = t.input;
     f.axis = model.axes[static_cast<std::size_t>(t.input)].letter;
     f.file_name = linuxcnc_comp_file_name(model, f.joint);
+    const auto r = std::find_if(reversals.begin(), reversals.end(), [&](const JointReversal& j) { return j.joint == f.joint; });
     // No comment or header line: LinuxCNC stops reading at the first line that is not three numbers.
     for (std::size_t k = 0; k < t.nodes.size(); ++k) {
-      const std::string trim = number(x[t.unknown_of_node(static_cast<int>(k))]);
-      f.text += number(t.nodes[k]) + " " + trim + " " + trim + "\n";
+      const double value = x[t.unknown_of_node(static_cast<int>(k))];
+      const double half_b = r == reversals.end() ? 0.0 : 0.5 * reversal_at(*r, t.nodes[k]);
+      f.text += number(t.nodes[k]) + " " + number(value - half_b) + " " + number(value + half_b) + "\n";
     }
     files.push_back(std::move(f));
   }
+  for (const JointReversal& r : reversals)
+    if (std::none_of(files.begin(), files.end(), [&](const LinuxcncCompFile& f) { return f.joint == r.joint; }))
+      throw std::invalid_argument("a reversal for joint " + std::to_string(r.joint) + " (" +
+                                  model.axes[static_cast<std::size_t>(r.joint)].letter +
+                                  "), which has no positioning table to put it in");
   return files;
 }
 
@@ -47,7 +66,8 @@ std::string linuxcnc_ini_lines(const std::vector<LinuxcncCompFile>& files) {
   std::string s =
       "# volcomp fit-tables: the joints' compensation tables (COMP_FILE_TYPE 1: nominal position, forward and\n"
       "# reverse correction added to the joint's command, machine units). Paths are relative to the INI's\n"
-      "# folder (linuxcnc runs there). A joint with a COMP_FILE ignores its BACKLASH.\n";
+      "# folder (linuxcnc runs there). A joint with a COMP_FILE ignores its BACKLASH: a reversal measured by\n"
+      "# laser goes into the forward and reverse columns (volcomp fit-tables --reversal AXIS=runs.csv).\n";
   for (const LinuxcncCompFile& f : files)
     s += "[JOINT_" + std::to_string(f.joint) + "]\nCOMP_FILE = " + f.file_name + "\nCOMP_FILE_TYPE = 1\n";
   return s;

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -229,6 +231,65 @@ TEST(FitTablesCli, BadInputWritesNothing) {
   EXPECT_NE(run.out.find("--rotary B=-200: outside the travel -120 .. 30 deg"), std::string::npos) << run.out;
   EXPECT_FALSE(fs::exists(out));
   fs::remove_all(out.parent_path());
+}
+
+// --reversal: laser runs of X in both directions with a known reversal B(x) = 6 + 0.008 x um
+// (and a mean deviation the model does not have: the fit corrects the model's mean, the runs
+// give only B). The X COMP_FILE's forward column is the fitted value - B/2 and the reverse one
+// + B/2 at every node, as LinuxCNC reads them (float); the other joints' columns stay equal;
+// the mean of both is the file fitted without the runs.
+TEST(FitTablesCli, TheLasersReversalGoesIntoTheForwardAndReverseColumns) {
+  const fs::path dir = scratch("reversal");
+  fs::create_directories(dir);
+  const auto b_mm = [](double x) { return (6.0 + 0.008 * x) * 1e-3; };
+  {
+    std::ofstream runs(dir / "x_runs.csv");
+    runs << "# instrument: test laser\ntarget[mm],run,direction,deviation[um]\n";
+    for (const auto& [run, scatter] : std::vector<std::pair<int, double>>{{1, 0.1}, {2, -0.1}, {3, 0.0}})
+      for (const int sign : {1, -1})
+        for (int k = 0; k <= 10; ++k) {
+          const double x = sign > 0 ? 50.0 * k : 500.0 - 50.0 * k;
+          runs << x << ',' << run << ',' << (sign > 0 ? '+' : '-') << ','
+               << 2.0 * std::sin(x / 80.0) + sign * b_mm(x) * 1e3 / 2 + scatter << '\n';
+        }
+  }
+  const std::string common = "fit-tables " + test::machine_path("mill3") + " --controller linuxcnc --fresh 200";
+  const test::CommandResult with = test::run_volcomp(common + " --reversal X=" + (dir / "x_runs.csv").string() +
+                                                     " -o " + (dir / "with").string());
+  ASSERT_EQ(with.exit_code, 0) << with.out;
+  EXPECT_NE(with.out.find("reversal of X from"), std::string::npos) << with.out;
+  EXPECT_NE(with.out.find("B = 10.00 um, mean 8.00 um"), std::string::npos) << with.out;
+  const test::CommandResult without = test::run_volcomp(common + " -o " + (dir / "without").string());
+  ASSERT_EQ(without.exit_code, 0) << without.out;
+
+  for (const char* file : {"joint_0_x.comp", "joint_1_y.comp", "joint_2_z.comp", "usual_practice/joint_0_x.comp"}) {
+    SCOPED_TRACE(file);
+    const LinuxcncComp c = read_linuxcnc_comp(test::file_text(dir / "with" / file), 1);
+    const LinuxcncComp plain = read_linuxcnc_comp(test::file_text(dir / "without" / file), 1);
+    ASSERT_EQ(c.nominal, plain.nominal);
+    const bool x = std::string(file).find("_x.comp") != std::string::npos;
+    for (std::size_t k = 0; k < c.nominal.size(); ++k) {
+      const double forward = linuxcnc_comp_value(c, c.nominal[k], true), reverse = linuxcnc_comp_value(c, c.nominal[k], false);
+      EXPECT_NEAR(reverse - forward, x ? b_mm(std::clamp(c.nominal[k], 0.0, 500.0)) : 0.0, 1e-7) << c.nominal[k];
+      EXPECT_NEAR(0.5 * (forward + reverse), linuxcnc_comp_value(plain, c.nominal[k], true), 1e-7) << c.nominal[k];
+    }
+  }
+
+  // Refused before anything is written: another controller, an axis the machine lacks, twice.
+  for (const auto& [arguments, message] : std::vector<std::pair<std::string, std::string>>{
+           {"--controller source14 --reversal X=" + (dir / "x_runs.csv").string(), "--reversal: the tables of"},
+           {"--controller linuxcnc --reversal Q=" + (dir / "x_runs.csv").string(), "AXIS one of the machine's (xyz)"},
+           {"--controller linuxcnc --reversal X=" + (dir / "x_runs.csv").string() + " --reversal x=" +
+                (dir / "x_runs.csv").string(),
+            "that axis is given twice"}}) {
+    const fs::path out = dir / "refused";
+    const test::CommandResult run =
+        test::run_volcomp("fit-tables " + test::machine_path("mill3") + " " + arguments + " -o " + out.string());
+    EXPECT_NE(run.exit_code, 0) << arguments;
+    EXPECT_NE(run.out.find(message), std::string::npos) << run.out;
+    EXPECT_FALSE(fs::exists(out)) << arguments;
+  }
+  fs::remove_all(dir.parent_path());
 }
 
 }  // namespace

@@ -30,13 +30,32 @@ struct LinuxcncCompFile {
   int joint = 0;
   char axis = 0;
   std::string file_name;  // "joint_0_x.comp"
-  std::string text;       // COMP_FILE_TYPE 1 triplets, both directions the same values
+  std::string text;       // COMP_FILE_TYPE 1 triplets: nominal, forward, reverse
 };
 
-// One file per joint with a positioning table in `set` (values x). Throws std::invalid_argument
-// for a table LinuxCNC has no place for (cross, squareness) or more than 256 nodes.
+// A joint's reversal error, measured by laser runs in both directions (ISO 230-2):
+// B_i = x_i_up - x_i_down at each target (machine units, mm or deg). The model holds the mean
+// bidirectional deviation, and the fitted values correct it; a COMP_FILE can also take the
+// reversal, as LinuxCNC applies its forward column while the joint moves up and its reverse
+// column while it moves down: forward = value - B/2, reverse = value + B/2 (each corrects its
+// own direction's deviation), B interpolated linearly between the targets and held beyond them.
+// Without it both columns are the same, and the reversal stays (a joint with a COMP_FILE
+// ignores its BACKLASH).
+struct JointReversal {
+  int joint = 0;
+  std::vector<double> target, reversal;  // ascending targets, B_i (mm or deg)
+};
+
+// B at `position`: linear between the targets, the end values held beyond them.
+double reversal_at(const JointReversal& r, double position);
+
+// One file per joint with a positioning table in `set` (values x), a joint in `reversals` with
+// its forward and reverse columns apart. Throws std::invalid_argument for a table LinuxCNC has
+// no place for (cross, squareness) or more than 256 nodes, and for a reversal of a joint
+// without a file.
 std::vector<LinuxcncCompFile> linuxcnc_comp_files(const machine::Model& model, const TableSet& set,
-                                                  const Eigen::VectorXd& x);
+                                                  const Eigen::VectorXd& x,
+                                                  const std::vector<JointReversal>& reversals = {});
 
 // The lines to put in the configuration's INI file, per joint:
 //   [JOINT_n]
