@@ -8,6 +8,7 @@
 #include "commands.hpp"
 #include "format.hpp"
 #include "vc/init/home_position.hpp"
+#include "vc/init/joint_room.hpp"
 #include "vc/machine/correct.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/tables/slope.hpp"
@@ -134,20 +135,29 @@ Survey survey(const Model& model, int samples) {
   return s;
 }
 
-// Where the configuration leaves each axis after homing; false if one is beyond a limit.
-bool print_home_position(const Model& model, const std::string& ini_path, std::ostream& out) {
+// The configuration's limits against the correction: where it leaves each axis after homing,
+// and the room its joint limits leave at the ends of the travel; false if either fails.
+bool print_configuration(const Model& model, const std::string& ini_path, std::ostream& out) {
   const init::LinuxcncIni ini = init::LinuxcncIni::read(ini_path);
-  const init::HomeCheck check = init::check_home_position(ini, model, init::read_volkins_parameters(ini));
-  out << "after homing in " << ini_path << " (each joint at its HOME, no tool length offset, world="
-      << (check.convention == machine::WorldConvention::Tcp ? "tcp" : "axes") << "):\n";
-  for (std::size_t j = 0; j < check.axes.size(); ++j) {
-    const init::HomedAxis& a = check.axes[j];
-    const bool rotary = model.axes[j].type == AxisType::Rotary;
-    out << "  " << a.letter << "  HOME " << format_number(a.home) << " -> world " << format_fixed(a.world, 4) << (rotary ? " deg" : " mm") << ", limits "
-        << format_number(a.min_limit) << " .. " << format_number(a.max_limit) << '\n';
-  }
-  for (const std::string& p : check.problems) out << "  error: " << p << '\n';
-  return check.problems.empty();
+  const init::VolkinsParameters volkins = init::read_volkins_parameters(ini);
+  const init::HomeCheck home = init::check_home_position(ini, model, volkins);
+  const init::JointRoomCheck room = init::check_joint_room(ini, model, volkins);
+  const auto unit = [&](char letter) { return model.axes[model.joint_of(letter)].type == AxisType::Rotary ? " deg" : " mm"; };
+  out << "LinuxCNC configuration " << ini_path << ":\n  after homing (each joint at its HOME, no tool length offset, world="
+      << (home.convention == machine::WorldConvention::Tcp ? "tcp" : "axes") << "):\n";
+  for (const init::HomedAxis& a : home.axes)
+    out << "    " << a.letter << "  HOME " << format_number(a.home) << " -> world " << format_fixed(a.world, 4)
+        << unit(a.letter) << ", axis limits " << format_number(a.min_limit) << " .. " << format_number(a.max_limit) << '\n';
+  out << "  the joints over the axes' limits, corrected (" << room.poses << " poses, L = "
+      << format_number(model.correction_length(0.0)) << " and " << format_number(std::max(model.tool_length_mm, model.correction_length(0.0)))
+      << " mm):\n";
+  for (const init::JointRoom& j : room.joints)
+    out << "    joint " << j.joint << " (" << j.letter << ")  " << format_fixed(j.lowest, 4) << " .. "
+        << format_fixed(j.highest, 4) << unit(j.letter) << ", joint limits " << format_number(j.min_limit) << " .. "
+        << format_number(j.max_limit) << '\n';
+  for (const std::string& p : home.problems) out << "  error: " << p << '\n';
+  for (const std::string& p : room.problems) out << "  error: " << p << '\n';
+  return home.problems.empty() && room.problems.empty();
 }
 
 }  // namespace
@@ -196,7 +206,7 @@ int run_check(const CheckArgs& args, std::ostream& out) {
         << pose_text(model, s.first_failure) << '\n';
   }
   bool usable = s.failures == 0;
-  if (!args.ini.empty()) usable = print_home_position(model, args.ini, out) && usable;
+  if (!args.ini.empty()) usable = print_configuration(model, args.ini, out) && usable;
   out << (usable ? "usable\n" : "NOT usable\n");
   return usable ? 0 : 1;
 }

@@ -2,8 +2,6 @@
 
 #include <cctype>
 #include <cmath>
-#include <sstream>
-
 #include "vc/init/number.hpp"
 
 namespace vc::init {
@@ -14,62 +12,25 @@ constexpr double kNoise = 1e-9;
 // The suggested HOME is this far inside the limit (mm or deg), or a multiple of it.
 constexpr double kHomeStep = 0.1;
 
-double number_of(const IniEntry& entry) {
-  double v = 0.0;
-  if (!parse_number(entry.value, v)) throw LoadError(entry.where(), entry.key + " = " + entry.value + " is not a number");
-  return v;
-}
-
-std::string um_or_mdeg(double v, bool rotary) {
-  std::ostringstream s;
-  s.precision(2);
-  s << std::fixed << v * 1e3 << (rotary ? " mdeg" : " um");
-  return s.str();
-}
-
 }  // namespace
-
-VolkinsParameters read_volkins_parameters(const LinuxcncIni& ini) {
-  const IniEntry* kins = ini.find("KINS", "KINEMATICS");
-  std::istringstream words(kins ? kins->value : "");
-  std::string word;
-  if (!(words >> word) || word != "volkins")
-    throw LoadError(kins ? kins->where() : ini.where_missing("KINS"), "[KINS]KINEMATICS does not load volkins");
-  VolkinsParameters p;
-  while (words >> word) {
-    if (word.rfind("coordinates=", 0) == 0) p.coordinates = word.substr(12);
-    if (word == "world=tcp") p.world = machine::WorldConvention::Tcp;
-  }
-  return p;
-}
 
 HomeCheck check_home_position(const LinuxcncIni& ini, const machine::Model& model, const VolkinsParameters& volkins) {
   using machine::Joints;
   using machine::WorldConvention;
   const int n = model.joint_count();
-  const std::string& coordinates = volkins.coordinates;
   HomeCheck check;
   check.convention = volkins.world;
   Joints home = Joints::Zero(n);
   for (int j = 0; j < n; ++j) {
     HomedAxis a;
     a.letter = static_cast<char>(std::toupper(static_cast<unsigned char>(model.axes[j].letter)));
-    a.joint = j;
-    if (!coordinates.empty()) {
-      const std::size_t at = coordinates.find(static_cast<char>(std::tolower(static_cast<unsigned char>(a.letter))));
-      const std::size_t at_upper = coordinates.find(a.letter);
-      if (std::min(at, at_upper) != std::string::npos) a.joint = static_cast<int>(std::min(at, at_upper));
-    }
+    a.joint = linuxcnc_joint(volkins, model, j);
     const std::string joint_section = "JOINT_" + std::to_string(a.joint);
-    if (const IniEntry* e = ini.find(joint_section, "HOME")) {
-      a.home = number_of(*e);
-      a.home_from = ini.cite(*e);
-    } else {
-      a.home_from = "[" + joint_section + "] gives no HOME (LinuxCNC homes it to 0)";
-    }
+    a.home_from = "[" + joint_section + "] gives no HOME (LinuxCNC homes it to 0)";
+    a.home = ini_number(ini, joint_section, "HOME", 0.0, &a.home_from);
     const std::string axis_section = std::string("AXIS_") + a.letter;
-    if (const IniEntry* e = ini.find(axis_section, "MIN_LIMIT")) a.min_limit = number_of(*e);
-    if (const IniEntry* e = ini.find(axis_section, "MAX_LIMIT")) a.max_limit = number_of(*e);
+    a.min_limit = ini_number(ini, axis_section, "MIN_LIMIT", a.min_limit);
+    a.max_limit = ini_number(ini, axis_section, "MAX_LIMIT", a.max_limit);
     home[j] = a.home;
     check.axes.push_back(a);
   }

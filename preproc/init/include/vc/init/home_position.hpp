@@ -17,8 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "vc/init/linuxcnc_ini.hpp"
-#include "vc/machine/kinematics.hpp"
+#include "vc/init/volkins_config.hpp"
 
 namespace vc::init {
 
@@ -36,15 +35,6 @@ struct HomeCheck {
   std::vector<HomedAxis> axes;      // in the machine file's joint order
   std::vector<std::string> problems;  // one per axis homed beyond a limit: what, where, the fix
 };
-
-// What [KINS]KINEMATICS asks of volkins: coordinates= (LinuxCNC's axis letters, one per joint;
-// empty: the machine's own order) and world= (type 0's convention).
-struct VolkinsParameters {
-  std::string coordinates;
-  machine::WorldConvention world = machine::WorldConvention::Axes;
-};
-// Throws vc::LoadError where KINEMATICS does not load volkins.
-VolkinsParameters read_volkins_parameters(const LinuxcncIni& ini);
 
 // Throws vc::LoadError for a HOME or limit that is not a number.
 HomeCheck check_home_position(const LinuxcncIni& ini, const machine::Model& model, const VolkinsParameters& volkins);

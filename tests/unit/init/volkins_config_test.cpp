@@ -1,10 +1,15 @@
-// Where a volkins configuration leaves each axis after homing (vc/init/home_position.hpp): the
-// configurations shipped here home inside their limits; one homing at a limit is refused with the
-// INI lines and a HOME that fixes it; `volcomp check --ini` says so and exits 1.
+// A volkins configuration's limits against the correction: where it leaves each axis after
+// homing (vc/init/home_position.hpp) and the room its joint limits leave at the ends of the
+// travel (vc/init/joint_room.hpp). The configurations shipped here pass both; one homing at a
+// limit, or a joint limit at its axis's, is refused with the INI lines and the value that fixes
+// it; `volcomp check --ini` says so and exits 1.
 #include "vc/init/home_position.hpp"
+#include "vc/init/joint_room.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <regex>
 
 #include "init_test_files.hpp"
@@ -24,15 +29,19 @@ const Config kShipped[] = {{"kins/configs/mc300/mc300.ini", "machines/data/mc300
                            {"kins/configs/mill3/mill3.ini", "machines/data/mill3.toml"},
                            {"kins/configs/mill3/mill3_gantry.ini", "machines/data/mill3.toml"}};
 
-// The INI's text with `HOME = value` of [JOINT_n] replaced, written beside nothing else.
-std::filesystem::path with_home(const Config& config, int joint, const std::string& value, const std::string& name) {
+// The INI's text with `KEY = value` of [JOINT_n] replaced, written beside nothing else.
+std::filesystem::path with_joint_value(const Config& config, int joint, const std::string& key, const std::string& value,
+                                       const std::string& name) {
   std::string text = test::file_text(source_path(config.ini));
   const std::string section = "[JOINT_" + std::to_string(joint) + "]";
-  const std::size_t at = text.find("HOME = ", text.find(section));
-  text.replace(at, text.find('\n', at) - at, "HOME = " + value);
+  const std::size_t at = text.find("\n" + key + " = ", text.find(section)) + 1;
+  text.replace(at, text.find('\n', at) - at, key + " = " + value);
   const std::filesystem::path ini = test::scratch_folder(name) / "config.ini";
   test::write_file(ini, text);
   return ini;
+}
+std::filesystem::path with_home(const Config& config, int joint, const std::string& value, const std::string& name) {
+  return with_joint_value(config, joint, "HOME", value, name);
 }
 
 TEST(HomePosition, ShippedConfigurationsHomeInsideTheirLimits) {
@@ -103,8 +112,8 @@ TEST(HomePosition, VolcompCheckSaysItAndExitsOne) {
   const test::CommandResult good =
       test::run_volcomp("check " + test::machine_path("mc300") + " --samples 10 --ini " + source_path(kShipped[0].ini));
   EXPECT_EQ(good.exit_code, 0) << good.out;
-  EXPECT_NE(good.out.find("after homing in"), std::string::npos) << good.out;
-  EXPECT_NE(good.out.find("X  HOME -0.1 -> world -0.09"), std::string::npos) << good.out;
+  EXPECT_NE(good.out.find("  after homing (each joint at its HOME"), std::string::npos) << good.out;
+  EXPECT_NE(good.out.find("    X  HOME -0.1 -> world -0.09"), std::string::npos) << good.out;
 
   const std::filesystem::path bad = with_home(kShipped[0], 0, "0", "mc300_cli");
   const test::CommandResult refused =
@@ -112,6 +121,55 @@ TEST(HomePosition, VolcompCheckSaysItAndExitsOne) {
   EXPECT_EQ(refused.exit_code, 1) << refused.out;
   EXPECT_NE(refused.out.find("error: X homes "), std::string::npos) << refused.out;
   EXPECT_NE(refused.out.find("NOT usable"), std::string::npos) << refused.out;
+}
+
+TEST(JointRoom, ShippedConfigurationsLeaveRoomForTheCorrection) {
+  for (const Config& c : kShipped) {
+    SCOPED_TRACE(c.ini);
+    const LinuxcncIni ini = LinuxcncIni::read(source_path(c.ini));
+    const machine::Model model = machine::load_machine(source_path(c.machine));
+    const JointRoomCheck check = check_joint_room(ini, model, read_volkins_parameters(ini));
+    EXPECT_TRUE(check.problems.empty()) << check.problems.front();
+    EXPECT_EQ(check.poses, 2 * static_cast<int>(std::pow(5, model.joint_count())));
+    // The correction does take joints beyond the axes' limits (else there is nothing to check),
+    // and every joint stays within its own.
+    double beyond_axis = 0;
+    for (const JointRoom& j : check.joints) {
+      EXPECT_GE(j.lowest, j.min_limit) << j.joint;
+      EXPECT_LE(j.highest, j.max_limit) << j.joint;
+      const machine::Axis& a = model.axes[static_cast<std::size_t>(model.joint_of(j.letter))];
+      beyond_axis = std::max({beyond_axis, j.highest - a.travel_max, a.travel_min - j.lowest});
+    }
+    EXPECT_GT(beyond_axis, 1e-3);
+  }
+  // The gantry: both Y joints are checked.
+  const LinuxcncIni gantry = LinuxcncIni::read(source_path(kShipped[3].ini));
+  const JointRoomCheck g = check_joint_room(gantry, machine::load_machine(source_path(kShipped[3].machine)),
+                                            read_volkins_parameters(gantry));
+  ASSERT_EQ(g.joints.size(), 4u);
+  EXPECT_EQ(g.joints[1].letter, 'Y');
+  EXPECT_EQ(g.joints[2].letter, 'Y');
+  EXPECT_EQ(g.joints[2].highest, g.joints[1].highest);
+}
+
+TEST(JointRoom, AJointLimitAtItsAxisLimitIsRefusedWithTheFix) {
+  // MC-300's Y joint limited where its axis is (0): the correction takes it ~0.18 mm beyond.
+  const std::filesystem::path ini_path = with_joint_value(kShipped[0], 1, "MAX_LIMIT", "0", "mc300_no_room");
+  const LinuxcncIni ini = LinuxcncIni::read(ini_path.string());
+  const machine::Model model = machine::load_machine(source_path(kShipped[0].machine));
+  const JointRoomCheck check = check_joint_room(ini, model, read_volkins_parameters(ini));
+  ASSERT_EQ(check.problems.size(), 1u);
+  const std::string& p = check.problems[0];
+  EXPECT_TRUE(std::regex_search(p, std::regex("^joint 1 \\(Y\\): the correction takes it to 0\\.1[0-9]* at the upper end "
+                                              "of Y's travel, [0-9.]+ um beyond its MAX_LIMIT \\(config.ini:[0-9]+ "
+                                              "`MAX_LIMIT = 0`\\)")))
+      << p;
+  EXPECT_NE(p.find("[JOINT_1]MAX_LIMIT = 0.2"), std::string::npos) << p;
+
+  const test::CommandResult refused =
+      test::run_volcomp("check " + test::machine_path("mc300") + " --samples 10 --ini " + ini_path.string());
+  EXPECT_EQ(refused.exit_code, 1) << refused.out;
+  EXPECT_NE(refused.out.find("error: joint 1 (Y)"), std::string::npos) << refused.out;
 }
 
 TEST(HomePosition, AnotherModuleIsNotVolkins) {

@@ -1,0 +1,38 @@
+// Whether a volkins configuration's joint limits leave room for the correction.
+//
+// volkins sends the joints q_c = correct(q_n): at the ends of an axis's travel they lie up to
+// the correction there (tens of um, more with a long tool) beyond the nominal joints q_n, which
+// the world's [AXIS_x] limits bound. A joint whose [JOINT_n] MIN_LIMIT / MAX_LIMIT are the axis's
+// own (as stock configurations have them, and `volcomp init` leaves them) makes LinuxCNC stop a
+// program that reaches the end of the travel with a joint limit error. The joint limits must
+// lie beyond the axis limits by more than the correction.
+//
+// Sampled: every joint at 5 levels over its axis's limits (all combinations; where an axis has
+// no limits, the machine file's travel), at the tool lengths 0 and the machine file's typical
+// one (plus its reference length), at the reference temperatures.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "vc/init/volkins_config.hpp"
+
+namespace vc::init {
+
+struct JointRoom {
+  char letter = 'X';
+  int joint = 0;                                  // LinuxCNC's (every joint of the letter is checked)
+  double min_limit = -1e99, max_limit = 1e99;     // [JOINT_n], mm or deg
+  double lowest = 0.0, highest = 0.0;             // the corrected joint over the samples
+};
+
+struct JointRoomCheck {
+  std::vector<JointRoom> joints;      // one per LinuxCNC joint that drives an axis of the model
+  int poses = 0;                      // corrections evaluated
+  std::vector<std::string> problems;  // one per joint limit the correction crosses: where, the fix
+};
+
+// Throws vc::LoadError for a limit that is not a number.
+JointRoomCheck check_joint_room(const LinuxcncIni& ini, const machine::Model& model, const VolkinsParameters& volkins);
+
+}  // namespace vc::init

@@ -1,0 +1,33 @@
+// A LinuxCNC configuration that loads volkins, as the checks of its limits read it: the module's
+// parameters, which LinuxCNC joint drives each axis of the machine file, and the INI's numbers.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "vc/init/linuxcnc_ini.hpp"
+#include "vc/machine/kinematics.hpp"
+
+namespace vc::init {
+
+// What [KINS]KINEMATICS asks of volkins: coordinates= (LinuxCNC's axis letters, one per joint;
+// empty: the machine's own order) and world= (type 0's convention).
+struct VolkinsParameters {
+  std::string coordinates;
+  machine::WorldConvention world = machine::WorldConvention::Axes;
+};
+// Throws vc::LoadError where KINEMATICS does not load volkins.
+VolkinsParameters read_volkins_parameters(const LinuxcncIni& ini);
+
+// LinuxCNC's joint of the machine file's joint `j`: the first of its letter in coordinates=.
+int linuxcnc_joint(const VolkinsParameters& volkins, const machine::Model& model, int j);
+
+// The INI's number `key` in `section`, or `otherwise` where it is missing; `from` (optional)
+// receives the citation. Throws vc::LoadError for a value that is not a number.
+double ini_number(const LinuxcncIni& ini, std::string_view section, std::string_view key, double otherwise,
+                  std::string* from = nullptr);
+
+// A small length or angle for messages: "5.24 um", "1.20 mdeg" (v in mm or deg).
+std::string um_or_mdeg(double v, bool rotary);
+
+}  // namespace vc::init

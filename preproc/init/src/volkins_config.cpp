@@ -1,0 +1,49 @@
+#include "vc/init/volkins_config.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <sstream>
+
+#include "vc/init/number.hpp"
+
+namespace vc::init {
+
+VolkinsParameters read_volkins_parameters(const LinuxcncIni& ini) {
+  const IniEntry* kins = ini.find("KINS", "KINEMATICS");
+  std::istringstream words(kins ? kins->value : "");
+  std::string word;
+  if (!(words >> word) || word != "volkins")
+    throw LoadError(kins ? kins->where() : ini.where_missing("KINS"), "[KINS]KINEMATICS does not load volkins");
+  VolkinsParameters p;
+  while (words >> word) {
+    if (word.rfind("coordinates=", 0) == 0) p.coordinates = word.substr(12);
+    if (word == "world=tcp") p.world = machine::WorldConvention::Tcp;
+  }
+  return p;
+}
+
+int linuxcnc_joint(const VolkinsParameters& volkins, const machine::Model& model, int j) {
+  const char letter = model.axes[static_cast<std::size_t>(j)].letter;
+  const std::size_t at = std::min(volkins.coordinates.find(static_cast<char>(std::tolower(static_cast<unsigned char>(letter)))),
+                                  volkins.coordinates.find(static_cast<char>(std::toupper(static_cast<unsigned char>(letter)))));
+  return at == std::string::npos ? j : static_cast<int>(at);
+}
+
+double ini_number(const LinuxcncIni& ini, std::string_view section, std::string_view key, double otherwise,
+                  std::string* from) {
+  const IniEntry* e = ini.find(section, key);
+  if (!e) return otherwise;
+  double v = 0.0;
+  if (!parse_number(e->value, v)) throw LoadError(e->where(), e->key + " = " + e->value + " is not a number");
+  if (from) *from = ini.cite(*e);
+  return v;
+}
+
+std::string um_or_mdeg(double v, bool rotary) {
+  std::ostringstream s;
+  s.precision(2);
+  s << std::fixed << v * 1e3 << (rotary ? " mdeg" : " um");
+  return s.str();
+}
+
+}  // namespace vc::init
