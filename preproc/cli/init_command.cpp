@@ -68,7 +68,9 @@ int run_init(const InitArgs& args, std::ostream& patch_out, std::ostream& report
          << "  kinematics: " << r.machine.module << ", joints " << r.machine.coordinates << " -> " << r.patch.kinematics
          << '\n'
          << "  machine file: " << args.output << ": nominal geometry, zero errors; add the measured error tables "
-         << "(machines/README.md section 5), then `volcomp check " << args.output << "`\n"
+         << "(machines/README.md section 5), then `volcomp check " << args.output << " --ini " << args.ini
+         << "` (after the patch: the configuration's limits against the correction, where it homes and the room its "
+         << "joint limits leave)\n"
          << "  patch (" << (patch_to_file ? args.patch : std::string("stdout")) << "):";
   for (const std::string& change : r.patch.changes) report << "\n    " << change;
   report << "\n  apply it: patch -p1 -d " << r.folder << " < " << (patch_to_file ? args.patch : std::string("PATCH"))

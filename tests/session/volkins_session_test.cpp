@@ -329,6 +329,40 @@ TEST_F(Mc300Session, ASwitchWhileMovingIsRefusedAndMotionStopsWithinTheJointLimi
   expect_within_joint_limits(t.joints, model_->joint_count(), "switch while moving");
 }
 
+// volcomp check --ini against LinuxCNC itself: a program that runs Y to the end of its travel
+// (Y0) at B30 C270, where the correction takes the Y joint ~0.08 mm beyond the axis. With the
+// configuration's joint limits (1 mm of room) the check passes and the program runs cleanly;
+// with [JOINT_1]MAX_LIMIT = 0 (the axis's own, as a stock configuration has it) the check
+// refuses it, and LinuxCNC stops the program with a joint soft limit error there.
+TEST_F(Mc300Session, AJointLimitWithoutRoomForTheCorrectionIsRefusedByTheCheckAndStopsLinuxCnc) {
+  const fs::path dir = test::run_folder("mc300_joint_room");
+  const fs::path program = dir / "y_to_the_end.ngc";
+  std::ofstream(program) << "G21 G90 G94\nG0 X-1 Y-20 Z-150\nG0 B30 C270\nG1 Y0 F600\nG1 Y-20\nM2\n";
+  const auto check = [&](const std::string& name) {
+    return test::run_volcomp("check " + test::machine_path("mc300") + " --samples 10 --ini " +
+                             (test::run_folder_path(name) / "run/kins/configs/mc300/mc300.ini").string());
+  };
+
+  const trace::SessionTrace room = run_session("mc300_joint_room_ok", kMc300Ini, *model_,
+                                               "--compensation on --program " + program.string());
+  const test::CommandResult usable = check("mc300_joint_room_ok");
+  EXPECT_EQ(usable.exit_code, 0) << usable.out;
+  double highest = -1e9;
+  for (const Joints& q : room.joints) highest = std::max(highest, q[1]);
+  EXPECT_GT(highest, 0.05) << "the program does not take the Y joint beyond its axis's limit";
+
+  const trace::SessionTrace stopped =
+      run_session("mc300_joint_room_none", kMc300Ini, *model_,
+                  "--compensation on --program " + program.string() +
+                      " --set JOINT_1.MAX_LIMIT=0 --expect-message 'soft limit' --allow-message 'Hint'");
+  const test::CommandResult refused = check("mc300_joint_room_none");
+  EXPECT_EQ(refused.exit_code, 1) << refused.out;
+  EXPECT_NE(refused.out.find("error: joint 1 (Y): the correction takes it to"), std::string::npos) << refused.out;
+  EXPECT_LT(stopped.size(), room.size()) << "LinuxCNC ran the program to its end";
+  std::cout << "Y joint at the end of the travel: " << highest << " mm (axis limit 0); without room, LinuxCNC stopped after "
+            << stopped.size() << " of " << room.size() << " samples\n";
+}
+
 // Column `name` of a trace CSV (std::stod: a sensor's "nan" included).
 std::vector<double> trace_column(const fs::path& path, const std::string& name) {
   std::ifstream in(path);

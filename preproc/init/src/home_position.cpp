@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <cmath>
+
 #include "vc/init/number.hpp"
 
 namespace vc::init {

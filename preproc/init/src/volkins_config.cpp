@@ -13,7 +13,8 @@ VolkinsParameters read_volkins_parameters(const LinuxcncIni& ini) {
   std::istringstream words(kins ? kins->value : "");
   std::string word;
   if (!(words >> word) || word != "volkins")
-    throw LoadError(kins ? kins->where() : ini.where_missing("KINS"), "[KINS]KINEMATICS does not load volkins");
+    throw LoadError(kins ? kins->where() : ini.where_missing("KINS"),
+                    "[KINS]KINEMATICS does not load volkins (a stock configuration: apply volcomp init's patch first)");
   VolkinsParameters p;
   while (words >> word) {
     if (word.rfind("coordinates=", 0) == 0) p.coordinates = word.substr(12);
