@@ -42,7 +42,13 @@ void print_comp_file_replay(const TraceArgs& args, const machine::Model& model, 
       if (!init::parse_number(entry->value, limit[k]) || limit[k] <= 0)
         throw LoadError(entry->where(), "[" + section + "]" + keys[k] + " is not a number > 0");
     }
-    limits.push_back({limit[0], limit[1]});
+    // The homing's move from HOME_OFFSET to HOME (LinuxCNC's defaults 0).
+    double home[2] = {0.0, 0.0};
+    const char* home_keys[2] = {"HOME", "HOME_OFFSET"};
+    for (int k = 0; k < 2; ++k)
+      if (const init::IniEntry* entry = ini.find(section, home_keys[k]); entry && !init::parse_number(entry->value, home[k]))
+        throw LoadError(entry->where(), "[" + section + "]" + home_keys[k] + " is not a number");
+    limits.push_back({limit[0], limit[1], home[0] > home[1] ? 1 : home[0] < home[1] ? -1 : 0});
     const fs::path file = fs::path(args.comp_files) / fit_tables::linuxcnc_comp_file_name(model, j);
     if (!fs::exists(file)) {
       comps.emplace_back();

@@ -77,8 +77,9 @@ class StockTablesSession : public ::testing::Test {
       comps.push_back(folder.empty() ? fit_tables::LinuxcncComp{}
                                      : fit_tables::read_linuxcnc_comp(test::file_text(fs::path(folder) / comp_file_name(j)), 1));
       const std::string section = "JOINT_" + std::to_string(j);
+      const double home = test::ini_value(kStockIni, section, "HOME");  // HOME_OFFSET: not set, 0
       limits.push_back({test::ini_value(kStockIni, section, "MAX_VELOCITY"),
-                        test::ini_value(kStockIni, section, "MAX_ACCELERATION")});
+                        test::ini_value(kStockIni, section, "MAX_ACCELERATION"), home > 0 ? 1 : home < 0 ? -1 : 0});
     }
     fit_tables::CompReplay replay = fit_tables::replay_comp_files(*model_, t, s, comps, limits, 1e-3);
     settled = std::move(replay.settled);

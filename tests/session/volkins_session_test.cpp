@@ -333,8 +333,9 @@ TEST_F(Mc300Session, ASwitchWhileMovingIsRefusedAndMotionStopsWithinTheJointLimi
 // (Y0) at B30 C270, where the correction takes the Y joint ~0.08 mm beyond the axis. With the
 // configuration's joint limits (1 mm of room) the check passes and the program runs cleanly;
 // with [JOINT_1]MAX_LIMIT = 0 (the axis's own, as a stock configuration has it) the check
-// refuses it, and LinuxCNC stops the program with a joint soft limit error there.
-TEST_F(Mc300Session, AJointLimitWithoutRoomForTheCorrectionIsRefusedByTheCheckAndStopsLinuxCnc) {
+// refuses it, and LinuxCNC refuses the program's move there ("Linear move on line 4 would exceed
+// joint 1's positive limit": it checks a move's end through the inverse kinematics).
+TEST_F(Mc300Session, AJointLimitWithoutRoomForTheCorrectionIsRefusedByTheCheckAndByLinuxCnc) {
   const fs::path dir = test::run_folder("mc300_joint_room");
   const fs::path program = dir / "y_to_the_end.ngc";
   std::ofstream(program) << "G21 G90 G94\nG0 X-1 Y-20 Z-150\nG0 B30 C270\nG1 Y0 F600\nG1 Y-20\nM2\n";
@@ -354,7 +355,8 @@ TEST_F(Mc300Session, AJointLimitWithoutRoomForTheCorrectionIsRefusedByTheCheckAn
   const trace::SessionTrace stopped =
       run_session("mc300_joint_room_none", kMc300Ini, *model_,
                   "--compensation on --program " + program.string() +
-                      " --set JOINT_1.MAX_LIMIT=0 --expect-message 'soft limit' --allow-message 'Hint'");
+                      " --set JOINT_1.MAX_LIMIT=0 --expect-message \"would exceed joint 1's positive limit\""
+                      " --allow-message 'invalid params in linear command'");
   const test::CommandResult refused = check("mc300_joint_room_none");
   EXPECT_EQ(refused.exit_code, 1) << refused.out;
   EXPECT_NE(refused.out.find("error: joint 1 (Y): the correction takes it to"), std::string::npos) << refused.out;

@@ -289,6 +289,12 @@ class Soak:
         self.end_temperature_faults()
         self.hold(self.rng.uniform(0.2, 1.0))
         self.machine_on_and_home(first=False)
+        # After the e-stop the status may still show the aborted program's tool length offset
+        # while the interpreter has dropped it (a 150 s run moved Z 150 mm below its limit on
+        # that): start from a known offset, as an operator would.
+        self.command.mode(linuxcnc.MODE_MDI)
+        self.command.wait_complete()
+        self.mdi("G49")
         self.background = True
 
     def idle(self):

@@ -316,7 +316,9 @@ TEST_F(Soak, ASessionUnderRandomFaultsStaysWithinItsBounds) {
   EXPECT_GT(ramping, 1000u) << "the enable ramp ran too little";
   EXPECT_GE(tool_changes, 5u) << "too few tool length changes (G43, G43.1, G49)";
   for (int j = 0; j < kJoints; ++j) {
-    EXPECT_LE(a_peak[j], a_max[j]) << "joint " << j << " at sample " << a_at[j];
+    // The homing's move to HOME accelerates at exactly the limit: the second difference adds
+    // float noise to it.
+    EXPECT_LE(a_peak[j], a_max[j] * (1 + 1e-6)) << "joint " << j << " at sample " << a_at[j];
     EXPECT_LE(a_ramp[j], 0.05 * a_max[j]) << "joint " << j << ": the enable ramp's share";
   }
   EXPECT_EQ(rest_windows, static_cast<std::size_t>(counts["rest_check"])) << "a rest window is missing in the trace";

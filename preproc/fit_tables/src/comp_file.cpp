@@ -125,6 +125,13 @@ double LinuxcncCompJoint::next(double position, double velocity) {
   return output_;
 }
 
+void LinuxcncCompJoint::moved_before(double position, int direction) {
+  if (direction == 0) return;
+  target_ = output_ = linuxcnc_comp_value(*comp_, position, direction > 0);
+  rate_ = 0.0;
+  moved_ = true;
+}
+
 // The ramp, written for a target above the output; a target below is the mirror image (output,
 // target and rate negated), which is how LinuxCNC's two branches relate.
 void LinuxcncCompJoint::ramp() {

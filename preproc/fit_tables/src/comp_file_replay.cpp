@@ -17,8 +17,10 @@ CompReplay replay_comp_files(const machine::Model& model, const trace::SessionTr
     throw std::invalid_argument(session.path + ": volkins corrects in this session (its gain is not 0 throughout); "
                                 "replay COMP_FILEs on a session without correction");
   std::vector<LinuxcncCompJoint> joints;
-  for (std::size_t j = 0; j < n_joints; ++j)
+  for (std::size_t j = 0; j < n_joints; ++j) {
     joints.emplace_back(comps[j], limits[j].max_velocity, limits[j].max_acceleration, servo_period_s);
+    if (session.size() > 0) joints[j].moved_before(session.world[0][static_cast<Eigen::Index>(j)], limits[j].homing_move);
+  }
   CompReplay out;
   std::size_t next_check = 0;
   for (std::size_t n = 3; n < session.size() && next_check < summary.samples.size(); ++n) {

@@ -80,9 +80,8 @@ JointRoomCheck check_joint_room(const LinuxcncIni& ini, const machine::Model& mo
           "joint " + std::to_string(room.joint) + " (" + room.letter + "): the correction takes it to " +
           format_number(std::round(reached * 1e6) / 1e6) + " at the " + (above ? "upper" : "lower") + " end of " +
           room.letter + "'s travel, " + um_or_mdeg(beyond, rotary) + " beyond its " + (above ? "MAX_LIMIT" : "MIN_LIMIT") +
-          (limit ? " (" + ini.cite(*limit) + ")" : "") + ": LinuxCNC stops a program that goes there (\"Exceeded " +
-          (above ? "POSITIVE" : "NEGATIVE") + " soft limit ... on joint " + std::to_string(room.joint) +
-          "\"). Room for the correction: [" + section + "]" + (above ? "MAX_LIMIT" : "MIN_LIMIT") + " = " +
+          (limit ? " (" + ini.cite(*limit) + ")" : "") + ": LinuxCNC refuses a move that ends there (\"would exceed joint " + std::to_string(room.joint) + "'s " +
+          (above ? "positive" : "negative") + " limit\"). Room for the correction: [" + section + "]" + (above ? "MAX_LIMIT" : "MIN_LIMIT") + " = " +
           format_number(std::round(suggested * 1e6) / 1e6));
     }
   }

@@ -136,6 +136,19 @@ TEST(FitTablesLinuxcncCompFile, JointCorrectionStartsAtZeroHoldsAndRamps) {
   EXPECT_TRUE(joint.settled());
 }
 
+// A homing's move to HOME before the first period (moved_before): the correction is that
+// direction's value there from the start, held while the joint stands; no move: still nothing.
+TEST(FitTablesLinuxcncCompFile, AHomingMoveAppliesItsDirectionsValueFromTheStart) {
+  const LinuxcncComp comp = read_linuxcnc_comp("-100 0.05 -0.05\n100 0.07 -0.03\n", 1);
+  LinuxcncCompJoint down(comp, 100, 1000, 1e-3), none(comp, 100, 1000, 1e-3);
+  down.moved_before(-0.1, -1);
+  none.moved_before(-0.1, 0);
+  EXPECT_TRUE(down.settled());
+  EXPECT_FLOAT_EQ(down.next(-0.1, 0.0), -0.05f + (0.02f / 200) * 99.9f);  // the reverse column at -0.1
+  EXPECT_FALSE(none.settled());
+  EXPECT_EQ(none.next(-0.1, 0.0), 0.0);
+}
+
 TEST(FitTablesLinuxcncCompFile, HoldsPositioningTablesOnly) {
   const machine::Model model = machine::load_machine(test::machine_path("mill3"));
   const TableSet s14 = resolve_tables(load_controller(controller_file("source14")), model);

@@ -83,7 +83,8 @@ double linuxcnc_comp_value(const LinuxcncComp& comp, double position, bool forwa
 // controller simulator of a LinuxCNC joint with a COMP_FILE):
 //   - the target: the forward value while the commanded velocity is > 0, the reverse value while
 //     it is < 0, the last target while it is 0; 0 until the joint first moves after LinuxCNC
-//     starts (a joint the program never moves, or one homed without motion, is not corrected);
+//     starts (a joint the program never moves, or one homed without motion, is not corrected;
+//     a homing's move to HOME counts: moved_before);
 //   - what reaches the motor: the target through LinuxCNC's ramp, which moves towards it at
 //     most at half the joint's MAX_VELOCITY and MAX_ACCELERATION (accelerating, cruising,
 //     decelerating to stop on it, and landing on it at once when one period's deceleration
@@ -97,6 +98,10 @@ class LinuxcncCompJoint {
   // The correction added to the motor command in the period whose commanded position and
   // velocity (joint.N.pos-cmd, joint.N.vel-cmd) are given.
   double next(double position, double velocity);
+  // The joint came to rest at `position` after a move up (direction +1) or down (-1) before the
+  // first period given to next() (a homing's move to HOME): the correction is that direction's
+  // value there.
+  void moved_before(double position, int direction);
   // The joint has moved and the ramp has reached the table's value: the correction is the
   // table's (what the fit assumes everywhere).
   bool settled() const { return moved_ && output_ == target_; }

@@ -2,7 +2,8 @@
 // kinematics, or volkins with its gain 0 throughout; axes world: the joints are the commanded
 // axes): the tool-tip error each checked sample would have had with the tables loaded, as
 // LinuxCNC applies them period by period (LinuxcncCompJoint: direction from the commanded
-// velocity, held while a joint stands, 0 until it first moves, through LinuxCNC's ramp).
+// velocity, held while a joint stands, 0 until it first moves (the homing's move to HOME
+// included), through LinuxCNC's ramp).
 // Session tests show the replay equals a real stock session with the tables to 0 um at every
 // sample (tests/session/stock_tables_session_test.cpp), so the main job can show the tables'
 // effect without a session of its own per table set.
@@ -16,9 +17,14 @@
 
 namespace vc::fit_tables {
 
-// A joint's [JOINT_n] limits, which LinuxCNC's ramp of the correction uses.
+// What the replay takes from a joint's [JOINT_n]: the limits LinuxCNC's ramp of the correction
+// uses, and the homing's final move. With HOME_SEARCH_VEL = 0 LinuxCNC takes the joint's
+// position to be HOME_OFFSET and then moves it to HOME: a COMP_FILE's correction is active from
+// that move on (the reverse value at HOME if HOME is below HOME_OFFSET), before the session's
+// first sample.
 struct JointLimits {
   double max_velocity = 0.0, max_acceleration = 0.0;  // units/s, units/s^2
+  int homing_move = 0;  // the move to HOME: +1 up, -1 down, 0 none (HOME = HOME_OFFSET)
 };
 
 struct CompReplay {

@@ -3,9 +3,10 @@
 // volkins sends the joints q_c = correct(q_n): at the ends of an axis's travel they lie up to
 // the correction there (tens of um, more with a long tool) beyond the nominal joints q_n, which
 // the world's [AXIS_x] limits bound. A joint whose [JOINT_n] MIN_LIMIT / MAX_LIMIT are the axis's
-// own (as stock configurations have them, and `volcomp init` leaves them) makes LinuxCNC stop a
-// program that reaches the end of the travel with a joint limit error. The joint limits must
-// lie beyond the axis limits by more than the correction.
+// own (as stock configurations have them, and `volcomp init` leaves them) makes LinuxCNC refuse
+// a program's move to the end of the travel ("Linear move on line N would exceed joint 1's
+// positive limit": LinuxCNC 2.9 checks a move's end through the inverse kinematics). The joint
+// limits must lie beyond the axis limits by more than the correction.
 //
 // Sampled: every joint at 5 levels over its axis's limits (all combinations; where an axis has
 // no limits, the machine file's travel), at the tool lengths 0 and the machine file's typical
