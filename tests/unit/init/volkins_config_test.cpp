@@ -44,12 +44,24 @@ std::filesystem::path with_home(const Config& config, int joint, const std::stri
   return with_joint_value(config, joint, "HOME", value, name);
 }
 
+// A configuration as the checks take it: its INI (or `ini` in its place), its machine, volkins' parameters.
+struct Loaded {
+  LinuxcncIni ini;
+  machine::Model model;
+  VolkinsParameters volkins;
+};
+Loaded load(const Config& config, const std::string& ini = "") {
+  LinuxcncIni read = LinuxcncIni::read(ini.empty() ? source_path(config.ini) : ini);
+  const VolkinsParameters volkins = read_volkins_parameters(read);
+  return {std::move(read), machine::load_machine(source_path(config.machine)), volkins};
+}
+
 TEST(HomePosition, ShippedConfigurationsHomeInsideTheirLimits) {
   for (const Config& c : kShipped) {
     SCOPED_TRACE(c.ini);
-    const LinuxcncIni ini = LinuxcncIni::read(source_path(c.ini));
-    const machine::Model model = machine::load_machine(source_path(c.machine));
-    const HomeCheck check = check_home_position(ini, model, read_volkins_parameters(ini));
+    const Loaded l = load(c);
+    const machine::Model& model = l.model;
+    const HomeCheck check = check_home_position(l.ini, model, l.volkins);
     EXPECT_TRUE(check.problems.empty()) << check.problems.front();
     ASSERT_EQ(check.axes.size(), static_cast<std::size_t>(model.joint_count()));
     // The world it reports maps back to the HOME joints through the inverse (the correction
@@ -126,9 +138,9 @@ TEST(HomePosition, VolcompCheckSaysItAndExitsOne) {
 TEST(JointRoom, ShippedConfigurationsLeaveRoomForTheCorrection) {
   for (const Config& c : kShipped) {
     SCOPED_TRACE(c.ini);
-    const LinuxcncIni ini = LinuxcncIni::read(source_path(c.ini));
-    const machine::Model model = machine::load_machine(source_path(c.machine));
-    const JointRoomCheck check = check_joint_room(ini, model, read_volkins_parameters(ini));
+    const Loaded l = load(c);
+    const machine::Model& model = l.model;
+    const JointRoomCheck check = check_joint_room(l.ini, model, l.volkins);
     EXPECT_TRUE(check.problems.empty()) << check.problems.front();
     EXPECT_EQ(check.poses, 2 * static_cast<int>(std::pow(5, model.joint_count())));
     // The correction does take joints beyond the axes' limits (else there is nothing to check),
