@@ -118,7 +118,8 @@ std::string figure(const fit_tables::Figures& f) {
 // "--reversal X=runs.csv": the joint's reversal B_i at the laser's targets (ISO 230-2, the
 // suspicious runs left out as identify laser leaves them), in machine units (mm or deg).
 fit_tables::JointReversal read_reversal(const machine::Model& model, const std::string& text, std::ostream& out) {
-  const char letter = text.size() > 2 && text[1] == '=' ? static_cast<char>(std::toupper(static_cast<unsigned char>(text[0]))) : 0;
+  const char letter =
+      text.size() > 2 && text[1] == '=' ? static_cast<char>(std::toupper(static_cast<unsigned char>(text[0]))) : 0;
   const int joint = letter ? model.joint_of(letter) : -1;
   if (joint < 0)
     throw std::invalid_argument("--reversal " + text + ": AXIS=RUNS.csv, AXIS one of the machine's (" +
@@ -127,7 +128,8 @@ fit_tables::JointReversal read_reversal(const machine::Model& model, const std::
   const identify::LaserRuns runs = identify::read_laser_runs(path);
   const bool rotary = model.axes[static_cast<std::size_t>(joint)].type == machine::AxisType::Rotary;
   if (runs.rotary != rotary || runs.quantity != (rotary ? tables::Quantity::Angle : tables::Quantity::Length))
-    throw std::invalid_argument(path + ": not " + letter + "'s positioning (" + (rotary ? "targets in deg, deviations angles" : "targets in mm, deviations lengths") + ")");
+    throw std::invalid_argument(path + ": not " + letter + "'s positioning (" +
+                                (rotary ? "targets in deg, deviations angles" : "targets in mm, deviations lengths") + ")");
   std::set<identify::RunKey> left_out;
   for (const identify::SuspiciousRun& s : identify::suspicious_runs(runs)) left_out.insert(s.run);
   const identify::Iso230_2 e = identify::evaluate_iso230_2(runs, left_out);
@@ -141,7 +143,8 @@ fit_tables::JointReversal read_reversal(const machine::Model& model, const std::
   const double shown = rotary ? 3600.0 * 180.0 / M_PI : 1e3;
   const char* symbol = rotary ? " arcsec" : " um";
   out << "reversal of " << letter << " from " << path << " (" << e.targets.size() << " targets, "
-      << e.runs_up << " + " << e.runs_down << " runs" << (left_out.empty() ? "" : ", " + std::to_string(left_out.size()) + " left out")
+      << e.runs_up << " + " << e.runs_down << " runs"
+      << (left_out.empty() ? "" : ", " + std::to_string(left_out.size()) + " left out")
       << "): B = " << format_fixed(e.reversal * shown, 2) << symbol << ", mean " << format_fixed(e.mean_reversal * shown, 2)
       << symbol << ": its COMP_FILE's forward column is the value - B/2, the reverse one + B/2\n";
   return r;
@@ -191,7 +194,8 @@ int run_fit_tables(const FitTablesArgs& args, std::ostream& out) {
   for (const std::string& r : args.reversal) {
     reversals.push_back(read_reversal(model, r, out));
     for (std::size_t k = 0; k + 1 < reversals.size(); ++k)
-      if (reversals[k].joint == reversals.back().joint) throw std::invalid_argument("--reversal " + r + ": that axis is given twice");
+      if (reversals[k].joint == reversals.back().joint)
+        throw std::invalid_argument("--reversal " + r + ": that axis is given twice");
   }
   const fit_tables::Study study = fit_tables::run_study(model, controller, o);
 
