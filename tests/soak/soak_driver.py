@@ -51,21 +51,33 @@ TOOLS = {1: 100.0, 2: 60.0, 3: 150.0}  # soak.tbl (run_soak.sh: mc300.tbl and tw
 
 
 def rtapi_app_pid():
-    for status in glob.glob("/proc/[0-9]*/comm"):
+    """The master rtapi_app: the oldest of that name (halcmd's loadrt starts short-lived client
+    rtapi_app processes beside it, which a 150 s run once sampled as they exited)."""
+    oldest = None
+    for comm in glob.glob("/proc/[0-9]*/comm"):
         try:
-            with open(status) as f:
-                if f.read().strip() == "rtapi_app":
-                    return int(status.split("/")[2])
-        except OSError:
+            with open(comm) as f:
+                if f.read().strip() != "rtapi_app":
+                    continue
+            pid = int(comm.split("/")[2])
+            with open("/proc/%d/stat" % pid) as f:
+                started = int(f.read().rsplit(")", 1)[1].split()[19])  # field 22: starttime
+            if oldest is None or started < oldest[0]:
+                oldest = (started, pid)
+        except (OSError, ValueError, IndexError):
             pass
-    return None
+    return oldest[1] if oldest else None
 
 
 def vm_rss_kb(pid):
-    with open("/proc/%d/status" % pid) as f:
-        for line in f:
-            if line.startswith("VmRSS:"):
-                return int(line.split()[1])
+    """VmRSS of `pid`, or None if the process is gone."""
+    try:
+        with open("/proc/%d/status" % pid) as f:
+            for line in f:
+                if line.startswith("VmRSS:"):
+                    return int(line.split()[1])
+    except OSError:
+        return None
     return -1
 
 
@@ -174,9 +186,12 @@ class Soak:
         self.next_memory = time.time() + self.memory_period
         if self.pid is None:
             self.pid = rtapi_app_pid()
-        if self.pid is not None:
-            self.memory.write("%.3f,%d,%d\n" % (self.now(), self.samples, vm_rss_kb(self.pid)))
-            self.memory.flush()
+        rss = vm_rss_kb(self.pid) if self.pid is not None else None
+        if rss is None:
+            self.pid = None  # not (yet) the master: look again next time
+            return
+        self.memory.write("%.3f,%d,%d\n" % (self.now(), self.samples, rss))
+        self.memory.flush()
 
     def pump(self):
         """One round of everything that runs while the driver waits."""
