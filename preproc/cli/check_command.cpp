@@ -149,8 +149,7 @@ bool print_configuration(const Model& model, const std::string& ini_path, std::o
     out << "    " << a.letter << "  HOME " << format_number(a.home) << " -> world " << format_fixed(a.world, 4)
         << unit(a.letter) << ", axis limits " << format_number(a.min_limit) << " .. " << format_number(a.max_limit) << '\n';
   out << "  the joints over the axes' limits, corrected (" << room.poses << " poses, L = "
-      << format_number(model.correction_length(0.0)) << " and " << format_number(std::max(model.tool_length_mm, model.correction_length(0.0)))
-      << " mm):\n";
+      << format_number(room.tool_lengths_mm[0]) << " and " << format_number(room.tool_lengths_mm[1]) << " mm):\n";
   for (const init::JointRoom& j : room.joints)
     out << "    joint " << j.joint << " (" << j.letter << ")  " << format_fixed(j.lowest, 4) << " .. "
         << format_fixed(j.highest, 4) << unit(j.letter) << ", joint limits " << format_number(j.min_limit) << " .. "

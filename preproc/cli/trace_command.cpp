@@ -14,6 +14,7 @@
 #include "vc/fit_tables/comp_file_replay.hpp"
 #include "vc/init/linuxcnc_ini.hpp"
 #include "vc/init/number.hpp"
+#include "vc/init/volkins_config.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/tables/atomic_file.hpp"
 #include "vc/trace/session_trace.hpp"
@@ -43,12 +44,9 @@ void print_comp_file_replay(const TraceArgs& args, const machine::Model& model, 
         throw LoadError(entry->where(), "[" + section + "]" + keys[k] + " is not a number > 0");
     }
     // The homing's move from HOME_OFFSET to HOME (LinuxCNC's defaults 0).
-    double home[2] = {0.0, 0.0};
-    const char* home_keys[2] = {"HOME", "HOME_OFFSET"};
-    for (int k = 0; k < 2; ++k)
-      if (const init::IniEntry* entry = ini.find(section, home_keys[k]); entry && !init::parse_number(entry->value, home[k]))
-        throw LoadError(entry->where(), "[" + section + "]" + home_keys[k] + " is not a number");
-    limits.push_back({limit[0], limit[1], home[0] > home[1] ? 1 : home[0] < home[1] ? -1 : 0});
+    const double home = init::ini_number(ini, section, "HOME", 0.0);
+    const double offset = init::ini_number(ini, section, "HOME_OFFSET", 0.0);
+    limits.push_back({limit[0], limit[1], home > offset ? 1 : home < offset ? -1 : 0});
     const fs::path file = fs::path(args.comp_files) / fit_tables::linuxcnc_comp_file_name(model, j);
     if (!fs::exists(file)) {
       comps.emplace_back();

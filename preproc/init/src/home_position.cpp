@@ -8,8 +8,6 @@
 namespace vc::init {
 namespace {
 
-// Beyond a limit by less than this is float noise of the forward (its tolerance is 1e-10 mm).
-constexpr double kNoise = 1e-9;
 // The suggested HOME is this far inside the limit (mm or deg), or a multiple of it.
 constexpr double kHomeStep = 0.1;
 
@@ -52,11 +50,11 @@ HomeCheck check_home_position(const LinuxcncIni& ini, const machine::Model& mode
       const double limit = above ? a.max_limit : a.min_limit;
       const double beyond = above ? a.world - limit : limit - a.world;
       const IniEntry* limit_entry = ini.find(std::string("AXIS_") + a.letter, above ? "MAX_LIMIT" : "MIN_LIMIT");
-      if (beyond <= kNoise || !limit_entry) continue;  // LinuxCNC's default limits are +-1e99
+      if (beyond <= kLimitNoise || !limit_entry) continue;  // LinuxCNC's default limits are +-1e99
       // The correction shifts the world from the joints by about the same near the home: a HOME
       // inside the limit by more than that shift, in whole steps of 0.1 mm (deg).
       const double shift = above ? a.world - a.home : a.home - a.world;
-      const double inside = kHomeStep * std::max(1.0, std::ceil((shift + kNoise) / kHomeStep));
+      const double inside = kHomeStep * std::max(1.0, std::ceil((shift + kLimitNoise) / kHomeStep));
       const double suggested = above ? limit - inside : limit + inside;
       check.problems.push_back(
           std::string(1, a.letter) + " homes " + um_or_mdeg(beyond, rotary) + " beyond its " +

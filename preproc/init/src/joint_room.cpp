@@ -12,7 +12,6 @@ namespace vc::init {
 namespace {
 
 constexpr int kLevels = 5;          // sample positions per joint over its axis's limits
-constexpr double kNoise = 1e-9;     // beyond a limit by less: the solver's noise
 constexpr double kLimitStep = 0.1;  // a suggested limit is a multiple of this (mm or deg)
 
 }  // namespace
@@ -47,14 +46,14 @@ JointRoomCheck check_joint_room(const LinuxcncIni& ini, const machine::Model& mo
     model_joint.push_back(j);
   }
 
-  const double lengths[] = {model.correction_length(0.0), std::max(model.tool_length_mm, model.correction_length(0.0))};
+  check.tool_lengths_mm = {model.correction_length(0.0), std::max(model.tool_length_mm, model.correction_length(0.0))};
   long combinations = 1;
   for (int j = 0; j < n; ++j) combinations *= kLevels;
   machine::Joints nominal(n);
   for (long index = 0; index < combinations; ++index) {
     long rest = index;
     for (int j = 0; j < n; ++j, rest /= kLevels) nominal[j] = levels[static_cast<std::size_t>(j)][rest % kLevels];
-    for (const double L : lengths) {
+    for (const double L : check.tool_lengths_mm) {
       const machine::Correction c = machine::correct(model, nominal, L);
       ++check.poses;
       if (c.status != machine::Status::Ok) continue;  // volcomp check's survey reports those
@@ -72,7 +71,7 @@ JointRoomCheck check_joint_room(const LinuxcncIni& ini, const machine::Model& mo
     const std::string section = "JOINT_" + std::to_string(room.joint);
     for (const bool above : {true, false}) {
       const double beyond = above ? room.highest - room.max_limit : room.min_limit - room.lowest;
-      if (beyond <= kNoise) continue;
+      if (beyond <= kLimitNoise) continue;
       const IniEntry* limit = ini.find(section, above ? "MAX_LIMIT" : "MIN_LIMIT");
       const double reached = above ? room.highest : room.lowest;
       const double suggested = kLimitStep * (above ? std::ceil(reached / kLimitStep + 1e-9) : std::floor(reached / kLimitStep - 1e-9));

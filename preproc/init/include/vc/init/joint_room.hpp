@@ -13,6 +13,7 @@
 // one (plus its reference length), at the reference temperatures.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,7 @@ struct JointRoom {
 struct JointRoomCheck {
   std::vector<JointRoom> joints;      // one per LinuxCNC joint that drives an axis of the model
   int poses = 0;                      // corrections evaluated
+  std::array<double, 2> tool_lengths_mm{};  // the L they were evaluated at
   std::vector<std::string> problems;  // one per joint limit the correction crosses: where, the fix
 };
 

@@ -27,6 +27,10 @@ int linuxcnc_joint(const VolkinsParameters& volkins, const machine::Model& model
 double ini_number(const LinuxcncIni& ini, std::string_view section, std::string_view key, double otherwise,
                   std::string* from = nullptr);
 
+// Beyond a limit by less than this (mm or deg) is the kinematics solvers' noise (their tolerance
+// is 1e-10 mm), not a finding of the limit checks.
+inline constexpr double kLimitNoise = 1e-9;
+
 // A small length or angle for messages: "5.24 um", "1.20 mdeg" (v in mm or deg).
 std::string um_or_mdeg(double v, bool rotary);
 
