@@ -50,6 +50,11 @@ struct IdentifyLaserArgs {
   bool keep_all = false;           // keep the suspicious runs in the evaluation
   std::string machine;             // machine file whose axis takes the table (optional)
   std::string machine_out;         // folder: the table and a copy of the machine file using it
+  std::string at;                  // where the axes stood, "x=0,y=-160,..." (default: the runs' "# at:")
+  std::optional<double> tool_length_mm;  // the tool-side optic L below the gauge point (default: the runs')
+  std::vector<double> tool_point_mm;     // ... or anywhere in the spindle frame, x,y,z from the gauge point
+  std::string reference;           // datum, least-squares, end-points, none (default by the error)
+  std::string squareness;          // a straightness's slope goes into this location error (e.g. EC0X)
   std::string plot;                // the ISO 230-2 graph, .png or .svg (optional, gnuplot; its data: .csv beside it)
 };
 
@@ -114,6 +119,7 @@ struct PoseArgs {
   std::string poses;
   std::optional<double> tool_length_mm;  // default: the machine file's tool_length_mm
   std::vector<std::string> only;         // deviations to keep (error): all if empty
+  bool ideal_tip = false;                // error: also the ideal tool tip (tx,ty,tz)
 };
 
 struct TraceArgs {

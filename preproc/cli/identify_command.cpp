@@ -21,6 +21,7 @@
 #include "vc/identify/probe_log.hpp"
 #include "vc/identify/probe_plan.hpp"
 #include "vc/identify/sphere_centres.hpp"
+#include "vc/identify/laser_into_machine.hpp"
 #include "vc/identify/laser_runs.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/plot/circle_plot.hpp"
@@ -53,72 +54,6 @@ void refuse_plot_over(const std::string& image, const std::vector<std::string>& 
                                ", which is " + file + ", a file of this command: give the plot another name");
 }
 
-// The text of a table file with one column's cells 0, everything else as it is (comments,
-// units, digits), `comment` first.
-std::string zeroed_copy(const tables::ErrorTable& table, int column, const std::string& comment) {
-  const SourceLocation& header = table.columns()[static_cast<std::size_t>(column)].where;
-  std::ifstream in(table.path());
-  if (!in) throw std::runtime_error("cannot read " + table.path());
-  std::string text = "# " + comment + "\n";
-  int cell = -1;
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    const std::vector<tables::CsvCell> cells = tables::split_csv_line(line);
-    if (number == header.line) {
-      for (std::size_t k = 0; k < cells.size(); ++k)
-        if (cells[k].column == header.column) cell = static_cast<int>(k);
-    } else if (number > header.line && cell >= 0 && static_cast<int>(cells.size()) > cell &&
-               line.find_first_not_of(" \t\r") != std::string::npos && line[line.find_first_not_of(" \t")] != '#') {
-      const std::size_t begin = static_cast<std::size_t>(cells[static_cast<std::size_t>(cell)].column) - 1;
-      const std::size_t end = std::min(line.find(',', begin), line.find_last_not_of("\r \t") + 1);
-      line = line.substr(0, begin) + "0" + line.substr(end);
-    }
-    text += line + "\n";
-  }
-  if (cell < 0) throw std::runtime_error(header.to_string() + ": cannot find this column again");
-  return text;
-}
-
-// The identified table in place of the error's old values on the axis: the axis's table that
-// holds the error's column is copied (under its own file name, so that its entry in the machine
-// file, with its interpolation, scale and measured_at_mm, points at the copy) with that column
-// zero, and the identified table is listed beside it (an axis's tables add up). Several tables
-// holding the error, or one over another axis or a temperature, are refused: which part of the
-// sum the runs replace is the user's call. Returns the tables to write.
-std::vector<shop::ExtraTable> replacing_tables(const machine::Model& model, int joint, const tables::ErrorSymbol& symbol,
-                                               shop::ExtraTable identified, const std::string& folder) {
-  namespace fs = std::filesystem;
-  std::vector<shop::ExtraTable> extras;
-  const tables::ErrorTable* holder = nullptr;
-  int column = -1;
-  for (const int t : model.axes[static_cast<std::size_t>(joint)].tables) {
-    const tables::ErrorTable& table = model.tables[static_cast<std::size_t>(t)].table;
-    for (std::size_t c = 0; c < table.columns().size(); ++c) {
-      if (table.columns()[c].symbol.name() != symbol.name()) continue;
-      if (holder)
-        throw std::runtime_error(symbol.name() + " is in two tables of axis " + std::string(1, symbol.axis) + " (" +
-                                 holder->path() + ", " + table.path() + "): their sum is what the runs measured; " +
-                                 "leave it in one of them");
-      holder = &table;
-      column = static_cast<int>(c);
-    }
-  }
-  if (holder && (holder->grid().size() != 1 || holder->grid()[0].axis != symbol.axis))
-    throw std::runtime_error(holder->path() + " holds " + symbol.name() + " over other grid variables than " +
-                             std::string(1, static_cast<char>(std::tolower(symbol.axis))) +
-                             ": the runs measured it at one of their values; which part they replace is not clear");
-  const std::string name = holder ? fs::path(holder->path()).filename().string() : std::string();
-  fs::create_directories(folder);
-  if (fs::equivalent(folder, fs::path(model.path).parent_path()) ||
-      (holder && fs::equivalent(folder, fs::path(holder->path()).parent_path())))
-    throw std::runtime_error("--machine-out " + folder + ": the machine file's or its table's own folder; give a new one");
-  if (holder && name != identified.file_name)
-    extras.push_back({joint, name, *holder, {},
-                      zeroed_copy(*holder, column, "a copy of " + holder->path() + " with " + symbol.name() + " zero: " +
-                                                       identified.file_name + " holds it (volcomp identify laser)")});
-  extras.push_back(std::move(identified));
-  return extras;
-}
 }  // namespace
 
 int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
@@ -232,42 +167,125 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
   if (!args.output.empty()) {
     tables::write_atomically(args.output, [&](std::ostream& csv) {
       for (const std::string& c : comments) csv << "# " << c << "\n";
-      csv << "# error = actual - nominal\n";
+      csv << "# the readings: the tool against the part, as the instrument read them (error = actual - nominal)\n";
       csv << static_cast<char>(std::tolower(symbol->axis)) << (runs.rotary ? "[deg]" : "[mm]") << "," << args.error
           << (q == tables::Quantity::Length ? "[um]" : "[urad]") << "\n";
       for (const auto& [target, v] : rows) csv << format_number(target) << "," << format_fixed(v * unit, 4) << "\n";
     });
-    std::string measured_at;
-    for (const auto& [key, text] : runs.metadata)
-      if (key == "measured_at_mm") measured_at = text;
-    out << "table written: " << args.output << "; in the machine file, under axis " << symbol->axis << ":\n"
-        << "  [[<workpiece_chain or tool_chain>.tables]]\n  file = \"" << args.output << "\"\n";
-    if (!measured_at.empty())
-      out << "  measured_at_mm = [" << measured_at << "]   # where the optics sat (the runs' metadata)\n";
-    else
-      out << "  # measured_at_mm = [x, y, z] if the optics sat away from the tool (machines/README.md section 5)\n";
+    out << "table written: " << args.output << " (the readings: the tool against the part). Into a machine file: "
+        << "--machine M.toml --machine-out DIR, which solves for what the file holds (the axis's chain and direction, "
+        << "the other errors on the line)\n";
   }
   if (args.machine_out.empty()) return 0;
-  tables::GridVariable grid;
-  grid.axis = symbol->axis;
-  grid.rotary = runs.rotary;
-  grid.periodic = full_turn;
-  std::vector<double> values;
-  for (const auto& [target, v] : rows) {
-    grid.nodes.push_back(target);
-    values.push_back(v);
+
+  // Where the runs were made: the runs' metadata, or the options.
+  const auto metadata = [&](const std::string& key) {
+    for (const auto& [k, text] : runs.metadata)
+      if (k == key) return text;
+    return std::string();
+  };
+  identify::LaserLineRuns line;
+  line.setup.joint = joint;
+  line.setup.error = *symbol;
+  const std::string at = !args.at.empty() ? args.at : metadata("at");
+  if (at.empty())
+    throw std::runtime_error(args.runs + ": where did the axes stand during the runs? Add a '# at: " + [&] {
+      std::string example;
+      for (int j = 0; j < model->joint_count(); ++j)
+        example += std::string(j ? ", " : "") + static_cast<char>(std::tolower(model->axes[static_cast<std::size_t>(j)].letter)) + "=...";
+      return example;
+    }() + "' line or give --at: the laser reads the machine's errors there too");
+  try {
+    line.setup.at = identify::parse_axis_positions(*model, joint, at);
+  } catch (const std::exception& bad) {
+    throw std::runtime_error((!args.at.empty() ? std::string("--at: ") : args.runs + ": '# at:': ") + bad.what());
   }
-  const std::string name = std::string(1, static_cast<char>(std::tolower(symbol->axis))) + "_" + args.error + "_laser.csv";
-  const std::vector<shop::ExtraTable> extras = replacing_tables(
-      *model, joint, *symbol,
-      {joint, name, tables::ErrorTable(name, {grid}, {{*symbol, {name}}}, values, tables::Interpolation::Linear), comments},
-      args.machine_out);
-  const std::string written = shop::write_machine_with_tables(*model, args.machine_out, extras,
-                                                              "volcomp identify laser from " + args.runs);
-  machine::load_machine(written);  // it loads
-  out << "machine file written: " << written << " (axis " << symbol->axis << ": " << args.error << " from " << name;
-  if (extras.size() > 1)
-    out << "; in " << extras.front().file_name << ", the copy of the table that held it, " << args.error << " is zero";
+  const auto vector3 = [&](const std::string& text, const std::string& what) {
+    std::vector<double> v;
+    std::stringstream list(text);
+    for (std::string item; std::getline(list, item, ',');) {
+      std::size_t used = 0;
+      try {
+        v.push_back(std::stod(item, &used));
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used == 0 || item.find_first_not_of(" \t", used) != std::string::npos)
+        throw std::runtime_error(what + ": '" + item + "' is not a number (mm)");
+    }
+    if (v.size() != 3) throw std::runtime_error(what + ": three numbers, x, y, z (mm)");
+    return Eigen::Vector3d(v[0], v[1], v[2]);
+  };
+  if (!args.tool_point_mm.empty()) line.setup.tool_point_mm = Eigen::Vector3d(args.tool_point_mm[0], args.tool_point_mm[1], args.tool_point_mm[2]);
+  else if (args.tool_length_mm) line.setup.tool_point_mm = Eigen::Vector3d(0, 0, -*args.tool_length_mm);
+  else if (!metadata("tool_point_mm").empty()) line.setup.tool_point_mm = vector3(metadata("tool_point_mm"), args.runs + ": '# tool_point_mm:'");
+  else if (!metadata("tool_length_mm").empty()) line.setup.tool_point_mm = Eigen::Vector3d(0, 0, -vector3(metadata("tool_length_mm") + ",0,0", args.runs + ": '# tool_length_mm:'").x());
+  else
+    throw std::runtime_error(args.runs + ": where was the tool-side optic? Add a '# tool_length_mm: L' line (the optic L "
+                             "below the spindle gauge point, on its axis) or '# tool_point_mm: x, y, z' (in the spindle "
+                             "frame), or give --tool-length / --tool-point");
+  if (!metadata("measured_at_mm").empty())
+    throw std::runtime_error(args.runs + ": '# measured_at_mm:' says where the optics sat relative to the axis's pole; "
+                             "with --machine-out give where the tool-side optic sat instead ('# tool_point_mm: x, y, z' in "
+                             "the spindle frame from its gauge point): the solve reads the Abbe terms from there");
+  line.reference = args.reference.empty() ? identify::default_reference(*symbol, runs.rotary)
+                   : args.reference == "datum"        ? identify::Reference::Datum
+                   : args.reference == "least-squares" ? identify::Reference::LeastSquares
+                   : args.reference == "end-points"   ? identify::Reference::EndPoints
+                                                      : identify::Reference::None;
+  for (const identify::TargetStatistics& t : e.targets) {
+    line.targets.push_back(t.target);
+    line.readings.push_back(value(t));
+    // The standard uncertainty of the value: of a mean of n runs, s / sqrt(n).
+    const double up = t.s_up / std::sqrt(static_cast<double>(e.runs_up)), down = t.s_down / std::sqrt(static_cast<double>(e.runs_down));
+    line.noise.push_back(args.direction == "up" ? up : args.direction == "down" ? down : std::hypot(up, down) / 2);
+  }
+  line.squareness = args.squareness;
+  line.comments = comments;
+  const identify::LaserIntoMachine r =
+      identify::laser_into_machine(*model, line, args.machine_out, "volcomp identify laser from " + args.runs);
+
+  const auto in_unit = [&](double v) { return format_fixed(v * unit, 3) + (q == tables::Quantity::Length ? " um" : " urad"); };
+  const auto per = [&](double slope) {  // um/m or urad/m (linear axes), per deg (rotary)
+    return format_fixed(slope * unit * (runs.rotary ? 1.0 : 1e3), 3) +
+           (q == tables::Quantity::Length ? " um" : " urad") + (runs.rotary ? "/deg" : "/m");
+  };
+  out << "Into " << args.machine << " (" << model->info.name << "): the runs at " << at << ", the tool-side optic at "
+      << format_number(line.setup.tool_point_mm.x()) << ", " << format_number(line.setup.tool_point_mm.y()) << ", "
+      << format_number(line.setup.tool_point_mm.z()) << " mm in the spindle frame; " << symbol->axis << "'s "
+      << (model->axes[static_cast<std::size_t>(joint)].chain == machine::Chain::Tool ? "tool" : "workpiece")
+      << " chain, the file's other errors as they are\n";
+  const auto arcsec = [](double rad) { return format_fixed(rad * 648000.0 / M_PI, 3) + " arcsec"; };
+  switch (line.reference) {
+    case identify::Reference::None:
+      out << "  reference none: the readings as they are\n";
+      break;
+    case identify::Reference::Datum:
+      out << "  reference datum: the runs read " << in_unit(r.runs_reference.offset) << " at " << format_number(line.targets.front())
+          << (runs.rotary ? " deg" : " mm") << " (the laser's zero), the file " << in_unit(r.file_reference.offset)
+          << ": the file keeps its origin\n";
+      break;
+    default:
+      out << "  reference " << identify::reference_name(line.reference) << " (ISO 230-1): the runs' line "
+          << in_unit(r.runs_reference.offset) << " + " << per(r.runs_reference.slope);
+      if (!r.squareness.empty())
+        out << "; the table holds the straightness about its line, the slope is a squareness: " << r.squareness << " = "
+            << arcsec(r.squareness_rad) << " (was " << arcsec(r.squareness_before_rad)
+            << "; one value in the file: identify circle and sphere set the same one)\n";
+      else
+        out << "; " << symbol->axis << " carries the part, so no squareness turns its line against it: the slope is the "
+            << "optics' alignment, replaced by the file's " << per(r.file_reference.slope)
+            << " (--reference none keeps the runs' slope, for optics aligned to the part)\n";
+  }
+  for (const std::string& kept : r.kept)
+    out << "  " << args.error << " of " << kept << " kept: the solve read it where the runs stood\n";
+  const auto [low, high] = std::minmax_element(r.table.begin(), r.table.end());
+  out << "  " << r.table_file << ": " << args.error << " " << in_unit(*low) << " .. " << in_unit(*high)
+      << " (the axis's own motion, in its frame)\n"
+      << "  self-check: the written file reads the runs within " << in_unit(r.largest_misfit) << "\n"
+      << "machine file written: " << r.written << " (axis " << symbol->axis << ": " << args.error << " from " << r.table_file;
+  if (!r.zeroed_copy.empty())
+    out << "; in " << r.zeroed_copy << ", the copy of the table that held it, " << args.error << " is zero";
   out << ")\n";
   return 0;
 }
@@ -336,26 +354,33 @@ int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
   if (!model) return 0;
   const std::vector<identify::SquarenessTerm> terms =
       identify::squareness_terms(*model, test.plane, test.radius_mm, e.squareness_rad);
-  out << "in " << args.machine << "'s terms (measured with the compensation off: the machine's own squareness):\n";
+  out << "in " << args.machine << "'s terms (measured with the compensation off: the machine's own squareness): the file "
+      << "shows " << arcsec(terms.empty() ? 0.0 : terms.front().file_squareness_rad) << " now (its lines and its tables' "
+      << "slopes); for the measured one, with its other errors as they are:\n";
   for (const auto& t : terms)
-    out << "  " << t.symbol << " = " << arcsec(t.value_rad) << " alone (the file has " << arcsec(t.in_file_rad) << ")\n";
+    out << "  " << t.symbol << " = " << arcsec(t.value_rad) << " (the file has " << arcsec(t.in_file_rad) << ")\n";
   if (args.machine_out.empty()) return 0;
-  // The term the file already uses (a non-zero value), else the first.
+  // The term the file already uses (a non-zero value), else the first; the others stay as they
+  // are: one squareness, the file's other errors included.
   const identify::SquarenessTerm* chosen = terms.empty() ? nullptr : &terms.front();
   for (const auto& t : terms)
     if (!args.symbol.empty() ? t.symbol == args.symbol : t.in_file_rad != 0.0) chosen = &t;
   if (!chosen || (!args.symbol.empty() && chosen->symbol != args.symbol))
     throw std::runtime_error("--symbol " + args.symbol + " is not one of the squareness terms of the " + test.plane + " plane");
-  // The other terms of the plane go to zero: the measured squareness is all in the chosen one.
-  std::vector<shop::LocationValue> values;
-  for (const auto& t : terms) {
-    const auto s = tables::parse_error_symbol(t.symbol);
-    values.push_back({model->joint_of(s->axis), s->component, &t == chosen ? t.value_rad : 0.0});
+  const auto s = tables::parse_error_symbol(chosen->symbol);
+  const std::string written = shop::write_machine_with_tables(*model, args.machine_out, {}, "volcomp identify circle from " + args.run,
+                                                              {{model->joint_of(s->axis), s->component, chosen->value_rad}});
+  // The self-check: the written file shows the measured squareness.
+  const std::vector<identify::SquarenessTerm> after =
+      identify::squareness_terms(machine::load_machine(written), test.plane, test.radius_mm, e.squareness_rad);
+  if (after.empty() || std::abs(after.front().file_squareness_rad - e.squareness_rad) > 0.005 * M_PI / 648000) {
+    std::filesystem::remove(written);
+    throw std::runtime_error("the written file shows a squareness of " +
+                             arcsec(after.empty() ? 0.0 : after.front().file_squareness_rad) + " where the circle measured " +
+                             arcsec(e.squareness_rad) + ": nothing written");
   }
-  const std::string written = shop::write_machine_with_tables(
-      *model, args.machine_out, {}, "volcomp identify circle from " + args.run, values);
-  machine::load_machine(written);  // it loads
-  out << "machine file written: " << written << " (" << chosen->symbol << " = " << arcsec(chosen->value_rad) << ")\n";
+  out << "machine file written: " << written << " (" << chosen->symbol << " = " << arcsec(chosen->value_rad)
+      << "; it shows " << arcsec(after.front().file_squareness_rad) << ")\n";
   return 0;
 }
 

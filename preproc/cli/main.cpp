@@ -36,6 +36,8 @@ int main(int argc, char** argv) {
   error_cmd->add_option("--only", error.only,
                         "keep only these deviations, e.g. --only EAX,EC0Y (the others are zero)")
       ->delimiter(',');
+  error_cmd->add_flag("--ideal-tip", error.ideal_tip,
+                      "also the ideal machine's tool tip, tx,ty,tz (mm, part frame): where each pose puts the tool");
 
   vc::cli::TraceArgs trace;
   CLI::App* trace_cmd = app.add_subcommand(
@@ -300,6 +302,24 @@ int main(int argc, char** argv) {
   laser_cmd->add_option("--machine", laser.machine, "machine file whose axis takes the identified table");
   laser_cmd->add_option("--machine-out", laser.machine_out,
                         "folder: the table and a copy of the machine file with it in place of the error's old values");
+  laser_cmd->add_option("--at", laser.at,
+                        "where every axis stood during the runs, e.g. x=0,y=-160,z=-150,b=0,c=0 (default: the runs' '# at:')");
+  laser_cmd->add_option("--tool-length", laser.tool_length_mm,
+                        "the tool-side optic's distance below the spindle gauge point, mm (default: the runs' "
+                        "'# tool_length_mm:')");
+  laser_cmd->add_option("--tool-point", laser.tool_point_mm,
+                        "the tool-side optic in the spindle frame from the gauge point, X,Y,Z mm (the runs' "
+                        "'# tool_point_mm:'); a tool's tip L long is 0,0,-L")
+      ->delimiter(',')
+      ->expected(3);
+  laser_cmd->add_option("--reference", laser.reference,
+                        "none: the readings as they are (positioning, angular: the default); datum: the laser zeroed "
+                        "at the first target, the file keeps its value there; least-squares (a straightness's default) "
+                        "or end-points: the straightness about that line, its slope a squareness")
+      ->check(CLI::IsMember({"datum", "least-squares", "end-points", "none"}));
+  laser_cmd->add_option("--squareness", laser.squareness,
+                        "the location error that takes a straightness's slope, e.g. EC0X or EC0Y for EYX (default: the "
+                        "one the file uses, else the measured axis's own)");
   laser_cmd->add_option("--plot", laser.plot,
                         "the ISO 230-2 graph, .png or .svg (gnuplot); the data it draws goes to a .csv beside it");
   vc::cli::IdentifyCircleArgs circle;

@@ -6,6 +6,7 @@
 #include "poses_csv.hpp"
 #include "vc/machine/correct.hpp"
 #include "vc/machine/deviations.hpp"
+#include "vc/machine/forward.hpp"
 #include "vc/machine/load_machine.hpp"
 
 namespace vc::cli {
@@ -30,12 +31,16 @@ int run_error(const PoseArgs& args, std::ostream& out) {
   const Poses poses = read_poses(args.poses, model);
   const double tool_length = args.tool_length_mm.value_or(model.tool_length_mm);
   for (const std::string& h : poses.header) out << h << ',';
-  out << "ex,ey,ez,ekx,eky,ekz\n";
+  out << "ex,ey,ez,ekx,eky,ekz" << (args.ideal_tip ? ",tx,ty,tz" : "") << "\n";
   for (std::size_t r = 0; r < poses.joints.size(); ++r) {
     const machine::VolumetricError e = machine::volumetric_error(model, poses.joints[r], tool_length);
     std::vector<double> row = nominal_columns(poses, r);
     for (int k = 0; k < 3; ++k) row.push_back(e.position_mm[k]);
     for (int k = 0; k < 3; ++k) row.push_back(e.direction_rad[k]);
+    if (args.ideal_tip) {
+      const Eigen::Vector3d tip = machine::tool_pose(model, machine::Machine::Ideal, poses.joints[r], tool_length).tip_mm;
+      for (int k = 0; k < 3; ++k) row.push_back(tip[k]);
+    }
     write_row(out, row);
   }
   return 0;

@@ -98,7 +98,7 @@ class KilledWriters : public ::testing::Test {
         " --noise 0.3 --seed 1");
     // What identify laser reads: 3 runs each way over 7 targets.
     std::ofstream laser(path("laser_runs.csv"));
-    laser << "target[mm],1+[um],1-[um],2+[um],2-[um],3+[um],3-[um]\n";
+    laser << "# at: x=0, y=-160, z=-150, b=0, c=0\n# tool_length_mm: 100\ntarget[mm],1+[um],1-[um],2+[um],2-[um],3+[um],3-[um]\n";
     for (int k = 0; k <= 6; ++k)
       laser << -100 * k << ',' << 0.5 * k << ',' << 0.5 * k - 1 << ',' << 0.5 * k + 0.2 << ',' << 0.5 * k - 0.8 << ','
             << 0.5 * k - 0.2 << ',' << 0.5 * k - 1.2 << '\n';

@@ -121,7 +121,7 @@ TEST(VolcompCli, IdentifyLaserWritesATableTheLoaderReads) {
   auto r = test::run_volcomp("identify laser " + in + " --error EXX -o " + table);
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("reversal value B            1.00 um"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("measured_at_mm = [0, 0, -100]"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("(the readings: the tool against the part)"), std::string::npos) << r.out;
   const tables::ErrorTable t = tables::load_table(table);
   ASSERT_EQ(t.node_count(), 7);
   EXPECT_NEAR(t.value(0, 0), (0.5 * 6 - 0.5) * 1e-3, 1e-9);  // at -600 mm (ascending): mean of +3.0 ... -> 2.5 um
@@ -133,16 +133,21 @@ TEST(VolcompCli, IdentifyLaserWritesATableTheLoaderReads) {
   EXPECT_NE(r.out.find("the targets are in mm but ECC is an error of the rotary axis C"), std::string::npos) << r.out;
 }
 
-// --machine-out: the identified table REPLACES the axis's old values of the error. On the MC-300
-// (X's x.csv holds EXX 0..3 um), runs of a made-up EXX: the written machine's tool-tip error
-// with EXX alone (volcomp error --only EXX) is the runs' bidirectional mean, worked out here from
-// the runs, at every target and linear between them (not that plus x.csv's values); the table
-// written beside it holds the same values; X's other errors are as they were.
+// --machine-out: the identified table REPLACES the axis's old values of the error, solved through
+// the model. On the MC-300 (X's x.csv holds EXX 0..3 um; +X moves the tool -x in the part frame),
+// runs of a made-up reading at X's line: the written machine, with every error of the file, reads
+// the runs' bidirectional mean at every target (with --reference datum: the runs' value at the
+// first target, the laser's zero, replaced by the file's there), worked out here from the runs and
+// `volcomp error --ideal-tip` (the reading along the axis's ideal motion), not identify's code;
+// the table written beside it holds the
+// axis's own EXX, whose sign is the reading's turned (the axis runs along -x); X's other errors
+// are as they were.
 TEST(VolcompCli, IdentifyLaserMachineOutReplacesTheErrorOfTheAxis) {
-  const auto exx_um = [](double x) { return 4 * std::sin(x / 150) - 0.01 * x; };  // x in mm
-  std::string runs = "target[mm],1+[um],1-[um],2+[um],2-[um],3+[um],3-[um]\n";
+  const auto reading_um = [](double x) { return 4 * std::sin(x / 150) - 0.01 * x; };  // x in mm
+  std::string runs = "# at: x=0, y=-160, z=-150, b=0, c=0\n# tool_length_mm: 100\n"
+                     "target[mm],1+[um],1-[um],2+[um],2-[um],3+[um],3-[um]\n";
   for (int k = 0; k <= 6; ++k) {
-    const double x = -100.0 * k, v = exx_um(x);  // up +0.75, down -0.75, run offsets +0.1, -0.1, 0
+    const double x = -600.0 + 100.0 * k, v = reading_um(x);  // up +0.75, down -0.75, run offsets +0.1, -0.1, 0
     runs += std::to_string(x) + "," + std::to_string(v + 0.85) + "," + std::to_string(v - 0.65) + "," +
             std::to_string(v + 0.65) + "," + std::to_string(v - 0.85) + "," + std::to_string(v + 0.75) + "," +
             std::to_string(v - 0.75) + "\n";
@@ -153,58 +158,88 @@ TEST(VolcompCli, IdentifyLaserMachineOutReplacesTheErrorOfTheAxis) {
   auto r = test::run_volcomp("identify laser " + in + " --error EXX --machine " + kMc300 + " --machine-out " + folder);
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("machine file written: " + folder + "/mc300.toml"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("self-check: the written file reads the runs within"), std::string::npos) << r.out;
   const std::string written = folder + "/mc300.toml";
   EXPECT_EQ(test::run_volcomp("check " + written + " --samples 500").exit_code, 0);
 
-  // The table beside it, read back as text: x and EXX in um, the runs' means.
+  // The reading of a machine file along X's ideal motion at the targets (um).
+  std::string poses = "x,y,z,b,c\n";
+  for (int k = 0; k <= 6; ++k) poses += std::to_string(-600.0 + 100.0 * k) + ",-160,-150,0,0\n";
+  const std::string poses_file = write_temp("replace_poses.csv", poses);
+  const auto read_along_x = [&](const std::string& machine, const std::string& only) {
+    const auto e = test::run_volcomp("error " + machine + " --poses " + poses_file + " --ideal-tip" + only);
+    const test::CsvTable t(write_temp("replace_error.csv", e.out));
+    std::vector<double> um;
+    const double dx = t.at(6, "tx") - t.at(0, "tx"), dy = t.at(6, "ty") - t.at(0, "ty"), dz = t.at(6, "tz") - t.at(0, "tz");
+    const double n = std::sqrt(dx * dx + dy * dy + dz * dz);
+    EXPECT_NEAR(dx / n, -1.0, 1e-12);  // the MC-300's +X moves the tool -x
+    for (std::size_t i = 0; i < t.size(); ++i)
+      um.push_back((t.at(i, "ex") * dx + t.at(i, "ey") * dy + t.at(i, "ez") * dz) / n * 1e3);
+    return um;
+  };
+  const std::vector<double> before = read_along_x(kMc300, ""), after = read_along_x(written, "");
+  for (int k = 0; k <= 6; ++k) EXPECT_NEAR(after[k], reading_um(-600.0 + 100.0 * k), 2e-3) << "x = " << -600 + 100 * k;
+  r = test::run_volcomp("identify laser " + in + " --error EXX --reference datum --machine " + kMc300 + " --machine-out " +
+                        folder + "_datum");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const std::vector<double> datum = read_along_x(folder + "_datum/mc300.toml", "");
+  EXPECT_GT(std::abs(before[0] - reading_um(-600)), 1.0);  // the file does not read the runs' zero there
+  for (int k = 0; k <= 6; ++k) {
+    const double x = -600.0 + 100.0 * k;
+    EXPECT_NEAR(datum[k], reading_um(x) - reading_um(-600) + before[0], 2e-3) << "x = " << x;
+  }
+  std::filesystem::remove_all(folder + "_datum");
+
+  // The table beside it, read back as text: x and EXX in um, the axis's own: the file's EXX
+  // (x.csv's zeroed, so EXX alone is this table) turns the reading's change round along -x.
   std::ifstream table(folder + "/x_EXX_laser.csv");
   ASSERT_TRUE(table) << r.out;
   std::string line;
   while (std::getline(table, line) && line.rfind('#', 0) == 0) {}
   EXPECT_EQ(line, "x[mm],EXX[um]");
+  const std::vector<double> exx_alone = read_along_x(written, " --only EXX");
   int rows = 0;
   for (double x, v; std::getline(table, line); ++rows) {
     ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf", &x, &v), 2) << line;
-    EXPECT_NEAR(v, exx_um(x), 1e-3) << line;
+    EXPECT_NEAR(v, -exx_alone[rows], 2e-3) << line;
   }
   EXPECT_EQ(rows, 7);
-
-  // The tool tip with EXX alone, along X at B = C = 0 (part frame parallel to the bed): EXX in x.
-  std::string poses = "x,y,z,b,c\n";
-  for (int k = 0; k <= 24; ++k) poses += std::to_string(-25.0 * k) + ",-160,-150,0,0\n";
-  const std::string poses_file = write_temp("replace_poses.csv", poses);
-  r = test::run_volcomp("error " + written + " --poses " + poses_file + " --only EXX");
-  ASSERT_EQ(r.exit_code, 0) << r.out;
-  const test::CsvTable tip(write_temp("replace_error.csv", r.out));
-  ASSERT_EQ(tip.size(), 25u);
-  for (std::size_t i = 0; i < tip.size(); ++i) {
-    const double x = tip.at(i, "x"), below = 100 * std::floor(x / 100 + 1e-9), t = (x - below) / 100;
-    const double expected_um = t == 0 ? exx_um(below) : (1 - t) * exx_um(below) + t * exx_um(below + 100);
-    EXPECT_NEAR(tip.at(i, "ex") * 1e3, expected_um, 2e-3) << "x = " << x;
-    EXPECT_NEAR(tip.at(i, "ey"), 0.0, 1e-12);
-    EXPECT_NEAR(tip.at(i, "ez"), 0.0, 1e-12);
-  }
   // X's other errors as they were (x.csv copied as it is, EXX zero).
   for (const char* other : {"EYX", "EAX", "EBX"})
     EXPECT_EQ(test::run_volcomp("error " + written + " --poses " + poses_file + " --only " + other).out,
               test::run_volcomp("error " + kMc300 + " --poses " + poses_file + " --only " + other).out) << other;
 
-  // Refused: --machine-out without --machine, an axis the machine lacks, EXX in two tables of X
-  // (mc300_thermal: x.csv and EXX(x, coolant)), the machine's own folder (an axis the machine
-  // lacks: IdentifyLaserOnAFullTurnWritesAPeriodicTable).
+  // EXX also in a table over X and a temperature (mc300_thermal: EXX(x, coolant)): that one stays,
+  // read where the runs stood; x.csv's EXX is replaced.
+  r = test::run_volcomp("identify laser " + in + " --error EXX --machine " + test::machine_path("mc300_thermal") +
+                        " --machine-out " + folder + "_thermal");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("kept: the solve read it where the runs stood"), std::string::npos) << r.out;
+  // Refused: --machine-out without --machine, the machine's own folder, runs that do not say
+  // where the axes stood or where the optic was (nothing written).
   r = test::run_volcomp("identify laser " + in + " --error EXX --machine-out " + folder);
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.out.find("--machine-out needs --machine"), std::string::npos) << r.out;
-  r = test::run_volcomp("identify laser " + in + " --error EXX --machine " + test::machine_path("mc300_thermal") +
-                        " --machine-out " + folder + "_thermal");
-  EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.out.find("EXX is in two tables of axis X"), std::string::npos) << r.out;
   r = test::run_volcomp("identify laser " + in + " --error EXX --machine " + kMc300 + " --machine-out " +
                         std::filesystem::path(kMc300).parent_path().string());
   EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.out.find("the machine file's or its table's own folder"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("the machine file's own folder"), std::string::npos) << r.out;
+  std::string bare = runs.substr(runs.find("target"));
+  const std::string bare_in = write_temp("bare_runs.csv", bare);
+  r = test::run_volcomp("identify laser " + bare_in + " --error EXX --machine " + kMc300 + " --machine-out " + folder + "_bare");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.out.find("where did the axes stand during the runs? Add a '# at: x=..., y=..., z=..., b=..., c=...'"),
+            std::string::npos) << r.out;
+  r = test::run_volcomp("identify laser " + bare_in + " --error EXX --machine " + kMc300 + " --at x=0,y=-160 --machine-out " +
+                        folder + "_bare");
+  EXPECT_NE(r.out.find("where did z, b, c stand during the runs?"), std::string::npos) << r.out;
+  r = test::run_volcomp("identify laser " + bare_in + " --error EXX --machine " + kMc300 +
+                        " --at x=0,y=-160,z=-150,b=0,c=0 --machine-out " + folder + "_bare");
+  EXPECT_NE(r.out.find("where was the tool-side optic?"), std::string::npos) << r.out;
+  EXPECT_FALSE(std::filesystem::exists(folder + "_bare/mc300.toml"));
   std::filesystem::remove_all(folder);
   std::filesystem::remove_all(folder + "_thermal");
+  std::filesystem::remove_all(folder + "_bare");
 }
 
 // The main job's laser half: a true MC-300 whose X has a pitch error the file lacks (perturb
@@ -216,7 +251,8 @@ TEST(VolcompCli, SimulatedLaserRunsOnATrueMachineGiveItsTableBack) {
   const std::string folder = (std::filesystem::temp_directory_path() / "vc_cli_simulated_laser").string();
   std::filesystem::remove_all(folder);
   std::string pitch = "x[mm],EXX[um]\n";
-  for (int x = -600; x <= 0; x += 25) pitch += std::to_string(x) + "," + std::to_string(4 * std::sin(x / 70.0) + 0.012 * (x + 600)) + "\n";
+  for (int x = -600; x <= 0; x += 25)  // 0 at -600 mm, the laser's datum: what the laser cannot know is right in the file
+    pitch += std::to_string(x) + "," + std::to_string(4 * std::sin((x + 600) / 70.0) + 0.012 * (x + 600)) + "\n";
   auto r = test::run_volcomp("perturb " + kMc300 + " -o " + folder + "/true --add-table " + write_temp("sim_pitch.csv", pitch));
   ASSERT_EQ(r.exit_code, 0) << r.out;
   std::string targets;
@@ -243,7 +279,8 @@ TEST(VolcompCli, SimulatedLaserRunsOnATrueMachineGiveItsTableBack) {
   ASSERT_EQ(got.size(), 13u);
   double off_nominal = 0;
   for (std::size_t i = 0; i < got.size(); ++i) {
-    const double x = got.at(i, "x"), sigma_um = 0.5 + 0.5 * (x + 600) / 1000;  // the laser's noise there
+    // The laser's noise there and at the datum (-600 mm, 0.5 um), each a mean of 10 readings.
+    const double x = got.at(i, "x"), sigma_um = std::hypot(0.5 + 0.5 * (x + 600) / 1000, 0.5);
     EXPECT_NEAR(got.at(i, "ex") * 1e3, truth.at(i, "ex") * 1e3, 3.5 * sigma_um / std::sqrt(10.0)) << "x = " << x;
     off_nominal = std::max(off_nominal, std::abs(truth.at(i, "ex") - nominal.at(i, "ex")) * 1e3);
   }

@@ -29,7 +29,7 @@ inline std::string machine_path(const std::string& name) {
 
 // The machines shipped in machines/data.
 inline const std::vector<std::string>& shipped_machines() {
-  static const std::vector<std::string> names{"mc300", "mill3", "ac_trunnion"};
+  static const std::vector<std::string> names{"mc300", "mill3", "ac_trunnion", "knee_mill"};
   return names;
 }
 

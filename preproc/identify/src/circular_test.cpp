@@ -217,6 +217,24 @@ std::vector<SquarenessTerm> squareness_terms(const machine::Model& model, const 
                              (model.axes[static_cast<std::size_t>(second)].travel_max -
                               model.axes[static_cast<std::size_t>(second)].travel_min) / 2});
   const auto index = [](char axis) { return axis == 'X' ? 0 : axis == 'Y' ? 1 : 2; };
+  // The squareness a model shows on the simulated circle, 72 points: dR = the radial part of the
+  // tip error, its sin 2phi term (the first-order fit's squareness).
+  const auto squareness_of = [&](const machine::Model& m) {
+    Eigen::MatrixXd a(72, 5);
+    Eigen::VectorXd d(72);
+    for (int k = 0; k < 72; ++k) {
+      const double phi = 2 * M_PI * k / 72;
+      machine::Joints q = centre;
+      q[first] += r * std::cos(phi);
+      q[second] += r * std::sin(phi);
+      const Eigen::Vector3d e = machine::tool_pose(m, machine::Machine::Real, q, model.tool_length_mm).tip_mm -
+                                machine::tool_pose(m, machine::Machine::Ideal, q, model.tool_length_mm).tip_mm;
+      a.row(k) << 1, std::cos(phi), std::sin(phi), std::cos(2 * phi), std::sin(2 * phi);
+      d[k] = std::cos(phi) * e[index(axes[0])] + std::sin(phi) * e[index(axes[1])];
+    }
+    return 2 * a.colPivHouseholderQr().solve(d)[4] / r;
+  };
+  const double in_model = squareness_of(model);  // every error of the file: its lines and its tables' slopes
   std::vector<SquarenessTerm> out;
   for (char line : {axes[0], axes[1]}) {
     const int j = model.joint_of(line);
@@ -225,25 +243,11 @@ std::vector<SquarenessTerm> squareness_terms(const machine::Model& model, const 
     machine::Axis& a = tilted.axes[static_cast<std::size_t>(j)];
     a.location_rad[component - 3] = kProbe;
     a.real_base = machine::line_placement(a.pole_mm, a.location_mm, a.location_rad);
-    // The simulated circle, 72 points: dR = radial part of the tip error, its sin 2phi term.
-    Eigen::MatrixXd m(72, 5);
-    Eigen::VectorXd d(72);
-    for (int k = 0; k < 72; ++k) {
-      const double phi = 2 * M_PI * k / 72;
-      machine::Joints q = centre;
-      q[first] += r * std::cos(phi);
-      q[second] += r * std::sin(phi);
-      const Eigen::Vector3d e = machine::tool_pose(tilted, machine::Machine::Real, q, model.tool_length_mm).tip_mm -
-                                machine::tool_pose(tilted, machine::Machine::Ideal, q, model.tool_length_mm).tip_mm;
-      m.row(k) << 1, std::cos(phi), std::sin(phi), std::cos(2 * phi), std::sin(2 * phi);
-      d[k] = std::cos(phi) * e[index(axes[0])] + std::sin(phi) * e[index(axes[1])];
-    }
-    const Eigen::VectorXd c = m.colPivHouseholderQr().solve(d);
-    const double per_rad = 2 * c[4] / r / kProbe;  // squareness made by one rad of this error
-    if (std::abs(per_rad) < 0.1) continue;       // it does not tilt this plane's axes
-    const machine::Axis& original = model.axes[static_cast<std::size_t>(j)];
-    out.push_back({tables::ErrorSymbol{component, line, true}.name(), squareness_rad / per_rad,
-                   original.location_rad[component - 3]});
+    const double per_rad = squareness_of(tilted) / kProbe;  // squareness made by one rad of this error
+    if (std::abs(per_rad) < 0.1) continue;                 // it does not tilt this plane's axes
+    const double in_file = model.axes[static_cast<std::size_t>(j)].location_rad[component - 3];
+    out.push_back({tables::ErrorSymbol{component, line, true}.name(), in_file + (squareness_rad - in_model) / per_rad,
+                   in_file, in_model});
   }
   return out;
 }

@@ -65,13 +65,17 @@ CircularEvaluation evaluate_circular_test(const CircularTest& test);
 
 // The squareness fitted from dR, in a machine file's own terms: for each location error that
 // tilts the plane's axes against each other (XY: EC0X, EC0Y; YZ: EA0Y, EA0Z; ZX: EB0X, EB0Z),
-// the value it would need alone to make the measured squareness, found by simulating the
-// circle on the model (the circle in the middle of the travel, at the machine's tool length)
-// with that error alone: the machine file's convention decides the sign, not this code.
+// the value that makes the file, with every other error as it is, show the measured
+// squareness: the file's own squareness (its lines and its tables' slopes: a straightness
+// table with a slope is a squareness too) is found by simulating the circle on the model (in
+// the middle of the travel, at the machine's tool length), and the term takes the difference,
+// by what one radian of it alone makes there. One squareness in the file, however many
+// instruments measured it; the file's convention and chain decide the sign, not this code.
 struct SquarenessTerm {
   std::string symbol;   // e.g. EC0Y
-  double value_rad;     // its value for the measured squareness
+  double value_rad;     // its value for the measured squareness, the file's other errors as they are
   double in_file_rad;   // its value in the machine file now
+  double file_squareness_rad;  // the squareness the file shows now (all its errors)
 };
 std::vector<SquarenessTerm> squareness_terms(const machine::Model& model, const std::string& plane, double radius_mm,
                                              double squareness_rad);
