@@ -151,6 +151,74 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
       throw std::runtime_error(args.error + " is an error of axis " + std::string(1, symbol->axis) + ", which " +
                                model->info.name + " (" + args.machine + ") does not have");
   }
+  // Where the runs were made (--machine-out): the runs' metadata, or the options; read before
+  // anything is written, so that a refusal leaves nothing behind.
+  identify::LaserLineRuns line;
+  std::string at;
+  if (!args.machine_out.empty()) {
+    const auto metadata = [&](const std::string& key) {
+      for (const auto& [k, text] : runs.metadata)
+        if (k == key) return text;
+      return std::string();
+    };
+    line.setup.joint = joint;
+    line.setup.error = *symbol;
+    at = !args.at.empty() ? args.at : metadata("at");
+    if (at.empty())
+      throw std::runtime_error(args.runs + ": where did the axes stand during the runs? Add a '# at: " + [&] {
+        std::string example;
+        for (int j = 0; j < model->joint_count(); ++j)
+          example += std::string(j ? ", " : "") + static_cast<char>(std::tolower(model->axes[static_cast<std::size_t>(j)].letter)) + "=...";
+        return example;
+      }() + "' line or give --at: the laser reads the machine's errors there too");
+    try {
+      line.setup.at = identify::parse_axis_positions(*model, joint, at);
+    } catch (const std::exception& bad) {
+      throw std::runtime_error((!args.at.empty() ? std::string("--at: ") : args.runs + ": '# at:': ") + bad.what());
+    }
+    const auto vector3 = [&](const std::string& text, const std::string& what) {
+      std::vector<double> v;
+      std::stringstream list(text);
+      for (std::string item; std::getline(list, item, ',');) {
+        std::size_t used = 0;
+        try {
+          v.push_back(std::stod(item, &used));
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used == 0 || item.find_first_not_of(" \t", used) != std::string::npos)
+          throw std::runtime_error(what + ": '" + item + "' is not a number (mm)");
+      }
+      if (v.size() != 3) throw std::runtime_error(what + ": three numbers, x, y, z (mm)");
+      return Eigen::Vector3d(v[0], v[1], v[2]);
+    };
+    if (!args.tool_point_mm.empty()) line.setup.tool_point_mm = Eigen::Vector3d(args.tool_point_mm[0], args.tool_point_mm[1], args.tool_point_mm[2]);
+    else if (args.tool_length_mm) line.setup.tool_point_mm = Eigen::Vector3d(0, 0, -*args.tool_length_mm);
+    else if (!metadata("tool_point_mm").empty()) line.setup.tool_point_mm = vector3(metadata("tool_point_mm"), args.runs + ": '# tool_point_mm:'");
+    else if (!metadata("tool_length_mm").empty()) line.setup.tool_point_mm = Eigen::Vector3d(0, 0, -vector3(metadata("tool_length_mm") + ",0,0", args.runs + ": '# tool_length_mm:'").x());
+    else
+      throw std::runtime_error(args.runs + ": where was the tool-side optic? Add a '# tool_length_mm: L' line (the optic L "
+                               "below the spindle gauge point, on its axis) or '# tool_point_mm: x, y, z' (in the spindle "
+                               "frame), or give --tool-length / --tool-point");
+    if (!metadata("measured_at_mm").empty())
+      throw std::runtime_error(args.runs + ": '# measured_at_mm:' says where the optics sat relative to the axis's pole; "
+                               "with --machine-out give where the tool-side optic sat instead ('# tool_point_mm: x, y, z' in "
+                               "the spindle frame from its gauge point): the solve reads the Abbe terms from there");
+    line.reference = args.reference.empty() ? identify::default_reference(*symbol, runs.rotary)
+                     : args.reference == "datum"        ? identify::Reference::Datum
+                     : args.reference == "least-squares" ? identify::Reference::LeastSquares
+                     : args.reference == "end-points"   ? identify::Reference::EndPoints
+                                                        : identify::Reference::None;
+    for (const identify::TargetStatistics& t : e.targets) {
+      line.targets.push_back(t.target);
+      line.readings.push_back(value(t));
+      // The standard uncertainty of the value: of a mean of n runs, s / sqrt(n).
+      const double up = t.s_up / std::sqrt(static_cast<double>(e.runs_up)), down = t.s_down / std::sqrt(static_cast<double>(e.runs_down));
+      line.noise.push_back(args.direction == "up" ? up : args.direction == "down" ? down : std::hypot(up, down) / 2);
+    }
+    line.squareness = args.squareness;
+    line.comments = comments;
+}
   // The graph before any other output: a failing gnuplot leaves nothing written.
   if (!args.plot.empty()) {
     plot::LaserPlotText text;
@@ -164,84 +232,27 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
     out << "plot written: " << args.plot << " (its data: " << plot::data_path(args.plot) << ")\n";
   }
 
-  if (!args.output.empty()) {
-    tables::write_atomically(args.output, [&](std::ostream& csv) {
-      for (const std::string& c : comments) csv << "# " << c << "\n";
-      csv << "# the readings: the tool against the part, as the instrument read them (error = actual - nominal)\n";
-      csv << static_cast<char>(std::tolower(symbol->axis)) << (runs.rotary ? "[deg]" : "[mm]") << "," << args.error
-          << (q == tables::Quantity::Length ? "[um]" : "[urad]") << "\n";
-      for (const auto& [target, v] : rows) csv << format_number(target) << "," << format_fixed(v * unit, 4) << "\n";
-    });
-    out << "table written: " << args.output << " (the readings: the tool against the part). Into a machine file: "
-        << "--machine M.toml --machine-out DIR, which solves for what the file holds (the axis's chain and direction, "
-        << "the other errors on the line)\n";
-  }
-  if (args.machine_out.empty()) return 0;
-
-  // Where the runs were made: the runs' metadata, or the options.
-  const auto metadata = [&](const std::string& key) {
-    for (const auto& [k, text] : runs.metadata)
-      if (k == key) return text;
-    return std::string();
-  };
-  identify::LaserLineRuns line;
-  line.setup.joint = joint;
-  line.setup.error = *symbol;
-  const std::string at = !args.at.empty() ? args.at : metadata("at");
-  if (at.empty())
-    throw std::runtime_error(args.runs + ": where did the axes stand during the runs? Add a '# at: " + [&] {
-      std::string example;
-      for (int j = 0; j < model->joint_count(); ++j)
-        example += std::string(j ? ", " : "") + static_cast<char>(std::tolower(model->axes[static_cast<std::size_t>(j)].letter)) + "=...";
-      return example;
-    }() + "' line or give --at: the laser reads the machine's errors there too");
-  try {
-    line.setup.at = identify::parse_axis_positions(*model, joint, at);
-  } catch (const std::exception& bad) {
-    throw std::runtime_error((!args.at.empty() ? std::string("--at: ") : args.runs + ": '# at:': ") + bad.what());
-  }
-  const auto vector3 = [&](const std::string& text, const std::string& what) {
-    std::vector<double> v;
-    std::stringstream list(text);
-    for (std::string item; std::getline(list, item, ',');) {
-      std::size_t used = 0;
-      try {
-        v.push_back(std::stod(item, &used));
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used == 0 || item.find_first_not_of(" \t", used) != std::string::npos)
-        throw std::runtime_error(what + ": '" + item + "' is not a number (mm)");
+  // The readings' table (-o) after the machine file: a refused identification leaves neither.
+  const auto write_readings = [&] {
+    if (!args.output.empty()) {
+      tables::write_atomically(args.output, [&](std::ostream& csv) {
+        for (const std::string& c : comments) csv << "# " << c << "\n";
+        csv << "# the readings: the tool against the part, as the instrument read them (error = actual - nominal)\n";
+        csv << static_cast<char>(std::tolower(symbol->axis)) << (runs.rotary ? "[deg]" : "[mm]") << "," << args.error
+            << (q == tables::Quantity::Length ? "[um]" : "[urad]") << "\n";
+        for (const auto& [target, v] : rows) csv << format_number(target) << "," << format_fixed(v * unit, 4) << "\n";
+      });
+      out << "table written: " << args.output << " (the readings: the tool against the part)";
+      if (args.machine_out.empty())
+        out << ". Into a machine file: --machine M.toml --machine-out DIR, which solves for what the file holds (the "
+            << "axis's chain and direction, the other errors on the line)";
+      out << "\n";
     }
-    if (v.size() != 3) throw std::runtime_error(what + ": three numbers, x, y, z (mm)");
-    return Eigen::Vector3d(v[0], v[1], v[2]);
   };
-  if (!args.tool_point_mm.empty()) line.setup.tool_point_mm = Eigen::Vector3d(args.tool_point_mm[0], args.tool_point_mm[1], args.tool_point_mm[2]);
-  else if (args.tool_length_mm) line.setup.tool_point_mm = Eigen::Vector3d(0, 0, -*args.tool_length_mm);
-  else if (!metadata("tool_point_mm").empty()) line.setup.tool_point_mm = vector3(metadata("tool_point_mm"), args.runs + ": '# tool_point_mm:'");
-  else if (!metadata("tool_length_mm").empty()) line.setup.tool_point_mm = Eigen::Vector3d(0, 0, -vector3(metadata("tool_length_mm") + ",0,0", args.runs + ": '# tool_length_mm:'").x());
-  else
-    throw std::runtime_error(args.runs + ": where was the tool-side optic? Add a '# tool_length_mm: L' line (the optic L "
-                             "below the spindle gauge point, on its axis) or '# tool_point_mm: x, y, z' (in the spindle "
-                             "frame), or give --tool-length / --tool-point");
-  if (!metadata("measured_at_mm").empty())
-    throw std::runtime_error(args.runs + ": '# measured_at_mm:' says where the optics sat relative to the axis's pole; "
-                             "with --machine-out give where the tool-side optic sat instead ('# tool_point_mm: x, y, z' in "
-                             "the spindle frame from its gauge point): the solve reads the Abbe terms from there");
-  line.reference = args.reference.empty() ? identify::default_reference(*symbol, runs.rotary)
-                   : args.reference == "datum"        ? identify::Reference::Datum
-                   : args.reference == "least-squares" ? identify::Reference::LeastSquares
-                   : args.reference == "end-points"   ? identify::Reference::EndPoints
-                                                      : identify::Reference::None;
-  for (const identify::TargetStatistics& t : e.targets) {
-    line.targets.push_back(t.target);
-    line.readings.push_back(value(t));
-    // The standard uncertainty of the value: of a mean of n runs, s / sqrt(n).
-    const double up = t.s_up / std::sqrt(static_cast<double>(e.runs_up)), down = t.s_down / std::sqrt(static_cast<double>(e.runs_down));
-    line.noise.push_back(args.direction == "up" ? up : args.direction == "down" ? down : std::hypot(up, down) / 2);
+  if (args.machine_out.empty()) {
+    write_readings();
+    return 0;
   }
-  line.squareness = args.squareness;
-  line.comments = comments;
   const identify::LaserIntoMachine r =
       identify::laser_into_machine(*model, line, args.machine_out, "volcomp identify laser from " + args.runs);
 
@@ -287,6 +298,7 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
   if (!r.zeroed_copy.empty())
     out << "; in " << r.zeroed_copy << ", the copy of the table that held it, " << args.error << " is zero";
   out << ")\n";
+  write_readings();
   return 0;
 }
 

@@ -234,9 +234,10 @@ TEST(VolcompCli, IdentifyLaserMachineOutReplacesTheErrorOfTheAxis) {
                         folder + "_bare");
   EXPECT_NE(r.out.find("where did z, b, c stand during the runs?"), std::string::npos) << r.out;
   r = test::run_volcomp("identify laser " + bare_in + " --error EXX --machine " + kMc300 +
-                        " --at x=0,y=-160,z=-150,b=0,c=0 --machine-out " + folder + "_bare");
+                        " --at x=0,y=-160,z=-150,b=0,c=0 --machine-out " + folder + "_bare -o " + folder + "_bare.csv");
   EXPECT_NE(r.out.find("where was the tool-side optic?"), std::string::npos) << r.out;
   EXPECT_FALSE(std::filesystem::exists(folder + "_bare/mc300.toml"));
+  EXPECT_FALSE(std::filesystem::exists(folder + "_bare.csv"));  // nor the readings' table
   std::filesystem::remove_all(folder);
   std::filesystem::remove_all(folder + "_thermal");
   std::filesystem::remove_all(folder + "_bare");

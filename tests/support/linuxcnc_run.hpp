@@ -1,7 +1,8 @@
 // Running real LinuxCNC programs (halrun, linuxcnc) from a test: each run gets its own folder
 // (also its HOME, where LinuxCNC keeps its tool table map), its own rtapi FIFO path, and, as
 // root, the fallback uid rtapi_app needs. HAL's shared memory keys are fixed, so runs must not
-// overlap: the CTest tests using this carry RESOURCE_LOCK linuxcnc.
+// meet: CTest runs the tests using this through tests/support/isolated_linuxcnc.sh (their own
+// namespaces, or one at a time: tests/README.md).
 #pragma once
 
 #include <sys/wait.h>
