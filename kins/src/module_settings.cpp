@@ -31,9 +31,7 @@ ModuleSettings settings_from_parameters(const char* machine, const char* coordin
   // configuration's directory); made absolute here so every message names the file tried.
   s.model = machine::load_machine(std::filesystem::absolute(machine).lexically_normal().string());
   // Temperature inputs become HAL pins volkins.temperature.<name>.
-  if (s.model.temperatures.size() > static_cast<std::size_t>(kMaxTemperatureInputs))
-    refuse(s.model.path + " has " + std::to_string(s.model.temperatures.size()) + " temperature inputs; volkins takes " +
-           std::to_string(kMaxTemperatureInputs));
+  // (at most machine::kMaxTemperatureInputs: the loader refuses more)
   for (const machine::TemperatureInput& t : s.model.temperatures)
     if (t.name.empty() || t.name.size() > 24 ||
         !std::all_of(t.name.begin(), t.name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'; }))

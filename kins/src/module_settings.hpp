@@ -13,8 +13,8 @@
 
 namespace vc::kins {
 
-// Temperature inputs the module takes (a HAL pin each).
-inline constexpr int kMaxTemperatureInputs = 8;
+// Temperature inputs the module takes (a HAL pin each): as many as a model has.
+inline constexpr int kMaxTemperatureInputs = machine::kMaxTemperatureInputs;
 // LinuxCNC's joints (EMCMOT_MAX_JOINTS).
 inline constexpr int kMaxJoints = 16;
 

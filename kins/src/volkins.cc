@@ -90,8 +90,9 @@ struct HalData {
   // with a bounded rate and change of rate, so that a G43 does not step the joints by angular
   // error x change of L, nor a second one during the slew their velocity).
   vc::kins::ToolLengthSlew offset;
-  // Each temperature input low-passed (from its reference at load), held while it is faulty.
-  double temperature_state[kMaxTemperatures];
+  // What the correction is evaluated at, beside the model: each temperature input low-passed
+  // (from its reference at load, held while it is faulty) and the pole fade of the pins.
+  vm::Conditions conditions;
 };
 
 // The kinematics type motion selected (0 or 1: settings->kinematics_types) and whether the
@@ -107,8 +108,7 @@ struct KinematicsType {
 };
 KinematicsType kinematics;
 
-vc::kins::ModuleSettings* settings = nullptr;  // built in rtapi_app_main, read-only afterwards
-                                               // except model.fade (volkins.update)
+const vc::kins::ModuleSettings* settings = nullptr;  // built in rtapi_app_main, never changed afterwards
 HalData* hal = nullptr;
 int comp_id = -1;
 
@@ -226,22 +226,22 @@ void update(void*, long period_ns) {
   bool fault = false;
   const double dt = period_ns * 1e-9, tau = std::max(0.0, static_cast<double>(hal->temperature_time_constant));
   for (std::size_t i = 0; i < settings->model.temperatures.size(); ++i) {
-    vm::TemperatureInput& input = settings->model.temperatures[i];
+    const vm::TemperatureInput& input = settings->model.temperatures[i];
     const double reading = *hal->temperature[i];
+    double& state = hal->conditions.temperature_degC[i];
     if (std::isfinite(reading) && reading >= input.min_degC && reading <= input.max_degC) {
-      hal->temperature_state[i] += (reading - hal->temperature_state[i]) * dt / (tau + dt);
+      state += (reading - state) * dt / (tau + dt);
     } else {
       fault = true;
     }
-    input.value_degC = hal->temperature_state[i];
-    *hal->temperature_filtered[i] = hal->temperature_state[i];
+    *hal->temperature_filtered[i] = state;
   }
   *hal->temperature_fault = fault;
 
   const double start = hal->pole_fade_start_deg, full = hal->pole_fade_full_deg;
   if (start >= 0.0 && full > start && full <= 90.0) {
-    settings->model.fade.start_rad = start / kDegPerRad;
-    settings->model.fade.full_rad = full / kDegPerRad;
+    hal->conditions.fade.start_rad = start / kDegPerRad;
+    hal->conditions.fade.full_rad = full / kDegPerRad;
   }
 }
 
@@ -288,7 +288,7 @@ int inverse(const EmcPose* pose, double* joints) {
   Joints extrapolated, extrapolated_full;
   const vm::Applied applied{applied_gain(), &previous, applied_corrections.for_inverse(extrapolated),
                             &*settings->contraction, full_corrections.for_inverse(extrapolated_full),
-                            model.correction_length(offset) + w};
+                            model.correction_length(offset) + w, &hal->conditions};
   Joints q;
   vm::Correction report;
   const vm::Status s = vm::joints_from_world(model, current_world(), world_of(*pose, offset), L, applied, q, &report);
@@ -350,7 +350,8 @@ int kinematicsForward(const double* joints, EmcPose* pose, const KINEMATICS_FORW
   Joints w, way_point, way_point_full;
   int iterations = 0;
   const vm::Applied applied{applied_gain(), &seed, applied_corrections.for_forward(way_point), nullptr,
-                            full_corrections.for_forward(way_point_full), model.correction_length(offset) + tool_axis};
+                            full_corrections.for_forward(way_point_full), model.correction_length(offset) + tool_axis,
+                            &hal->conditions};
   const vm::Status s = vm::world_from_joints(model, current_world(), q, L, applied, w, &iterations);
   *hal->forward_iterations = iterations;
   if (s != vm::Status::Ok) return refuse();
@@ -460,8 +461,9 @@ bool export_hal(const vm::Model& model) {
   hal->tool_length_slew_time = 0.25;
   hal->offset.reset(*hal->tool_length);
   *hal->correction_length = model.correction_length(*hal->tool_length);
-  for (std::size_t i = 0; i < model.temperatures.size(); ++i)  // until a sensor says otherwise
-    *hal->temperature[i] = *hal->temperature_filtered[i] = hal->temperature_state[i] = model.temperatures[i].reference_degC;
+  hal->conditions = model.reference_conditions();  // until a sensor says otherwise
+  for (std::size_t i = 0; i < model.temperatures.size(); ++i)
+    *hal->temperature[i] = *hal->temperature_filtered[i] = hal->conditions.temperature_degC[i];
   *hal->temperature_fault = 0;
   hal->temperature_time_constant = 10.0;
   hal->ramp_time = 1.0;

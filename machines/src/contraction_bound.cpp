@@ -72,7 +72,7 @@ ContractionBound::Largest ContractionBound::sample(const Model& model, double to
     if (model.axes[static_cast<std::size_t>(j)].type == AxisType::Linear) linear[static_cast<std::size_t>(c++)] = j;
   Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxAxes, 1> w = Eigen::VectorXd::Ones(n);
   w.tail(n - 3).setConstant(kDirectionLeverMm);
-  Model varied = model;  // its temperatures drawn at each sample (over_temperatures)
+  Conditions conditions = model.reference_conditions();  // temperatures drawn at each sample (over_temperatures)
   TravelSamples samples(model);
   const int bands = affine_ ? 1 : kBands;
   const bool positions = rotary_count_ > 0;  // (on three linear axes they are the bands' equations)
@@ -83,21 +83,22 @@ ContractionBound::Largest ContractionBound::sample(const Model& model, double to
     if (bands_full && positions_full && fade_band_full) break;
     const Joints q = samples.next();
     if (over_temperatures)
-      for (TemperatureInput& t : varied.temperatures) t.value_degC = samples.uniform(t.min_degC, t.max_degC);
+      for (std::size_t i = 0; i < model.temperatures.size(); ++i)
+        conditions.temperature_degC[i] = samples.uniform(model.temperatures[i].min_degC, model.temperatures[i].max_degC);
     PoseDerivatives d;
-    const ToolPose ideal = tool_pose(varied, Machine::Ideal, q, tool_length_mm, d);
+    const ToolPose ideal = tool_pose(model, Machine::Ideal, q, tool_length_mm, d);
     const int band = band_at(ideal, d);
     const bool band_wanted = band >= 0 && largest.count[static_cast<std::size_t>(band)] < kBandSamples;
-    const double phi = band < 0 && !fade_band_full ? pole_angle_at(varied, ideal, d) : 0.0;
+    const double phi = band < 0 && !fade_band_full ? pole_angle_at(model, ideal, d) : 0.0;
     const bool fade_band_wanted = band < 0 && !fade_band_full && phi >= fade_start_rad_;
     if (!band_wanted && !fade_band_wanted && positions_full) continue;
-    const Correction core = correct(varied, q, tool_length_mm);
+    const Correction core = correct(model, conditions, q, tool_length_mm);
     if (core.status != Status::Ok) continue;
     PoseDerivatives real;
-    tool_pose(varied, Machine::Real, core.joints, tool_length_mm, real);
+    tool_pose(model, conditions, Machine::Real, core.joints, tool_length_mm, real);
     // |W (B - J_real) B^-1 W^-1| of the full correction's equations, J_real at `joints`.
     auto full_contraction = [&](const PoseDerivatives& at_joints) {
-      const CorrectionTarget equations = full_target(varied, ideal, d);
+      const CorrectionTarget equations = full_target(model, ideal, d);
       const SquareMatrix b = correction_jacobian(equations, d, all, n);
       const SquareMatrix contraction = (b - correction_jacobian(equations, at_joints, all, n)) * b.inverse();
       return (w.asDiagonal() * contraction * w.cwiseInverse().asDiagonal()).norm();
@@ -109,7 +110,7 @@ ContractionBound::Largest ContractionBound::sample(const Model& model, double to
     }
     if (fade_band_wanted && core.full_joints.size() > 0) {  // (at phi = start exactly the fade is 0: none)
       PoseDerivatives real_full;  // where the full correction's Newton ends
-      tool_pose(varied, Machine::Real, core.full_joints, tool_length_mm, real_full);
+      tool_pose(model, conditions, Machine::Real, core.full_joints, tool_length_mm, real_full);
       largest.fade_band = std::max(largest.fade_band, full_contraction(real_full) * std::sin(phi));
       ++largest.fade_band_count;
     }

@@ -30,9 +30,9 @@ struct Stopping {
 // rows times kDirectionLeverMm) is within both tolerances ends the solve unevaluated: `pose`
 // is then the real pose before it and `unchecked_bound` that bound (else -1). Otherwise `pose`
 // returns the real pose at the final joints.
-Status newton(const Model& model, const CorrectionTarget& target, double tool_length_mm, const FreeJoints& free,
-              const PoseDerivatives& ideal, Joints& q, int& iterations, ToolPose& pose, double& unchecked_bound,
-              const Stopping& stopping = {}) noexcept {
+Status newton(const Model& model, const Conditions& conditions, const CorrectionTarget& target, double tool_length_mm,
+              const FreeJoints& free, const PoseDerivatives& ideal, Joints& q, int& iterations, ToolPose& pose,
+              double& unchecked_bound, const Stopping& stopping = {}) noexcept {
   const SolverOptions& opt = model.solver;
   const double direction_tolerance =
       stopping.direction_tolerance_rad > 0.0 ? stopping.direction_tolerance_rad : opt.direction_tolerance_rad;
@@ -51,7 +51,7 @@ Status newton(const Model& model, const CorrectionTarget& target, double tool_le
   SmallLu lu;
   double previous_norm = std::numeric_limits<double>::infinity();
   for (int step = 0;; ++step) {
-    pose = tool_pose(model, Machine::Real, q, tool_length_mm);
+    pose = tool_pose(model, conditions, Machine::Real, q, tool_length_mm);
     const Joints residual = correction_residual(target, pose, unknowns);
     if (!residual.allFinite()) return Status::NonFinite;
     const double position = residual.head(3).norm();
@@ -64,7 +64,7 @@ Status newton(const Model& model, const CorrectionTarget& target, double tool_le
         return Status::Singular;
     } else if (norm > 1e-2 * previous_norm) {
       PoseDerivatives exact;
-      tool_pose(model, Machine::Real, q, tool_length_mm, exact);
+      tool_pose(model, conditions, Machine::Real, q, tool_length_mm, exact);
       if (!lu.compute(correction_jacobian(target, exact, index, unknowns))) return Status::Singular;
       ideal_jacobian = false;
     }
@@ -104,10 +104,6 @@ double pole_angle(const Model& model, const Joints& nominal, double tool_length_
   return pole_angle_at(model, ideal, d);
 }
 
-Correction correct(const Model& model, const Joints& nominal, double tool_length_mm) noexcept {
-  return correct(model, nominal, tool_length_mm, nominal);
-}
-
 namespace {
 
 // Where the full correction's Newton runs: not at all (no rotary joints), everywhere
@@ -143,8 +139,9 @@ double position_kappa_for(const ContractionBound* bound, double tool_length_mm) 
   return bound && bound->covers(tool_length_mm) ? stopping_kappa(bound->position_kappa()) : 0.0;
 }
 
-Start start(const Model& model, const Joints& nominal, double tool_length_mm, const Joints& seed, Full full,
-            const ContractionBound* bound = nullptr, const Joints* full_seed = nullptr) noexcept {
+Start start(const Model& model, const Conditions& conditions, const Joints& nominal, double tool_length_mm,
+            const Joints& seed, Full full, const ContractionBound* bound = nullptr,
+            const Joints* full_seed = nullptr) noexcept {
   Start s;
   s.out.nominal = nominal;
   s.out.joints = seed;
@@ -162,7 +159,7 @@ Start start(const Model& model, const Joints& nominal, double tool_length_mm, co
   }
   if (model.rotary_count() > 0) {
     s.out.pole_angle_rad = pole_angle_at(model, s.ideal, s.d);
-    s.out.fade = fade_factor(model.fade, s.out.pole_angle_rad);
+    s.out.fade = fade_factor(conditions.fade, s.out.pole_angle_rad);
   }
   if (full == Full::Always || (full == Full::WhereFaded && s.out.fade > 0.0)) {
     // Near the pole a direction residual e moves the rotary joints by e / sin phi, and in the
@@ -172,7 +169,7 @@ Start start(const Model& model, const Joints& nominal, double tool_length_mm, co
     const double tolerance =
         s.out.fade < 1.0 ? model.solver.direction_tolerance_rad * std::sin(s.out.pole_angle_rad) : 0.0;
     if (full_seed) s.out.joints = *full_seed;
-    s.out.status = newton(model, full_target(model, s.ideal, s.d), tool_length_mm, all, s.d, s.out.joints,
+    s.out.status = newton(model, conditions, full_target(model, s.ideal, s.d), tool_length_mm, all, s.d, s.out.joints,
                           s.out.iterations, s.real, s.unchecked_bound,
                           {tolerance, kappa_for(bound, tool_length_mm, s.out)});
     if (s.out.status != Status::Ok) return s;
@@ -195,24 +192,20 @@ void set_residuals(Correction& out, const Start& s, bool position_alone = false)
 
 }  // namespace
 
-Correction full_correction(const Model& model, const Joints& nominal, double tool_length_mm,
-                           const Joints& seed) noexcept {
-  if (model.rotary_count() == 0) return correct(model, nominal, tool_length_mm, seed);  // no fade to leave out
-  Start s = start(model, nominal, tool_length_mm, seed, Full::Always);
+Correction full_correction(const Model& model, const Conditions& conditions, const Joints& nominal,
+                           double tool_length_mm, const Joints& seed) noexcept {
+  if (model.rotary_count() == 0) return correct(model, conditions, nominal, tool_length_mm, seed);  // no fade to leave out
+  Start s = start(model, conditions, nominal, tool_length_mm, seed, Full::Always);
   if (s.ok) set_residuals(s.out, s);
   return s.out;
 }
 
-Correction correct(const Model& model, const Joints& nominal, double tool_length_mm,
-                   const Joints& seed) noexcept {
-  return correct(model, nominal, tool_length_mm, seed, nullptr);
-}
-
-Correction correct(const Model& model, const Joints& nominal, double tool_length_mm, const Joints& seed,
-                   const ContractionBound* bound, const Joints* full_seed) noexcept {
+Correction correct(const Model& model, const Conditions& conditions, const Joints& nominal, double tool_length_mm,
+                   const Joints& seed, const ContractionBound* bound, const Joints* full_seed) noexcept {
   const int rotary = model.rotary_count();
   if (full_seed && !(full_seed->size() == nominal.size() && full_seed->allFinite())) full_seed = nullptr;
-  Start s = start(model, nominal, tool_length_mm, seed, rotary > 0 ? Full::WhereFaded : Full::Never, bound, full_seed);
+  Start s = start(model, conditions, nominal, tool_length_mm, seed, rotary > 0 ? Full::WhereFaded : Full::Never, bound,
+                  full_seed);
   Correction& out = s.out;
   if (!s.ok) return out;
   const int n = model.joint_count();
@@ -237,19 +230,15 @@ Correction correct(const Model& model, const Joints& nominal, double tool_length
   }
   const bool position_alone = rotary > 0 && out.fade < 1.0;
   if (rotary == 0 || position_alone)
-    out.status = newton(model, target, tool_length_mm, linear, d, out.joints, out.iterations, s.real,
+    out.status = newton(model, conditions, target, tool_length_mm, linear, d, out.joints, out.iterations, s.real,
                         s.unchecked_bound,
                         {0.0, rotary == 0 ? kappa_for(bound, tool_length_mm, out) : position_kappa_for(bound, tool_length_mm)});
   set_residuals(out, s, position_alone);
   return out;
 }
 
-Uncorrection uncorrect(const Model& model, const Joints& corrected, double tool_length_mm) noexcept {
-  return uncorrect(model, corrected, tool_length_mm, 1.0, corrected);
-}
-
-Uncorrection uncorrect(const Model& model, const Joints& corrected, double tool_length_mm, double gain,
-                       const Joints& nominal_seed) noexcept {
+Uncorrection uncorrect(const Model& model, const Conditions& conditions, const Joints& corrected,
+                       double tool_length_mm, double gain, const Joints& nominal_seed) noexcept {
   Uncorrection out;
   out.nominal = corrected;
   if (!corrected.allFinite() || !nominal_seed.allFinite() || !std::isfinite(gain)) {
@@ -260,7 +249,7 @@ Uncorrection uncorrect(const Model& model, const Joints& corrected, double tool_
   out.nominal = nominal_seed;
   Joints correction_seed = corrected;  // where the correction of the current guess lands
   for (out.iterations = 1; out.iterations <= model.solver.max_iterations; ++out.iterations) {
-    const Correction c = correct(model, out.nominal, tool_length_mm, correction_seed);
+    const Correction c = correct(model, conditions, out.nominal, tool_length_mm, correction_seed);
     if (c.status != Status::Ok) {
       out.status = c.status;
       return out;

@@ -79,14 +79,14 @@ Frame walk_ideal_chain(const Model& model, const std::vector<int>& chain, const 
 }
 
 // The real machine's pose and its motion (error slopes included).
-Frame walk_real_chain(const Model& model, const std::vector<int>& chain, const Joints& q,
-                      ChainMotion& motion) noexcept {
+Frame walk_real_chain(const Model& model, const Conditions& conditions, const std::vector<int>& chain,
+                      const Joints& q, ChainMotion& motion) noexcept {
   Frame parent;
   AxisErrors err;
   for (int i : chain) {
     const Axis& axis = model.axes[i];
     const bool has_errors = axis.has_component_errors();
-    if (has_errors) axis_errors(model, i, q, err, true);
+    if (has_errors) axis_errors(model, conditions, i, q, err, true);
     const Vector3d delta = has_errors ? err.delta_mm : Vector3d::Zero();
     Matrix3d r_eps = Matrix3d::Identity(), eps_rate = Matrix3d::Zero();
     if (has_errors) rotation_xyz(err.eps_rad, r_eps, eps_rate);
@@ -125,25 +125,26 @@ Frame walk_real_chain(const Model& model, const std::vector<int>& chain, const J
 
 // Walks one chain bed outward; returns bed_T_last and, if asked, the chain's motion (the
 // real machine's: the ideal machine's derivatives come from carried_ideal_rates()).
-Frame walk_chain(const Model& model, Machine machine, const std::vector<int>& chain, const Joints& q,
-                 ChainMotion* motion) noexcept {
+Frame walk_chain(const Model& model, const Conditions& conditions, Machine machine, const std::vector<int>& chain,
+                 const Joints& q, ChainMotion* motion) noexcept {
   if (machine == Machine::Ideal) return walk_ideal_chain(model, chain, q);  // frames only
-  if (motion) return walk_real_chain(model, chain, q, *motion);
+  if (motion) return walk_real_chain(model, conditions, chain, q, *motion);
   ChainMotion unused;  // the frames alone (part_T_tool): the pose goes through carried_pose()
-  return walk_real_chain(model, chain, q, unused);
+  return walk_real_chain(model, conditions, chain, q, unused);
 }
 
 // bed_T_tool (tip) and bed_T_part.
-Frame tool_frame(const Model& model, Machine machine, const Joints& q, double tool_length_mm,
-                 ChainMotion* motion) noexcept {
+Frame tool_frame(const Model& model, const Conditions& conditions, Machine machine, const Joints& q,
+                 double tool_length_mm, ChainMotion* motion) noexcept {
   const Isometry3d& spindle = machine == Machine::Real ? model.spindle.real : model.spindle.ideal;
-  Frame tool = walk_chain(model, machine, model.tool_chain, q, motion).then(spindle);
+  Frame tool = walk_chain(model, conditions, machine, model.tool_chain, q, motion).then(spindle);
   tool.origin += tool.rotation.col(2) * -tool_length_mm;  // the tip, L down the spindle's z
   return tool;
 }
 
-Frame part_frame(const Model& model, Machine machine, const Joints& q, ChainMotion* motion) noexcept {
-  return walk_chain(model, machine, model.workpiece_chain, q, motion).then(model.fixture);
+Frame part_frame(const Model& model, const Conditions& conditions, Machine machine, const Joints& q,
+                 ChainMotion* motion) noexcept {
+  return walk_chain(model, conditions, machine, model.workpiece_chain, q, motion).then(model.fixture);
 }
 
 // The tool tip and direction (bed_T_tool's origin and z axis) seen in the part frame.
@@ -163,7 +164,8 @@ class CarriedPose {
 
   // Through an axis's placement A = T(base) T(motion) R(motion) (base: its line), outward in
   // (forward) or inward out (inverse).
-  void through(const Model& model, Machine machine, int i, const Joints& q, bool inverse) {
+  void through(const Model& model, const Conditions& conditions, Machine machine, int i, const Joints& q,
+               bool inverse) {
     const Axis& axis = model.axes[i];
     const bool real = machine == Machine::Real;
     Vector3d motion_origin = axis.type == AxisType::Linear ? Vector3d(q[i] * axis.direction) : Vector3d::Zero();
@@ -171,7 +173,7 @@ class CarriedPose {
     bool turns = false;  // else the rotation is the identity
     if (real && axis.has_component_errors()) {
       AxisErrors err;
-      axis_errors(model, i, q, err, false);
+      axis_errors(model, conditions, i, q, err, false);
       motion_origin += err.delta_mm;
       motion_rotation = rotation_xyz(err.eps_rad);
       turns = true;
@@ -216,13 +218,14 @@ class CarriedPose {
   Vector3d tip_, direction_;
 };
 
-ToolPose carried_pose(const Model& model, Machine machine, const Joints& q, double tool_length_mm) noexcept {
+ToolPose carried_pose(const Model& model, const Conditions& conditions, Machine machine, const Joints& q,
+                      double tool_length_mm) noexcept {
   const Isometry3d& spindle = machine == Machine::Real ? model.spindle.real : model.spindle.ideal;
   const Vector3d direction = spindle.linear().col(2);
   CarriedPose carried(spindle.translation() - tool_length_mm * direction, direction);
   for (auto i = model.tool_chain.rbegin(); i != model.tool_chain.rend(); ++i)
-    carried.through(model, machine, *i, q, false);
-  for (int i : model.workpiece_chain) carried.through(model, machine, i, q, true);
+    carried.through(model, conditions, machine, *i, q, false);
+  for (int i : model.workpiece_chain) carried.through(model, conditions, machine, i, q, true);
   carried.to_child(model.fixture.translation(), model.fixture.linear(), true);
   return carried.pose();
 }
@@ -318,13 +321,13 @@ ToolPose carried_ideal_rates(const Model& model, const Joints& q, double tool_le
   return carried.pose(model.joint_count(), d);
 }
 
-ToolPose evaluate(const Model& model, Machine machine, const Joints& q, double tool_length_mm,
-                  PoseDerivatives* d) noexcept {
-  if (!d) return carried_pose(model, machine, q, tool_length_mm);
+ToolPose evaluate(const Model& model, const Conditions& conditions, Machine machine, const Joints& q,
+                  double tool_length_mm, PoseDerivatives* d) noexcept {
+  if (!d) return carried_pose(model, conditions, machine, q, tool_length_mm);
   if (machine == Machine::Ideal) return carried_ideal_rates(model, q, tool_length_mm, *d);
   ChainMotion tool_motion, part_motion;
-  const Frame tool = tool_frame(model, machine, q, tool_length_mm, &tool_motion);
-  const Frame part = part_frame(model, machine, q, &part_motion);
+  const Frame tool = tool_frame(model, conditions, machine, q, tool_length_mm, &tool_motion);
+  const Frame part = part_frame(model, conditions, machine, q, &part_motion);
   const Vector3d& tip_bed = tool.origin;
   const Vector3d k_bed = tool.rotation.col(2);
   const Matrix3d part_R_bed = part.rotation.transpose();
@@ -342,7 +345,7 @@ ToolPose evaluate(const Model& model, Machine machine, const Joints& q, double t
 
 }  // namespace
 
-void axis_errors(const Model& model, int joint, const Joints& q, AxisErrors& out,
+void axis_errors(const Model& model, const Conditions& conditions, int joint, const Joints& q, AxisErrors& out,
                  bool with_slopes) noexcept {
   std::array<double, tables::ErrorTable::kMaxColumns> sum{};  // components X Y Z A B C
   if (with_slopes) out.slope.setZero();
@@ -353,8 +356,7 @@ void axis_errors(const Model& model, int joint, const Joints& q, AxisErrors& out
     // Grid variables: joint positions, or temperatures at their current (volkins: filtered) value.
     std::array<double, tables::ErrorTable::kMaxVariables> at{};
     for (std::size_t v = 0; v < grid.size(); ++v)
-      at[v] = bound.joint[v] >= 0 ? q[bound.joint[v]]
-                                  : model.temperatures[static_cast<std::size_t>(bound.input[v])].value_degC;
+      at[v] = bound.joint[v] >= 0 ? q[bound.joint[v]] : conditions.temperature_degC[static_cast<std::size_t>(bound.input[v])];
     if (!with_slopes) {  // the pose alone: the table adds its values by component
       bound.table.add_components(at.data(), sum);
       continue;
@@ -370,8 +372,9 @@ void axis_errors(const Model& model, int joint, const Joints& q, AxisErrors& out
   // point, along its own direction u (a table axis then carries the part the other way).
   const LinearThermal& thermal = model.axes[joint].thermal;
   if (thermal.input >= 0) {
-    const TemperatureInput& t = model.temperatures[static_cast<std::size_t>(thermal.input)];
-    const double strain = thermal.expansion_per_K * (t.value_degC - t.reference_degC);
+    const auto input = static_cast<std::size_t>(thermal.input);
+    const double strain =
+        thermal.expansion_per_K * (conditions.temperature_degC[input] - model.temperatures[input].reference_degC);
     const Eigen::Vector3d& u = model.axes[joint].direction;
     for (int c = 0; c < 3; ++c) {
       sum[static_cast<std::size_t>(c)] += strain * (q[joint] - thermal.reference_mm) * u[c];
@@ -382,26 +385,26 @@ void axis_errors(const Model& model, int joint, const Joints& q, AxisErrors& out
   out.eps_rad = {sum[3], sum[4], sum[5]};
 }
 
-ToolPose tool_pose(const Model& model, Machine machine, const Joints& q,
+ToolPose tool_pose(const Model& model, const Conditions& conditions, Machine machine, const Joints& q,
                    double tool_length_mm) noexcept {
-  return evaluate(model, machine, q, tool_length_mm, nullptr);
+  return evaluate(model, conditions, machine, q, tool_length_mm, nullptr);
 }
 
-ToolPose tool_pose(const Model& model, Machine machine, const Joints& q, double tool_length_mm,
-                   PoseDerivatives& derivatives) noexcept {
-  return evaluate(model, machine, q, tool_length_mm, &derivatives);
+ToolPose tool_pose(const Model& model, const Conditions& conditions, Machine machine, const Joints& q,
+                   double tool_length_mm, PoseDerivatives& derivatives) noexcept {
+  return evaluate(model, conditions, machine, q, tool_length_mm, &derivatives);
 }
 
-Isometry3d part_T_tool(const Model& model, Machine machine, const Joints& q,
+Isometry3d part_T_tool(const Model& model, const Conditions& conditions, Machine machine, const Joints& q,
                        double tool_length_mm) noexcept {
-  const Frame tool = tool_frame(model, machine, q, tool_length_mm, nullptr);
-  return part_frame(model, machine, q, nullptr).isometry().inverse() * tool.isometry();
+  const Frame tool = tool_frame(model, conditions, machine, q, tool_length_mm, nullptr);
+  return part_frame(model, conditions, machine, q, nullptr).isometry().inverse() * tool.isometry();
 }
 
-VolumetricError volumetric_error(const Model& model, const Joints& q,
+VolumetricError volumetric_error(const Model& model, const Conditions& conditions, const Joints& q,
                                  double tool_length_mm) noexcept {
-  const ToolPose real = tool_pose(model, Machine::Real, q, tool_length_mm);
-  const ToolPose ideal = tool_pose(model, Machine::Ideal, q, tool_length_mm);
+  const ToolPose real = tool_pose(model, conditions, Machine::Real, q, tool_length_mm);
+  const ToolPose ideal = tool_pose(model, conditions, Machine::Ideal, q, tool_length_mm);
   return {real.tip_mm - ideal.tip_mm, ideal.direction.cross(real.direction)};
 }
 

@@ -80,8 +80,8 @@ Status ideal_newton(const Model& model, const CorrectionTarget& target, double t
   }
 }
 
-double fade_at(const Model& model, const IdealPose& ideal) noexcept {
-  return fade_factor(model.fade, pole_angle_at(model, ideal.pose, ideal.d));
+double fade_at(const Model& model, const Conditions& conditions, const IdealPose& ideal) noexcept {
+  return fade_factor(conditions.fade, pole_angle_at(model, ideal.pose, ideal.d));
 }
 
 // The rotary joints of `from` copied into `q`.
@@ -95,12 +95,12 @@ void set_rotary(const Model& model, const Joints& from, Joints& q) noexcept {
 // (the error slopes). That is all a first round needs: D at an estimate of q_n is itself off by
 // ~1e-2 of the estimate's error, and the next round's D, solved to the tolerances where q_n
 // moved to, makes up for both.
-bool first_full_correction(const Model& model, const Joints& q, double tool_length_mm, const IdealPose& ideal,
-                           Joints& d, int& iterations) noexcept {
+bool first_full_correction(const Model& model, const Conditions& conditions, const Joints& q, double tool_length_mm,
+                           const IdealPose& ideal, Joints& d, int& iterations) noexcept {
   const CorrectionTarget target = full_target(model, ideal.pose, ideal.d);
   IdealJacobianSolver solver(model, target.direction_equations);
   if (!solver.applies() || !solver.factorize(target, ideal.d)) return false;
-  const ToolPose real = tool_pose(model, Machine::Real, Joints(q + d), tool_length_mm);
+  const ToolPose real = tool_pose(model, conditions, Machine::Real, Joints(q + d), tool_length_mm);
   const Joints step = solver.solve(correction_residual(target, real, 3 + target.direction_equations));
   if (!step.allFinite()) return false;
   d -= step;
@@ -129,24 +129,24 @@ constexpr double kBandSafety = 10.0;
 constexpr double kBandContracting = 0.1;  // the largest K the error estimate is trusted for
 constexpr int kBandRounds = 4;
 
-bool band_solve(const Model& model, const Joints& corrected, double tool_length_mm, Joints d,
-                const CorrectionTarget& position, Joints& q, int& iterations, IdealPose& ideal) noexcept {
-  const double f0 = fade_at(model, ideal);
+bool band_solve(const Model& model, const Conditions& conditions, const Joints& corrected, double tool_length_mm,
+                Joints d, const CorrectionTarget& position, Joints& q, int& iterations, IdealPose& ideal) noexcept {
+  const double f0 = fade_at(model, conditions, ideal);
   if (!(f0 > 0.0 && f0 < 1.0)) return false;  // not in the band: not this solve's case
   double last_move = 0.0;
   for (int round = 0; round < kBandRounds; ++round) {
     const Joints at = q;
     if (round == 0) {
-      if (!first_full_correction(model, q, tool_length_mm, ideal, d, iterations)) return false;
+      if (!first_full_correction(model, conditions, q, tool_length_mm, ideal, d, iterations)) return false;
     } else {
-      const Correction full = full_correction(model, q, tool_length_mm, Joints(q + d));
+      const Correction full = full_correction(model, conditions, q, tool_length_mm, Joints(q + d));
       iterations += full.iterations + 1;
       if (full.status != Status::Ok) return false;
       d = full.joints - q;
     }
     bool settled = false;
     for (int pass = 0; pass < model.solver.max_iterations && !settled; ++pass) {
-      const double f = fade_at(model, ideal);
+      const double f = fade_at(model, conditions, ideal);
       if (!(f > 0.0 && f < 1.0)) return false;  // left the band: not this solve's case
       double moved = 0.0;
       for (int j = 0; j < model.joint_count(); ++j)
@@ -173,8 +173,9 @@ bool band_solve(const Model& model, const Joints& corrected, double tool_length_
 
 }  // namespace
 
-Uncorrection invert_correction(const Model& model, const Joints& corrected, double tool_length_mm, double gain,
-                               const Joints& nominal_seed, const Joints* full_correction) noexcept {
+Uncorrection invert_correction(const Model& model, const Conditions& conditions, const Joints& corrected,
+                               double tool_length_mm, double gain, const Joints& nominal_seed,
+                               const Joints* full_correction) noexcept {
   Uncorrection out;
   out.nominal = corrected;
   if (!corrected.allFinite() || !nominal_seed.allFinite() || !std::isfinite(gain) ||
@@ -183,14 +184,14 @@ Uncorrection invert_correction(const Model& model, const Joints& corrected, doub
     return out;
   }
   if (gain == 0.0) return out;  // nothing applied: the joints are the nominal ones
-  if (gain != 1.0) return uncorrect(model, corrected, tool_length_mm, gain, nominal_seed);
+  if (gain != 1.0) return uncorrect(model, conditions, corrected, tool_length_mm, gain, nominal_seed);
 
   // Newton needs a start near the answer (a far one may lie nearer another turn of a rotary
   // joint or another branch of the ideal inverse); q_c is always within the correction.
   const bool near = nominal_seed.size() == corrected.size() &&
                     (nominal_seed - corrected).cwiseAbs().maxCoeff() <= kSeedRadius;
   const Joints start = near ? nominal_seed : corrected;
-  const ToolPose real = tool_pose(model, Machine::Real, corrected, tool_length_mm);
+  const ToolPose real = tool_pose(model, conditions, Machine::Real, corrected, tool_length_mm);
   IdealPose ideal;
   Joints q = start;
   CorrectionTarget position{real.tip_mm, real.direction, {}, 0};
@@ -210,11 +211,11 @@ Uncorrection invert_correction(const Model& model, const Joints& corrected, doub
   const CorrectionTarget full = full_target(model, real, ideal.d);
   bool evaluated = true;  // `ideal` holds the pose at q
   const double seed_pole_angle = pole_angle_at(model, ideal.pose, ideal.d);
-  const double seed_fade = fade_factor(model.fade, seed_pole_angle);
+  const double seed_fade = fade_factor(conditions.fade, seed_pole_angle);
   if (seed_fade > 0.0 && seed_fade < 1.0 && near && usable_correction(full_correction, corrected)) {
     // In the band with a full correction at hand (the servo thread's, of the last commands):
     // straight to the band's solve from the seed, without the full solution's estimate of D.
-    if (band_solve(model, corrected, tool_length_mm, *full_correction, position, q, out.iterations, ideal)) {
+    if (band_solve(model, conditions, corrected, tool_length_mm, *full_correction, position, q, out.iterations, ideal)) {
       out.nominal = q;
       return out;
     }
@@ -224,7 +225,7 @@ Uncorrection invert_correction(const Model& model, const Joints& corrected, doub
   if (seed_fade == 0.0) {  // at the pole: the rotary joints are not corrected
     set_rotary(model, corrected, q);
     const Status s = ideal_newton(model, position, tool_length_mm, q, out.iterations, ideal);
-    if (s == Status::Ok && fade_at(model, ideal) == 0.0) {
+    if (s == Status::Ok && fade_at(model, conditions, ideal) == 0.0) {
       out.nominal = q;
       return out;
     }
@@ -241,11 +242,11 @@ Uncorrection invert_correction(const Model& model, const Joints& corrected, doub
   // the band (it moves by at most twice the turn from the seed), else the pose is evaluated.
   const bool at_seed = evaluated && out.iterations == steps_before;
   if (unchecked &&
-      seed_pole_angle - model.fade.full_rad <= 2.0 * ideal_step_remainder(model, start, q, tool_length_mm).turn_rad) {
+      seed_pole_angle - conditions.fade.full_rad <= 2.0 * ideal_step_remainder(model, start, q, tool_length_mm).turn_rad) {
     unchecked = false;
     ideal.pose = tool_pose(model, Machine::Ideal, q, tool_length_mm, ideal.d);
   }
-  double fade = s != Status::Ok ? 0.0 : at_seed || unchecked ? seed_fade : fade_at(model, ideal);
+  double fade = s != Status::Ok ? 0.0 : at_seed || unchecked ? seed_fade : fade_at(model, conditions, ideal);
   if (s == Status::Ok && fade == 1.0) {
     out.nominal = q;
     out.unchecked_step = unchecked;
@@ -259,12 +260,13 @@ Uncorrection invert_correction(const Model& model, const Joints& corrected, doub
     if (model.axes[j].type == AxisType::Rotary) estimate[j] = corrected[j] - fade * (corrected[j] - q[j]);
   s = ideal_newton(model, position, tool_length_mm, estimate, out.iterations, ideal);
   if (s == Status::Ok &&
-      band_solve(model, corrected, tool_length_mm, Joints(corrected - q), position, estimate, out.iterations, ideal)) {
+      band_solve(model, conditions, corrected, tool_length_mm, Joints(corrected - q), position, estimate,
+                 out.iterations, ideal)) {
     out.nominal = estimate;
     return out;
   }
   if (s != Status::Ok) estimate = corrected;
-  Uncorrection polished = uncorrect(model, corrected, tool_length_mm, 1.0, estimate);
+  Uncorrection polished = uncorrect(model, conditions, corrected, tool_length_mm, 1.0, estimate);
   polished.iterations += out.iterations;
   return polished;
 }

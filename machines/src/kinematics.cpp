@@ -87,8 +87,8 @@ Status joints_from_world(const Model& model, WorldConvention convention, const J
                                                                        : nominal;
   const bool full_seeded = usable_correction(applied.full_correction, nominal);
   const Joints full_seed = full_seeded ? Joints(nominal + *applied.full_correction) : Joints();
-  const Correction c =
-      correct(model, nominal, tool_length_mm, seed, applied.contraction, full_seeded ? &full_seed : nullptr);
+  const Correction c = correct(model, applied.conditions ? *applied.conditions : model.reference_conditions(), nominal,
+                               tool_length_mm, seed, applied.contraction, full_seeded ? &full_seed : nullptr);
   if (report) *report = c;
   if (c.status != Status::Ok) return c.status;
   joints = nominal + applied.gain * (c.joints - nominal);
@@ -108,7 +108,8 @@ Status world_from_joints(const Model& model, WorldConvention convention, const J
       nominal_seed = from_seed;
   }
   const Uncorrection u =
-      invert_correction(model, joints, tool_length_mm, applied.gain, nominal_seed, applied.full_correction);
+      invert_correction(model, applied.conditions ? *applied.conditions : model.reference_conditions(), joints,
+                        tool_length_mm, applied.gain, nominal_seed, applied.full_correction);
   if (iterations) *iterations = u.iterations;
   if (u.status != Status::Ok) return u.status;
   world = nominal_forward(model, convention, u.nominal, nominal_length(applied, tool_length_mm));

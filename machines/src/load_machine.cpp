@@ -209,7 +209,9 @@ class MachineReader {
       in.max_degC = scalar(*t, "max_degC", 50.0, context);
       if (!(in.min_degC <= in.reference_degC && in.reference_degC <= in.max_degC) || in.min_degC < -50 || in.max_degC > 150)
         throw LoadError(where(*t), context + ": needs -50 <= min_degC <= reference_degC <= max_degC <= 150");
-      in.value_degC = in.reference_degC;
+      if (model_.temperatures.size() == static_cast<std::size_t>(kMaxTemperatureInputs))
+        throw LoadError(where(*t), "more than " + std::to_string(kMaxTemperatureInputs) + " temperature inputs (the model takes " +
+                                       std::to_string(kMaxTemperatureInputs) + ")");
       model_.temperatures.push_back(in);
     }
   }

@@ -54,7 +54,15 @@ Eigen::Isometry3d line_placement(const Eigen::Vector3d& origin_mm, const Eigen::
   return t;
 }
 
-void Model::set_temperature(const std::string& name, double degC) {
+Conditions Model::reference_conditions() const noexcept {
+  Conditions c;
+  for (std::size_t i = 0; i < temperatures.size() && i < c.temperature_degC.size(); ++i)
+    c.temperature_degC[i] = temperatures[i].reference_degC;
+  c.fade = fade;
+  return c;
+}
+
+void Model::set_temperature(Conditions& conditions, const std::string& name, double degC) const {
   const int i = temperature_of(name);
   if (i < 0) {
     std::string names;
@@ -62,11 +70,11 @@ void Model::set_temperature(const std::string& name, double degC) {
     throw std::invalid_argument("no temperature input '" + name + "' in " + path +
                                 (names.empty() ? " (it has no [temperatures])" : " (it has: " + names + ")"));
   }
-  TemperatureInput& t = temperatures[static_cast<std::size_t>(i)];
+  const TemperatureInput& t = temperatures[static_cast<std::size_t>(i)];
   if (!(degC >= t.min_degC && degC <= t.max_degC))
     throw std::invalid_argument("temperature " + name + " = " + std::to_string(degC) + " degC is outside the range the model holds for (" +
                                 std::to_string(t.min_degC) + " .. " + std::to_string(t.max_degC) + " degC)");
-  t.value_degC = degC;
+  conditions.temperature_degC[static_cast<std::size_t>(i)] = degC;
 }
 
 int Model::temperature_of(const std::string& name) const {

@@ -64,8 +64,9 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
   if (!(args.tolerance_rad > 0.0 && args.tolerance_rad <= 0.01))
     throw std::runtime_error("--tolerance-rad must be in (0, 0.01] rad");
   const machine::WorldConvention world = world_convention(args.world);
-  machine::Model model = machine::load_machine(args.machine);
-  std::string conditions;  // the temperatures the program is made for, for its header
+  const machine::Model model = machine::load_machine(args.machine);
+  machine::Conditions temperatures = model.reference_conditions();  // the program is made for
+  std::string conditions;  // the same, for its header
   for (const std::string& t : args.temperatures) {
     const auto eq = t.find('=');
     double value = 0;
@@ -75,7 +76,7 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
     } catch (const std::logic_error&) {
       throw std::runtime_error("--temperature " + t + ": NAME=VALUE in degC, e.g. x_screw=27.5");
     }
-    model.set_temperature(t.substr(0, eq), value);
+    model.set_temperature(temperatures, t.substr(0, eq), value);
     conditions += ", " + t.substr(0, eq) + " " + t.substr(eq + 1) + " degC";
   }
   const ProgramFiles files(args.tool_table, args.var_file, args.machine_units);
@@ -83,6 +84,7 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
 
   predistort::Job job;
   job.model = &model;
+  job.conditions = &temperatures;
   job.setup = files.setup(args.input, model, world == machine::WorldConvention::Tcp);
   job.setup.subroutine_path = args.subroutine_path;
   if (!args.start.empty()) job.setup.start_world = start_position(args.start, files.machine_unit_mm);

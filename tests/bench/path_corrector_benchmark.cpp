@@ -63,7 +63,7 @@ Program interpreted(const std::string& machine, int lines) {
 
 void BM_CorrectMove(benchmark::State& state, const std::string& machine) {
   const Program p = interpreted(machine, 20000);
-  PathCorrector corrector(p.model, CorrectorOptions{}, nullptr);
+  PathCorrector corrector(p.model, p.model.reference_conditions(), CorrectorOptions{}, nullptr);
   std::vector<Piece> pieces;
   std::size_t i = 0;
   for (auto _ : state) {

@@ -31,8 +31,10 @@ namespace {
 class NoAllocation : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(NoAllocation, RealTimeFunctionsNeverCallMalloc) {
-  Model model = load_machine(test::machine_path(GetParam()));
-  for (TemperatureInput& t : model.temperatures) t.value_degC = 0.5 * (t.min_degC + t.max_degC);  // as volkins sets it
+  const Model model = load_machine(test::machine_path(GetParam()));
+  Conditions at = model.reference_conditions();  // as volkins keeps them: the temperatures set
+  for (std::size_t i = 0; i < model.temperatures.size(); ++i)
+    at.temperature_degC[i] = 0.5 * (model.temperatures[i].min_degC + model.temperatures[i].max_degC);
   std::mt19937_64 rng(7);
   std::vector<Joints> poses;
   for (int k = 0; k < 500; ++k) {
@@ -55,24 +57,28 @@ TEST_P(NoAllocation, RealTimeFunctionsNeverCallMalloc) {
   allocations = 0;
   counting = true;
   for (const Joints& q : poses) {
-    sink += volumetric_error(model, q, L).position_mm.norm();
-    const Correction c = correct(model, q, L);
+    sink += volumetric_error(model, at, q, L).position_mm.norm();
+    sink += volumetric_error(model, q, L).position_mm.norm();  // (at the file's conditions)
+    const Correction c = correct(model, at, q, L);
     sink += c.residual_mm;
-    sink += uncorrect(model, c.joints, L).nominal.sum();
+    sink += uncorrect(model, at, c.joints, L, 1.0, c.joints).nominal.sum();
     for (WorldConvention w : {WorldConvention::Axes, WorldConvention::Tcp}) {
       Joints joints, world;
       sink += static_cast<double>(joints_from_world(model, w, q, L, joints));
       sink += static_cast<double>(world_from_joints(model, w, joints, L, world));
       // The module's calls: seeded, part of the correction.
-      const Applied inverse{0.5, &joints}, forward{0.5, &world};
+      Applied inverse{0.5, &joints}, forward{0.5, &world};
+      inverse.conditions = forward.conditions = &at;
       sink += static_cast<double>(joints_from_world(model, w, q, L, inverse, joints));
       const Joints correction = c.joints - q;
-      const Applied bounded{1.0, &joints, &correction, &bound};  // the unchecked step's path
+      Applied bounded{1.0, &joints, &correction, &bound};  // the unchecked step's path
+      bounded.conditions = &at;
       sink += static_cast<double>(joints_from_world(model, w, q, L, bounded, joints));
       sink += static_cast<double>(world_from_joints(model, w, joints, L, forward, world));
       // With the full corrections volkins keeps (the fade band's seeds).
       const Joints full = (c.full_joints.size() ? c.full_joints : c.joints) - q;
-      const Applied kept_inverse{1.0, &joints, &correction, &bound, &full}, kept_forward{1.0, &world, &correction, nullptr, &full};
+      Applied kept_inverse{1.0, &joints, &correction, &bound, &full}, kept_forward{1.0, &world, &correction, nullptr, &full};
+      kept_inverse.conditions = kept_forward.conditions = &at;
       sink += static_cast<double>(joints_from_world(model, w, q, L, kept_inverse, joints));
       sink += static_cast<double>(world_from_joints(model, w, joints, L, kept_forward, world));
       sink += outside_tables(model, joints);
@@ -81,7 +87,7 @@ TEST_P(NoAllocation, RealTimeFunctionsNeverCallMalloc) {
   counting = false;
   EXPECT_EQ(allocations.load(), 0) << "allocations in the real-time path";
   int band = 0;
-  for (const Joints& q : poses) band += correct(model, q, L).full_joints.size() > 0;
+  for (const Joints& q : poses) band += correct(model, at, q, L).full_joints.size() > 0;
   if (GetParam() == "mc300") {
     EXPECT_GT(band, 100) << "the fade band's paths were not taken";
   }

@@ -160,8 +160,8 @@ TEST_F(Soak, ASessionUnderRandomFaultsStaysWithinItsBounds) {
   std::array<double, kJoints> a_max{};
   for (int j = 0; j < kJoints; ++j) a_max[j] = test::ini_value(kIni, "JOINT_" + std::to_string(j), "MAX_ACCELERATION");
 
-  // The model at a sample's filtered temperatures; the core's joints and full correction there.
-  machine::Model model = *model_;
+  // The core's joints and full correction at a sample's filtered temperatures.
+  const machine::Model& model = *model_;
   const int coolant = model.temperature_of("coolant"), spindle = model.temperature_of("spindle");
   const std::size_t c_x = at("x"), c_j0 = at("j0"), c_q0 = at("q0"), c_gain = at("gain"), c_L = at("correction_length"),
                     c_tc = at("temperature_coolant"), c_ts = at("temperature_spindle"), c_rc = at("coolant_sensor"),
@@ -174,20 +174,25 @@ TEST_F(Soak, ASessionUnderRandomFaultsStaysWithinItsBounds) {
     for (int j = 0; j < kJoints; ++j) w[j] = row[c_x + j];
     return w;
   };
+  machine::Conditions conditions = model.reference_conditions();  // the module's filtered temperatures, row by row
   const auto at_temperatures = [&](const std::vector<double>& row) {
-    model.temperatures[static_cast<std::size_t>(coolant)].value_degC = row[c_tc];
-    model.temperatures[static_cast<std::size_t>(spindle)].value_degC = row[c_ts];
+    conditions.temperature_degC[static_cast<std::size_t>(coolant)] = row[c_tc];
+    conditions.temperature_degC[static_cast<std::size_t>(spindle)] = row[c_ts];
   };
   const auto core_joints = [&](const std::vector<double>& row) {
     at_temperatures(row);
     Joints q;
-    machine::joints_from_world(model, WorldConvention::Axes, world_of(row), row[c_L], machine::Applied{row[c_gain], nullptr}, q);
+    machine::Applied applied{row[c_gain], nullptr};
+    applied.conditions = &conditions;
+    machine::joints_from_world(model, WorldConvention::Axes, world_of(row), row[c_L], applied, q);
     return q;
   };
   const auto full_correction = [&](const std::vector<double>& row) {
     at_temperatures(row);
     Joints full, nominal;
-    machine::joints_from_world(model, WorldConvention::Axes, world_of(row), row[c_L], full);
+    machine::Applied applied;
+    applied.conditions = &conditions;
+    machine::joints_from_world(model, WorldConvention::Axes, world_of(row), row[c_L], applied, full);
     machine::nominal_inverse(model, WorldConvention::Axes, world_of(row), row[c_L], nominal);
     return Joints(full - nominal);
   };

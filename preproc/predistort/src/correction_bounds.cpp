@@ -21,9 +21,9 @@ constexpr double kStencilMargin = 1e-2;  // around a stencil (the correction mov
 
 // The correction d(q) = C(q) - q at q, or false where the core cannot correct q. Newton
 // starts from q + `near` (a correction nearby), which changes its steps, not its answer.
-bool correction_at(const machine::Model& model, const Joints& q, double tool_length_mm, const Joints& near,
-                   Joints& d) {
-  const machine::Correction c = machine::correct(model, q, tool_length_mm, q + near);
+bool correction_at(const machine::Model& model, const machine::Conditions& conditions, const Joints& q,
+                   double tool_length_mm, const Joints& near, Joints& d) {
+  const machine::Correction c = machine::correct(model, conditions, q, tool_length_mm, q + near);
   if (c.status != machine::Status::Ok) return false;
   d = c.joints - q;
   return true;
@@ -31,7 +31,8 @@ bool correction_at(const machine::Model& model, const Joints& q, double tool_len
 
 }  // namespace
 
-CorrectionBounds::CorrectionBounds(const machine::Model& model, Shared* shared) : model_(model), shared_(shared) {
+CorrectionBounds::CorrectionBounds(const machine::Model& model, const machine::Conditions& conditions, Shared* shared)
+    : model_(model), conditions_(conditions), shared_(shared) {
   for (const machine::BoundTable& bound : model.tables) {
     const auto& grid = bound.table.grid();
     for (std::size_t v = 0; v < grid.size(); ++v) {
@@ -179,9 +180,9 @@ CorrectionBounds::Sampled CorrectionBounds::sample_part(double tool_length_mm, i
   // a thin shell of the travel, gets samples of its own.
   auto in_fade_band = [&](const Joints& q) {
     const double phi = machine::pole_angle(model_, q, tool_length_mm);
-    return phi >= model_.fade.start_rad && phi <= model_.fade.full_rad;
+    return phi >= conditions_.fade.start_rad && phi <= conditions_.fade.full_rad;
   };
-  const bool has_band = model_.rotary_count() > 0 && model_.fade.full_rad > 0.0;
+  const bool has_band = model_.rotary_count() > 0 && conditions_.fade.full_rad > 0.0;
   int band_draws = 0;
   for (int sample = 0; sample < (has_band ? 2 : 1) * kSamples; ++sample) {
     // Every part draws every sample (the draws are cheap), and evaluates its own.
@@ -198,7 +199,7 @@ CorrectionBounds::Sampled CorrectionBounds::sample_part(double tool_length_mm, i
       return (derivatives.direction.leftCols(n) * joint_change).norm();
     };
     Joints centre;
-    if (!correction_at(model_, q, tool_length_mm, Joints::Zero(n), centre)) continue;
+    if (!correction_at(model_, conditions_, q, tool_length_mm, Joints::Zero(n), centre)) continue;
     // d at q +- h e_i, and whether a kink lies within h of q along joint i.
     std::array<Joints, machine::kMaxAxes> up, down;
     std::array<bool, machine::kMaxAxes> ok{}, smooth{};
@@ -207,8 +208,8 @@ CorrectionBounds::Sampled CorrectionBounds::sample_part(double tool_length_mm, i
       qu[i] += h;
       qd[i] -= h;
       const auto u = static_cast<std::size_t>(i);
-      ok[u] = correction_at(model_, qu, tool_length_mm, centre, up[u]) &&
-              correction_at(model_, qd, tool_length_mm, centre, down[u]);
+      ok[u] = correction_at(model_, conditions_, qu, tool_length_mm, centre, up[u]) &&
+              correction_at(model_, conditions_, qd, tool_length_mm, centre, down[u]);
       smooth[u] = !kink_near(i, q[i] + centre[i] - h, q[i] + centre[i] + h, kStencilMargin);
       if (!ok[u]) continue;
       out.slope[u] = std::max(out.slope[u], tip((up[u] - down[u]) / (2 * h)));
@@ -228,7 +229,7 @@ CorrectionBounds::Sampled CorrectionBounds::sample_part(double tool_length_mm, i
           Joints p = q;
           p[i] += (c & 1) ? h : -h;
           p[j] += (c & 2) ? h : -h;
-          all = correction_at(model_, p, tool_length_mm, centre, corner[c]);
+          all = correction_at(model_, conditions_, p, tool_length_mm, centre, corner[c]);
         }
         if (!all) continue;
         const Joints mixed = (corner[3] - corner[2] - corner[1] + corner[0]) / (4 * h * h);

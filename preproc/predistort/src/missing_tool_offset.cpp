@@ -21,7 +21,7 @@ void MissingOffsetCheck::at(const interpreter::Move& move, const machine::Joints
                             const machine::Joints& corrected, MissingOffsetError& worst) const {
   const std::optional<LikelyTool> tool = likely_tool(model_, tools_, move.tool);
   if (!tool || tool->length_mm == model_.correction_length(0.0)) return;  // corrected for that tool
-  const double error_mm = (machine::tool_pose(model_, machine::Machine::Real, corrected, tool->length_mm).tip_mm -
+  const double error_mm = (machine::tool_pose(model_, conditions_, machine::Machine::Real, corrected, tool->length_mm).tip_mm -
                            machine::tool_pose(model_, machine::Machine::Ideal, target, tool->length_mm).tip_mm)
                               .norm();
   if (error_mm > worst.error_mm) worst = {error_mm, move.line, *tool};

@@ -17,8 +17,9 @@ constexpr int kMaxSteps = 3;
 
 }  // namespace
 
-OneStepCorrection::OneStepCorrection(const machine::Model& model)
+OneStepCorrection::OneStepCorrection(const machine::Model& model, const machine::Conditions& conditions)
     : model_(model),
+      conditions_(conditions),
       applies_(model.joint_count() == 3 + model.rotary_count()),
       affine_(model.joint_count() == 3 && model.rotary_count() == 0),
       blocks_(model, model.rotary_count()) {
@@ -89,7 +90,7 @@ bool OneStepCorrection::correct(const Joints& target, double tool_length_mm, con
   double previous = std::numeric_limits<double>::infinity();
   for (int step = 0; step <= kMaxSteps; ++step) {
     const Joints residual = machine::correction_residual(
-        equations, machine::tool_pose(model_, Machine::Real, corrected, tool_length_mm), n);
+        equations, machine::tool_pose(model_, conditions_, Machine::Real, corrected, tool_length_mm), n);
     const double norm = weighted_norm(residual);
     if (!std::isfinite(norm)) return false;
     if (residual.head(3).norm() <= opt.position_tolerance_mm &&

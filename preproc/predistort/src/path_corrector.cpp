@@ -46,16 +46,17 @@ PieceCircle circle_of(const interpreter::Arc& arc, const Position& start, const 
 
 }  // namespace
 
-PathCorrector::PathCorrector(const machine::Model& model, CorrectorOptions options, const Deflection* deflection,
-                             CorrectionBounds::Shared* shared)
+PathCorrector::PathCorrector(const machine::Model& model, const machine::Conditions& conditions,
+                             CorrectorOptions options, const Deflection* deflection, CorrectionBounds::Shared* shared)
     : model_(model),
+      conditions_(conditions),
       options_(options),
       deflection_(deflection),
       checks_direction_(model.rotary_count() > 0 && options.tolerance_rad > 0),
       axes_(model),
-      bounds_(model, shared),
-      one_step_(model),
-      missing_offset_(model, options.tools) {}
+      bounds_(model, conditions, shared),
+      one_step_(model, conditions),
+      missing_offset_(model, conditions, options.tools) {}
 
 Joints PathCorrector::joints_of(const Position& world) const { return axes_.joints_of(world); }
 
@@ -104,7 +105,7 @@ PathCorrector::Node PathCorrector::node_at(const Move& move, double s) {
   const Joints seed = seed_for(n.target, L);
   ++stats_.corrections;
   if (!one_step_.correct(n.target, L, seed, n.corrected)) {
-    const machine::Correction c = machine::correct(model_, n.target, L, seed);
+    const machine::Correction c = machine::correct(model_, conditions_, n.target, L, seed);
     if (c.status != Status::Ok) fail(move, "the correction failed", c.status);
     n.corrected = c.joints;
   }
@@ -204,7 +205,7 @@ PathCorrector::PieceError PathCorrector::error_between(const Move& move, const N
   machine::nominal_inverse(model_, options_.world, joints_of(move.frame.world(commanded_at(move, a, piece, t))), L,
                            commanded);
   const Eigen::Vector3d deflection = a.deflection_mm + t * (b.deflection_mm - a.deflection_mm);
-  const machine::ToolPose real = machine::tool_pose(model_, Machine::Real, commanded, L);
+  const machine::ToolPose real = machine::tool_pose(model_, conditions_, Machine::Real, commanded, L);
   const machine::ToolPose ideal = machine::tool_pose(model_, Machine::Ideal, nominal, L);
   PieceError e;
   e.mm = (real.tip_mm + deflection - ideal.tip_mm).norm();
@@ -215,7 +216,7 @@ PathCorrector::PieceError PathCorrector::error_between(const Move& move, const N
     // values interpolated miss it by tens of urad across the band.
     const auto& [at_a, at_b] = *exact_direction_errors;
     Eigen::Vector3d exact = Eigen::Vector3d::Zero();
-    if (at_a.squaredNorm() > 0 || at_b.squaredNorm() > 0 || machine::pole_angle(model_, nominal, L) < model_.fade.full_rad)
+    if (at_a.squaredNorm() > 0 || at_b.squaredNorm() > 0 || machine::pole_angle(model_, nominal, L) < conditions_.fade.full_rad)
       exact = direction_error(move, node_at(move, s));
     e.rad = (real.direction - ideal.direction - exact).norm();
   }
@@ -224,7 +225,7 @@ PathCorrector::PieceError PathCorrector::error_between(const Move& move, const N
 
 Eigen::Vector3d PathCorrector::direction_error(const Move& move, const Node& n) const {
   const double L = model_.correction_length(move.tool_offset_mm);
-  return machine::tool_pose(model_, Machine::Real, n.corrected, L).direction -
+  return machine::tool_pose(model_, conditions_, Machine::Real, n.corrected, L).direction -
          machine::tool_pose(model_, Machine::Ideal, n.nominal, L).direction;
 }
 

@@ -214,7 +214,8 @@ Summary predistort(std::istream& in, std::ostream& out, const Job& job,
   CorrectorOptions options = job.corrector;
   if (!options.tools) options.tools = job.setup.tools;
   for (int lane = 0; lane < lanes; ++lane)
-    correctors.emplace_back(*job.model, options, job.deflection, lanes > 1 ? &shared_bounds : nullptr);
+    correctors.emplace_back(*job.model, job.conditions ? *job.conditions : job.model->reference_conditions(), options,
+                            job.deflection, lanes > 1 ? &shared_bounds : nullptr);
   Writer writer(out, job.setup.machine_axes, job.corrector.tolerance_mm);
   Summary summary;
   long bytes = 0;

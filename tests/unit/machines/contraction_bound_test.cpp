@@ -35,8 +35,9 @@ Model load(const std::string& name) {
 class ContractionBoundTest : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ContractionBoundTest, UncheckedStepsLandWithinTheirBoundOnTheCoresJoints) {
-  Model model = load(GetParam());
+  const Model model = load(GetParam());
   const ContractionBound bound(model, kToolLengths, true);
+  Conditions at = model.reference_conditions();  // its temperatures drawn at each pose
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> unit(-1.0, 1.0), exponent(-11.0, -6.0), length(0.0, 300.0);
   const double tolerance = model.solver.position_tolerance_mm;
@@ -45,11 +46,12 @@ TEST_P(ContractionBoundTest, UncheckedStepsLandWithinTheirBoundOnTheCoresJoints)
   double worst_band = 0.0;   // the fade band's full correction: exact position residual / the solver's limit
   const int poses = test::pose_count(3000);
   for (int k = 0; k < poses; ++k) {
-    for (TemperatureInput& t : model.temperatures)
-      t.value_degC = std::uniform_real_distribution<double>(t.min_degC, t.max_degC)(rng);
+    for (std::size_t i = 0; i < model.temperatures.size(); ++i)
+      at.temperature_degC[i] = std::uniform_real_distribution<double>(model.temperatures[i].min_degC,
+                                                                      model.temperatures[i].max_degC)(rng);
     const Joints q = test::random_pose(model, rng);
     const double L = length(rng);
-    const Correction core = correct(model, q, L);
+    const Correction core = correct(model, at, q, L);
     ASSERT_EQ(core.status, Status::Ok) << test::text(q);
     // Seeds as the servo thread's extrapolation gives them: the answer, 1e-11 to 1e-6 off (in
     // the fade band also the full correction's).
@@ -61,7 +63,7 @@ TEST_P(ContractionBoundTest, UncheckedStepsLandWithinTheirBoundOnTheCoresJoints)
     };
     const bool band = core.fade > 0.0 && core.fade < 1.0;
     const Joints full_seed = band ? near(core.full_joints) : Joints();
-    const Correction c = correct(model, q, L, near(core.joints), &bound, band ? &full_seed : nullptr);
+    const Correction c = correct(model, at, q, L, near(core.joints), &bound, band ? &full_seed : nullptr);
     ASSERT_EQ(c.status, Status::Ok) << test::text(q);
     // Both within the tolerance of the residual; near a pole that leaves the joints ~1e-9 apart.
     ASSERT_LT((c.joints - core.joints).cwiseAbs().maxCoeff(), 1e-8) << test::text(q);
@@ -74,7 +76,7 @@ TEST_P(ContractionBoundTest, UncheckedStepsLandWithinTheirBoundOnTheCoresJoints)
       ASSERT_TRUE(band) << test::text(q);
       const double limit = std::min(tolerance, kDirectionLeverMm * model.solver.direction_tolerance_rad *
                                                    std::sin(core.pole_angle_rad));
-      const Eigen::Isometry3d real = part_T_tool(model, Machine::Real, c.full_joints, L);
+      const Eigen::Isometry3d real = part_T_tool(model, at, Machine::Real, c.full_joints, L);
       const Eigen::Isometry3d ideal = part_T_tool(model, Machine::Ideal, q, L);
       const double position = (real.translation() - ideal.translation()).norm();
       ASSERT_LE(position, limit + 1e-12) << test::text(q);
@@ -88,7 +90,7 @@ TEST_P(ContractionBoundTest, UncheckedStepsLandWithinTheirBoundOnTheCoresJoints)
     if (!c.unchecked_step) continue;
     ++(core.fade == 1.0 ? unchecked : unchecked_faded);
     ASSERT_LE(c.residual_mm, tolerance);
-    const Eigen::Isometry3d real = part_T_tool(model, Machine::Real, c.joints, L);
+    const Eigen::Isometry3d real = part_T_tool(model, at, Machine::Real, c.joints, L);
     const Eigen::Isometry3d ideal = part_T_tool(model, Machine::Ideal, q, L);
     const double position = (real.translation() - ideal.translation()).norm();
     // The tool direction: within the bound at full correction (where two rotary joints correct

@@ -109,25 +109,26 @@ TEST(TemperatureTable, LoadsATemperatureAsAGridVariable) {
 }
 
 TEST(TemperatureTable, TheToolTipMovesByTheTablesAtTheCurrentTemperatures) {
-  Model model = load_machine(plain_machine());
+  const Model model = load_machine(plain_machine());
+  Conditions at = model.reference_conditions();
   ASSERT_EQ(model.tables.size(), 2u);
   EXPECT_EQ(model.tables[0].joint[1], -1);
   EXPECT_EQ(model.tables[0].input[1], model.temperature_of("x_screw"));
   EXPECT_EQ(model.axes[0].moved_by, 1u) << "a temperature moves no joint";
   for (const double x_screw : {20.0, 15.0, 18.3, 27.0, 45.0})
     for (const double spindle : {20.0, 10.0, 26.5, 33.0, 40.0}) {
-      model.set_temperature("x_screw", x_screw);
-      model.set_temperature("spindle", spindle);
+      model.set_temperature(at, "x_screw", x_screw);
+      model.set_temperature(at, "spindle", spindle);
       for (const double x : {0.0, 80.0, 499.0}) {
         Joints q(3);
         q << x, 120.0, -150.0;
-        const VolumetricError e = volumetric_error(model, q, 100.0);
+        const VolumetricError e = volumetric_error(model, at, q, 100.0);
         // (to the rounding of tips some 500 mm from the origin: an ulp there is 1.1e-13 mm)
         EXPECT_NEAR(e.position_mm.x(), exx_by_hand(x, x_screw), 1e-12);
         EXPECT_NEAR(e.position_mm.y(), 0.0, 1e-12);
         EXPECT_NEAR(e.position_mm.z(), ezz_by_hand(spindle), 1e-12);
         // The correction puts the real tool on the nominal point at this temperature.
-        const Correction c = correct(model, q, 100.0);
+        const Correction c = correct(model, at, q, 100.0);
         ASSERT_EQ(c.status, Status::Ok);
         EXPECT_LT(c.residual_mm, 1e-9);
         EXPECT_NEAR(c.joints[2] - q[2], -ezz_by_hand(spindle), 1e-12);
@@ -148,21 +149,22 @@ TEST(TemperatureTable, AThermalExpansionNeedsNoTable) {
   const std::string y = "travel_mm = [0, 400]";
   text.insert(text.find(y) + y.size(), "\nthermal = { input = \"x_screw\", expansion_um_per_m_K = 11.5, reference_mm = 100 }");
   std::ofstream(scratch("y_thermal.toml")) << text;
-  Model model = load_machine(scratch("y_thermal.toml").string());
+  const Model model = load_machine(scratch("y_thermal.toml").string());
   ASSERT_TRUE(model.axes[1].tables.empty());
-  model.set_temperature("x_screw", 30.0);
+  Conditions at = model.reference_conditions();
+  model.set_temperature(at, "x_screw", 30.0);
   Joints q(3);
   q << 0.0, 350.0, -100.0;
-  const VolumetricError e = volumetric_error(model, q, 100.0);
+  const VolumetricError e = volumetric_error(model, at, q, 100.0);
   EXPECT_NEAR(e.position_mm.y(), 11.5e-6 * 10 * (350 - 100), 1e-12);  // 28.75 um
   EXPECT_NEAR(e.position_mm.x(), exx_by_hand(0.0, 30.0), 1e-12);
-  const Correction c = correct(model, q, 100.0);
+  const Correction c = correct(model, at, q, 100.0);
   EXPECT_LT(c.residual_mm, 1e-9) << "the correction sees the expansion's slope too";
 }
 
 // The shipped example: mc300.toml plus example thermal tables (tables/data/mc300/thermal).
 TEST(TemperatureTable, TheMc300ExampleIsMc300AtItsReferenceAndMovesByItsTablesWhenWarm) {
-  Model warm = load_machine(test::machine_path("mc300_thermal"));
+  const Model warm = load_machine(test::machine_path("mc300_thermal"));
   const Model mc300 = load_machine(test::machine_path("mc300"));
   ASSERT_EQ(warm.temperatures.size(), 2u);
   const std::vector<std::array<double, 5>> poses{
@@ -173,21 +175,23 @@ TEST(TemperatureTable, TheMc300ExampleIsMc300AtItsReferenceAndMovesByItsTablesWh
     EXPECT_EQ((a.tip_mm - b.tip_mm).norm(), 0.0) << "at the reference temperatures";
     EXPECT_EQ((a.direction - b.direction).norm(), 0.0);
   }
-  warm.set_temperature("coolant", 25.0);
-  warm.set_temperature("spindle", 27.0);
+  Conditions at = warm.reference_conditions();
+  warm.set_temperature(at, "coolant", 25.0);
+  warm.set_temperature(at, "spindle", 27.0);
   // At B = C = 0 the part frame is the bed's: the tables' translations show as they are, up to
   // the machine's own angles, which turn them (the Z line's squareness 5" + 5", X's and Y's
   // angular errors: up to ~1e-4 rad on the 0.054 mm of Z, 5e-6 mm).
   Joints q(5);
   q << -450, -200, -150, 0, 0;
-  const Eigen::Vector3d change = volumetric_error(warm, q, 100.0).position_mm - volumetric_error(mc300, q, 100.0).position_mm;
+  const Eigen::Vector3d change =
+      volumetric_error(warm, at, q, 100.0).position_mm - volumetric_error(mc300, q, 100.0).position_mm;
   // By hand from the CSV files: x_coolant.csv at x = -450 (3/4 of the way to -600) and 25 degC:
   // -2.5 um x 0.75; y_coolant.csv at y = -200 (200/320) and 25 degC: -2.1 um x 0.625;
   // z_spindle.csv at 27 degC, between 19 (0) and 28 (-60.3): -60.3 x 8/9.
   EXPECT_NEAR(change.x(), -1.875e-3, 1e-5);
   EXPECT_NEAR(change.y(), -1.3125e-3, 1e-5);
   EXPECT_NEAR(change.z(), -53.6e-3, 1e-5);
-  EXPECT_THROW(warm.set_temperature("coolant", 26.5), std::invalid_argument);  // beyond its range
+  EXPECT_THROW(warm.set_temperature(at, "coolant", 26.5), std::invalid_argument);  // beyond its range
   // volcomp check: usable, and it lists the inputs and the temperature grids.
   const auto r = test::run_volcomp("check " + test::machine_path("mc300_thermal"));
   EXPECT_EQ(r.exit_code, 0) << r.out;

@@ -38,21 +38,23 @@ std::string thermal_mill3(const std::string& name, const std::string& thermal,
 }
 
 TEST(Thermal, AScrewThatGrowsCarriesTheToolFurtherAlongIt) {
-  Model model = load_machine(thermal_mill3("m.toml", "thermal = { input = \"x_screw\", expansion_um_per_m_K = 11.5, reference_mm = 50 }"));
+  const Model model = load_machine(thermal_mill3("m.toml", "thermal = { input = \"x_screw\", expansion_um_per_m_K = 11.5, reference_mm = 50 }"));
   const Model plain = load_machine(test::machine_path("mill3"));
   ASSERT_EQ(model.temperatures.size(), 1u);
   Joints q(3);
   q << 420.0, 150.0, -80.0;  // joint order x y z
   const Eigen::Vector3d cold = tool_pose(model, Machine::Real, q, 100).tip_mm;
   EXPECT_LT((cold - tool_pose(plain, Machine::Real, q, 100).tip_mm).norm(), 1e-12);  // at 20 degC: as without
-  model.set_temperature("x_screw", 30.0);
-  const Eigen::Vector3d warm = tool_pose(model, Machine::Real, q, 100).tip_mm;
+  Conditions at = model.reference_conditions();
+  model.set_temperature(at, "x_screw", 30.0);
+  const Eigen::Vector3d warm = tool_pose(model, at, Machine::Real, q, 100).tip_mm;
   const double growth = 11.5e-6 * 10.0 * (420.0 - 50.0);  // 42.55 um
   EXPECT_NEAR(warm.x() - cold.x(), growth, 1e-5);  // (the axis's own small tilts turn it by < 1e-4)
   EXPECT_NEAR(warm.y() - cold.y(), 0.0, 1e-5);
   EXPECT_NEAR(warm.z() - cold.z(), 0.0, 1e-5);
-  EXPECT_THROW(model.set_temperature("x_screw", 50.0), std::invalid_argument);  // beyond max_degC
-  EXPECT_THROW(model.set_temperature("spindle", 25.0), std::invalid_argument);
+  EXPECT_THROW(model.set_temperature(at, "x_screw", 50.0), std::invalid_argument);  // beyond max_degC
+  EXPECT_THROW(model.set_temperature(at, "spindle", 25.0), std::invalid_argument);
+  EXPECT_EQ(tool_pose(model, Machine::Real, q, 100).tip_mm, cold) << "the model itself never changes";
 }
 
 // predistort --temperature: the program is made for the warm machine, its X words short by the
@@ -106,6 +108,12 @@ TEST(Thermal, WhatTheFileMayNotSayIsRefusedWithItsPlace) {
             std::string::npos);
   EXPECT_NE(refused(thermal_mill3("d.toml", "thermal = { input = \"x_screw\", expansion = 11.5 }"))
                 .find("unknown key 'expansion'"),
+            std::string::npos);
+  // Conditions hold eight inputs (fixed size: the servo thread sets them without allocating).
+  std::string nine = "[temperatures]\nx_screw = { reference_degC = 20.0, min_degC = 15.0, max_degC = 45.0 }\n";
+  for (int i = 1; i < 9; ++i) nine += "t" + std::to_string(i) + " = { reference_degC = 20.0 }\n";
+  EXPECT_NE(refused(thermal_mill3("e.toml", "thermal = { input = \"x_screw\", expansion_um_per_m_K = 11.5 }", nine))
+                .find("more than 8 temperature inputs"),
             std::string::npos);
 }
 

@@ -28,7 +28,7 @@ Joints joints(std::initializer_list<double> values) {
 
 TEST(CorrectionBounds, KinksAreTheNodesOfLinearTablesAndThePeriodicWrap) {
   const machine::Model model = machine::load_machine(test::machine_path("mc300"));
-  const CorrectionBounds bounds(model);
+  const CorrectionBounds bounds(model, model.reference_conditions());
   // MC-300 C table: 0:5:360 deg, linear, periodic; 1e-3 deg clear of a node.
   const auto c_move = [&](double from, double to) {
     return bounds.crosses_kink(joints({-301.3, -161.7, -201.9, -36.2, from}), joints({-301.3, -161.7, -201.9, -36.2, to}));
@@ -51,7 +51,7 @@ TEST(CorrectionBounds, KinksAreTheNodesOfLinearTablesAndThePeriodicWrap) {
 // 1/2, 3/4 of LinuxCNC's interpolation between the corrected ends, against the bounds.
 void expect_bounds_hold(const std::string& machine_name) {
   const machine::Model model = machine::load_machine(test::machine_path(machine_name));
-  CorrectionBounds bounds(model);
+  CorrectionBounds bounds(model, model.reference_conditions());
   const double L = model.tool_length_mm;
   const int n = model.joint_count();
   std::mt19937 random(7);
@@ -118,7 +118,7 @@ void expect_bounds_hold(const std::string& machine_name) {
 // forth, across the wrap and far jumps must be those of a bounds object that never searched.
 TEST(CorrectionBounds, KinkSearchesFromTheLastAnswerAnswerAsFreshOnes) {
   const machine::Model model = machine::load_machine(test::machine_path("mc300"));
-  const CorrectionBounds walked(model);
+  const CorrectionBounds walked(model, model.reference_conditions());
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> jump(-400.0, 400.0), step(-3.0, 3.0), length(0.0, 8.0);
   Joints a = joints({-300.0, -160.0, -200.0, -35.0, 0.0});
@@ -127,7 +127,7 @@ TEST(CorrectionBounds, KinkSearchesFromTheLastAnswerAnswerAsFreshOnes) {
     for (int j = 0; j < 5; ++j) a[j] += k % 50 == 0 ? jump(rng) : step(rng);
     Joints b = a;
     for (int j = 0; j < 5; ++j) b[j] += (k % 2 ? 1 : -1) * length(rng);
-    const bool fresh = CorrectionBounds(model).crosses_kink(a, b);
+    const bool fresh = CorrectionBounds(model, model.reference_conditions()).crosses_kink(a, b);
     ASSERT_EQ(walked.crosses_kink(a, b), fresh) << "query " << k << " from " << a.transpose() << " to " << b.transpose();
     crossings += fresh;
   }
@@ -147,13 +147,14 @@ TEST(CorrectionBounds, SharedSamplingGivesTheBoundsOfOneSamplingAlone) {
     return std::array<double, 4>{bounds.slope_bound(a, b, L).mm, bounds.curvature_bound(a, b, ca, cb, L).mm,
                                  bounds.slope_bound(a, b, L).rad, bounds.curvature_bound(a, b, ca, cb, L).rad};
   };
-  CorrectionBounds alone(model);
+  CorrectionBounds alone(model, model.reference_conditions());
   const std::array<double, 4> expected = bounds_of(alone);
   ASSERT_GT(expected[0], 0.0);
   ASSERT_TRUE(std::isfinite(expected[1]));
 
   CorrectionBounds::Shared shared;
-  CorrectionBounds first(model, &shared), second(model, &shared), later(model, &shared);
+  const machine::Conditions reference = model.reference_conditions();
+  CorrectionBounds first(model, reference, &shared), second(model, reference, &shared), later(model, reference, &shared);
   std::array<double, 4> got_first{}, got_second{};
   std::thread other([&] { got_second = bounds_of(second); });
   got_first = bounds_of(first);
@@ -163,7 +164,7 @@ TEST(CorrectionBounds, SharedSamplingGivesTheBoundsOfOneSamplingAlone) {
   EXPECT_EQ(bounds_of(later), expected);
 
   CorrectionBounds::Shared unshared;
-  CorrectionBounds single(model, &unshared);
+  CorrectionBounds single(model, model.reference_conditions(), &unshared);
   EXPECT_EQ(bounds_of(single), expected);
 }
 

@@ -28,7 +28,7 @@ std::pair<double, std::size_t> worst_direction(const machine::Model& model, doub
                                               const Position& end = {-290, -150, -195, 0, -14, 60}) {
   CorrectorOptions options;
   options.tolerance_rad = tolerance_rad;
-  PathCorrector corrector(model, options, nullptr);
+  PathCorrector corrector(model, model.reference_conditions(), options, nullptr);
   const double L = model.correction_length(100.0);
   Move rapid;
   rapid.kind = MoveKind::Rapid;

@@ -46,7 +46,7 @@ class OneStepCorrectionTest : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(OneStepCorrectionTest, AgreesWithTheCoreAndItsContractionBoundHolds) {
   const machine::Model model = machine::load_machine(test::machine_path(GetParam()));
-  OneStepCorrection one_step(model);
+  OneStepCorrection one_step(model, model.reference_conditions());
   ASSERT_TRUE(one_step.applies());
   const int n = model.joint_count();
   std::mt19937 random(3);

@@ -34,25 +34,40 @@ struct Correction {
   bool full_unchecked_step = false;  // in the fade band: full_joints' last step taken on the bound
 };
 
-Correction correct(const Model& model, const Joints& nominal, double tool_length_mm) noexcept;
-// Same, with the Newton iteration seeded at `seed` (e.g. the previous servo cycle's solution).
-Correction correct(const Model& model, const Joints& nominal, double tool_length_mm,
-                   const Joints& seed) noexcept;
-// Same, a step taken unevaluated where `bound` (may be null) proves it within the tolerance:
+// The correction at the machine's `conditions` (its temperatures and the pole fade in force:
+// model.hpp), its Newton iteration seeded at `seed` (e.g. the previous servo cycle's solution).
+// A step is taken unevaluated where `bound` (may be null) proves it within the tolerance:
 // at full correction (f = 1) and a pole angle the bound covers, or in the last solve where f < 1
 // (the position's, rotary joints held), at a tool length it covers. `full_seed` (may
 // be null): where the full correction's Newton starts (an estimate of full_joints; the servo
 // thread keeps them); `seed` is then the estimate of the faded answer (the fade band), where
 // the linear joints start. Any seeds give the same answer (to the tolerances).
+// The forms without conditions: at the machine file's (Model::reference_conditions()).
 class ContractionBound;
-Correction correct(const Model& model, const Joints& nominal, double tool_length_mm, const Joints& seed,
-                   const ContractionBound* bound, const Joints* full_seed = nullptr) noexcept;
+Correction correct(const Model& model, const Conditions& conditions, const Joints& nominal, double tool_length_mm,
+                   const Joints& seed, const ContractionBound* bound = nullptr,
+                   const Joints* full_seed = nullptr) noexcept;
+inline Correction correct(const Model& model, const Conditions& conditions, const Joints& nominal,
+                          double tool_length_mm) noexcept {
+  return correct(model, conditions, nominal, tool_length_mm, nominal);
+}
+inline Correction correct(const Model& model, const Joints& nominal, double tool_length_mm) noexcept {
+  return correct(model, model.reference_conditions(), nominal, tool_length_mm, nominal);
+}
+inline Correction correct(const Model& model, const Joints& nominal, double tool_length_mm, const Joints& seed,
+                          const ContractionBound* bound = nullptr, const Joints* full_seed = nullptr) noexcept {
+  return correct(model, model.reference_conditions(), nominal, tool_length_mm, seed, bound, full_seed);
+}
 
 // The full correction (position and tool direction, no pole fade) at `nominal`, seeded at
 // `seed`: what correct() fades near a pole (without rotary joints, correct() itself); `fade`
 // reports the f that correct() would apply.
-Correction full_correction(const Model& model, const Joints& nominal, double tool_length_mm,
-                           const Joints& seed) noexcept;
+Correction full_correction(const Model& model, const Conditions& conditions, const Joints& nominal,
+                           double tool_length_mm, const Joints& seed) noexcept;
+inline Correction full_correction(const Model& model, const Joints& nominal, double tool_length_mm,
+                                  const Joints& seed) noexcept {
+  return full_correction(model, model.reference_conditions(), nominal, tool_length_mm, seed);
+}
 
 // Pole angle phi and fade factor f at nominal joints (ideal machine, part frame).
 double pole_angle(const Model& model, const Joints& nominal, double tool_length_mm) noexcept;
@@ -70,10 +85,16 @@ struct Uncorrection {
   // (ideal_step_remainder), not evaluated.
   bool unchecked_step = false;
 };
-Uncorrection uncorrect(const Model& model, const Joints& corrected, double tool_length_mm) noexcept;
-// The same for a partly applied correction, q_c = q_n + gain * (correct(q_n) - q_n) with gain
-// in [0, 1] (the module's enable ramp), starting at `nominal_seed` (e.g. the previous answer).
-Uncorrection uncorrect(const Model& model, const Joints& corrected, double tool_length_mm, double gain,
-                       const Joints& nominal_seed) noexcept;
+// For a partly applied correction, q_c = q_n + gain * (correct(q_n) - q_n) with gain in [0, 1]
+// (the module's enable ramp), starting at `nominal_seed` (e.g. the previous answer).
+Uncorrection uncorrect(const Model& model, const Conditions& conditions, const Joints& corrected,
+                       double tool_length_mm, double gain, const Joints& nominal_seed) noexcept;
+inline Uncorrection uncorrect(const Model& model, const Joints& corrected, double tool_length_mm, double gain,
+                              const Joints& nominal_seed) noexcept {
+  return uncorrect(model, model.reference_conditions(), corrected, tool_length_mm, gain, nominal_seed);
+}
+inline Uncorrection uncorrect(const Model& model, const Joints& corrected, double tool_length_mm) noexcept {
+  return uncorrect(model, corrected, tool_length_mm, 1.0, corrected);
+}
 
 }  // namespace vc::machine

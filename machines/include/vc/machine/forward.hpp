@@ -37,17 +37,34 @@ struct VolumetricError {
   Eigen::Vector3d direction_rad;
 };
 
-ToolPose tool_pose(const Model& model, Machine machine, const Joints& q,
+// Each at the machine's `conditions` (its temperatures: model.hpp); the forms without them at
+// the machine file's (Model::reference_conditions()).
+ToolPose tool_pose(const Model& model, const Conditions& conditions, Machine machine, const Joints& q,
                    double tool_length_mm) noexcept;
-ToolPose tool_pose(const Model& model, Machine machine, const Joints& q, double tool_length_mm,
-                   PoseDerivatives& derivatives) noexcept;
+ToolPose tool_pose(const Model& model, const Conditions& conditions, Machine machine, const Joints& q,
+                   double tool_length_mm, PoseDerivatives& derivatives) noexcept;
 
 // part_T_tool = F_part^-1 * F_tool, the full pose (tool frame in the part frame).
-Eigen::Isometry3d part_T_tool(const Model& model, Machine machine, const Joints& q,
+Eigen::Isometry3d part_T_tool(const Model& model, const Conditions& conditions, Machine machine, const Joints& q,
                               double tool_length_mm) noexcept;
 
-VolumetricError volumetric_error(const Model& model, const Joints& q,
+VolumetricError volumetric_error(const Model& model, const Conditions& conditions, const Joints& q,
                                  double tool_length_mm) noexcept;
+
+inline ToolPose tool_pose(const Model& model, Machine machine, const Joints& q, double tool_length_mm) noexcept {
+  return tool_pose(model, model.reference_conditions(), machine, q, tool_length_mm);
+}
+inline ToolPose tool_pose(const Model& model, Machine machine, const Joints& q, double tool_length_mm,
+                          PoseDerivatives& derivatives) noexcept {
+  return tool_pose(model, model.reference_conditions(), machine, q, tool_length_mm, derivatives);
+}
+inline Eigen::Isometry3d part_T_tool(const Model& model, Machine machine, const Joints& q,
+                                     double tool_length_mm) noexcept {
+  return part_T_tool(model, model.reference_conditions(), machine, q, tool_length_mm);
+}
+inline VolumetricError volumetric_error(const Model& model, const Joints& q, double tool_length_mm) noexcept {
+  return volumetric_error(model, model.reference_conditions(), q, tool_length_mm);
+}
 
 // Component errors of one axis at q (the sum of its tables): delta (mm), eps (rad) and, if
 // asked, their slopes by each joint (per mm or per deg).
@@ -56,7 +73,11 @@ struct AxisErrors {
   Eigen::Vector3d eps_rad;
   Eigen::Matrix<double, 6, kMaxAxes> slope;  // rows: delta x y z, eps a b c
 };
-void axis_errors(const Model& model, int joint, const Joints& q, AxisErrors& out,
+void axis_errors(const Model& model, const Conditions& conditions, int joint, const Joints& q, AxisErrors& out,
                  bool with_slopes = true) noexcept;
+inline void axis_errors(const Model& model, int joint, const Joints& q, AxisErrors& out,
+                        bool with_slopes = true) noexcept {
+  axis_errors(model, model.reference_conditions(), joint, q, out, with_slopes);
+}
 
 }  // namespace vc::machine

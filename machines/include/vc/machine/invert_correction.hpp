@@ -61,7 +61,15 @@ StepRemainder ideal_step_remainder(const Model& model, const Joints& from, const
 // solve then starts from the seed and it instead of from the full solution's estimate: one
 // evaluation of D fewer as a rule. Any D gives the same answer (to the tolerances).
 // `iterations` counts the ideal machine's Newton steps plus the corrections evaluated.
-Uncorrection invert_correction(const Model& model, const Joints& corrected, double tool_length_mm, double gain,
-                               const Joints& nominal_seed, const Joints* full_correction = nullptr) noexcept;
+// At the machine's `conditions`; the form without them at the machine file's.
+Uncorrection invert_correction(const Model& model, const Conditions& conditions, const Joints& corrected,
+                               double tool_length_mm, double gain, const Joints& nominal_seed,
+                               const Joints* full_correction = nullptr) noexcept;
+inline Uncorrection invert_correction(const Model& model, const Joints& corrected, double tool_length_mm,
+                                      double gain, const Joints& nominal_seed,
+                                      const Joints* full_correction = nullptr) noexcept {
+  return invert_correction(model, model.reference_conditions(), corrected, tool_length_mm, gain, nominal_seed,
+                           full_correction);
+}
 
 }  // namespace vc::machine

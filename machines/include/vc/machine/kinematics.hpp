@@ -59,6 +59,8 @@ struct Applied {
   // also holds its value w: the nominal kinematics place a tool L + w long, the correction is
   // for the real tool. Only the Tcp convention's nominal joints depend on it.
   double nominal_tool_length_mm = std::numeric_limits<double>::quiet_NaN();
+  // The machine's conditions (temperatures, pole fade: model.hpp), or none: the file's.
+  const Conditions* conditions = nullptr;
   static constexpr double kSeedRadius = machine::kSeedRadius;
 };
 // q = q_n + gain * (correct(q_n) - q_n).

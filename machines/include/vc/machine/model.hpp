@@ -1,6 +1,8 @@
-// The machine model: what a machine is, built once from its machine file and never changed.
+// The machine model: what a machine is, built once from its machine file and never changed;
+// what varies while the machine runs (temperatures, the pole fade in force) is its Conditions,
+// passed beside it.
 //
-// Convention: ../shared/docs/model.md (seed 000, ch. II-III, Appendix 3 psd43.m). Two chains
+// Convention: docs/model.md (seed 000, ch. II-III, Appendix 3 psd43.m). Two chains
 // leave the bed: the tool chain (axes carrying the spindle, bed outward) and the workpiece
 // chain (axes carrying the part). One axis, parent <- child, at nominal position q:
 //     linear:  A(q) = T(o + d0) * R(e0) * T(q*u) * T(delta(q)) * R(eps(q))
@@ -25,6 +27,9 @@ namespace vc::machine {
 // at most 2 rotary axes; LinuxCNC itself allows 9 axes, EMCMOT_MAX_JOINTS 16).
 inline constexpr int kMaxAxes = 6;
 
+// Most temperature inputs a machine file may declare ([temperatures]).
+inline constexpr int kMaxTemperatureInputs = 8;
+
 // Joint positions in joint order (mm for linear axes, deg for rotary ones). Dynamic size
 // with a static maximum: lives on the stack, never allocates.
 using Joints = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxAxes, 1>;
@@ -36,7 +41,7 @@ enum class Chain { Tool, Workpiece };
 // temperature input): the axis travels (1 + expansion (T - T_reference)) times as far from its
 // reference point, the extra along its own direction u (an error of its frame's translation).
 struct LinearThermal {
-  int input = -1;                    // index into Model::temperatures; -1: none
+  int input = -1;                    // index into Model::temperatures (and Conditions); -1: none
   double expansion_per_K = 0.0;      // 1/K (11.5e-6 for steel)
   double reference_mm = 0.0;         // the point of the axis that does not move as it grows
 };
@@ -62,13 +67,12 @@ struct alignas(64) Axis {
 };
 
 // A temperature input of the machine file's [temperatures] (a sensor: volkins reads it from a
-// HAL pin, predistort takes --temperature NAME=VALUE). `value_degC` is the current value the
-// model is evaluated at (the reference until set); the range is what the model is valid for.
+// HAL pin, predistort takes --temperature NAME=VALUE). Its current value is in Conditions; the
+// range is what the model is valid for.
 struct TemperatureInput {
   std::string name;
   double reference_degC = 20.0;  // the temperature the tables hold
   double min_degC = 0.0, max_degC = 50.0;
-  double value_degC = 20.0;
 };
 
 // An error table bound to this machine's joints and temperature inputs. The binding comes
@@ -77,7 +81,7 @@ struct TemperatureInput {
 struct alignas(64) BoundTable {
   explicit BoundTable(tables::ErrorTable t) : table(std::move(t)) {}
   // Of each grid variable: its joint (an axis position), or -1 for a temperature, read from
-  // Model::temperatures[input[v]] (else input[v] is -1).
+  // Conditions::temperature_degC[input[v]] (else input[v] is -1).
   std::array<int, tables::ErrorTable::kMaxVariables> joint{};
   std::array<int, tables::ErrorTable::kMaxVariables> input{-1, -1, -1};
   tables::ErrorTable table;
@@ -104,6 +108,16 @@ struct MachineInfo {
 struct PoleFade {
   double start_rad;  // phi0: below it, f = 0 (position-only correction)
   double full_rad;   // phi1: above it, f = 1 (full position and orientation correction)
+};
+
+// What varies while a machine runs, beside its Model, which does not (as Pinocchio keeps a
+// Model and its Data apart): the temperature inputs' current values and the pole fade in
+// force. volkins keeps one and sets it from its pins every servo cycle, predistort from
+// --temperature, the trace from its columns; Model::reference_conditions() is the machine as
+// its file holds it. Fixed size: set in the servo thread without allocation.
+struct Conditions {
+  std::array<double, kMaxTemperatureInputs> temperature_degC{};  // by index of Model::temperatures
+  PoleFade fade{};
 };
 
 // Newton stopping rules (shared by the correction and its inverse).
@@ -141,11 +155,11 @@ struct Model {
   // tool, L long, stays w short of it); the correction is still for the real tool, L. Not a
   // joint of the model: volkins passes its LinuxCNC joint through (joint = world).
   char tool_axis_coordinate = 0;
-  PoleFade fade;
+  PoleFade fade;                       // the file's (volkins: the pins' defaults)
   SolverOptions solver;
   std::vector<BoundTable> tables;
   std::vector<AxisCompliance> compliance;  // per joint ([stiffness]); all rigid if absent
-  std::vector<TemperatureInput> temperatures;  // [temperatures], in the file's order
+  std::vector<TemperatureInput> temperatures;  // [temperatures], in the file's order (at most kMaxTemperatureInputs)
   Warnings warnings;                   // found at load time, for `check` and loadrt
 
   int joint_count() const { return static_cast<int>(axes.size()); }
@@ -154,9 +168,12 @@ struct Model {
   int rotary_count() const;
   int joint_of(char letter) const;     // -1 if the machine has no such axis
   int temperature_of(const std::string& name) const;  // -1 if the machine has no such input
-  // Load time (predistort --temperature): throws std::invalid_argument for an unknown input or a
-  // value outside its range. The servo thread sets temperatures[i].value_degC directly.
-  void set_temperature(const std::string& name, double degC);
+  // Every temperature at its reference, the file's pole fade.
+  Conditions reference_conditions() const noexcept;
+  // `conditions` with input `name` at `degC` (predistort --temperature): throws
+  // std::invalid_argument for an unknown input or a value outside its range. The servo thread
+  // sets Conditions::temperature_degC[i] directly.
+  void set_temperature(Conditions& conditions, const std::string& name, double degC) const;
   std::string coordinates() const;     // lower-case letters in joint order, e.g. "xyzbc"
 };
 

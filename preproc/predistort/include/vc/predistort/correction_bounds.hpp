@@ -40,7 +40,7 @@ class CorrectionBounds {
   // finds the part not yet taken; all get the same result as one that sampled alone.
   class Shared;
 
-  explicit CorrectionBounds(const machine::Model& model, Shared* shared = nullptr);
+  CorrectionBounds(const machine::Model& model, const machine::Conditions& conditions, Shared* shared = nullptr);
 
   // Bounds of the interpolation error between nominal joints a and b, at the tool tip (mm)
   // and in the tool direction (rad).
@@ -82,6 +82,7 @@ class CorrectionBounds {
   bool kink_near(int joint, double x0, double x1, double margin) const;
 
   const machine::Model& model_;
+  machine::Conditions conditions_;
   Shared* shared_;
   std::array<std::vector<Kinks>, machine::kMaxAxes> kinks_;  // per joint
   std::vector<Sampled> sampled_;

@@ -40,7 +40,8 @@ struct MissingOffsetError {
 
 class MissingOffsetCheck {
  public:
-  MissingOffsetCheck(const machine::Model& model, const interpreter::ToolTable* tools) : model_(model), tools_(tools) {}
+  MissingOffsetCheck(const machine::Model& model, const machine::Conditions& conditions, const interpreter::ToolTable* tools)
+      : model_(model), conditions_(conditions), tools_(tools) {}
   // At a point of `move` (no tool length offset in force): `target` the nominal joints (less
   // the deflection), `corrected` their correction for L = correction_length(0). The error left
   // is the real machine's tip at `corrected` with the likely tool minus the ideal machine's at
@@ -50,6 +51,7 @@ class MissingOffsetCheck {
 
  private:
   const machine::Model& model_;
+  machine::Conditions conditions_;
   const interpreter::ToolTable* tools_;
 };
 

@@ -31,7 +31,7 @@ class OneStepCorrection {
   static constexpr double kAcceptedResidualMm = 1e-9;
 
   // applies() false (correct() declines) unless 3 + rotary joints = joints.
-  explicit OneStepCorrection(const machine::Model& model);
+  OneStepCorrection(const machine::Model& model, const machine::Conditions& conditions);
   bool applies() const { return applies_; }
 
   // Corrected joints for the nominal `target`, Newton from `seed`. False where it declines
@@ -74,6 +74,7 @@ class OneStepCorrection {
   double weighted_norm(const machine::Joints& residual) const;
 
   const machine::Model& model_;
+  machine::Conditions conditions_;
   bool applies_;
   bool affine_;  // three linear axes
   std::array<int, machine::kMaxAxes> all_joints_{};

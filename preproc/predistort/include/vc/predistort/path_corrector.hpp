@@ -72,7 +72,8 @@ struct CorrectorStats {
 class PathCorrector {
  public:
   // `shared`: the sampling of the correction bounds shared with correctors on other threads.
-  PathCorrector(const machine::Model& model, CorrectorOptions options, const Deflection* deflection,
+  PathCorrector(const machine::Model& model, const machine::Conditions& conditions, CorrectorOptions options,
+                const Deflection* deflection,
                 CorrectionBounds::Shared* shared = nullptr);
 
   // Appends the pieces of `move` to `pieces` (cleared first). The first piece starts where
@@ -126,6 +127,7 @@ class PathCorrector {
   void solved(const machine::Joints& target, const machine::Joints& corrected, double tool_length_mm);
 
   const machine::Model& model_;
+  machine::Conditions conditions_;  // the machine's temperatures and pole fade
   CorrectorOptions options_;
   const Deflection* deflection_;
   bool checks_direction_;              // rotary axes and a direction tolerance

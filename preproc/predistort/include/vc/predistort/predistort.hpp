@@ -16,6 +16,7 @@ namespace vc::predistort {
 
 struct Job {
   const machine::Model* model = nullptr;
+  const machine::Conditions* conditions = nullptr;  // the temperatures the program is made for (null: the file's)
   interpreter::Setup setup;       // file, axes, tool table, parameters, world convention
   CorrectorOptions corrector;
   const Deflection* deflection = nullptr;
