@@ -1,5 +1,5 @@
 // LinuxCNC's own interpreter as the independent reading of a G-code program: `rs274 -g`
-// prints the canonical machining calls LinuxCNC makes of it (../shared/docs/rs274-facts.md).
+// prints the canonical machining calls LinuxCNC makes of it (docs/rs274-facts.md).
 // Here they become moves in world coordinates (mm, deg):
 //     world = rotate_xy(canonical + G92) + G5x + tool length offset
 // Quirks handled: each run gets its own HOME (rs274 truncates $HOME/.tool.mmap), the .var

@@ -1,7 +1,7 @@
 // The accuracy balance: a positioning error reaches the tool tip one to one (checked against
 // its table, independently of the kinematic chain), the shares add up, and on the MC-300 the
 // largest effects are those the source's sensitivity matrix ranks highest (Appendix 6, a
-// qualitative oracle: ../shared/docs/seed000_B_model.md section 10).
+// qualitative oracle: seed 000, section 3.3.3.3 and Appendix 6, the accuracy balance).
 #include <gtest/gtest.h>
 
 #include <algorithm>

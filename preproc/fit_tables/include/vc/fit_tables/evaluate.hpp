@@ -1,5 +1,5 @@
 // Tip errors on the nonlinear model, and the source's two criteria over a set of poses
-// (../shared/docs/seed000_B_model.md section 7): M = max |tip error|, Delta = max - min.
+// (seed 000, section 3.3.3, volumetric analysis): M = max |tip error|, Delta = max - min.
 //
 // The tip error of a compensation at pose (q, L) is the real tip where the machine goes minus
 // the ideal tip at q, in the part frame: the real tip of `truth` at the joints the

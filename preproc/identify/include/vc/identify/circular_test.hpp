@@ -1,6 +1,6 @@
 // The circular test (ISO 230-4; a ballbar such as the QC-10): the radius deviations dR(phi)
 // of a circle of radius R run clockwise and counterclockwise in one plane, evaluated as
-// ISO 230-4 does and fitted, first order (../shared/docs/seed000_C_measurement.md section 3.2),
+// ISO 230-4 does and fitted, first order (seed 000, section 3.2, circular test),
 // with actual x' = x (1 + ex) + theta y, y' = y (1 + ey) and the circle's centre off by (cx, cy):
 //     dR(phi) = -cx cos phi - cy sin phi + R (ex cos^2 phi + ey sin^2 phi) + R theta sin phi cos phi
 // (x, y: the plane's first and second axes: X Y in XY, Y Z in YZ, Z X in ZX).

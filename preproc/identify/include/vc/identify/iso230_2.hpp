@@ -1,4 +1,4 @@
-// ISO 230-2 evaluation of laser runs (../shared/docs/seed000_C_measurement.md section 3.1;
+// ISO 230-2 evaluation of laser runs (seed 000, section 3.1, ISO 230-2;
 // GOST 27843 is the same standard): for each target P_i and direction (up, down), with the
 // positional deviations x_ij = actual - target of runs j = 1..n:
 //   mean unidirectional deviation      x_i_up = mean_j x_ij_up            (x_i_down likewise)

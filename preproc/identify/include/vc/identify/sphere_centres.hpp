@@ -1,6 +1,6 @@
 // Rotary axes' location errors from a sphere's centre probed at several rotary positions
-// (ISO 230-7 / ISO 10791-6 location errors; ../shared/docs/seed000_C_measurement.md sections
-// 2.8, 2.9 and 4.6; Heidenhain's KinematicsOpt and Siemens' CYCLE996 do this in the control).
+// (ISO 230-7 / ISO 10791-6 location errors; seed 000, sections 2.8, 2.9 and 4.6, B-C location
+// and sphere tracking; Heidenhain's KinematicsOpt and Siemens' CYCLE996 do this in the control).
 //
 // A sphere fixed on the table is probed at poses k (its rotary positions q_k fixed, X Y Z
 // searching): the joints at which the tool tip sits at its centre are the measurement. The

@@ -3,7 +3,7 @@
 // what the core computes.
 //
 // How LinuxCNC turns world commands into joints (measured bit for bit with trivkins, see
-// shared/docs/examples/headless-linuxcnc/README.md): at servo cycle n, axis.*.pos-cmd is the
+// LinuxCNC's src/emc/motion/control.c and cubic.c): at servo cycle n, axis.*.pos-cmd is the
 // newest planner point C[n]; the kinematics inverse gives p[n] = IK(C[n]); the joint cubic
 // interpolator outputs joint[n] = (p[n-3] + 4 p[n-2] + p[n-1]) / 6. So the recorded joints lag
 // and smooth the command: a check compares them with the same filter of the expected p,
