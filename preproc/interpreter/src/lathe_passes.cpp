@@ -4,7 +4,7 @@
 // releases (2023-10 to 2026) add a leadout back to the cycle's X (G71) or Z (G72) where the
 // profile ends short of it, step past a segment whose end the cut has reached, and switch
 // compensation off for G70's approach: a program that relies on those cuts differently
-// there (preproc/README.md). The profile is reflected and turned until Z
+// there (preproc/predistort/README.md). The profile is reflected and turned until Z
 // and X decrease along it; corners get their fillets and chamfers; the profile is offset by the
 // allowance in steps no larger than half its shortest segment, arcs joining the pieces that
 // part; then the roughing cuts dive to each depth step, cut across to the profile, escape
