@@ -55,7 +55,7 @@ constexpr int kMaxTemperatures = vc::kins::kMaxTemperatureInputs;
 struct HalData {
   // Pins.
   hal_bit_t* enable;                          // in: correction wanted
-  hal_float_t* tool_length;                   // in: tool length offset (mm), net to motion.tooloffset.z
+  hal_float_t* tool_offset;                   // in: tool length offset (mm), net to motion.tooloffset.z
   hal_float_t* gain;                          // out: fraction applied now (ramp, 0..1)
   hal_bit_t* active;                          // out: a correction is applied (gain > 0)
   hal_bit_t* update_missing;                  // out: the kinematics ran before volkins.update ever did
@@ -78,7 +78,7 @@ struct HalData {
   hal_float_t max_correction_deg;             // largest rotary joint correction allowed
   hal_float_t pole_fade_start_deg;            // phi0 (model.md): no orientation correction below
   hal_float_t pole_fade_full_deg;             // phi1: full orientation correction above
-  hal_float_t tool_length_slew_time;          // s: a tool length change reaches the correction in this time
+  hal_float_t tool_offset_slew_time;          // s: a tool length offset change reaches the correction in this time
   hal_float_t temperature_time_constant;      // s: of the low-pass on every temperature input
   // State of the ramp (only volkins.update writes it).
   vc::kins::GainRamp ramp;
@@ -86,7 +86,7 @@ struct HalData {
   // applied the full correction, and the ramp starts there: no step when update starts).
   bool update_ran;
   bool kinematics_before_update;
-  // The tool length offset the correction follows (volkins.update slews it to volkins.tool-length
+  // The tool length offset the correction follows (volkins.update slews it to volkins.tool-offset
   // with a bounded rate and change of rate, so that a G43 does not step the joints by angular
   // error x change of L, nor a second one during the slew their velocity).
   vc::kins::ToolLengthSlew offset;
@@ -199,7 +199,7 @@ void show_kinematics_type() {
 }
 
 // Servo thread, before motion-controller: moves the ramp one period towards volkins.enable and
-// the correction's tool length towards volkins.tool-length (gain_ramp.hpp: bounded rate and
+// the correction's tool length towards volkins.tool-offset (gain_ramp.hpp: bounded rate and
 // change of rate, so joint velocity stays continuous, also when either changes on the way),
 // low-passes the temperatures and takes up valid pole fade parameters.
 void update(void*, long period_ns) {
@@ -208,7 +208,7 @@ void update(void*, long period_ns) {
     hal->update_ran = true;
     *hal->update_missing = 0;
     if (hal->kinematics_before_update) hal->ramp = {target, 0.0};  // where the kinematics were
-    hal->offset.reset(*hal->tool_length);
+    hal->offset.reset(*hal->tool_offset);
   }
   hal->ramp.step(target, period_ns * 1e-9, hal->ramp_time);
   kinematics.moving = kinematics.pose_known && !same_pose(kinematics.last_inverse_pose, kinematics.pose_at_update);
@@ -217,7 +217,7 @@ void update(void*, long period_ns) {
   *hal->gain = hal->ramp.gain;
   *hal->active = *hal->gain > 0.0;
 
-  hal->offset.step(*hal->tool_length, period_ns * 1e-9, hal->tool_length_slew_time);
+  hal->offset.step(*hal->tool_offset, period_ns * 1e-9, hal->tool_offset_slew_time);
   *hal->correction_length = settings->model.correction_length(hal->offset.length.value);
 
   // Temperatures: a first-order low-pass (sensor noise never reaches the joints); a reading
@@ -254,7 +254,7 @@ int refuse() {
 // never run, LinuxCNC's offset as it is.
 double correction_length() {
   if (hal->update_ran) return *hal->correction_length;
-  return *hal->correction_length = settings->model.correction_length(*hal->tool_length);
+  return *hal->correction_length = settings->model.correction_length(*hal->tool_offset);
 }
 
 // The fraction of the correction the kinematics apply: the ramp's, or, while volkins.update has
@@ -279,7 +279,7 @@ double applied_gain() {
 int inverse(const EmcPose* pose, double* joints) {
   const vm::Model& model = settings->model;
   const int n = model.joint_count();
-  const double offset = *hal->tool_length;       // LinuxCNC's tool length offset (G43)
+  const double offset = *hal->tool_offset;       // LinuxCNC's tool length offset (G43)
   const double L = correction_length();          // the tool-length rule, slewed
   const double w = tool_axis_of(*pose);
   Joints previous(n);  // LinuxCNC's seed: its principal joints
@@ -343,7 +343,7 @@ int kinematicsForward(const double* joints, EmcPose* pose, const KINEMATICS_FORW
   const vm::Model& model = settings->model;
   Joints q(model.joint_count());  // the principal joint of each axis, as LinuxCNC's modules read them
   for (int j = 0; j < q.size(); ++j) q[j] = joints[settings->principal_joint[j]];
-  const double offset = *hal->tool_length;
+  const double offset = *hal->tool_offset;
   const double L = correction_length();
   const double tool_axis = settings->tool_axis_joint >= 0 ? joints[settings->tool_axis_joint] : 0.0;
   const Joints seed = world_of(*pose, offset);  // LinuxCNC passes the previous position (or home)
@@ -416,12 +416,18 @@ bool export_hal(const vm::Model& model) {
   if (!hal) return false;
   int r = 0;
   r |= hal_pin_bit_newf(HAL_IN, &hal->enable, comp_id, "volkins.enable");
-  r |= hal_pin_float_newf(HAL_IN, &hal->tool_length, comp_id, "volkins.tool-length");
+  // volkins.tool-offset: LinuxCNC's tool length offset, the name its own 5-axis modules give it
+  // (xyzbc-trt-kins.tool-offset); Model::tool_length_mm is the physical tool. Made under the
+  // name of releases before 2026-12 and renamed by an alias, so that configurations that net
+  // volkins.tool-length (and setp volkins.tool-length-slew-time) still load, for one release.
+  r |= hal_pin_float_newf(HAL_IN, &hal->tool_offset, comp_id, "volkins.tool-length");
+  r |= hal_pin_alias("volkins.tool-length", "volkins.tool-offset");
   r |= hal_pin_float_newf(HAL_OUT, &hal->gain, comp_id, "volkins.gain");
   r |= hal_pin_bit_newf(HAL_OUT, &hal->active, comp_id, "volkins.active");
   r |= hal_pin_bit_newf(HAL_OUT, &hal->update_missing, comp_id, "volkins.update-missing");
   r |= hal_pin_float_newf(HAL_OUT, &hal->correction_length, comp_id, "volkins.correction-length");
-  r |= hal_param_float_newf(HAL_RW, &hal->tool_length_slew_time, comp_id, "volkins.tool-length-slew-time");
+  r |= hal_param_float_newf(HAL_RW, &hal->tool_offset_slew_time, comp_id, "volkins.tool-length-slew-time");
+  r |= hal_param_alias("volkins.tool-length-slew-time", "volkins.tool-offset-slew-time");
   for (int k = 0; k < settings->joint_count; ++k)
     r |= hal_pin_float_newf(HAL_OUT, &hal->correction[k], comp_id, "volkins.joint.%d.correction", k);
   r |= hal_pin_s32_newf(HAL_OUT, &hal->iterations, comp_id, "volkins.iterations");
@@ -451,16 +457,16 @@ bool export_hal(const vm::Model& model) {
   // Defaults: correction on (after the ramp), the machine file's tool length and pole fade.
   *hal->enable = 1;
   // Not netted: the typical tool's offset, so that L = the machine file's tool_length_mm.
-  *hal->tool_length = model.tool_length_mm - model.tool_length_reference_mm;
+  *hal->tool_offset = model.tool_length_mm - model.tool_length_reference_mm;
   *hal->gain = 0.0;
   *hal->active = 0;
   *hal->update_missing = 0;
   hal->ramp = vc::kins::GainRamp{};
   hal->update_ran = false;
   hal->kinematics_before_update = false;
-  hal->tool_length_slew_time = 0.25;
-  hal->offset.reset(*hal->tool_length);
-  *hal->correction_length = model.correction_length(*hal->tool_length);
+  hal->tool_offset_slew_time = 0.25;
+  hal->offset.reset(*hal->tool_offset);
+  *hal->correction_length = model.correction_length(*hal->tool_offset);
   hal->conditions = model.reference_conditions();  // until a sensor says otherwise
   for (std::size_t i = 0; i < model.temperatures.size(); ++i)
     *hal->temperature[i] = *hal->temperature_filtered[i] = hal->conditions.temperature_degC[i];

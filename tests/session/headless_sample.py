@@ -171,7 +171,7 @@ def main():
     has_volkins = ini_value(lines, "KINS", "KINEMATICS").split()[0] == "volkins"
     out = headless_lines(lines, a.run_dir, coordinates, joints, has_volkins, a.tcp_type, a.sets)
     columns = list(coordinates) + ["j%d" % j for j in range(joints)]
-    columns += ["gain", "tool_length", "controller_time", "tcp"] + (["correction_length"] if has_volkins else [])
+    columns += ["gain", "tool_offset", "controller_time", "tcp"] + (["correction_length"] if has_volkins else [])
     out.append("\n[DRIVER]\nPROGRAM = %s\nCOMPENSATION = %s\nTRACE = trace.csv\nTRACE_COLUMNS = %s\nRESULT = result.txt\n"
                % (a.program, a.compensation, " ".join(columns)))
     with open(ini, "w") as f:

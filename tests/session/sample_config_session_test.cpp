@@ -107,7 +107,7 @@ StockComparison compare_with_stock(const Sample& sample, const trace::SessionTra
   for (std::size_t k = 0; k < t.size(); ++k) {
     const bool tcp = t.convention[k] == machine::WorldConvention::Tcp;
     const double tool_axis = t.tool_axis_mm.empty() ? 0.0 : t.tool_axis_mm[k];
-    p[k] = tcp ? sample.stock_tcp_inverse(t.world[k], t.tool_length_mm[k == 0 ? 0 : k - 1], tool_axis) : t.world[k];
+    p[k] = tcp ? sample.stock_tcp_inverse(t.world[k], t.tool_offset_mm[k == 0 ? 0 : k - 1], tool_axis) : t.world[k];
     out.tcp += tcp;
     out.switches += k > 0 && t.convention[k] != t.convention[k - 1];
   }

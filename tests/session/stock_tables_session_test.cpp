@@ -91,7 +91,7 @@ class StockTablesSession : public ::testing::Test {
                                        const Eigen::VectorXd& x) {
     std::vector<fit_tables::Pose> poses;
     for (const trace::SampleCheck& c : s.samples)
-      poses.push_back({trace::interpolated(t.world, c.sample), model_->correction_length(t.tool_length_mm[c.sample - 1])});
+      poses.push_back({trace::interpolated(t.world, c.sample), model_->correction_length(t.tool_offset_mm[c.sample - 1])});
     return fit_tables::table_errors(*model_, study_->set, x, poses);
   }
 

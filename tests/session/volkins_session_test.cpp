@@ -73,7 +73,7 @@ TEST_F(Mc300Session, CompensationOffLeavesTheModelsVolumetricError) {
   double largest = 0;
   for (const trace::SampleCheck& c : s.samples) {
     ASSERT_EQ(c.module_mismatch, 0.0) << "sample " << c.sample << ": joints are not the nominal ones";
-    const double L = t.tool_length_mm[c.sample - 1];
+    const double L = t.tool_offset_mm[c.sample - 1];
     const machine::VolumetricError e = machine::volumetric_error(*model_, t.joints[c.sample], L);
     ASSERT_LT((c.tip_error_mm - e.position_mm).norm(), 1e-9) << "sample " << c.sample;
     largest = std::max(largest, c.tip_error_mm.norm());
@@ -132,7 +132,7 @@ TEST_F(Mc300Session, TogglingWhileMovingStaysWithinJointLimits) {
     return std::pair{v, a};
   };
   std::size_t tool_changes = 0;
-  for (std::size_t n = 1; n < t.size(); ++n) tool_changes += t.tool_length_mm[n] != t.tool_length_mm[n - 1];
+  for (std::size_t n = 1; n < t.size(); ++n) tool_changes += t.tool_offset_mm[n] != t.tool_offset_mm[n - 1];
   EXPECT_GT(tool_changes, 0u) << "the program changes the tool length while the compensation toggles";
   for (int j = 0; j < model_->joint_count(); ++j) {
     const std::string section = "JOINT_" + std::to_string(j);
@@ -180,9 +180,9 @@ TEST_F(Mc300Session, ToolLengthChangesInQuickSuccessionKeepTheJointsSmooth) {
   // Offsets that arrived while L was still moving to the one before.
   std::size_t changes = 0, during_slew = 0;
   for (std::size_t n = 1; n < t.size(); ++n) {
-    if (t.tool_length_mm[n] == t.tool_length_mm[n - 1]) continue;
+    if (t.tool_offset_mm[n] == t.tool_offset_mm[n - 1]) continue;
     ++changes;
-    during_slew += t.correction_length_mm[n - 1] != model_->correction_length(t.tool_length_mm[n - 1]);
+    during_slew += t.correction_length_mm[n - 1] != model_->correction_length(t.tool_offset_mm[n - 1]);
   }
   EXPECT_GE(changes, 30u);
   EXPECT_GE(during_slew, 20u) << "the offsets should change while L slews";

@@ -37,7 +37,7 @@ SAMPLER_KEY = 0x48534130  # SAMPLER_SHMEM_KEY + channel (src/hal/components/stre
 COLUMNS = [
     # channel 0
     "x", "y", "z", "b", "c", "j0", "j1", "j2", "j3", "j4", "q0", "q1", "q2", "q3", "q4",
-    "gain", "tool_length", "correction_length", "event",
+    "gain", "tool_offset", "correction_length", "event",
     # channel 1
     "event1", "controller_time", "inverse_time", "coolant_sensor", "temperature_coolant",
     "spindle_sensor", "temperature_spindle", "temperature_fault", "requested_vel", "current_vel",

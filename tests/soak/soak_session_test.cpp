@@ -167,7 +167,7 @@ TEST_F(Soak, ASessionUnderRandomFaultsStaysWithinItsBounds) {
                     c_tc = at("temperature_coolant"), c_ts = at("temperature_spindle"), c_rc = at("coolant_sensor"),
                     c_rs = at("spindle_sensor"), c_fault = at("temperature_fault"), c_en = at("motion_enabled"),
                     c_event = at("event"), c_event1 = at("event1"), c_inv = at("inverse_time"),
-                    c_ctl = at("controller_time"), c_fail = at("failures"), c_tool = at("tool_length"),
+                    c_ctl = at("controller_time"), c_fail = at("failures"), c_tool = at("tool_offset"),
                     c_h0 = at("homed0"), c_eoffset = at("eoffset_limited");
   const auto world_of = [&](const std::vector<double>& row) {
     Joints w(kJoints);

@@ -34,7 +34,7 @@ CompReplay replay_comp_files(const machine::Model& model, const trace::SessionTr
           joints[j].next(q[static_cast<Eigen::Index>(j)], velocity[static_cast<Eigen::Index>(j)]);
     if (summary.samples[next_check].sample != n) continue;
     out.tip_error_um.push_back(
-        tip_error_um(model, commanded, {q, model.correction_length(session.tool_length_mm[n - 1])}));
+        tip_error_um(model, commanded, {q, model.correction_length(session.tool_offset_mm[n - 1])}));
     out.settled.push_back(std::all_of(joints.begin(), joints.end(), [](const LinuxcncCompJoint& j) { return j.settled(); }));
     ++next_check;
   }

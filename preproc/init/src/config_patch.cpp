@@ -144,7 +144,7 @@ class Patcher {
         check_pin(c, p.name, p.word);
         const int token = c.word_token[static_cast<std::size_t>(p.word)];
         if (p.name == prefix_ + m_.tool_offset_pin) {
-          tokens[token] = "volkins.tool-length";
+          tokens[token] = "volkins.tool-offset";
           tool_offset_replaced_ = true;
           ++left;
         } else {
@@ -246,8 +246,8 @@ class Patcher {
         if (const auto net = net_of(c))
           for (const NetPin& p : net->pins)
             if (p.name == "motion.tooloffset.z" && signal.empty()) signal = net->signal;
-      lines.push_back(signal.empty() ? "HALCMD = net :volkins-tool-length motion.tooloffset.z volkins.tool-length"
-                                     : "HALCMD = net " + signal + " volkins.tool-length");
+      lines.push_back(signal.empty() ? "HALCMD = net :volkins-tool-offset motion.tooloffset.z volkins.tool-offset"
+                                     : "HALCMD = net " + signal + " volkins.tool-offset");
     }
     edits_.of(path, {path, after}, "the [HAL] section").insert_after(after, lines);
   }

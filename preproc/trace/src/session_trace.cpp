@@ -27,13 +27,18 @@ SessionTrace read_session_trace(const std::string& path, const machine::Model& m
   std::vector<std::string> wanted;
   for (char a : axes) wanted.emplace_back(1, a);
   for (int j = 0; j < n; ++j) wanted.push_back("j" + std::to_string(j));
-  for (const char* extra : {"tool_length", "controller_time"}) wanted.emplace_back(extra);
+  for (const char* extra : {"tool_offset", "controller_time"}) wanted.emplace_back(extra);
 
   std::vector<int> column(wanted.size(), -1);
   const tables::CsvRow& header = rows.front();
   for (std::size_t c = 0; c < header.cells.size(); ++c)
     for (std::size_t w = 0; w < wanted.size(); ++w)
       if (header.cells[c].text == wanted[w]) column[w] = static_cast<int>(c);
+  // The tool length offset's column under its former name (traces recorded before the pin
+  // volkins.tool-length became volkins.tool-offset), for one release.
+  const std::size_t offset_column = 2 * static_cast<std::size_t>(n);
+  for (std::size_t c = 0; c < header.cells.size() && column[offset_column] < 0; ++c)
+    if (header.cells[c].text == "tool_length") column[offset_column] = static_cast<int>(c);
   for (std::size_t w = 0; w < wanted.size(); ++w)
     if (column[w] < 0)
       throw LoadError({path, header.line, 1}, "no column '" + wanted[w] + "' (the machine's axes are " + axes + ")");
@@ -74,7 +79,7 @@ SessionTrace read_session_trace(const std::string& path, const machine::Model& m
     t.world.push_back(world);
     t.joints.push_back(joints);
     t.gain.push_back(gain >= 0 ? tables::csv_number(path, row.line, row.cells[gain]) : 0.0);
-    t.tool_length_mm.push_back(value(2 * n));
+    t.tool_offset_mm.push_back(value(2 * n));
     t.controller_ticks.push_back(value(2 * n + 1));
     if (correction_length >= 0)
       t.correction_length_mm.push_back(tables::csv_number(path, row.line, row.cells[correction_length]));
@@ -110,13 +115,13 @@ TraceSummary check_trace(const machine::Model& machine_model, machine::WorldConv
   // runs first) and the tool length of cycle k-1 (motion writes tooloffset.z at its end).
   const bool recorded_L = trace.correction_length_mm.size() == count;
   auto correction_length = [&](std::size_t k) {
-    return recorded_L ? trace.correction_length_mm[k] : model.correction_length(trace.tool_length_mm[k == 0 ? 0 : k - 1]);
+    return recorded_L ? trace.correction_length_mm[k] : model.correction_length(trace.tool_offset_mm[k == 0 ? 0 : k - 1]);
   };
   std::vector<Joints> nominal(count), expected(count);
   std::vector<machine::Correction> corrections(count);
   for (std::size_t k = 0; k < count; ++k) {
     const machine::WorldConvention convention = trace.convention.size() == count ? trace.convention[k] : loaded_convention;
-    const double offset = trace.tool_length_mm[k == 0 ? 0 : k - 1];
+    const double offset = trace.tool_offset_mm[k == 0 ? 0 : k - 1];
     const double L = correction_length(k);  // the tool-length rule (slewed)
     const Joints world = core_world(model, convention, trace.world[k], offset);
     at_temperatures_of(k);
@@ -134,8 +139,8 @@ TraceSummary check_trace(const machine::Model& machine_model, machine::WorldConv
   // interpolation's window after it.
   std::size_t last_tool_change = 0;
   for (std::size_t n = 1; n < count; ++n) {
-    const double tool_L = model.correction_length(trace.tool_length_mm[n - 1]);
-    if (trace.tool_length_mm[n] != trace.tool_length_mm[n - 1] || (recorded_L && correction_length(n) != tool_L))
+    const double tool_L = model.correction_length(trace.tool_offset_mm[n - 1]);
+    if (trace.tool_offset_mm[n] != trace.tool_offset_mm[n - 1] || (recorded_L && correction_length(n) != tool_L))
       last_tool_change = n;
     if (n < 3 || (last_tool_change > 0 && n <= last_tool_change + 4)) {
       out.skipped += n >= 3;

@@ -1,6 +1,6 @@
 // The patch `volcomp init` writes, applied with the real `patch -p1` to a copy of the
 // configuration (LinuxCNC's xyzbc-trt and bridgemill samples, and one of our own): volkins'
-// KINEMATICS line, no stock pin left, volkins.tool-length on the tool-offset signal,
+// KINEMATICS line, no stock pin left, volkins.tool-offset on the tool-offset signal,
 // volkins.update first in the servo thread, every other byte unchanged (CRLF and trailing
 // blanks too); what it cannot rewrite is refused with its line.
 #include <gtest/gtest.h>
@@ -76,13 +76,13 @@ TEST(ConfigPatch, PutsVolkinsInTheXyzbcSample) {
   EXPECT_NE(std::find(after.begin(), after.end(),
                       "KINEMATICS = volkins machine=xyzbc.toml coordinates=xyzbc sparm=identityfirst"),
             after.end());
-  EXPECT_NE(std::find(after.begin(), after.end(), "HALCMD = net  :tool-offset  volkins.tool-length xyzbc-trt-gui.tool-offset"),
+  EXPECT_NE(std::find(after.begin(), after.end(), "HALCMD = net  :tool-offset  volkins.tool-offset xyzbc-trt-gui.tool-offset"),
             after.end());
   EXPECT_NE(std::find(after.begin(), after.end(), "HALCMD = addf volkins.update servo-thread 1"), after.end());
   // The lines the patch adds or changes, exactly; every other line kept, in order.
   const std::set<std::string> changed{
       "KINEMATICS = volkins machine=xyzbc.toml coordinates=xyzbc sparm=identityfirst",
-      "HALCMD = net  :tool-offset  volkins.tool-length xyzbc-trt-gui.tool-offset",
+      "HALCMD = net  :tool-offset  volkins.tool-offset xyzbc-trt-gui.tool-offset",
       "HALCMD = net  :x-offset    xyzbc-trt-gui.x-offset",
       "HALCMD = net  :z-offset    xyzbc-trt-gui.z-offset",
       "# volkins (volcomp init): its update function runs first in the servo thread",
@@ -105,7 +105,7 @@ TEST(ConfigPatch, PutsVolkinsInTheXyzbcSample) {
 }
 
 // The bridgemill (5axiskins): 5axiskins.pivot-length taken off its net (pivotsum stays, its out
-// driving nothing), volkins.tool-length on :tool-len, the signal motion.tooloffset.z drives.
+// driving nothing), volkins.tool-offset on :tool-len, the signal motion.tooloffset.z drives.
 TEST(ConfigPatch, PutsVolkinsInTheBridgemillSample) {
   if (!test::samples_installed()) GTEST_SKIP() << "LinuxCNC's sample configurations are not installed (" << test::kSampleConfigs << ")";
   const fs::path original = test::kSampleConfigs / "bridgemill";
@@ -121,7 +121,7 @@ TEST(ConfigPatch, PutsVolkinsInTheBridgemillSample) {
             (std::set<std::string>{" KINEMATICS = volkins machine=5axis.toml coordinates=xyzbcwy world=tcp",
                                    "# volkins (volcomp init): its update function runs first in the servo thread; it "
                                    "takes LinuxCNC's tool length offset",
-                                   "HALCMD = addf volkins.update servo-thread 1", "HALCMD = net :tool-len volkins.tool-length"}));
+                                   "HALCMD = addf volkins.update servo-thread 1", "HALCMD = net :tool-len volkins.tool-offset"}));
   const std::vector<std::string> hal_before = lines_of(test::file_text(original / "5axisgui.hal"));
   const std::vector<std::string> hal_after = lines_of(test::file_text(copy / "5axisgui.hal"));
   EXPECT_EQ(added_lines(hal_before, hal_after, stock), std::set<std::string>{});
@@ -170,7 +170,7 @@ TEST(ConfigPatch, RewritesTheConfigurationsOwnHalFilesByteForByte) {
 
   EXPECT_EQ(test::file_text(dir / "kins.hal"),
             "loadrt [KINS]KINEMATICS\n"
-            "net :tool <= motion.tooloffset.z => volkins.tool-length\n"
+            "net :tool <= motion.tooloffset.z => volkins.tool-offset\n"
             "net :kt kinstype.is-1 => gui.led  \n"
             "net :xoff gui.xoff\n"  // the arrow left dangling goes with the pin
             "sets :xoff 1\n"

@@ -505,7 +505,7 @@ TEST(StockKinematics, GantryKeepsEachAxisOnceWithItsFirstJointsTravel) {
   EXPECT_EQ(g.result.machine.name, "gantry");  // no [EMC]MACHINE: the file's name
   EXPECT_EQ(g.result.patch.kinematics, "volkins machine=" + g.result.machine_path + " coordinates=XYYZ");
   // motion.tooloffset.z is on tool-length already: volkins joins that signal.
-  EXPECT_NE(g.result.patch.diff.find("+HALCMD = net tool-length volkins.tool-length\n"), std::string::npos)
+  EXPECT_NE(g.result.patch.diff.find("+HALCMD = net tool-length volkins.tool-offset\n"), std::string::npos)
       << g.result.patch.diff;
   // The world is the joints: identity.
   Joints q(3);

@@ -7,11 +7,11 @@
 // - deletes every `setp <module>.<pin> ...`, removes `<module>.<pin>` from every net (a net
 //   left without pins is deleted, with the `sets` of a signal no net is left on; an arrow left
 //   dangling goes too; 5axiskins' pivot-length leaves its sum2's out driving nothing), except
-//   `<module>.tool-offset`, which becomes `volkins.tool-length`; a `loadrt <module> ...`
+//   `<module>.tool-offset`, which becomes `volkins.tool-offset`; a `loadrt <module> ...`
 //   with the INI's parameters becomes `loadrt [KINS]KINEMATICS`;
 // - appends to the INI's [HAL] section, after a comment line, `HALCMD = addf volkins.update
-//   servo-thread 1` and, unless a tool-offset pin became volkins.tool-length, the net of
-//   motion.tooloffset.z to volkins.tool-length (on the signal motion.tooloffset.z is on, if
+//   servo-thread 1` and, unless a tool-offset pin became volkins.tool-offset, the net of
+//   motion.tooloffset.z to volkins.tool-offset (on the signal motion.tooloffset.z is on, if
 //   any).
 // Every other line stays byte for byte. Lines that cannot be rewritten that way (another
 // command naming a stock pin, a pin in a file outside the folder, a continued line) are

@@ -23,7 +23,7 @@ struct SessionTrace {
   std::vector<machine::Joints> joints;  // joint.<j>.motor-pos-cmd
   bool with_volkins = true;             // false: a session without volkins (no gain column)
   std::vector<double> gain;             // volkins.gain (0 throughout a session without volkins)
-  std::vector<double> tool_length_mm;   // motion.tooloffset.z: the offset (L by Model::correction_length)
+  std::vector<double> tool_offset_mm;   // motion.tooloffset.z: the tool length offset (L by Model::correction_length)
   std::vector<double> correction_length_mm;  // volkins.correction-length: the L applied (the offset's,
                                              // slewed); empty in a trace without the column
   std::vector<double> controller_ticks; // motion-controller.time (CPU clock ticks)
