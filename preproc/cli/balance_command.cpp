@@ -1,6 +1,10 @@
 // `volcomp balance MACHINE`: the accuracy balance (preproc/identify/include/vc/identify/balance.hpp):
 // each deviation's effect at the tool tip over the travel, largest first, as a table, a CSV a
 // spreadsheet opens, and a bar chart (gnuplot; with the same CSV beside it).
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <memory>
+#include <optional>
 #include <sstream>
 
 #include "vc/tables/atomic_file.hpp"
@@ -12,6 +16,14 @@
 
 namespace vc::cli {
 namespace {
+
+struct BalanceArgs {
+  std::string machine;
+  int levels = 5;                        // positions per joint over the travel
+  std::optional<double> tool_length_mm;  // default: the machine file's tool_length_mm
+  std::string output;                    // CSV (optional)
+  std::string plot;                      // bar chart, .png or .svg (optional, gnuplot; its data: .csv beside it)
+};
 
 void write_csv(const identify::Balance& b, std::ostream& out) {
   out << "# volcomp balance: each deviation alone at the tool tip, " << b.poses << " poses over the travel, L = "
@@ -40,8 +52,6 @@ void draw_bar_chart(const identify::Balance& b, const std::string& machine_name,
      << "'' every ::1 using 4 title 'RMS' lc rgb '#2e86c1'\n";
   plot::draw({image, data.str(), gp.str(), 1400, 700});
 }
-
-}  // namespace
 
 int run_balance(const BalanceArgs& args, std::ostream& out) {
   const machine::Model model = machine::load_machine(args.machine);
@@ -73,6 +83,21 @@ int run_balance(const BalanceArgs& args, std::ostream& out) {
   if (!args.plot.empty()) draw_bar_chart(b, model.info.name, args.plot);
   if (!args.output.empty()) tables::write_atomically(args.output, [&](std::ostream& csv) { write_csv(b, csv); });
   return 0;
+}
+
+}  // namespace
+
+void add_balance_command(CLI::App& volcomp, int& exit_code) {
+  auto args = std::make_shared<BalanceArgs>();
+  CLI::App* cmd = volcomp.add_subcommand(
+      "balance", "Accuracy balance: each deviation's effect at the tool tip over the travel, largest first "
+                 "(what to measure first)");
+  cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
+  cmd->add_option("--levels", args->levels, "positions per joint over its travel (2..21)")->capture_default_str();
+  cmd->add_option("--tool-length", args->tool_length_mm, "tool length L, mm (default: the machine file's)");
+  cmd->add_option("-o,--output", args->output, "CSV: deviation, M, delta, RMS (um), share (%), direction (urad)");
+  cmd->add_option("--plot", args->plot, "bar chart, .png or .svg (gnuplot); the data it draws goes to a .csv beside it");
+  cmd->callback([args, &exit_code] { exit_code = run_balance(*args, std::cout); });
 }
 
 }  // namespace vc::cli

@@ -1,8 +1,11 @@
 // `volcomp check MACHINE`: loads and validates a machine, then summarises it: axes, location
 // errors, tables (coverage, slope margin), the largest volumetric error over the travel and
 // whether the correction converges everywhere. Exit 0 only if the machine is usable.
+#include <CLI/CLI.hpp>
 #include <cctype>
 #include <cmath>
+#include <iostream>
+#include <memory>
 #include <random>
 
 #include "commands.hpp"
@@ -15,6 +18,12 @@
 
 namespace vc::cli {
 namespace {
+
+struct CheckArgs {
+  std::string machine;
+  int samples = 10000;  // random poses over the travel, besides the grid of corners and mids
+  std::string ini;      // a LinuxCNC configuration loading this machine: where it homes, or ""
+};
 
 using machine::Axis;
 using machine::AxisType;
@@ -159,8 +168,6 @@ bool print_configuration(const Model& model, const std::string& ini_path, std::o
   return home.problems.empty() && room.problems.empty();
 }
 
-}  // namespace
-
 int run_check(const CheckArgs& args, std::ostream& out) {
   const Model model = machine::load_machine(args.machine);
   out << "machine " << model.info.name;
@@ -208,6 +215,22 @@ int run_check(const CheckArgs& args, std::ostream& out) {
   if (!args.ini.empty()) usable = print_configuration(model, args.ini, out) && usable;
   out << (usable ? "usable\n" : "NOT usable\n");
   return usable ? 0 : 1;
+}
+
+}  // namespace
+
+void add_check_command(CLI::App& volcomp, int& exit_code) {
+  auto args = std::make_shared<CheckArgs>();
+  CLI::App* cmd = volcomp.add_subcommand(
+      "check", "Validate a machine file and its tables; summarise axes, tables, error and invertibility");
+  cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
+  cmd->add_option("--samples", args->samples, "random poses sampled over the travel")
+      ->capture_default_str();
+  cmd->add_option("--ini", args->ini,
+                  "a LinuxCNC configuration that loads this machine with volkins: is every axis inside its "
+                  "limits after homing?")
+      ->check(CLI::ExistingFile);
+  cmd->callback([args, &exit_code] { exit_code = run_check(*args, std::cout); });
 }
 
 }  // namespace vc::cli

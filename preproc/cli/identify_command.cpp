@@ -2,6 +2,7 @@
 // cycle) evaluated as ISO 230-2 does, suspicious runs left out with the reason, and the error
 // table written in the project's CSV format with the measurement's metadata
 // (preproc/identify/README.md).
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -9,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -19,7 +21,6 @@
 #include "vc/identify/circular_test.hpp"
 #include "vc/identify/iso230_2.hpp"
 #include "vc/identify/probe_log.hpp"
-#include "vc/identify/probe_plan.hpp"
 #include "vc/identify/sphere_centres.hpp"
 #include "vc/identify/laser_into_machine.hpp"
 #include "vc/identify/laser_runs.hpp"
@@ -34,6 +35,40 @@
 
 namespace vc::cli {
 namespace {
+
+struct IdentifyLaserArgs {
+  std::string runs;                // laser runs CSV
+  std::string error;               // the component error they measure: EXX, EYX, EAX, ECC, ...
+  std::string output;              // error table CSV (optional)
+  std::string direction = "both";  // the table's value: both (mean bidirectional), up or down
+  bool keep_all = false;           // keep the suspicious runs in the evaluation
+  std::string machine;             // machine file whose axis takes the table (optional)
+  std::string machine_out;         // folder: the table and a copy of the machine file using it
+  std::string at;                  // where the axes stood, "x=0,y=-160,..." (default: the runs' "# at:")
+  std::optional<double> tool_length_mm;  // the tool-side optic L below the gauge point (default: the runs')
+  std::vector<double> tool_point_mm;     // ... or anywhere in the spindle frame, x,y,z from the gauge point
+  std::string reference;           // datum, least-squares, end-points, none (default by the error)
+  std::string squareness;          // a straightness's slope goes into this location error (e.g. EC0X)
+  std::string plot;                // the ISO 230-2 graph, .png or .svg (optional, gnuplot; its data: .csv beside it)
+};
+
+struct IdentifyCircleArgs {
+  std::string run;                 // circular test CSV
+  std::string plane;               // XY, YZ, ZX (default: the file's "# plane:")
+  std::optional<double> radius_mm; // default: the file's "# radius_mm:"
+  std::string machine;             // to express the squareness in its terms (optional)
+  std::string machine_out;         // folder for the machine file with the squareness set
+  std::string symbol;              // which term takes it (default: the one the file uses)
+  std::string plot;                // the polar plot, .png or .svg (optional, gnuplot; its data: .csv beside it)
+};
+
+struct IdentifySphereArgs {
+  std::string machine;
+  std::string centres;                   // CSV: the joints at the sphere's centre, one pose per row
+  std::vector<std::string> deviations;   // location errors to identify (default: all of the rotary axes)
+  std::optional<double> tool_length_mm;  // default: the machine file's
+  std::string machine_out;               // folder for the machine file with the identified values
+};
 
 // Deviations in um (lengths) or arcsec and urad (angles), for the printout.
 std::string shown(double v, tables::Quantity q) {
@@ -53,8 +88,6 @@ void refuse_plot_over(const std::string& image, const std::vector<std::string>& 
       throw std::runtime_error("--plot " + image + " writes " + (same(image, file) ? image : plot::data_path(image)) +
                                ", which is " + file + ", a file of this command: give the plot another name");
 }
-
-}  // namespace
 
 int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
   const auto symbol = tables::parse_error_symbol(args.error);
@@ -451,51 +484,78 @@ int run_identify_sphere(const IdentifySphereArgs& args, std::ostream& out) {
   return 0;
 }
 
-int run_probe_plan(const ProbePlanArgs& args, std::ostream& out) {
-  const machine::Model model = machine::load_machine(args.machine);
-  identify::ProbePlanOptions o;
-  if (args.centre.size() != 3) throw std::runtime_error("--centre X,Y,Z: the sphere's centre at rotary 0 (the DRO, mm)");
-  o.centre_mm = Eigen::Vector3d(args.centre[0], args.centre[1], args.centre[2]);
-  o.sphere_diameter_mm = args.sphere_diameter_mm;
-  o.ball_diameter_mm = args.ball_diameter_mm;
-  o.probe_length_mm = args.probe_length_mm.value_or(0.0);
-  o.log_file = args.log_file;
-  o.clearance_mm = args.clearance_mm;
-  o.probe_feed_mm_min = args.probe_feed_mm_min;
-  o.back_off_mm = args.back_off_mm;
-  o.touch_feed_mm_min = args.touch_feed_mm_min;
-  if (!(o.sphere_diameter_mm > 0) || !(o.ball_diameter_mm >= 0)) throw std::runtime_error("the diameters must be positive");
-  // --grid B=0,-30,-60 --grid C=0,90,180,270: every combination, in joint order.
-  std::vector<std::vector<double>> axes;
-  for (int j = 0; j < model.joint_count(); ++j) {
-    const machine::Axis& a = model.axes[static_cast<std::size_t>(j)];
-    if (a.type != machine::AxisType::Rotary) continue;
-    std::vector<double> values;
-    for (const std::string& g : args.grid)
-      if (g.size() > 2 && std::toupper(static_cast<unsigned char>(g[0])) == a.letter && g[1] == '=') {
-        std::stringstream list(g.substr(2));
-        for (std::string v; std::getline(list, v, ',');) values.push_back(std::stod(v));
-      }
-    if (values.empty()) throw std::runtime_error("--grid " + std::string(1, a.letter) + "=...: the positions of " + a.letter);
-    axes.push_back(values);
-  }
-  std::vector<std::size_t> index(axes.size(), 0);
-  while (true) {
-    std::vector<double> pose;
-    for (std::size_t r = 0; r < axes.size(); ++r) pose.push_back(axes[r][index[r]]);
-    o.rotary_positions.push_back(pose);
-    std::size_t r = 0;
-    while (r < axes.size() && ++index[r] == axes[r].size()) index[r++] = 0;
-    if (r == axes.size()) break;
-  }
-  const std::string program = identify::probe_plan(model, o);
-  if (args.output.empty() || args.output == "-") {
-    out << program;
-  } else {
-    tables::write_atomically(args.output, [&](std::ostream& file) { file << program; });
-    std::cerr << "volcomp probe-plan: " << args.output << ", " << o.rotary_positions.size() << " poses, 5 points each\n";
-  }
-  return 0;
+void add_laser_command(CLI::App* identify, int& exit_code) {
+  auto args = std::make_shared<IdentifyLaserArgs>();
+  CLI::App* cmd = identify->add_subcommand(
+      "laser", "Laser interferometer runs (ISO 230-2): evaluation, suspicious runs, the error table");
+  cmd->add_option("RUNS", args->runs, "runs CSV: target[mm],run,direction,deviation[um] or target[mm],1+[um],1-[um],...")
+      ->required();
+  cmd->add_option("--error", args->error, "the component error the runs measure: EXX, EYX, EAX, ECC, ...")->required();
+  cmd->add_option("-o,--output", args->output, "error table CSV in the project's format");
+  cmd->add_option("--direction", args->direction, "the table's value: both (mean bidirectional), up or down")
+      ->capture_default_str();
+  cmd->add_flag("--keep-all", args->keep_all, "keep the suspicious runs in the evaluation");
+  cmd->add_option("--machine", args->machine, "machine file whose axis takes the identified table");
+  cmd->add_option("--machine-out", args->machine_out,
+                  "folder: the table and a copy of the machine file with it in place of the error's old values");
+  cmd->add_option("--at", args->at,
+                  "where every axis stood during the runs, e.g. x=0,y=-160,z=-150,b=0,c=0 (default: the runs' '# at:')");
+  cmd->add_option("--tool-length", args->tool_length_mm,
+                  "the tool-side optic's distance below the spindle gauge point, mm (default: the runs' "
+                  "'# tool_length_mm:')");
+  cmd->add_option("--tool-point", args->tool_point_mm,
+                  "the tool-side optic in the spindle frame from the gauge point, X,Y,Z mm (the runs' "
+                  "'# tool_point_mm:'); a tool's tip L long is 0,0,-L")
+      ->delimiter(',')
+      ->expected(3);
+  cmd->add_option("--reference", args->reference,
+                  "none: the readings as they are (positioning, angular: the default); datum: the laser zeroed "
+                  "at the first target, the file keeps its value there; least-squares (a straightness's default) "
+                  "or end-points: the straightness about that line, its slope a squareness")
+      ->check(CLI::IsMember({"datum", "least-squares", "end-points", "none"}));
+  cmd->add_option("--squareness", args->squareness,
+                  "the location error that takes a straightness's slope, e.g. EC0X or EC0Y for EYX (default: the "
+                  "one the file uses, else the measured axis's own)");
+  cmd->add_option("--plot", args->plot,
+                  "the ISO 230-2 graph, .png or .svg (gnuplot); the data it draws goes to a .csv beside it");
+  cmd->callback([args, &exit_code] { exit_code = run_identify_laser(*args, std::cout); });
+}
+
+void add_circle_command(CLI::App* identify, int& exit_code) {
+  auto args = std::make_shared<IdentifyCircleArgs>();
+  CLI::App* cmd = identify->add_subcommand(
+      "circle", "Circular test / ballbar (ISO 230-4): G, H, centre, squareness, scale mismatch, reversal spikes");
+  cmd->add_option("RUN", args->run, "CSV: angle[deg],direction,deviation[um] or angle[deg],ccw[um],cw[um]")->required();
+  cmd->add_option("--plane", args->plane, "XY, YZ or ZX (default: the file's '# plane:')");
+  cmd->add_option("--radius", args->radius_mm, "the circle's radius, mm (default: the file's '# radius_mm:')");
+  cmd->add_option("--machine", args->machine, "machine file: the squareness in its location errors");
+  cmd->add_option("--machine-out", args->machine_out, "folder: a copy of the machine file with the squareness set");
+  cmd->add_option("--symbol", args->symbol, "the location error that takes it (default: the one the file uses)");
+  cmd->add_option("--plot", args->plot,
+                  "the ballbar polar plot, .png or .svg (gnuplot); the data it draws goes to a .csv beside it");
+  cmd->callback([args, &exit_code] { exit_code = run_identify_circle(*args, std::cout); });
+}
+
+void add_sphere_command(CLI::App* identify, int& exit_code) {
+  auto args = std::make_shared<IdentifySphereArgs>();
+  CLI::App* cmd = identify->add_subcommand(
+      "sphere", "Rotary axes' location errors from a sphere's centre probed at several rotary positions");
+  cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
+  cmd->add_option("CENTRES", args->centres, "probe-plan log, or a CSV of the joints at the sphere's centre per pose (x,y,z,b,c)")->required();
+  cmd->add_option("--deviations", args->deviations, "location errors to identify, e.g. EX0C,EA0B (default: all)")
+      ->delimiter(',');
+  cmd->add_option("--tool-length", args->tool_length_mm, "probe length L, mm (default: the machine file's)");
+  cmd->add_option("--machine-out", args->machine_out, "folder: a copy of the machine file with the values");
+  cmd->callback([args, &exit_code] { exit_code = run_identify_sphere(*args, std::cout); });
+}
+
+}  // namespace
+
+void add_identify_commands(CLI::App& volcomp, int& exit_code) {
+  CLI::App* identify = volcomp.add_subcommand("identify", "From measurements to the machine file")->require_subcommand(1);
+  add_laser_command(identify, exit_code);
+  add_circle_command(identify, exit_code);
+  add_sphere_command(identify, exit_code);
 }
 
 }  // namespace vc::cli

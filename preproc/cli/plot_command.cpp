@@ -4,8 +4,11 @@
 // (location_errors.csv, the non-zero ones printed). With --volume also the volume map
 // (volume_<L>_rotary0.png, volume_<L>_worst.png and their CSVs): the tool-tip error over the
 // working volume per tool length, before correction and with a stock controller's tables.
+#include <CLI/CLI.hpp>
 #include <cctype>
 #include <filesystem>
+#include <iostream>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 
@@ -19,6 +22,16 @@
 
 namespace vc::cli {
 namespace {
+
+struct PlotArgs {
+  std::string machine;
+  std::string folder;              // per axis <letter>_axis.png (or .svg) and .csv; location_errors.csv
+  std::string format = "png";      // png or svg
+  bool volume = false;             // also the volume map: volume_L<mm>_rotary0 / _worst images and CSVs
+  std::vector<double> tool_lengths_mm;  // of the volume map (default: the machine file's)
+  std::string plane;                    // of the volume map: "xz", "yz" ... (default: the first two linear axes)
+  std::string controller = "linuxcnc";  // whose tables the volume map judges; "none" for none
+};
 
 // The volume map's sheets drawn, and their largest errors printed.
 void draw_volume_map(const plot::VolumeMap& map, const machine::Model& model, const PlotArgs& args, std::ostream& out) {
@@ -40,8 +53,6 @@ void draw_volume_map(const plot::VolumeMap& map, const machine::Model& model, co
   if (!map.controller_title.empty()) out << "  (tables: " << map.controller_title << ", fitted over these tool lengths)\n";
   out << "  " << plot::full_correction_statement(map) << "\n";
 }
-
-}  // namespace
 
 int run_plot(const PlotArgs& args, std::ostream& out) {
   namespace fs = std::filesystem;
@@ -82,6 +93,29 @@ int run_plot(const PlotArgs& args, std::ostream& out) {
       out << "  " << r.symbol << " = " << format_fixed(r.value, 3) << " " << r.unit << "  (" << r.meaning << ")\n";
   if (map) draw_volume_map(*map, model, args, out);
   return 0;
+}
+
+}  // namespace
+
+void add_plot_command(CLI::App& volcomp, int& exit_code) {
+  auto args = std::make_shared<PlotArgs>();
+  CLI::App* cmd = volcomp.add_subcommand(
+      "plot", "Draw a machine file's errors: per axis its component errors against its position (PNG or SVG with "
+              "the data as CSV), and the location errors listed with units");
+  cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
+  cmd->add_option("-o,--output", args->folder, "folder for <axis>_axis.png and .csv and location_errors.csv")
+      ->required();
+  cmd->add_option("--format", args->format, "png or svg")->capture_default_str();
+  cmd->add_flag("--volume", args->volume,
+                "also the volume map: the tool-tip error |e| (um) over X-Y at three Z levels, rotary axes at 0 "
+                "and at their worst, before correction and with LinuxCNC's tables (usual practice, modified method)");
+  cmd->add_option("--tool-lengths", args->tool_lengths_mm, "the volume map's tool lengths, mm, e.g. 0,100 "
+                  "(default: the machine file's)")->delimiter(',');
+  cmd->add_option("--plane", args->plane, "the volume map's plane, two linear axes, e.g. xz or yz, the third "
+                  "giving the levels (default: the first two, X-Y)");
+  cmd->add_option("--controller", args->controller, "the stock controller whose tables the volume map judges "
+                  "(as fit-tables --controller), or none")->capture_default_str();
+  cmd->callback([args, &exit_code] { exit_code = run_plot(*args, std::cout); });
 }
 
 }  // namespace vc::cli

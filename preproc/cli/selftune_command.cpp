@@ -3,7 +3,10 @@
 // derived from Pi and Ri). Local strategy: Pi's path shifted against the deviations. Model
 // strategy: the machine's tables tuned from the deviations (written as a new table set),
 // and the original program pre-distorted with them.
+#include <CLI/CLI.hpp>
 #include <fstream>
+#include <iostream>
+#include <memory>
 #include <optional>
 #include <sstream>
 
@@ -23,6 +26,34 @@
 
 namespace vc::cli {
 namespace {
+
+struct SelftuneArgs {
+  std::string machine;             // the model (machine file) the program was made for
+  std::string input;               // program Pi that machined the measured part
+  std::string report;              // CMM report Ri
+  std::string report_unit;         // for a CMM export whose file states no unit: mm, um or inch
+  std::string deviation_sign;      // of a CMM export's deviation column: actual-minus-nominal or nominal-minus-actual
+  bool decimal_comma = false;      // a CMM export writes 12,5
+  std::string output;              // program P(i+1)
+  std::string strategy = "local";  // local or model
+  std::string var_file, tool_table, world = "axes";
+  std::string machine_units = "mm";
+  bool compensated = false;        // Pi ran with volkins correcting with MACHINE
+  std::vector<int> ball_end_tools;
+  double flute_length_mm = 30.0;
+  double cutoff_mm = 10.0, outlier_sigmas = 4.0;
+  // local
+  double gain = 1.0, radius_mm = 40.0, angle_deg = 20.0, step_mm = 1.0, tolerance_mm = 0.0005;
+  bool no_tilt = false;            // keep the program's tool axis (tip shifted only)
+  double min_support = 6.0;        // local: widen the window where fewer points carry a shift
+  // model
+  std::string tables_out;          // folder of the updated machine file and tables
+  std::string nominal;             // the original program P0 (default: PROGRAM)
+  std::string next_program, next_points;  // model: another part (program, CMM plan): the noise carried there
+  std::vector<std::string> deviations;
+  int nodes = 5;
+  double regularisation = 1e-3, smoothness = 1e-2;
+};
 
 std::ifstream open_program(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -100,8 +131,6 @@ std::string tool_length_cause(const predistort::ToolLengthLog& log, const machin
           " or set tool_length_reference_mm";
   return text;
 }
-
-}  // namespace
 
 int run_selftune(const SelftuneArgs& args, std::ostream& report) {
   if (args.strategy != "local" && args.strategy != "model")
@@ -278,6 +307,70 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
   report << "  " << nominal << " pre-distorted with the updated tables: " << summary.corrector.pieces << " pieces\n";
   for (const std::string& note : predistort::correction_notes(summary, job)) report << "  " << note << "\n";
   return 0;
+}
+
+}  // namespace
+
+void add_selftune_command(CLI::App& volcomp, int& exit_code) {
+  auto args = std::make_shared<SelftuneArgs>();
+  CLI::App* cmd = volcomp.add_subcommand(
+      "selftune", "Program of the next part from the measured deviations of this one (local or model strategy)");
+  cmd->add_option("MACHINE", args->machine, "machine file the program was made for (.toml)")->required();
+  cmd->add_option("PROGRAM", args->input, "program Pi that machined the measured part")->required();
+  cmd->add_option("REPORT", args->report,
+                  "CMM report Ri: id,x[mm],y[mm],z[mm],i,j,k,deviation[um], or a CMM software's table "
+                  "export (nominal X Y Z, normal I J K out of the material, actual X Y Z or deviation)")
+      ->required();
+  cmd->add_option("--report-unit", args->report_unit,
+                  "CMM export: the unit of the columns whose header names none (mm, um, inch)");
+  cmd->add_option("--deviation-sign", args->deviation_sign,
+                  "CMM export: what its deviation column is: actual-minus-nominal (+ = material left, along "
+                  "an outward normal) or nominal-minus-actual")
+      ->check(CLI::IsMember({"actual-minus-nominal", "nominal-minus-actual"}));
+  cmd->add_flag("--decimal-comma", args->decimal_comma, "CMM export: numbers are written 12,5");
+  cmd->add_option("-o,--output", args->output, "program P(i+1)");
+  cmd->add_option("--strategy", args->strategy, "local (shift the path) or model (tune the tables)")
+      ->capture_default_str();
+  cmd->add_option("--var", args->var_file, "LinuxCNC parameter file (.var)");
+  cmd->add_option("--tool-table", args->tool_table, "LinuxCNC tool table (.tbl): lengths and diameters");
+  cmd->add_option("--machine-units", args->machine_units,
+                "the unit of the tool table and the .var file, LinuxCNC's [TRAJ]LINEAR_UNITS: mm or inch")
+      ->capture_default_str();
+  cmd->add_option("--world", args->world, "world convention: axes or tcp")->capture_default_str();
+  cmd->add_flag("--compensated", args->compensated,
+                "PROGRAM ran with volkins correcting with MACHINE (not pre-distorted)");
+  cmd->add_option("--ball-end", args->ball_end_tools, "tools with a ball end")->delimiter(',');
+  cmd->add_option("--flute-length", args->flute_length_mm, "cutting length of the tools, mm")
+      ->capture_default_str();
+  cmd->add_option("--cutoff", args->cutoff_mm, "shorter wavelengths are not tuned (low-pass), mm")
+      ->capture_default_str();
+  cmd->add_option("--outlier-sigmas", args->outlier_sigmas, "outlier threshold, robust sigmas")
+      ->capture_default_str();
+  cmd->add_option("--gain", args->gain, "local: share of the deviation taken off")->capture_default_str();
+  cmd->add_option("--radius", args->radius_mm, "local: deviations reach the path within this, mm")
+      ->capture_default_str();
+  cmd->add_option("--angle", args->angle_deg,
+                  "local: deviations reach path points whose tool frame is turned less than this from the cut's, deg")
+      ->capture_default_str();
+  cmd->add_option("--min-support", args->min_support,
+                  "local: where fewer measured points than this carry a shift, widen its window (radius and angle x 1.5, up to 3 times); 0: never")
+      ->capture_default_str();
+  cmd->add_flag("--no-tilt", args->no_tilt, "local: keep the program's tool axis on 5-axis moves (shift the tip only)");
+  cmd->add_option("--step", args->step_mm, "local: longest piece of a shifted move, mm")->capture_default_str();
+  cmd->add_option("--tolerance", args->tolerance_mm, "chord and blending tolerance, mm")->capture_default_str();
+  cmd->add_option("--tables-out", args->tables_out, "model: folder for the updated machine file and tables");
+  cmd->add_option("--nominal", args->nominal, "model: the original program P0 (default: PROGRAM)");
+  cmd->add_option("--next-program", args->next_program,
+                  "model: the program of another part (with --next-points): the noise the tuned tables carry to its points");
+  cmd->add_option("--next-points", args->next_points, "model: that part's CMM plan (id,x,y,z,i,j,k)");
+  cmd->add_option("--deviations", args->deviations, "model: deviations to tune, e.g. EXX,EX0C (default: every table and the rotary axes' locations)")
+      ->delimiter(',');
+  cmd->add_option("--nodes", args->nodes, "model: table nodes over each axis's travel (a full turn: a Fourier series of order (nodes - 1) / 2)")->capture_default_str();
+  cmd->add_option("--regularisation", args->regularisation, "model: ridge on scaled unknowns")
+      ->capture_default_str();
+  cmd->add_option("--smoothness", args->smoothness, "model: penalty on second differences")
+      ->capture_default_str();
+  cmd->callback([args, &exit_code] { exit_code = run_selftune(*args, std::cerr); });
 }
 
 }  // namespace vc::cli

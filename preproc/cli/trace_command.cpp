@@ -1,10 +1,13 @@
 // volcomp trace: the tool-tip error of a recorded LinuxCNC session, and whether volkins did
 // exactly what the core computes (see vc/trace/session_trace.hpp for the comparison).
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <iterator>
+#include <memory>
 #include <stdexcept>
 
 #include "commands.hpp"
@@ -21,6 +24,17 @@
 
 namespace vc::cli {
 namespace {
+
+struct TraceArgs {
+  std::string machine;
+  std::string trace;               // CSV recorded by kins/configs/common/headless_driver.py
+  std::string world = "axes";      // the module's world convention
+  std::string output;              // per-sample errors CSV (optional)
+  double servo_period_s = 0.001;   // for the time column
+  std::string comp_files;          // a folder of fit-tables' COMP_FILEs to replay on the trace (optional)
+  std::string ini;                 // the configuration's INI: the joints' limits for the replay
+  std::string replay_output;       // the replay's per-sample errors CSV (t_s,e_um; optional)
+};
 
 // The COMP_FILEs of args.comp_files replayed on the session (fit_tables::replay_comp_files):
 // the tool-tip error it would have had with them loaded.
@@ -77,8 +91,6 @@ void print_comp_file_replay(const TraceArgs& args, const machine::Model& model, 
       << (without.empty() ? "" : "; none on" + without) << "): tool tip error: max " << format_fixed(max_um, 3)
       << " um, RMS " << format_fixed(rms_um, 3) << " um\n";
 }
-
-}  // namespace
 
 int run_trace(const TraceArgs& args, std::ostream& out) {
   if (args.comp_files.empty() && (!args.ini.empty() || !args.replay_output.empty()))
@@ -144,6 +156,27 @@ int run_trace(const TraceArgs& args, std::ostream& out) {
       << "commanded pose residual where fully corrected: max " << format_number(max_pose_mm) << " mm, "
       << format_number(max_pose_rad) << " rad\n";
   return 0;
+}
+
+}  // namespace
+
+void add_trace_command(CLI::App& volcomp, int& exit_code) {
+  auto args = std::make_shared<TraceArgs>();
+  CLI::App* cmd = volcomp.add_subcommand(
+      "trace", "Tool-tip error along a recorded LinuxCNC session, and volkins checked against the core");
+  cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
+  cmd->add_option("TRACE", args->trace, "trace CSV written by the headless driver")->required();
+  cmd->add_option("--world", args->world, "the module's world convention: axes or tcp")->capture_default_str();
+  cmd->add_option("-o,--output", args->output,
+                  "write t_s,ex_um,ey_um,ez_um,e_um,ek_urad,gain per sample to this CSV");
+  cmd->add_option("--comp-files", args->comp_files,
+                  "a session without correction: also its tool-tip error with these COMP_FILEs (fit-tables' "
+                  "joint_N_<axis>.comp) replayed as LinuxCNC applies them");
+  cmd->add_option("--replay-output", args->replay_output, "with --comp-files: write t_s,e_um per sample of the "
+                  "replay to this CSV");
+  cmd->add_option("--ini", args->ini, "with --comp-files: the configuration's INI ([JOINT_n] MAX_VELOCITY, "
+                  "MAX_ACCELERATION: LinuxCNC's ramp of the correction)");
+  cmd->callback([args, &exit_code] { exit_code = run_trace(*args, std::cout); });
 }
 
 }  // namespace vc::cli
