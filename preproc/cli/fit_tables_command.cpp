@@ -17,7 +17,7 @@
 
 #include "vc/tables/atomic_file.hpp"
 #include "commands.hpp"
-#include "format.hpp"
+#include "vc/tables/number_text.hpp"
 #include "program_files.hpp"
 #include "vc/fit_tables/comp_file.hpp"
 #include "vc/fit_tables/sinumerik_file.hpp"
@@ -80,10 +80,10 @@ void draw_figures(const fit_tables::Study& study, const std::string& machine_nam
           "modified_Delta[um],full_Delta[um]\n";
   for (const fit_tables::ReportRow& r : study.rows) {
     if (r.set != "fresh") continue;
-    data << format_number(r.tool_length_mm) << " mm" << (r.fitted_length ? "" : " (check)")
-         << ',' << format_number(r.tool_length_mm) << ',' << (r.fitted_length ? "yes" : "no");
-    for (const auto* f : {&r.none, &r.usual, &r.modified, &r.full}) data << ',' << format_fixed(f->max_um, 3);
-    for (const auto* f : {&r.none, &r.usual, &r.modified, &r.full}) data << ',' << format_fixed(f->delta_um, 3);
+    data << number_text(r.tool_length_mm) << " mm" << (r.fitted_length ? "" : " (check)")
+         << ',' << number_text(r.tool_length_mm) << ',' << (r.fitted_length ? "yes" : "no");
+    for (const auto* f : {&r.none, &r.usual, &r.modified, &r.full}) data << ',' << fixed_text(f->max_um, 3);
+    for (const auto* f : {&r.none, &r.usual, &r.modified, &r.full}) data << ',' << fixed_text(f->delta_um, 3);
     data << '\n';
   }
   std::ostringstream gp;
@@ -134,7 +134,7 @@ std::string padded(std::string text, std::size_t width) {
 }
 
 std::string figure(const fit_tables::Figures& f) {
-  std::string s = format_fixed(f.max_um, 1) + " / " + format_fixed(f.delta_um, 1);
+  std::string s = fixed_text(f.max_um, 1) + " / " + fixed_text(f.delta_um, 1);
   return std::string(s.size() < 15 ? 15 - s.size() : 1, ' ') + s;
 }
 
@@ -168,7 +168,7 @@ fit_tables::JointReversal read_reversal(const machine::Model& model, const std::
   out << "reversal of " << letter << " from " << path << " (" << e.targets.size() << " targets, "
       << e.runs_up << " + " << e.runs_down << " runs"
       << (left_out.empty() ? "" : ", " + std::to_string(left_out.size()) + " left out")
-      << "): B = " << format_fixed(e.reversal * shown, 2) << symbol << ", mean " << format_fixed(e.mean_reversal * shown, 2)
+      << "): B = " << fixed_text(e.reversal * shown, 2) << symbol << ", mean " << fixed_text(e.mean_reversal * shown, 2)
       << symbol << ": its COMP_FILE's forward column is the value - B/2, the reverse one + B/2\n";
   return r;
 }
@@ -266,12 +266,12 @@ int run_fit_tables(const FitTablesArgs& args, std::ostream& out) {
         << " poses of the part programs + " << study.added_poses << " worst fresh poses refitted\n";
   if (o.fit.criterion == fit_tables::Criterion::Minimax && study.fit.lower_bound_mm > 0)
     out << "minimax (Lawson): " << study.fit.iterations << " solves; the linearised M is within "
-        << format_fixed(100.0 * (study.fit.linear_max_mm / study.fit.lower_bound_mm - 1.0), 2)
+        << fixed_text(100.0 * (study.fit.linear_max_mm / study.fit.lower_bound_mm - 1.0), 2)
         << " % of the minimax's lower bound\n";
   out << "M / Delta of the tool-tip error, um (nonlinear model):\n"
       << "  L [mm]  fitted  set                none           usual        modified            full\n";
   for (const fit_tables::ReportRow& r : study.rows) {
-    std::string l = format_number(r.tool_length_mm);
+    std::string l = number_text(r.tool_length_mm);
     out << "  " << std::string(l.size() < 6 ? 6 - l.size() : 1, ' ') << l << "  "
         << (r.fitted_length ? "  yes " : "   no ") << "  " << padded(r.set, 8) << figure(r.none)
         << figure(r.usual) << figure(r.modified) << figure(r.full) << '\n';

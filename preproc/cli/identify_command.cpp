@@ -17,7 +17,7 @@
 
 #include "vc/tables/atomic_file.hpp"
 #include "commands.hpp"
-#include "format.hpp"
+#include "vc/tables/number_text.hpp"
 #include "vc/identify/circular_test.hpp"
 #include "vc/identify/iso230_2.hpp"
 #include "vc/identify/probe_log.hpp"
@@ -72,8 +72,8 @@ struct IdentifySphereArgs {
 
 // Deviations in um (lengths) or arcsec and urad (angles), for the printout.
 std::string shown(double v, tables::Quantity q) {
-  return q == tables::Quantity::Length ? format_fixed(v * 1e3, 2) + " um"
-                                       : format_fixed(v * 648000.0 / M_PI, 2) + " arcsec (" + format_fixed(v * 1e6, 1) + " urad)";
+  return q == tables::Quantity::Length ? fixed_text(v * 1e3, 2) + " um"
+                                       : fixed_text(v * 648000.0 / M_PI, 2) + " arcsec (" + fixed_text(v * 1e6, 1) + " urad)";
 }
 
 // A plot's image or its data CSV (the image's name with .csv) must not be one of the command's
@@ -138,9 +138,9 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
       << (q == tables::Quantity::Length ? "um" : "urad") << ")\n";
   const double unit = q == tables::Quantity::Length ? 1e3 : 1e6;
   for (const identify::TargetStatistics& t : e.targets)
-    out << "  " << format_number(t.target) << "  " << format_fixed(t.mean_up * unit, 3) << "  "
-        << format_fixed(t.mean_down * unit, 3) << "  " << format_fixed(t.mean * unit, 3) << "  "
-        << format_fixed(t.reversal * unit, 3) << "  " << format_fixed(t.r * unit, 3) << "\n";
+    out << "  " << number_text(t.target) << "  " << fixed_text(t.mean_up * unit, 3) << "  "
+        << fixed_text(t.mean_down * unit, 3) << "  " << fixed_text(t.mean * unit, 3) << "  "
+        << fixed_text(t.reversal * unit, 3) << "  " << fixed_text(t.r * unit, 3) << "\n";
   if (runs.rotary && e.targets.size() > 2 && std::abs(e.targets.back().target - e.targets.front().target - 360.0) < 1e-9)
     out << "One full turn: 0 and 360 deg are one position; the table holds their mean there (periodic), they read "
         << shown(e.targets.front().mean, q) << " and " << shown(e.targets.back().mean, q) << ".\n";
@@ -273,7 +273,7 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
         csv << "# the readings: the tool against the part, as the instrument read them (error = actual - nominal)\n";
         csv << static_cast<char>(std::tolower(symbol->axis)) << (runs.rotary ? "[deg]" : "[mm]") << "," << args.error
             << (q == tables::Quantity::Length ? "[um]" : "[urad]") << "\n";
-        for (const auto& [target, v] : rows) csv << format_number(target) << "," << format_fixed(v * unit, 4) << "\n";
+        for (const auto& [target, v] : rows) csv << number_text(target) << "," << fixed_text(v * unit, 4) << "\n";
       });
       out << "table written: " << args.output << " (the readings: the tool against the part)";
       if (args.machine_out.empty())
@@ -289,23 +289,23 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
   const identify::LaserIntoMachine r =
       identify::laser_into_machine(*model, line, args.machine_out, "volcomp identify laser from " + args.runs);
 
-  const auto in_unit = [&](double v) { return format_fixed(v * unit, 3) + (q == tables::Quantity::Length ? " um" : " urad"); };
+  const auto in_unit = [&](double v) { return fixed_text(v * unit, 3) + (q == tables::Quantity::Length ? " um" : " urad"); };
   const auto per = [&](double slope) {  // um/m or urad/m (linear axes), per deg (rotary)
-    return format_fixed(slope * unit * (runs.rotary ? 1.0 : 1e3), 3) +
+    return fixed_text(slope * unit * (runs.rotary ? 1.0 : 1e3), 3) +
            (q == tables::Quantity::Length ? " um" : " urad") + (runs.rotary ? "/deg" : "/m");
   };
   out << "Into " << args.machine << " (" << model->info.name << "): the runs at " << at << ", the tool-side optic at "
-      << format_number(line.setup.tool_point_mm.x()) << ", " << format_number(line.setup.tool_point_mm.y()) << ", "
-      << format_number(line.setup.tool_point_mm.z()) << " mm in the spindle frame; " << symbol->axis << "'s "
+      << number_text(line.setup.tool_point_mm.x()) << ", " << number_text(line.setup.tool_point_mm.y()) << ", "
+      << number_text(line.setup.tool_point_mm.z()) << " mm in the spindle frame; " << symbol->axis << "'s "
       << (model->axes[static_cast<std::size_t>(joint)].chain == machine::Chain::Tool ? "tool" : "workpiece")
       << " chain, the file's other errors as they are\n";
-  const auto arcsec = [](double rad) { return format_fixed(rad * 648000.0 / M_PI, 3) + " arcsec"; };
+  const auto arcsec = [](double rad) { return fixed_text(rad * 648000.0 / M_PI, 3) + " arcsec"; };
   switch (line.reference) {
     case identify::Reference::None:
       out << "  reference none: the readings as they are\n";
       break;
     case identify::Reference::Datum:
-      out << "  reference datum: the runs read " << in_unit(r.runs_reference.offset) << " at " << format_number(line.targets.front())
+      out << "  reference datum: the runs read " << in_unit(r.runs_reference.offset) << " at " << number_text(line.targets.front())
           << (runs.rotary ? " deg" : " mm") << " (the laser's zero), the file " << in_unit(r.file_reference.offset)
           << ": the file keeps its origin\n";
       break;
@@ -341,10 +341,10 @@ int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
   if (!args.plane.empty()) test.plane = args.plane;
   if (args.radius_mm) test.radius_mm = *args.radius_mm;
   const identify::CircularEvaluation e = identify::evaluate_circular_test(test);
-  const auto um = [](double mm) { return format_fixed(mm * 1e3, 2) + " um"; };
-  const auto arcsec = [](double rad) { return format_fixed(rad * 648000.0 / M_PI, 2) + " arcsec"; };
+  const auto um = [](double mm) { return fixed_text(mm * 1e3, 2) + " um"; };
+  const auto arcsec = [](double rad) { return fixed_text(rad * 648000.0 / M_PI, 2) + " arcsec"; };
   const std::string first(1, test.plane[0]), second(1, test.plane[1]);
-  out << "volcomp identify circle: " << args.run << ", plane " << test.plane << ", radius " << format_number(test.radius_mm)
+  out << "volcomp identify circle: " << args.run << ", plane " << test.plane << ", radius " << number_text(test.radius_mm)
       << " mm\n";
   for (const auto& [key, value] : test.metadata) out << "  " << key << ": " << value << "\n";
   // Each figure's text once: printed (joined as before) and, with --plot, written on the plot.
@@ -359,12 +359,12 @@ int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
                       centre = "centre offset " + first + " " + um(f.centre_first_mm) + ", " + second + " " +
                                um(f.centre_second_mm),
                       square = "squareness " + arcsec(f.squareness_rad) + ", scale mismatch " +
-                               format_fixed(f.scale_mismatch * 1e6, 2) + " um/m",
+                               fixed_text(f.scale_mismatch * 1e6, 2) + " um/m",
                       residual = "left by the first-order fit RMS " + um(f.residual_rms_mm);
     std::string spikes = "reversal spikes:";
     std::vector<std::string> spike_texts;
     for (const auto& [angle, height] : f.spikes) {
-      spike_texts.push_back(format_number(angle) + " deg " + um(height));
+      spike_texts.push_back(number_text(angle) + " deg " + um(height));
       spikes += " " + spike_texts.back();
     }
     out << "  " << (f.ccw ? "ccw" : "cw ") << ": " << deviation << ", " << radial << "; " << centre << "; " << square << "; "
@@ -376,7 +376,7 @@ int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
       plotted.push_back("      " + spike_texts[k] + (k + 1 < spike_texts.size() ? ",  " + spike_texts[k + 1] : ""));
   }
   const std::string theta = "theta = " + arcsec(e.squareness_rad),
-                    mismatch = "scale mismatch e" + first + " - e" + second + " = " + format_fixed(e.scale_mismatch * 1e6, 2) +
+                    mismatch = "scale mismatch e" + first + " - e" + second + " = " + fixed_text(e.scale_mismatch * 1e6, 2) +
                                " um/m";
   out << "squareness (both directions' mean; " << first << "' = " << first << " + theta " << second << "): " << theta
       << "; " << mismatch << " (a positioning table's slope: measure it with the laser)\n";
@@ -386,7 +386,7 @@ int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
   if (!args.machine.empty()) model = machine::load_machine(args.machine);
   if (!args.plot.empty()) {
     plot::CirclePlotText text;
-    text.title = "Circular test (ISO 230-4), plane " + test.plane + ", radius " + format_number(test.radius_mm) + " mm" +
+    text.title = "Circular test (ISO 230-4), plane " + test.plane + ", radius " + number_text(test.radius_mm) + " mm" +
                  (model ? ", " + model->info.name : std::string());
     std::string metadata;
     for (const auto& [key, value] : test.metadata)
@@ -444,22 +444,22 @@ int run_identify_sphere(const IdentifySphereArgs& args, std::ostream& out) {
     const identify::ProbeLog log = identify::read_probe_log(args.centres, model);
     poses = log.centres;
     if (!args.tool_length_mm && log.probe_length_mm > 0) length = log.probe_length_mm;
-    out << "probe log: " << poses.size() << " poses, sphere " << format_number(log.sphere_diameter_mm) << " mm, ball "
-        << format_number(log.ball_diameter_mm) << " mm; the points lie within "
-        << format_fixed(log.largest_residual_um, 2) << " um of their fitted spheres\n";
+    out << "probe log: " << poses.size() << " poses, sphere " << number_text(log.sphere_diameter_mm) << " mm, ball "
+        << number_text(log.ball_diameter_mm) << " mm; the points lie within "
+        << fixed_text(log.largest_residual_um, 2) << " um of their fitted spheres\n";
   } else {
     poses = identify::read_sphere_centres(args.centres, model);
   }
   const identify::SphereFit fit = identify::identify_from_sphere(model, poses, args.deviations, length);
   const auto value = [](int component, double v) {
-    return component < 3 ? format_fixed(v * 1e3, 2) + " um" : format_fixed(v * 648000.0 / M_PI, 2) + " arcsec";
+    return component < 3 ? fixed_text(v * 1e3, 2) + " um" : fixed_text(v * 648000.0 / M_PI, 2) + " arcsec";
   };
   out << "volcomp identify sphere: " << args.centres << ", " << poses.size() << " poses, " << model.info.name
-      << " at L = " << format_number(length) << " mm (the linear axes' errors enter the centres: identify after the "
+      << " at L = " << number_text(length) << " mm (the linear axes' errors enter the centres: identify after the "
       << "linear tables are in the machine file)\n"
       << "  " << fit.rank << " of " << fit.parameters << " location errors identified, condition "
-      << format_fixed(fit.condition, 1) << "; sphere centre in the part frame " << format_fixed(fit.centre_mm.x(), 4) << ", "
-      << format_fixed(fit.centre_mm.y(), 4) << ", " << format_fixed(fit.centre_mm.z(), 4) << " mm\n";
+      << fixed_text(fit.condition, 1) << "; sphere centre in the part frame " << fixed_text(fit.centre_mm.x(), 4) << ", "
+      << fixed_text(fit.centre_mm.y(), 4) << ", " << fixed_text(fit.centre_mm.z(), 4) << " mm\n";
   for (const identify::LocationEstimate& e : fit.estimates)
     out << "  " << e.symbol << " = " << value(e.component, e.value) << " +- " << value(e.component, e.uncertainty)
         << " (standard uncertainty; the file has " << value(e.component, e.before) << ")\n";
@@ -470,9 +470,9 @@ int run_identify_sphere(const IdentifySphereArgs& args, std::ostream& out) {
   }
   out << "  distance of the model's tip from the common centre per pose, um (before -> after):";
   for (std::size_t k = 0; k < poses.size(); ++k)
-    out << (k % 6 ? " " : "\n   ") << "line " << poses[k].line << ": " << format_fixed(fit.residual_before_um[k], 2) << " -> "
-        << format_fixed(fit.residual_after_um[k], 2);
-  out << "\n  RMS " << format_fixed(fit.rms_before_um, 3) << " -> " << format_fixed(fit.rms_after_um, 3) << " um\n";
+    out << (k % 6 ? " " : "\n   ") << "line " << poses[k].line << ": " << fixed_text(fit.residual_before_um[k], 2) << " -> "
+        << fixed_text(fit.residual_after_um[k], 2);
+  out << "\n  RMS " << fixed_text(fit.rms_before_um, 3) << " -> " << fixed_text(fit.rms_after_um, 3) << " um\n";
   if (args.machine_out.empty()) return 0;
   std::vector<shop::LocationValue> values;
   for (const identify::LocationEstimate& e : fit.estimates)

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "format.hpp"
+#include "vc/tables/number_text.hpp"
 #include "vc/shop/cmm.hpp"
 #include "vc/shop/machined_surface.hpp"
 #include "vc/tables/atomic_file.hpp"
@@ -52,10 +52,10 @@ int run_measure(const MeasureArgs& args, std::ostream& report) {
     shop::write_cmm_report(out, measured,
                      {"volcomp measure: virtual CMM, deviation along the normal, + = material left",
                       "tool path " + args.path + ", plan " + args.plan,
-                      "noise " + format_number(args.noise_um) + " um (seed " + std::to_string(args.seed) +
-                          "), probe radius " + format_number(args.probe_radius_mm) + " mm"});
+                      "noise " + number_text(args.noise_um) + " um (seed " + std::to_string(args.seed) +
+                          "), probe radius " + number_text(args.probe_radius_mm) + " mm"});
   });
-  report << "volcomp measure: " << measured.size() << " points, largest deviation " << format_fixed(largest * 1e3, 3)
+  report << "volcomp measure: " << measured.size() << " points, largest deviation " << fixed_text(largest * 1e3, 3)
          << " um\n";
   return 0;
 }

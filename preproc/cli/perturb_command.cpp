@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "format.hpp"
+#include "vc/tables/number_text.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/shop/table_set.hpp"
 #include "vc/tables/load_table.hpp"
@@ -97,8 +97,8 @@ int run_perturb(const PerturbArgs& args, std::ostream& report) {
   const std::vector<shop::LocationValue> locations = shop::perturbation_locations(model, args.low, args.high, args.seed);
   const std::string written = shop::write_machine_with_tables(
       model, args.folder, extras,
-      "virtual shop: the true machine's tables and location errors are off by " + format_number(args.low * 100) + "-" +
-          format_number(args.high * 100) + " % (volcomp perturb, seed " + std::to_string(args.seed) + ")",
+      "virtual shop: the true machine's tables and location errors are off by " + number_text(args.low * 100) + "-" +
+          number_text(args.high * 100) + " % (volcomp perturb, seed " + std::to_string(args.seed) + ")",
       locations);
   report << "volcomp perturb: " << written << " (" << extras.size() << " perturbation tables, " << locations.size()
          << " location errors changed)\n";

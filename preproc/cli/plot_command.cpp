@@ -14,7 +14,7 @@
 
 #include "vc/tables/atomic_file.hpp"
 #include "commands.hpp"
-#include "format.hpp"
+#include "vc/tables/number_text.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/plot/machine_plot.hpp"
 #include "vc/plot/volume_map.hpp"
@@ -37,7 +37,7 @@ struct PlotArgs {
 void draw_volume_map(const plot::VolumeMap& map, const machine::Model& model, const PlotArgs& args, std::ostream& out) {
   namespace fs = std::filesystem;
   out << "volume map: " << map.poses << " poses (" << map.first_mm.size() << " x " << map.second_mm.size() << " x "
-      << map.levels_mm.size() << " levels per sheet), " << format_fixed(map.seconds, 1) << " s; largest |e| in um:\n";
+      << map.levels_mm.size() << " levels per sheet), " << fixed_text(map.seconds, 1) << " s; largest |e| in um:\n";
   for (std::size_t s = 0; s < map.sheets.size(); ++s) {
     const plot::MapSheet& sheet = map.sheets[s];
     // Another plane than the default gets its own names: volume_xz_L100_rotary0.png.
@@ -45,9 +45,9 @@ void draw_volume_map(const plot::VolumeMap& map, const machine::Model& model, co
     if (!args.plane.empty()) name.insert(std::string("volume_").size(), args.plane + "_");
     const std::string image = (fs::path(args.folder) / (name + "." + args.format)).string();
     plot::draw(plot::volume_map_plot(map, s, model, image));
-    out << "  L " << format_number(sheet.tool_length_mm) << " mm, " << sheet.rotary.label << ":";
+    out << "  L " << number_text(sheet.tool_length_mm) << " mm, " << sheet.rotary.label << ":";
     for (std::size_t c = 0; c < map.compensations.size(); ++c)
-      out << (c ? ", " : " ") << map.compensations[c] << " " << format_fixed(sheet.max_um[c], 1);
+      out << (c ? ", " : " ") << map.compensations[c] << " " << fixed_text(sheet.max_um[c], 1);
     out << "  (" << image << ")\n";
   }
   if (!map.controller_title.empty()) out << "  (tables: " << map.controller_title << ", fitted over these tool lengths)\n";
@@ -90,7 +90,7 @@ int run_plot(const PlotArgs& args, std::ostream& out) {
   out << "location errors: " << listing << " (every axis line and the spindle line; the non-zero ones:)\n";
   for (const plot::LocationRow& r : plot::location_errors(model))
     if (r.value != 0.0)
-      out << "  " << r.symbol << " = " << format_fixed(r.value, 3) << " " << r.unit << "  (" << r.meaning << ")\n";
+      out << "  " << r.symbol << " = " << fixed_text(r.value, 3) << " " << r.unit << "  (" << r.meaning << ")\n";
   if (map) draw_volume_map(*map, model, args, out);
   return 0;
 }

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "format.hpp"
+#include "vc/tables/number_text.hpp"
 #include "poses_csv.hpp"
 #include "vc/machine/correct.hpp"
 #include "vc/machine/deviations.hpp"
@@ -26,7 +26,7 @@ struct PoseArgs {
 };
 
 void write_row(std::ostream& out, const std::vector<double>& values) {
-  for (std::size_t i = 0; i < values.size(); ++i) out << (i ? "," : "") << format_number(values[i]);
+  for (std::size_t i = 0; i < values.size(); ++i) out << (i ? "," : "") << number_text(values[i]);
   out << '\n';
 }
 

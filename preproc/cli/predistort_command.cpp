@@ -17,7 +17,7 @@
 
 #include "vc/tables/atomic_file.hpp"
 #include "commands.hpp"
-#include "format.hpp"
+#include "vc/tables/number_text.hpp"
 #include "program_files.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/predistort/deflection.hpp"
@@ -143,12 +143,12 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
     const auto& c = summary.corrector;
     report << "volcomp predistort: " << summary.lines << " lines, " << c.moves << " moves corrected into "
            << c.pieces << " pieces (" << c.corrections << " corrections, " << c.checks << " checks), max error at "
-           << "the check points " << format_fixed(c.max_checked_error_mm * 1e3, 3) << " um (tolerance "
-           << format_number(args.tolerance_mm * 1e3) << " um)";
+           << "the check points " << fixed_text(c.max_checked_error_mm * 1e3, 3) << " um (tolerance "
+           << number_text(args.tolerance_mm * 1e3) << " um)";
     if (model.rotary_count() > 0)
-      report << ", tool direction " << format_fixed(c.max_checked_error_rad * 1e6, 2) << " urad (tolerance "
-             << format_number(args.tolerance_rad * 1e6) << " urad)";
-    if (c.max_deflection_mm > 0) report << ", max deflection taken off " << format_fixed(c.max_deflection_mm * 1e3, 3) << " um";
+      report << ", tool direction " << fixed_text(c.max_checked_error_rad * 1e6, 2) << " urad (tolerance "
+             << number_text(args.tolerance_rad * 1e6) << " urad)";
+    if (c.max_deflection_mm > 0) report << ", max deflection taken off " << fixed_text(c.max_deflection_mm * 1e3, 3) << " um";
     report << '\n';
     if (summary.written_as_is_moves)
       report << "  " << summary.written_as_is_moves

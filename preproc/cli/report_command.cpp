@@ -10,7 +10,7 @@
 
 #include "vc/tables/atomic_file.hpp"
 #include "commands.hpp"
-#include "format.hpp"
+#include "vc/tables/number_text.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/report/accuracy_report.hpp"
 
@@ -39,7 +39,7 @@ int run_report(const ReportArgs& args, std::ostream& out) {
   if (!args.measurements.empty()) command << " --measurements " << args.measurements;
   if (!args.tool_lengths_mm.empty()) {
     command << " --tool-lengths ";
-    for (std::size_t k = 0; k < args.tool_lengths_mm.size(); ++k) command << (k ? "," : "") << format_number(args.tool_lengths_mm[k]);
+    for (std::size_t k = 0; k < args.tool_lengths_mm.size(); ++k) command << (k ? "," : "") << number_text(args.tool_lengths_mm[k]);
   }
   command << " -o " << args.output;
   options.command = command.str();

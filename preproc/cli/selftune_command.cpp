@@ -12,7 +12,7 @@
 
 #include "vc/tables/atomic_file.hpp"
 #include "commands.hpp"
-#include "format.hpp"
+#include "vc/tables/number_text.hpp"
 #include "program_files.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/predistort/missing_tool_offset.hpp"
@@ -61,7 +61,7 @@ std::ifstream open_program(const std::string& path) {
   return in;
 }
 
-std::string um(double mm) { return format_fixed(mm * 1e3, 3) + " um"; }
+std::string um(double mm) { return fixed_text(mm * 1e3, 3) + " um"; }
 
 void print_first_part(const shop::FirstPart& part, std::ostream& report) {
   report << "volcomp selftune: " << part.points.size() << " points matched to the program's cuts; points differ from "
@@ -90,7 +90,7 @@ void print_tilt(const shop::TiltSummary& t, std::ostream& report) {
     return;
   }
   report << "  tool axis: turned on " << t.tilted << " pieces of 5-axis moves (largest "
-         << format_fixed(t.largest_rad * 1e6, 2) << " urad)";
+         << fixed_text(t.largest_rad * 1e6, 2) << " urad)";
   if (t.unseen > 0)
     report << "; not estimated on " << t.unseen
            << " (the points near them lie at one height along the tool: a tilt cannot be told from a shift of the tip)";
@@ -121,9 +121,9 @@ std::string tool_length_cause(const predistort::ToolLengthLog& log, const machin
   if (!first) return text;
   const auto tool = predistort::likely_tool(model, files.tools ? &*files.tools : nullptr, first->tool);
   if (!tool || tool->length_mm == model.correction_length(0.0)) return text;
-  const std::string reference = format_number(model.tool_length_reference_mm) + " mm";
+  const std::string reference = number_text(model.tool_length_reference_mm) + " mm";
   text += "\n  corrected for L = " + reference + " (no G43 in " + program + " from line " +
-          std::to_string(first->line) + "); if the part was cut with a " + format_number(tool->length_mm) +
+          std::to_string(first->line) + "); if the part was cut with a " + number_text(tool->length_mm) +
           " mm tool (" +
           (tool->tool >= 0 ? "tool " + std::to_string(tool->tool) + " in the tool table"
                            : std::string("the machine file's tool_length_mm")) +
@@ -194,8 +194,8 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
                                     args.world, args.tolerance_mm};
   if (args.strategy == "local") {
     provenance.title = "volcomp selftune (local): " + args.input + " shifted against the deviations of " + args.report +
-                       " (gain " + format_number(args.gain) + ", radius " + format_number(args.radius_mm) + " mm, angle " +
-                       format_number(args.angle_deg) + " deg)";
+                       " (gain " + number_text(args.gain) + ", radius " + number_text(args.radius_mm) + " mm, angle " +
+                       number_text(args.angle_deg) + " deg)";
     shop::LocalOptions local{args.gain, args.radius_mm, args.step_mm, args.tolerance_mm, world, args.angle_deg};
     local.tilt = !args.no_tilt;
     local.min_support = args.min_support;
@@ -205,8 +205,8 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
       summary = shop::shift_program(model, part, in, files.setup(args.input, model, tcp), provenance, out, local);
     });
     report << "  local: " << summary.moves_shifted << " moves shifted (" << summary.pieces << " pieces); the tool tip "
-           << "cuts " << format_fixed(summary.cutting_length_mm, 1) << " mm of path on the part, "
-           << format_fixed(summary.covered_fraction * 100, 1) << " % of it within " << format_number(args.radius_mm)
+           << "cuts " << fixed_text(summary.cutting_length_mm, 1) << " mm of path on the part, "
+           << fixed_text(summary.covered_fraction * 100, 1) << " % of it within " << number_text(args.radius_mm)
            << " mm of measured points\n"
            << "  largest shift of the tool tip on the part " << um(summary.largest_tip_shift_mm)
            << "; of the linear axes' words " << um(summary.largest_axis_shift_mm)
@@ -233,15 +233,15 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
   report << "  model: " << fit.parameters << " unknowns (" << fit.unobservable << " not seen by this part) from "
          << fit.points << " points; deviation left unexplained by the model RMS " << um(fit.rms_before_mm) << " -> "
          << um(fit.rms_after_mm) << " after the fit; largest change " << um(fit.largest_change_mm) << ", "
-         << format_fixed(fit.largest_change_rad * 1e6, 3) << " urad\n";
+         << fixed_text(fit.largest_change_rad * 1e6, 3) << " urad\n";
   if (fit.scatter_mm >= 0.0) {
     report << "  noise: the model leaves " << um(fit.scatter_mm) << " per point (1 sigma; " << fit.points
-           << " points, " << format_fixed(fit.effective_unknowns, 1) << " effective unknowns); carried into the tuned "
+           << " points, " << fixed_text(fit.effective_unknowns, 1) << " effective unknowns); carried into the tuned "
            << "model at the measured points " << um(fit.carried_median_mm) << " median, " << um(fit.carried_largest_mm)
            << " largest (1 sigma)\n";
   } else {
     report << "  noise: no freedom left to estimate it (" << fit.points << " points, "
-           << format_fixed(fit.effective_unknowns, 1) << " effective unknowns)\n";
+           << fixed_text(fit.effective_unknowns, 1) << " effective unknowns)\n";
   }
   if (next) {
     report << "  the next part, " << args.next_points << " (" << fit.next_points << " points on " << args.next_program
@@ -256,7 +256,7 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
     int listed = 0;
     for (const shop::ModelFit::Unseen& u : fit.next_unseen) {
       if (u.largest_mm_per_unit * 1e3 < 0.05 || listed == 6) break;
-      felt += (listed++ ? ", " : " ") + u.symbol + " " + format_fixed(u.largest_mm_per_unit * 1e3, 2) + " um per " +
+      felt += (listed++ ? ", " : " ") + u.symbol + " " + fixed_text(u.largest_mm_per_unit * 1e3, 2) + " um per " +
               (u.angle ? "urad" : "um");
     }
     report << "    what this part cannot see: the deviations it did not determine stay as the machine file has them, "
@@ -268,14 +268,14 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
              << "; measure those (laser, ballbar, probing) or cut a first part that exercises them\n";
   }
   if (fit.effective_unknowns > 0.5 * fit.points)
-    report << "  warning: the fit spends " << format_fixed(fit.effective_unknowns, 0) << " of " << fit.points
+    report << "  warning: the fit spends " << fixed_text(fit.effective_unknowns, 0) << " of " << fit.points
            << " points on its unknowns, so much of the report's noise goes into the tables: measure more points, "
               "or tune fewer deviations (--deviations)\n";
   // What the part determines: the resolution of each deviation (1: the points alone fix it,
   // 0: only the ridge and the smoothness do, it stays at the model's value).
   std::string shares, unseen;
   for (const auto& s : fit.seen) {
-    shares += " " + s.symbol + " " + format_fixed(s.share, 2);
+    shares += " " + s.symbol + " " + fixed_text(s.share, 2);
     if (s.share < 0.05) unseen += " " + s.symbol;
   }
   report << "  resolution (1: determined by the points alone, 0: not seen):" << shares << "\n"
@@ -284,7 +284,7 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
   for (const shop::LocationValue& v : fit.locations) {
     const char letter = model.axes[static_cast<std::size_t>(v.joint)].letter;
     report << "  " << tables::ErrorSymbol{v.component, letter, true}.name() << " = "
-           << (v.component < 3 ? um(v.value) : format_fixed(v.value * 1e6, 3) + " urad") << "\n";
+           << (v.component < 3 ? um(v.value) : fixed_text(v.value * 1e6, 3) + " urad") << "\n";
   }
   report << "  updated machine file: " << machine_out << "\n";
   const machine::Model tuned = machine::load_machine(machine_out);  // as the module will read it

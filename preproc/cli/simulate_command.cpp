@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "format.hpp"
+#include "vc/tables/number_text.hpp"
 #include "program_files.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/predistort/tool_lengths.hpp"
@@ -69,7 +69,7 @@ int run_simulate(const SimulateArgs& args, std::ostream& report) {
                    });
   });
   report << "volcomp simulate: " << samples << " samples (" << cutting << " cutting), largest tool-tip error while cutting "
-         << format_fixed(largest * 1e3, 3) << " um\n";
+         << fixed_text(largest * 1e3, 3) << " um\n";
   if (compensation) {  // it corrects: for which L, and from where (a second, interpreting-only pass)
     std::ifstream again(args.input, std::ios::binary);
     const predistort::ToolLengthLog lengths = predistort::read_tool_lengths(
