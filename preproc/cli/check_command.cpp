@@ -6,13 +6,12 @@
 #include <cmath>
 #include <iostream>
 #include <memory>
-#include <random>
 
 #include "commands.hpp"
 #include "vc/tables/number_text.hpp"
+#include "vc/identify/travel_survey.hpp"
 #include "vc/init/home_position.hpp"
 #include "vc/init/joint_room.hpp"
-#include "vc/machine/correct.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/tables/slope.hpp"
 
@@ -90,60 +89,6 @@ double print_tables(const Model& model, std::ostream& out) {
   return worst;
 }
 
-struct Survey {
-  int poses = 0;
-  double max_position_mm = 0.0, max_direction_rad = 0.0;
-  Joints worst_position, worst_direction;
-  int failures = 0;
-  Joints first_failure;
-  int max_iterations = 0;
-  double max_residual_mm = 0.0;
-};
-
-void survey_pose(const Model& model, const Joints& q, Survey& s) {
-  const double L = model.tool_length_mm;
-  const machine::VolumetricError e = machine::volumetric_error(model, q, L);
-  ++s.poses;
-  if (e.position_mm.norm() > s.max_position_mm) {
-    s.max_position_mm = e.position_mm.norm();
-    s.worst_position = q;
-  }
-  if (e.direction_rad.norm() > s.max_direction_rad) {
-    s.max_direction_rad = e.direction_rad.norm();
-    s.worst_direction = q;
-  }
-  const machine::Correction c = machine::correct(model, q, L);
-  if (c.status != machine::Status::Ok) {
-    if (s.failures++ == 0) s.first_failure = q;
-    return;
-  }
-  s.max_iterations = std::max(s.max_iterations, c.iterations);
-  s.max_residual_mm = std::max(s.max_residual_mm, c.residual_mm);
-}
-
-// The corners and middles of the travel (3 levels per axis), then random poses.
-Survey survey(const Model& model, int samples) {
-  Survey s;
-  const int n = model.joint_count();
-  int grid = 1;
-  for (int j = 0; j < n; ++j) grid *= 3;
-  Joints q(n);
-  for (int k = 0; k < grid; ++k) {
-    for (int j = 0, rest = k; j < n; ++j, rest /= 3) {
-      const Axis& a = model.axes[j];
-      q[j] = a.travel_min + 0.5 * (rest % 3) * (a.travel_max - a.travel_min);
-    }
-    survey_pose(model, q, s);
-  }
-  std::mt19937_64 rng(20261123);
-  for (int k = 0; k < samples; ++k) {
-    for (int j = 0; j < n; ++j)
-      q[j] = std::uniform_real_distribution<double>(model.axes[j].travel_min, model.axes[j].travel_max)(rng);
-    survey_pose(model, q, s);
-  }
-  return s;
-}
-
 // The configuration's limits against the correction: where it leaves each axis after homing,
 // and the room its joint limits leave at the ends of the travel; false if either fails.
 bool print_configuration(const Model& model, const std::string& ini_path, std::ostream& out) {
@@ -194,7 +139,7 @@ int run_check(const CheckArgs& args, std::ostream& out) {
   const double steepest = print_tables(model, out);
   for (const Warning& w : model.warnings) out << w.to_string() << '\n';
 
-  const Survey s = survey(model, args.samples);
+  const identify::TravelSurvey s = identify::survey_travel(model, args.samples);
   out << "volumetric error over the travel (" << s.poses << " poses, L = " << number_text(model.tool_length_mm)
       << " mm):\n  largest position error " << fixed_text(s.max_position_mm * 1e3, 2) << " um at "
       << pose_text(model, s.worst_position) << '\n';
