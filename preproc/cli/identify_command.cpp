@@ -24,6 +24,7 @@
 #include "vc/identify/sphere_centres.hpp"
 #include "vc/identify/laser_into_machine.hpp"
 #include "vc/identify/laser_runs.hpp"
+#include "vc/identify/laser_table.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/plot/circle_plot.hpp"
 #include "vc/plot/component_names.hpp"
@@ -96,6 +97,9 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
                              "straightness, EAX angular, ECC a rotary axis's positioning ...)");
   if (args.direction != "both" && args.direction != "up" && args.direction != "down")
     throw std::runtime_error("--direction must be both, up or down");
+  const identify::TableValue which = args.direction == "up"     ? identify::TableValue::Up
+                                     : args.direction == "down" ? identify::TableValue::Down
+                                                                : identify::TableValue::Bidirectional;
   if (!args.plot.empty()) refuse_plot_over(args.plot, {args.runs, args.output});
   const identify::LaserRuns runs = identify::read_laser_runs(args.runs);
   const bool rotary_axis = symbol->axis == 'A' || symbol->axis == 'B' || symbol->axis == 'C';
@@ -141,7 +145,7 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
     out << "  " << number_text(t.target) << "  " << fixed_text(t.mean_up * unit, 3) << "  "
         << fixed_text(t.mean_down * unit, 3) << "  " << fixed_text(t.mean * unit, 3) << "  "
         << fixed_text(t.reversal * unit, 3) << "  " << fixed_text(t.r * unit, 3) << "\n";
-  if (runs.rotary && e.targets.size() > 2 && std::abs(e.targets.back().target - e.targets.front().target - 360.0) < 1e-9)
+  if (identify::spans_one_turn(e, runs.rotary))
     out << "One full turn: 0 and 360 deg are one position; the table holds their mean there (periodic), they read "
         << shown(e.targets.front().mean, q) << " and " << shown(e.targets.back().mean, q) << ".\n";
   out << "The table holds the " << (args.direction == "both" ? "mean bidirectional deviation" : args.direction + " runs' mean")
@@ -152,17 +156,7 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
         << " puts it into the COMP_FILE";
   out << ".\n";
 
-  // The table: one row per target, ascending (a rotary axis over exactly one turn: 0 and 360 deg
-  // are one position, whose two readings are averaged, as the loader requires of a periodic table).
-  const auto value = [&](const identify::TargetStatistics& t) {
-    return args.direction == "up" ? t.mean_up : args.direction == "down" ? t.mean_down : t.mean;
-  };
-  const bool full_turn = runs.rotary && e.targets.size() > 2 &&
-                         std::abs(e.targets.back().target - e.targets.front().target - 360.0) < 1e-9;
-  std::vector<std::pair<double, double>> rows;  // target (mm or deg), value (mm or rad)
-  for (const identify::TargetStatistics& t : e.targets) rows.emplace_back(t.target, value(t));
-  if (full_turn) rows.front().second = rows.back().second = (rows.front().second + rows.back().second) / 2;
-  std::sort(rows.begin(), rows.end());
+  const std::vector<identify::TableRow> rows = identify::laser_table_rows(e, runs.rotary, which);
   std::vector<std::string> comments = {
       args.error + " identified by volcomp identify laser from " + args.runs + " (ISO 230-2: " +
       std::to_string(e.runs_up) + " runs up, " + std::to_string(e.runs_down) + " down" +
@@ -244,10 +238,8 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
                                                         : identify::Reference::None;
     for (const identify::TargetStatistics& t : e.targets) {
       line.targets.push_back(t.target);
-      line.readings.push_back(value(t));
-      // The standard uncertainty of the value: of a mean of n runs, s / sqrt(n).
-      const double up = t.s_up / std::sqrt(static_cast<double>(e.runs_up)), down = t.s_down / std::sqrt(static_cast<double>(e.runs_down));
-      line.noise.push_back(args.direction == "up" ? up : args.direction == "down" ? down : std::hypot(up, down) / 2);
+      line.readings.push_back(identify::table_value(t, which));
+      line.noise.push_back(identify::table_value_uncertainty(t, e, which));
     }
     line.squareness = args.squareness;
     line.comments = comments;
