@@ -19,6 +19,7 @@
 #include "vc/predistort/predistort.hpp"
 #include "vc/predistort/tool_lengths.hpp"
 #include "vc/shop/first_part.hpp"
+#include "vc/shop/model_fit_advice.hpp"
 #include "vc/shop/selftune_local.hpp"
 #include "vc/shop/selftune_model.hpp"
 #include "vc/tables/source_error.hpp"
@@ -227,6 +228,7 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
   }
   shop::ModelOptions fit_options{args.deviations, args.nodes, args.regularisation, args.smoothness};
   const shop::ModelFit fit = shop::fit_tables(model, part, fit_options, next ? &*next : nullptr);
+  const shop::ModelFitAdvice advice = shop::advise(fit);
   const std::string comment = "volcomp selftune (model) from " + args.report;
   const std::string machine_out =
       shop::write_machine_with_tables(model, args.tables_out, fit.tables, comment, fit.locations);
@@ -253,12 +255,9 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
       report << "    this report's noise, carried: not known (no freedom left to estimate the noise)\n";
     // The deviations this part could not determine, as the next part's points feel them.
     std::string felt;
-    int listed = 0;
-    for (const shop::ModelFit::Unseen& u : fit.next_unseen) {
-      if (u.largest_mm_per_unit * 1e3 < 0.05 || listed == 6) break;
-      felt += (listed++ ? ", " : " ") + u.symbol + " " + fixed_text(u.largest_mm_per_unit * 1e3, 2) + " um per " +
+    for (const shop::ModelFit::Unseen& u : advice.felt_by_next)
+      felt += (felt.empty() ? " " : ", ") + u.symbol + " " + fixed_text(u.largest_mm_per_unit * 1e3, 2) + " um per " +
               (u.angle ? "urad" : "um");
-    }
     report << "    what this part cannot see: the deviations it did not determine stay as the machine file has them, "
               "and their error is not known from this report, so it cannot be bounded here. ";
     if (felt.empty())
@@ -267,17 +266,15 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
       report << "The next part's points feel it most from (largest move per unit of the undetermined part):" << felt
              << "; measure those (laser, ballbar, probing) or cut a first part that exercises them\n";
   }
-  if (fit.effective_unknowns > 0.5 * fit.points)
+  if (advice.overfitted)
     report << "  warning: the fit spends " << fixed_text(fit.effective_unknowns, 0) << " of " << fit.points
            << " points on its unknowns, so much of the report's noise goes into the tables: measure more points, "
               "or tune fewer deviations (--deviations)\n";
   // What the part determines: the resolution of each deviation (1: the points alone fix it,
   // 0: only the ridge and the smoothness do, it stays at the model's value).
   std::string shares, unseen;
-  for (const auto& s : fit.seen) {
-    shares += " " + s.symbol + " " + fixed_text(s.share, 2);
-    if (s.share < 0.05) unseen += " " + s.symbol;
-  }
+  for (const auto& s : fit.seen) shares += " " + s.symbol + " " + fixed_text(s.share, 2);
+  for (const std::string& symbol : advice.unseen) unseen += " " + symbol;
   report << "  resolution (1: determined by the points alone, 0: not seen):" << shares << "\n"
          << "  not seen by this part (< 0.05: kept at the model; restrict with --deviations):"
          << (unseen.empty() ? " none" : unseen) << "\n";
