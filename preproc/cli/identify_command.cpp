@@ -22,6 +22,7 @@
 #include "vc/identify/iso230_2.hpp"
 #include "vc/identify/probe_log.hpp"
 #include "vc/identify/sphere_centres.hpp"
+#include "vc/identify/squareness_choice.hpp"
 #include "vc/identify/laser_into_machine.hpp"
 #include "vc/identify/laser_runs.hpp"
 #include "vc/identify/laser_table.hpp"
@@ -397,12 +398,8 @@ int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
   for (const auto& t : terms)
     out << "  " << t.symbol << " = " << arcsec(t.value_rad) << " (the file has " << arcsec(t.in_file_rad) << ")\n";
   if (args.machine_out.empty()) return 0;
-  // The term the file already uses (a non-zero value), else the first; the others stay as they
-  // are: one squareness, the file's other errors included.
-  const identify::SquarenessTerm* chosen = terms.empty() ? nullptr : &terms.front();
-  for (const auto& t : terms)
-    if (!args.symbol.empty() ? t.symbol == args.symbol : t.in_file_rad != 0.0) chosen = &t;
-  if (!chosen || (!args.symbol.empty() && chosen->symbol != args.symbol))
+  const identify::SquarenessTerm* chosen = identify::chosen_squareness_term(terms, args.symbol);
+  if (!chosen)
     throw std::runtime_error("--symbol " + args.symbol + " is not one of the squareness terms of the " + test.plane + " plane");
   const auto s = tables::parse_error_symbol(chosen->symbol);
   const std::string written = shop::write_machine_with_tables(*model, args.machine_out, {}, "volcomp identify circle from " + args.run,
