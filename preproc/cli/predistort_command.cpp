@@ -174,12 +174,11 @@ void add_predistort_command(CLI::App& volcomp, int& exit_code) {
                   "LinuxCNC parameter file (.var): work offsets G54..G59.3, G28/G30 homes");
   cmd->add_option("--tool-table", args->tool_table, "LinuxCNC tool table (.tbl): tool lengths");
   cmd->add_option("--machine-units", args->machine_units,
-              "the unit of the tool table and the .var file, LinuxCNC's [TRAJ]LINEAR_UNITS: mm or inch")
+                  "the unit of the tool table and the .var file, LinuxCNC's [TRAJ]LINEAR_UNITS: mm or inch")
       ->capture_default_str();
-  cmd
-      ->add_option("--subroutine-path", args->subroutine_path,
-                   "folders searched for NAME.ngc when o<name> call or M98 P<n> finds no definition in the program "
-                   "(the INI's [RS274NGC]SUBROUTINE_PATH and [DISPLAY]PROGRAM_PREFIX); ':'-separated or repeated")
+  cmd->add_option("--subroutine-path", args->subroutine_path,
+                  "folders searched for NAME.ngc when o<name> call or M98 P<n> finds no definition in the program "
+                  "(the INI's [RS274NGC]SUBROUTINE_PATH and [DISPLAY]PROGRAM_PREFIX); ':'-separated or repeated")
       ->delimiter(':')
       ->check(CLI::ExistingDirectory);
   cmd->add_option("--line-map", args->line_map,

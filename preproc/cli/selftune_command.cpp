@@ -331,7 +331,7 @@ void add_selftune_command(CLI::App& volcomp, int& exit_code) {
   cmd->add_option("--var", args->var_file, "LinuxCNC parameter file (.var)");
   cmd->add_option("--tool-table", args->tool_table, "LinuxCNC tool table (.tbl): lengths and diameters");
   cmd->add_option("--machine-units", args->machine_units,
-                "the unit of the tool table and the .var file, LinuxCNC's [TRAJ]LINEAR_UNITS: mm or inch")
+                  "the unit of the tool table and the .var file, LinuxCNC's [TRAJ]LINEAR_UNITS: mm or inch")
       ->capture_default_str();
   cmd->add_option("--world", args->world, "world convention: axes or tcp")->capture_default_str();
   cmd->add_flag("--compensated", args->compensated,
