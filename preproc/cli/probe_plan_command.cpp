@@ -12,6 +12,7 @@
 
 #include "commands.hpp"
 #include "vc/identify/probe_plan.hpp"
+#include "vc/identify/rotary_grid.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/tables/atomic_file.hpp"
 
@@ -61,15 +62,7 @@ int run_probe_plan(const ProbePlanArgs& args, std::ostream& out) {
     if (values.empty()) throw std::runtime_error("--grid " + std::string(1, a.letter) + "=...: the positions of " + a.letter);
     axes.push_back(values);
   }
-  std::vector<std::size_t> index(axes.size(), 0);
-  while (true) {
-    std::vector<double> pose;
-    for (std::size_t r = 0; r < axes.size(); ++r) pose.push_back(axes[r][index[r]]);
-    o.rotary_positions.push_back(pose);
-    std::size_t r = 0;
-    while (r < axes.size() && ++index[r] == axes[r].size()) index[r++] = 0;
-    if (r == axes.size()) break;
-  }
+  o.rotary_positions = identify::rotary_grid(axes);
   const std::string program = identify::probe_plan(model, o);
   if (args.output.empty() || args.output == "-") {
     out << program;
