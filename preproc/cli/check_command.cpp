@@ -1,20 +1,28 @@
 // `volcomp check MACHINE`: loads and validates a machine, then summarises it: axes, location
 // errors, tables (coverage, slope margin), the largest volumetric error over the travel and
 // whether the correction converges everywhere. Exit 0 only if the machine is usable.
+#include <CLI/CLI.hpp>
 #include <cctype>
 #include <cmath>
-#include <random>
+#include <iostream>
+#include <memory>
 
 #include "commands.hpp"
-#include "format.hpp"
+#include "vc/tables/number_text.hpp"
+#include "vc/identify/travel_survey.hpp"
 #include "vc/init/home_position.hpp"
 #include "vc/init/joint_room.hpp"
-#include "vc/machine/correct.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/tables/slope.hpp"
 
 namespace vc::cli {
 namespace {
+
+struct CheckArgs {
+  std::string machine;
+  int samples = 10000;  // random poses over the travel, besides the grid of corners and mids
+  std::string ini;      // a LinuxCNC configuration loading this machine: where it homes, or ""
+};
 
 using machine::Axis;
 using machine::AxisType;
@@ -30,7 +38,7 @@ std::string pose_text(const Model& model, const Joints& q) {
   std::string s;
   for (int j = 0; j < model.joint_count(); ++j)
     s += (j ? " " : "") + std::string(1, static_cast<char>(std::tolower(model.axes[j].letter))) + "=" +
-         format_fixed(q[j], 3);
+         fixed_text(q[j], 3);
   return s;
 }
 
@@ -39,14 +47,14 @@ void print_axes(const Model& model, std::ostream& out) {
   for (const Axis& a : model.axes) {
     out << "  " << a.letter << "  " << (a.type == AxisType::Linear ? "linear" : "rotary") << ", "
         << (a.chain == machine::Chain::Tool ? "tool chain" : "workpiece chain") << ", travel "
-        << format_number(a.travel_min) << " .. " << format_number(a.travel_max) << ' ' << unit_of(a);
+        << number_text(a.travel_min) << " .. " << number_text(a.travel_max) << ' ' << unit_of(a);
     for (int k = 0; k < 3; ++k)
       if (a.location_mm[k] != 0.0)
-        out << ", E" << "XYZ"[k] << '0' << a.letter << " = " << format_fixed(a.location_mm[k] * 1e3, 2) << " um";
+        out << ", E" << "XYZ"[k] << '0' << a.letter << " = " << fixed_text(a.location_mm[k] * 1e3, 2) << " um";
     for (int k = 0; k < 3; ++k)
       if (a.location_rad[k] != 0.0)
         out << ", E" << "ABC"[k] << '0' << a.letter << " = "
-            << format_fixed(a.location_rad[k] * kRadToArcsec, 2) << " arcsec";
+            << fixed_text(a.location_rad[k] * kRadToArcsec, 2) << " arcsec";
     out << '\n';
   }
   auto chain = [&](const std::vector<int>& c) {
@@ -66,73 +74,19 @@ double print_tables(const Model& model, std::ostream& out) {
     const tables::ErrorTable& t = bound.table;
     out << "  " << t.path() << "\n     grid";
     for (const auto& g : t.grid())
-      out << ' ' << g.name() << ": " << g.nodes.size() << " nodes " << format_number(g.nodes.front()) << " .. "
-          << format_number(g.nodes.back()) << ' ' << g.unit() << (g.periodic ? " (periodic)" : "");
+      out << ' ' << g.name() << ": " << g.nodes.size() << " nodes " << number_text(g.nodes.front()) << " .. "
+          << number_text(g.nodes.back()) << ' ' << g.unit() << (g.periodic ? " (periodic)" : "");
     out << "; " << (t.interpolation() == tables::Interpolation::Cubic ? "cubic" : "linear") << "; columns";
     for (const auto& c : t.columns())
       out << ' ' << c.symbol.name();
     const tables::SteepestSlope s = tables::steepest_slope(t);
     worst = std::max(worst, s.fraction);
-    out << "\n     steepest slope " << format_fixed(100.0 * s.fraction, 1) << " % of the invertibility limit";
+    out << "\n     steepest slope " << fixed_text(100.0 * s.fraction, 1) << " % of the invertibility limit";
     if (s.column >= 0) out << " (" << t.columns()[s.column].symbol.name() << ")";
     out << '\n';
   }
   if (model.tables.empty()) out << "  (none)\n";
   return worst;
-}
-
-struct Survey {
-  int poses = 0;
-  double max_position_mm = 0.0, max_direction_rad = 0.0;
-  Joints worst_position, worst_direction;
-  int failures = 0;
-  Joints first_failure;
-  int max_iterations = 0;
-  double max_residual_mm = 0.0;
-};
-
-void survey_pose(const Model& model, const Joints& q, Survey& s) {
-  const double L = model.tool_length_mm;
-  const machine::VolumetricError e = machine::volumetric_error(model, q, L);
-  ++s.poses;
-  if (e.position_mm.norm() > s.max_position_mm) {
-    s.max_position_mm = e.position_mm.norm();
-    s.worst_position = q;
-  }
-  if (e.direction_rad.norm() > s.max_direction_rad) {
-    s.max_direction_rad = e.direction_rad.norm();
-    s.worst_direction = q;
-  }
-  const machine::Correction c = machine::correct(model, q, L);
-  if (c.status != machine::Status::Ok) {
-    if (s.failures++ == 0) s.first_failure = q;
-    return;
-  }
-  s.max_iterations = std::max(s.max_iterations, c.iterations);
-  s.max_residual_mm = std::max(s.max_residual_mm, c.residual_mm);
-}
-
-// The corners and middles of the travel (3 levels per axis), then random poses.
-Survey survey(const Model& model, int samples) {
-  Survey s;
-  const int n = model.joint_count();
-  int grid = 1;
-  for (int j = 0; j < n; ++j) grid *= 3;
-  Joints q(n);
-  for (int k = 0; k < grid; ++k) {
-    for (int j = 0, rest = k; j < n; ++j, rest /= 3) {
-      const Axis& a = model.axes[j];
-      q[j] = a.travel_min + 0.5 * (rest % 3) * (a.travel_max - a.travel_min);
-    }
-    survey_pose(model, q, s);
-  }
-  std::mt19937_64 rng(20261123);
-  for (int k = 0; k < samples; ++k) {
-    for (int j = 0; j < n; ++j)
-      q[j] = std::uniform_real_distribution<double>(model.axes[j].travel_min, model.axes[j].travel_max)(rng);
-    survey_pose(model, q, s);
-  }
-  return s;
 }
 
 // The configuration's limits against the correction: where it leaves each axis after homing,
@@ -146,32 +100,30 @@ bool print_configuration(const Model& model, const std::string& ini_path, std::o
   out << "LinuxCNC configuration " << ini_path << ":\n  after homing (each joint at its HOME, no tool length offset, world="
       << (home.convention == machine::WorldConvention::Tcp ? "tcp" : "axes") << "):\n";
   for (const init::HomedAxis& a : home.axes)
-    out << "    " << a.letter << "  HOME " << format_number(a.home) << " -> world " << format_fixed(a.world, 4)
-        << unit(a.letter) << ", axis limits " << format_number(a.min_limit) << " .. " << format_number(a.max_limit) << '\n';
+    out << "    " << a.letter << "  HOME " << number_text(a.home) << " -> world " << fixed_text(a.world, 4)
+        << unit(a.letter) << ", axis limits " << number_text(a.min_limit) << " .. " << number_text(a.max_limit) << '\n';
   out << "  the joints over the axes' limits, corrected (" << room.poses << " poses, L = "
-      << format_number(room.tool_lengths_mm[0]) << " and " << format_number(room.tool_lengths_mm[1]) << " mm):\n";
+      << number_text(room.tool_lengths_mm[0]) << " and " << number_text(room.tool_lengths_mm[1]) << " mm):\n";
   for (const init::JointRoom& j : room.joints)
-    out << "    joint " << j.joint << " (" << j.letter << ")  " << format_fixed(j.lowest, 4) << " .. "
-        << format_fixed(j.highest, 4) << unit(j.letter) << ", joint limits " << format_number(j.min_limit) << " .. "
-        << format_number(j.max_limit) << '\n';
+    out << "    joint " << j.joint << " (" << j.letter << ")  " << fixed_text(j.lowest, 4) << " .. "
+        << fixed_text(j.highest, 4) << unit(j.letter) << ", joint limits " << number_text(j.min_limit) << " .. "
+        << number_text(j.max_limit) << '\n';
   for (const std::string& p : home.problems) out << "  error: " << p << '\n';
   for (const std::string& p : room.problems) out << "  error: " << p << '\n';
   return home.problems.empty() && room.problems.empty();
 }
-
-}  // namespace
 
 int run_check(const CheckArgs& args, std::ostream& out) {
   const Model model = machine::load_machine(args.machine);
   out << "machine " << model.info.name;
   if (!model.info.serial.empty()) out << " (" << model.info.serial << ")";
   out << "\n  file " << model.path << "\n  measured: " << (model.info.measured_on.empty() ? "date not given" : model.info.measured_on)
-      << ", " << format_fixed(model.info.temperature_C, 1) << " C";
+      << ", " << fixed_text(model.info.temperature_C, 1) << " C";
   if (!model.info.instrument.empty()) out << ", " << model.info.instrument;
-  out << "\n  tool length L = " << format_number(model.tool_length_mm) << " mm (checked here); in use L = "
-      << format_number(model.tool_length_reference_mm) << " mm + the G43 tool length offset; pole fade "
-      << format_number(model.fade.start_rad * 180.0 / M_PI) << " .. "
-      << format_number(model.fade.full_rad * 180.0 / M_PI) << " deg\n";
+  out << "\n  tool length L = " << number_text(model.tool_length_mm) << " mm (checked here); in use L = "
+      << number_text(model.tool_length_reference_mm) << " mm + the G43 tool length offset; pole fade "
+      << number_text(model.fade.start_rad * 180.0 / M_PI) << " .. "
+      << number_text(model.fade.full_rad * 180.0 / M_PI) << " deg\n";
   if (model.tool_axis_coordinate)
     out << "  tool-axis coordinate " << model.tool_axis_coordinate << ": moves the tool along its own axis (volkins: "
         << "the nominal TCP tool is L + " << static_cast<char>(std::tolower(model.tool_axis_coordinate))
@@ -180,26 +132,26 @@ int run_check(const CheckArgs& args, std::ostream& out) {
   if (!model.temperatures.empty()) {  // the survey below is at their references
     out << "temperature inputs (degC; surveyed at the reference):";
     for (const machine::TemperatureInput& t : model.temperatures)
-      out << ' ' << t.name << ' ' << format_number(t.reference_degC) << " (" << format_number(t.min_degC) << " .. "
-          << format_number(t.max_degC) << ')';
+      out << ' ' << t.name << ' ' << number_text(t.reference_degC) << " (" << number_text(t.min_degC) << " .. "
+          << number_text(t.max_degC) << ')';
     out << '\n';
   }
   const double steepest = print_tables(model, out);
   for (const Warning& w : model.warnings) out << w.to_string() << '\n';
 
-  const Survey s = survey(model, args.samples);
-  out << "volumetric error over the travel (" << s.poses << " poses, L = " << format_number(model.tool_length_mm)
-      << " mm):\n  largest position error " << format_fixed(s.max_position_mm * 1e3, 2) << " um at "
+  const identify::TravelSurvey s = identify::survey_travel(model, args.samples);
+  out << "volumetric error over the travel (" << s.poses << " poses, L = " << number_text(model.tool_length_mm)
+      << " mm):\n  largest position error " << fixed_text(s.max_position_mm * 1e3, 2) << " um at "
       << pose_text(model, s.worst_position) << '\n';
   if (model.rotary_count() > 0 || s.max_direction_rad > 0.0)
-    out << "  largest tool-direction error " << format_fixed(s.max_direction_rad * kRadToUrad, 2)
+    out << "  largest tool-direction error " << fixed_text(s.max_direction_rad * kRadToUrad, 2)
         << " urad at " << pose_text(model, s.worst_direction) << '\n';
-  out << "invertibility margin: steepest table slope " << format_fixed(100.0 * steepest, 1)
+  out << "invertibility margin: steepest table slope " << fixed_text(100.0 * steepest, 1)
       << " % of the limit\n";
   out << "correction: ";
   if (s.failures == 0) {
     out << "converged at all " << s.poses << " poses, at most " << s.max_iterations
-        << " Newton steps, largest residual " << format_number(s.max_residual_mm) << " mm\n";
+        << " Newton steps, largest residual " << number_text(s.max_residual_mm) << " mm\n";
   } else {
     out << "FAILED at " << s.failures << " of " << s.poses << " poses, first at "
         << pose_text(model, s.first_failure) << '\n';
@@ -208,6 +160,22 @@ int run_check(const CheckArgs& args, std::ostream& out) {
   if (!args.ini.empty()) usable = print_configuration(model, args.ini, out) && usable;
   out << (usable ? "usable\n" : "NOT usable\n");
   return usable ? 0 : 1;
+}
+
+}  // namespace
+
+void add_check_command(CLI::App& volcomp, int& exit_code) {
+  auto args = std::make_shared<CheckArgs>();
+  CLI::App* cmd = volcomp.add_subcommand(
+      "check", "Validate a machine file and its tables; summarise axes, tables, error and invertibility");
+  cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
+  cmd->add_option("--samples", args->samples, "random poses sampled over the travel")
+      ->capture_default_str();
+  cmd->add_option("--ini", args->ini,
+                  "a LinuxCNC configuration that loads this machine with volkins: is every axis inside its "
+                  "limits after homing?")
+      ->check(CLI::ExistingFile);
+  cmd->callback([args, &exit_code] { exit_code = run_check(*args, std::cout); });
 }
 
 }  // namespace vc::cli

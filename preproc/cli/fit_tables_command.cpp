@@ -3,17 +3,21 @@
 // model's tool-tip error is smallest, judged against no compensation, the usual practice and
 // the full correction; DIR/report.csv and DIR/tables.csv, the controller's own files
 // (LinuxCNC COMP_FILEs, Sinumerik AX_EEC.INI / NC_CEC.INI), a summary on stdout.
+#include <CLI/CLI.hpp>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
+#include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 
 #include "vc/tables/atomic_file.hpp"
 #include "commands.hpp"
-#include "format.hpp"
+#include "vc/tables/number_text.hpp"
 #include "program_files.hpp"
 #include "vc/fit_tables/comp_file.hpp"
 #include "vc/fit_tables/sinumerik_file.hpp"
@@ -26,6 +30,25 @@
 
 namespace vc::cli {
 namespace {
+
+struct FitTablesArgs {
+  std::string machine;
+  std::string controller;                      // a shipped controller's name or a controller file
+  std::string output;                          // folder: report.csv, tables.csv, the controller's files
+  std::string criterion = "minimax";           // minimax or ls
+  std::vector<std::string> tool_lengths;       // mm, fitted (default: the machine file's)
+  std::vector<std::string> check_tool_lengths; // mm, judged only (default: midpoints, largest + 50)
+  std::vector<std::string> rotary;             // "B=-90,-60,0": rotary grid positions, deg
+  std::optional<int> nodes;                    // per table (default: the controller's)
+  std::optional<int> levels;                   // grid positions per joint (default: the nodes)
+  int fresh = 2000;                            // random poses per tool length in each fresh set
+  double ridge = 1e-2, smoothness = 1e-2;      // the fit's regularisation (fit.hpp)
+  std::vector<std::string> programs;           // part programs whose poses are fitted too
+  bool programs_only = false;                  // ... and nothing else (the volume judged only)
+  std::string tool_table, var_file;            // LinuxCNC's files the programs are read with
+  std::string machine_units = "mm";
+  std::vector<std::string> reversal;           // "X=runs.csv": laser runs whose reversal the COMP_FILE takes
+};
 
 double parse_number(const std::string& text, const std::string& option) {
   double v = 0;
@@ -57,10 +80,10 @@ void draw_figures(const fit_tables::Study& study, const std::string& machine_nam
           "modified_Delta[um],full_Delta[um]\n";
   for (const fit_tables::ReportRow& r : study.rows) {
     if (r.set != "fresh") continue;
-    data << format_number(r.tool_length_mm) << " mm" << (r.fitted_length ? "" : " (check)")
-         << ',' << format_number(r.tool_length_mm) << ',' << (r.fitted_length ? "yes" : "no");
-    for (const auto* f : {&r.none, &r.usual, &r.modified, &r.full}) data << ',' << format_fixed(f->max_um, 3);
-    for (const auto* f : {&r.none, &r.usual, &r.modified, &r.full}) data << ',' << format_fixed(f->delta_um, 3);
+    data << number_text(r.tool_length_mm) << " mm" << (r.fitted_length ? "" : " (check)")
+         << ',' << number_text(r.tool_length_mm) << ',' << (r.fitted_length ? "yes" : "no");
+    for (const auto* f : {&r.none, &r.usual, &r.modified, &r.full}) data << ',' << fixed_text(f->max_um, 3);
+    for (const auto* f : {&r.none, &r.usual, &r.modified, &r.full}) data << ',' << fixed_text(f->delta_um, 3);
     data << '\n';
   }
   std::ostringstream gp;
@@ -111,7 +134,7 @@ std::string padded(std::string text, std::size_t width) {
 }
 
 std::string figure(const fit_tables::Figures& f) {
-  std::string s = format_fixed(f.max_um, 1) + " / " + format_fixed(f.delta_um, 1);
+  std::string s = fixed_text(f.max_um, 1) + " / " + fixed_text(f.delta_um, 1);
   return std::string(s.size() < 15 ? 15 - s.size() : 1, ' ') + s;
 }
 
@@ -145,12 +168,10 @@ fit_tables::JointReversal read_reversal(const machine::Model& model, const std::
   out << "reversal of " << letter << " from " << path << " (" << e.targets.size() << " targets, "
       << e.runs_up << " + " << e.runs_down << " runs"
       << (left_out.empty() ? "" : ", " + std::to_string(left_out.size()) + " left out")
-      << "): B = " << format_fixed(e.reversal * shown, 2) << symbol << ", mean " << format_fixed(e.mean_reversal * shown, 2)
+      << "): B = " << fixed_text(e.reversal * shown, 2) << symbol << ", mean " << fixed_text(e.mean_reversal * shown, 2)
       << symbol << ": its COMP_FILE's forward column is the value - B/2, the reverse one + B/2\n";
   return r;
 }
-
-}  // namespace
 
 int run_fit_tables(const FitTablesArgs& args, std::ostream& out) {
   namespace fs = std::filesystem;
@@ -245,12 +266,12 @@ int run_fit_tables(const FitTablesArgs& args, std::ostream& out) {
         << " poses of the part programs + " << study.added_poses << " worst fresh poses refitted\n";
   if (o.fit.criterion == fit_tables::Criterion::Minimax && study.fit.lower_bound_mm > 0)
     out << "minimax (Lawson): " << study.fit.iterations << " solves; the linearised M is within "
-        << format_fixed(100.0 * (study.fit.linear_max_mm / study.fit.lower_bound_mm - 1.0), 2)
+        << fixed_text(100.0 * (study.fit.linear_max_mm / study.fit.lower_bound_mm - 1.0), 2)
         << " % of the minimax's lower bound\n";
   out << "M / Delta of the tool-tip error, um (nonlinear model):\n"
       << "  L [mm]  fitted  set                none           usual        modified            full\n";
   for (const fit_tables::ReportRow& r : study.rows) {
-    std::string l = format_number(r.tool_length_mm);
+    std::string l = number_text(r.tool_length_mm);
     out << "  " << std::string(l.size() < 6 ? 6 - l.size() : 1, ' ') << l << "  "
         << (r.fitted_length ? "  yes " : "   no ") << "  " << padded(r.set, 8) << figure(r.none)
         << figure(r.usual) << figure(r.modified) << figure(r.full) << '\n';
@@ -262,6 +283,56 @@ int run_fit_tables(const FitTablesArgs& args, std::ostream& out) {
   for (const auto& f : files) out << ' ' << f.first;
   out << '\n';
   return 0;
+}
+
+}  // namespace
+
+void add_fit_tables_command(CLI::App& volcomp, int& exit_code) {
+  auto args = std::make_shared<FitTablesArgs>();
+  CLI::App* cmd = volcomp.add_subcommand(
+      "fit-tables", "A stock controller's compensation tables by the source's modified method: all tables fitted "
+                    "together to the whole model; M and Delta of none, usual practice, fit and full correction");
+  cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
+  cmd->add_option("--controller", args->controller,
+                  "the controller's tables: linuxcnc, source14, or a controller file (.toml)")->required();
+  cmd->add_option("-o,--output", args->output,
+                  "folder for report.csv, tables.csv and the controller's own files (LinuxCNC: COMP_FILEs "
+                  "and the INI lines)")
+      ->required();
+  cmd->add_option("--criterion", args->criterion, "minimax (smallest M) or ls (least squares)")
+      ->capture_default_str();
+  cmd->add_option("--tool-lengths", args->tool_lengths,
+                  "tool lengths L fitted together, mm, e.g. 0,100,200 (default: the machine file's)")
+      ->delimiter(',');
+  cmd->add_option("--check-tool-lengths", args->check_tool_lengths,
+                  "tool lengths judged but not fitted, mm (default: the fitted ones' midpoints and largest + 50)")
+      ->delimiter(',');
+  cmd->add_option("--rotary", args->rotary,
+                  "rotary grid positions, deg, e.g. --rotary B=-90,-60,-30,0,30 (repeatable; default: --levels "
+                  "positions over the travel)");
+  cmd->add_option("--nodes", args->nodes, "nodes per table, equally spaced over the travel (default: the controller's)");
+  cmd->add_option("--levels", args->levels, "grid positions per joint (default: the nodes)");
+  cmd->add_option("--fresh", args->fresh, "random poses per tool length in each fresh set (refit, check)")
+      ->capture_default_str();
+  cmd->add_option("--ridge", args->ridge,
+                  "regularisation towards the usual practice, relative to each table's tip effect")
+      ->capture_default_str();
+  cmd->add_option("--smoothness", args->smoothness,
+                  "regularisation of the second differences of the departure from the usual practice")
+      ->capture_default_str();
+  cmd->add_option("--programs", args->programs,
+                  "part programs (G-code, as the stock machine runs them: no TCP) whose poses are fitted "
+                  "with the grid and judged as the set 'programs'")
+      ->check(CLI::ExistingFile);
+  cmd->add_flag("--programs-only", args->programs_only,
+                "fit the programs' poses alone: best for those parts, the volume only judged");
+  cmd->add_option("--tool-table", args->tool_table, "LinuxCNC tool table the programs are read with");
+  cmd->add_option("--var", args->var_file, "LinuxCNC parameter file (.var) the programs are read with");
+  cmd->add_option("--machine-units", args->machine_units, "mm or inch: LinuxCNC's [TRAJ]LINEAR_UNITS");
+  cmd->add_option("--reversal", args->reversal,
+                  "AXIS=RUNS.csv: laser runs of that axis in both directions (identify laser's format); "
+                  "its COMP_FILE's forward and reverse columns take their reversal B (LinuxCNC only; repeatable)");
+  cmd->callback([args, &exit_code] { exit_code = run_fit_tables(*args, std::cout); });
 }
 
 }  // namespace vc::cli

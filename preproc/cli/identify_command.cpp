@@ -2,6 +2,7 @@
 // cycle) evaluated as ISO 230-2 does, suspicious runs left out with the reason, and the error
 // table written in the project's CSV format with the measurement's metadata
 // (preproc/identify/README.md).
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -9,20 +10,22 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <set>
 #include <sstream>
 
 #include "vc/tables/atomic_file.hpp"
 #include "commands.hpp"
-#include "format.hpp"
+#include "vc/tables/number_text.hpp"
 #include "vc/identify/circular_test.hpp"
 #include "vc/identify/iso230_2.hpp"
 #include "vc/identify/probe_log.hpp"
-#include "vc/identify/probe_plan.hpp"
 #include "vc/identify/sphere_centres.hpp"
+#include "vc/identify/squareness_choice.hpp"
 #include "vc/identify/laser_into_machine.hpp"
 #include "vc/identify/laser_runs.hpp"
+#include "vc/identify/laser_table.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/plot/circle_plot.hpp"
 #include "vc/plot/component_names.hpp"
@@ -35,10 +38,44 @@
 namespace vc::cli {
 namespace {
 
+struct IdentifyLaserArgs {
+  std::string runs;                // laser runs CSV
+  std::string error;               // the component error they measure: EXX, EYX, EAX, ECC, ...
+  std::string output;              // error table CSV (optional)
+  std::string direction = "both";  // the table's value: both (mean bidirectional), up or down
+  bool keep_all = false;           // keep the suspicious runs in the evaluation
+  std::string machine;             // machine file whose axis takes the table (optional)
+  std::string machine_out;         // folder: the table and a copy of the machine file using it
+  std::string at;                  // where the axes stood, "x=0,y=-160,..." (default: the runs' "# at:")
+  std::optional<double> tool_length_mm;  // the tool-side optic L below the gauge point (default: the runs')
+  std::vector<double> tool_point_mm;     // ... or anywhere in the spindle frame, x,y,z from the gauge point
+  std::string reference;           // datum, least-squares, end-points, none (default by the error)
+  std::string squareness;          // a straightness's slope goes into this location error (e.g. EC0X)
+  std::string plot;                // the ISO 230-2 graph, .png or .svg (optional, gnuplot; its data: .csv beside it)
+};
+
+struct IdentifyCircleArgs {
+  std::string run;                 // circular test CSV
+  std::string plane;               // XY, YZ, ZX (default: the file's "# plane:")
+  std::optional<double> radius_mm; // default: the file's "# radius_mm:"
+  std::string machine;             // to express the squareness in its terms (optional)
+  std::string machine_out;         // folder for the machine file with the squareness set
+  std::string symbol;              // which term takes it (default: the one the file uses)
+  std::string plot;                // the polar plot, .png or .svg (optional, gnuplot; its data: .csv beside it)
+};
+
+struct IdentifySphereArgs {
+  std::string machine;
+  std::string centres;                   // CSV: the joints at the sphere's centre, one pose per row
+  std::vector<std::string> deviations;   // location errors to identify (default: all of the rotary axes)
+  std::optional<double> tool_length_mm;  // default: the machine file's
+  std::string machine_out;               // folder for the machine file with the identified values
+};
+
 // Deviations in um (lengths) or arcsec and urad (angles), for the printout.
 std::string shown(double v, tables::Quantity q) {
-  return q == tables::Quantity::Length ? format_fixed(v * 1e3, 2) + " um"
-                                       : format_fixed(v * 648000.0 / M_PI, 2) + " arcsec (" + format_fixed(v * 1e6, 1) + " urad)";
+  return q == tables::Quantity::Length ? fixed_text(v * 1e3, 2) + " um"
+                                       : fixed_text(v * 648000.0 / M_PI, 2) + " arcsec (" + fixed_text(v * 1e6, 1) + " urad)";
 }
 
 // A plot's image or its data CSV (the image's name with .csv) must not be one of the command's
@@ -54,8 +91,6 @@ void refuse_plot_over(const std::string& image, const std::vector<std::string>& 
                                ", which is " + file + ", a file of this command: give the plot another name");
 }
 
-}  // namespace
-
 int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
   const auto symbol = tables::parse_error_symbol(args.error);
   if (!symbol || symbol->location)
@@ -63,6 +98,9 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
                              "straightness, EAX angular, ECC a rotary axis's positioning ...)");
   if (args.direction != "both" && args.direction != "up" && args.direction != "down")
     throw std::runtime_error("--direction must be both, up or down");
+  const identify::TableValue which = args.direction == "up"     ? identify::TableValue::Up
+                                     : args.direction == "down" ? identify::TableValue::Down
+                                                                : identify::TableValue::Bidirectional;
   if (!args.plot.empty()) refuse_plot_over(args.plot, {args.runs, args.output});
   const identify::LaserRuns runs = identify::read_laser_runs(args.runs);
   const bool rotary_axis = symbol->axis == 'A' || symbol->axis == 'B' || symbol->axis == 'C';
@@ -105,10 +143,10 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
       << (q == tables::Quantity::Length ? "um" : "urad") << ")\n";
   const double unit = q == tables::Quantity::Length ? 1e3 : 1e6;
   for (const identify::TargetStatistics& t : e.targets)
-    out << "  " << format_number(t.target) << "  " << format_fixed(t.mean_up * unit, 3) << "  "
-        << format_fixed(t.mean_down * unit, 3) << "  " << format_fixed(t.mean * unit, 3) << "  "
-        << format_fixed(t.reversal * unit, 3) << "  " << format_fixed(t.r * unit, 3) << "\n";
-  if (runs.rotary && e.targets.size() > 2 && std::abs(e.targets.back().target - e.targets.front().target - 360.0) < 1e-9)
+    out << "  " << number_text(t.target) << "  " << fixed_text(t.mean_up * unit, 3) << "  "
+        << fixed_text(t.mean_down * unit, 3) << "  " << fixed_text(t.mean * unit, 3) << "  "
+        << fixed_text(t.reversal * unit, 3) << "  " << fixed_text(t.r * unit, 3) << "\n";
+  if (identify::spans_one_turn(e, runs.rotary))
     out << "One full turn: 0 and 360 deg are one position; the table holds their mean there (periodic), they read "
         << shown(e.targets.front().mean, q) << " and " << shown(e.targets.back().mean, q) << ".\n";
   out << "The table holds the " << (args.direction == "both" ? "mean bidirectional deviation" : args.direction + " runs' mean")
@@ -119,17 +157,7 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
         << " puts it into the COMP_FILE";
   out << ".\n";
 
-  // The table: one row per target, ascending (a rotary axis over exactly one turn: 0 and 360 deg
-  // are one position, whose two readings are averaged, as the loader requires of a periodic table).
-  const auto value = [&](const identify::TargetStatistics& t) {
-    return args.direction == "up" ? t.mean_up : args.direction == "down" ? t.mean_down : t.mean;
-  };
-  const bool full_turn = runs.rotary && e.targets.size() > 2 &&
-                         std::abs(e.targets.back().target - e.targets.front().target - 360.0) < 1e-9;
-  std::vector<std::pair<double, double>> rows;  // target (mm or deg), value (mm or rad)
-  for (const identify::TargetStatistics& t : e.targets) rows.emplace_back(t.target, value(t));
-  if (full_turn) rows.front().second = rows.back().second = (rows.front().second + rows.back().second) / 2;
-  std::sort(rows.begin(), rows.end());
+  const std::vector<identify::TableRow> rows = identify::laser_table_rows(e, runs.rotary, which);
   std::vector<std::string> comments = {
       args.error + " identified by volcomp identify laser from " + args.runs + " (ISO 230-2: " +
       std::to_string(e.runs_up) + " runs up, " + std::to_string(e.runs_down) + " down" +
@@ -211,10 +239,8 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
                                                         : identify::Reference::None;
     for (const identify::TargetStatistics& t : e.targets) {
       line.targets.push_back(t.target);
-      line.readings.push_back(value(t));
-      // The standard uncertainty of the value: of a mean of n runs, s / sqrt(n).
-      const double up = t.s_up / std::sqrt(static_cast<double>(e.runs_up)), down = t.s_down / std::sqrt(static_cast<double>(e.runs_down));
-      line.noise.push_back(args.direction == "up" ? up : args.direction == "down" ? down : std::hypot(up, down) / 2);
+      line.readings.push_back(identify::table_value(t, which));
+      line.noise.push_back(identify::table_value_uncertainty(t, e, which));
     }
     line.squareness = args.squareness;
     line.comments = comments;
@@ -240,7 +266,7 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
         csv << "# the readings: the tool against the part, as the instrument read them (error = actual - nominal)\n";
         csv << static_cast<char>(std::tolower(symbol->axis)) << (runs.rotary ? "[deg]" : "[mm]") << "," << args.error
             << (q == tables::Quantity::Length ? "[um]" : "[urad]") << "\n";
-        for (const auto& [target, v] : rows) csv << format_number(target) << "," << format_fixed(v * unit, 4) << "\n";
+        for (const auto& [target, v] : rows) csv << number_text(target) << "," << fixed_text(v * unit, 4) << "\n";
       });
       out << "table written: " << args.output << " (the readings: the tool against the part)";
       if (args.machine_out.empty())
@@ -256,23 +282,23 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
   const identify::LaserIntoMachine r =
       identify::laser_into_machine(*model, line, args.machine_out, "volcomp identify laser from " + args.runs);
 
-  const auto in_unit = [&](double v) { return format_fixed(v * unit, 3) + (q == tables::Quantity::Length ? " um" : " urad"); };
+  const auto in_unit = [&](double v) { return fixed_text(v * unit, 3) + (q == tables::Quantity::Length ? " um" : " urad"); };
   const auto per = [&](double slope) {  // um/m or urad/m (linear axes), per deg (rotary)
-    return format_fixed(slope * unit * (runs.rotary ? 1.0 : 1e3), 3) +
+    return fixed_text(slope * unit * (runs.rotary ? 1.0 : 1e3), 3) +
            (q == tables::Quantity::Length ? " um" : " urad") + (runs.rotary ? "/deg" : "/m");
   };
   out << "Into " << args.machine << " (" << model->info.name << "): the runs at " << at << ", the tool-side optic at "
-      << format_number(line.setup.tool_point_mm.x()) << ", " << format_number(line.setup.tool_point_mm.y()) << ", "
-      << format_number(line.setup.tool_point_mm.z()) << " mm in the spindle frame; " << symbol->axis << "'s "
+      << number_text(line.setup.tool_point_mm.x()) << ", " << number_text(line.setup.tool_point_mm.y()) << ", "
+      << number_text(line.setup.tool_point_mm.z()) << " mm in the spindle frame; " << symbol->axis << "'s "
       << (model->axes[static_cast<std::size_t>(joint)].chain == machine::Chain::Tool ? "tool" : "workpiece")
       << " chain, the file's other errors as they are\n";
-  const auto arcsec = [](double rad) { return format_fixed(rad * 648000.0 / M_PI, 3) + " arcsec"; };
+  const auto arcsec = [](double rad) { return fixed_text(rad * 648000.0 / M_PI, 3) + " arcsec"; };
   switch (line.reference) {
     case identify::Reference::None:
       out << "  reference none: the readings as they are\n";
       break;
     case identify::Reference::Datum:
-      out << "  reference datum: the runs read " << in_unit(r.runs_reference.offset) << " at " << format_number(line.targets.front())
+      out << "  reference datum: the runs read " << in_unit(r.runs_reference.offset) << " at " << number_text(line.targets.front())
           << (runs.rotary ? " deg" : " mm") << " (the laser's zero), the file " << in_unit(r.file_reference.offset)
           << ": the file keeps its origin\n";
       break;
@@ -308,10 +334,10 @@ int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
   if (!args.plane.empty()) test.plane = args.plane;
   if (args.radius_mm) test.radius_mm = *args.radius_mm;
   const identify::CircularEvaluation e = identify::evaluate_circular_test(test);
-  const auto um = [](double mm) { return format_fixed(mm * 1e3, 2) + " um"; };
-  const auto arcsec = [](double rad) { return format_fixed(rad * 648000.0 / M_PI, 2) + " arcsec"; };
+  const auto um = [](double mm) { return fixed_text(mm * 1e3, 2) + " um"; };
+  const auto arcsec = [](double rad) { return fixed_text(rad * 648000.0 / M_PI, 2) + " arcsec"; };
   const std::string first(1, test.plane[0]), second(1, test.plane[1]);
-  out << "volcomp identify circle: " << args.run << ", plane " << test.plane << ", radius " << format_number(test.radius_mm)
+  out << "volcomp identify circle: " << args.run << ", plane " << test.plane << ", radius " << number_text(test.radius_mm)
       << " mm\n";
   for (const auto& [key, value] : test.metadata) out << "  " << key << ": " << value << "\n";
   // Each figure's text once: printed (joined as before) and, with --plot, written on the plot.
@@ -326,12 +352,12 @@ int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
                       centre = "centre offset " + first + " " + um(f.centre_first_mm) + ", " + second + " " +
                                um(f.centre_second_mm),
                       square = "squareness " + arcsec(f.squareness_rad) + ", scale mismatch " +
-                               format_fixed(f.scale_mismatch * 1e6, 2) + " um/m",
+                               fixed_text(f.scale_mismatch * 1e6, 2) + " um/m",
                       residual = "left by the first-order fit RMS " + um(f.residual_rms_mm);
     std::string spikes = "reversal spikes:";
     std::vector<std::string> spike_texts;
     for (const auto& [angle, height] : f.spikes) {
-      spike_texts.push_back(format_number(angle) + " deg " + um(height));
+      spike_texts.push_back(number_text(angle) + " deg " + um(height));
       spikes += " " + spike_texts.back();
     }
     out << "  " << (f.ccw ? "ccw" : "cw ") << ": " << deviation << ", " << radial << "; " << centre << "; " << square << "; "
@@ -343,7 +369,7 @@ int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
       plotted.push_back("      " + spike_texts[k] + (k + 1 < spike_texts.size() ? ",  " + spike_texts[k + 1] : ""));
   }
   const std::string theta = "theta = " + arcsec(e.squareness_rad),
-                    mismatch = "scale mismatch e" + first + " - e" + second + " = " + format_fixed(e.scale_mismatch * 1e6, 2) +
+                    mismatch = "scale mismatch e" + first + " - e" + second + " = " + fixed_text(e.scale_mismatch * 1e6, 2) +
                                " um/m";
   out << "squareness (both directions' mean; " << first << "' = " << first << " + theta " << second << "): " << theta
       << "; " << mismatch << " (a positioning table's slope: measure it with the laser)\n";
@@ -353,7 +379,7 @@ int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
   if (!args.machine.empty()) model = machine::load_machine(args.machine);
   if (!args.plot.empty()) {
     plot::CirclePlotText text;
-    text.title = "Circular test (ISO 230-4), plane " + test.plane + ", radius " + format_number(test.radius_mm) + " mm" +
+    text.title = "Circular test (ISO 230-4), plane " + test.plane + ", radius " + number_text(test.radius_mm) + " mm" +
                  (model ? ", " + model->info.name : std::string());
     std::string metadata;
     for (const auto& [key, value] : test.metadata)
@@ -372,12 +398,8 @@ int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
   for (const auto& t : terms)
     out << "  " << t.symbol << " = " << arcsec(t.value_rad) << " (the file has " << arcsec(t.in_file_rad) << ")\n";
   if (args.machine_out.empty()) return 0;
-  // The term the file already uses (a non-zero value), else the first; the others stay as they
-  // are: one squareness, the file's other errors included.
-  const identify::SquarenessTerm* chosen = terms.empty() ? nullptr : &terms.front();
-  for (const auto& t : terms)
-    if (!args.symbol.empty() ? t.symbol == args.symbol : t.in_file_rad != 0.0) chosen = &t;
-  if (!chosen || (!args.symbol.empty() && chosen->symbol != args.symbol))
+  const identify::SquarenessTerm* chosen = identify::chosen_squareness_term(terms, args.symbol);
+  if (!chosen)
     throw std::runtime_error("--symbol " + args.symbol + " is not one of the squareness terms of the " + test.plane + " plane");
   const auto s = tables::parse_error_symbol(chosen->symbol);
   const std::string written = shop::write_machine_with_tables(*model, args.machine_out, {}, "volcomp identify circle from " + args.run,
@@ -411,22 +433,22 @@ int run_identify_sphere(const IdentifySphereArgs& args, std::ostream& out) {
     const identify::ProbeLog log = identify::read_probe_log(args.centres, model);
     poses = log.centres;
     if (!args.tool_length_mm && log.probe_length_mm > 0) length = log.probe_length_mm;
-    out << "probe log: " << poses.size() << " poses, sphere " << format_number(log.sphere_diameter_mm) << " mm, ball "
-        << format_number(log.ball_diameter_mm) << " mm; the points lie within "
-        << format_fixed(log.largest_residual_um, 2) << " um of their fitted spheres\n";
+    out << "probe log: " << poses.size() << " poses, sphere " << number_text(log.sphere_diameter_mm) << " mm, ball "
+        << number_text(log.ball_diameter_mm) << " mm; the points lie within "
+        << fixed_text(log.largest_residual_um, 2) << " um of their fitted spheres\n";
   } else {
     poses = identify::read_sphere_centres(args.centres, model);
   }
   const identify::SphereFit fit = identify::identify_from_sphere(model, poses, args.deviations, length);
   const auto value = [](int component, double v) {
-    return component < 3 ? format_fixed(v * 1e3, 2) + " um" : format_fixed(v * 648000.0 / M_PI, 2) + " arcsec";
+    return component < 3 ? fixed_text(v * 1e3, 2) + " um" : fixed_text(v * 648000.0 / M_PI, 2) + " arcsec";
   };
   out << "volcomp identify sphere: " << args.centres << ", " << poses.size() << " poses, " << model.info.name
-      << " at L = " << format_number(length) << " mm (the linear axes' errors enter the centres: identify after the "
+      << " at L = " << number_text(length) << " mm (the linear axes' errors enter the centres: identify after the "
       << "linear tables are in the machine file)\n"
       << "  " << fit.rank << " of " << fit.parameters << " location errors identified, condition "
-      << format_fixed(fit.condition, 1) << "; sphere centre in the part frame " << format_fixed(fit.centre_mm.x(), 4) << ", "
-      << format_fixed(fit.centre_mm.y(), 4) << ", " << format_fixed(fit.centre_mm.z(), 4) << " mm\n";
+      << fixed_text(fit.condition, 1) << "; sphere centre in the part frame " << fixed_text(fit.centre_mm.x(), 4) << ", "
+      << fixed_text(fit.centre_mm.y(), 4) << ", " << fixed_text(fit.centre_mm.z(), 4) << " mm\n";
   for (const identify::LocationEstimate& e : fit.estimates)
     out << "  " << e.symbol << " = " << value(e.component, e.value) << " +- " << value(e.component, e.uncertainty)
         << " (standard uncertainty; the file has " << value(e.component, e.before) << ")\n";
@@ -437,9 +459,9 @@ int run_identify_sphere(const IdentifySphereArgs& args, std::ostream& out) {
   }
   out << "  distance of the model's tip from the common centre per pose, um (before -> after):";
   for (std::size_t k = 0; k < poses.size(); ++k)
-    out << (k % 6 ? " " : "\n   ") << "line " << poses[k].line << ": " << format_fixed(fit.residual_before_um[k], 2) << " -> "
-        << format_fixed(fit.residual_after_um[k], 2);
-  out << "\n  RMS " << format_fixed(fit.rms_before_um, 3) << " -> " << format_fixed(fit.rms_after_um, 3) << " um\n";
+    out << (k % 6 ? " " : "\n   ") << "line " << poses[k].line << ": " << fixed_text(fit.residual_before_um[k], 2) << " -> "
+        << fixed_text(fit.residual_after_um[k], 2);
+  out << "\n  RMS " << fixed_text(fit.rms_before_um, 3) << " -> " << fixed_text(fit.rms_after_um, 3) << " um\n";
   if (args.machine_out.empty()) return 0;
   std::vector<shop::LocationValue> values;
   for (const identify::LocationEstimate& e : fit.estimates)
@@ -451,51 +473,78 @@ int run_identify_sphere(const IdentifySphereArgs& args, std::ostream& out) {
   return 0;
 }
 
-int run_probe_plan(const ProbePlanArgs& args, std::ostream& out) {
-  const machine::Model model = machine::load_machine(args.machine);
-  identify::ProbePlanOptions o;
-  if (args.centre.size() != 3) throw std::runtime_error("--centre X,Y,Z: the sphere's centre at rotary 0 (the DRO, mm)");
-  o.centre_mm = Eigen::Vector3d(args.centre[0], args.centre[1], args.centre[2]);
-  o.sphere_diameter_mm = args.sphere_diameter_mm;
-  o.ball_diameter_mm = args.ball_diameter_mm;
-  o.probe_length_mm = args.probe_length_mm.value_or(0.0);
-  o.log_file = args.log_file;
-  o.clearance_mm = args.clearance_mm;
-  o.probe_feed_mm_min = args.probe_feed_mm_min;
-  o.back_off_mm = args.back_off_mm;
-  o.touch_feed_mm_min = args.touch_feed_mm_min;
-  if (!(o.sphere_diameter_mm > 0) || !(o.ball_diameter_mm >= 0)) throw std::runtime_error("the diameters must be positive");
-  // --grid B=0,-30,-60 --grid C=0,90,180,270: every combination, in joint order.
-  std::vector<std::vector<double>> axes;
-  for (int j = 0; j < model.joint_count(); ++j) {
-    const machine::Axis& a = model.axes[static_cast<std::size_t>(j)];
-    if (a.type != machine::AxisType::Rotary) continue;
-    std::vector<double> values;
-    for (const std::string& g : args.grid)
-      if (g.size() > 2 && std::toupper(static_cast<unsigned char>(g[0])) == a.letter && g[1] == '=') {
-        std::stringstream list(g.substr(2));
-        for (std::string v; std::getline(list, v, ',');) values.push_back(std::stod(v));
-      }
-    if (values.empty()) throw std::runtime_error("--grid " + std::string(1, a.letter) + "=...: the positions of " + a.letter);
-    axes.push_back(values);
-  }
-  std::vector<std::size_t> index(axes.size(), 0);
-  while (true) {
-    std::vector<double> pose;
-    for (std::size_t r = 0; r < axes.size(); ++r) pose.push_back(axes[r][index[r]]);
-    o.rotary_positions.push_back(pose);
-    std::size_t r = 0;
-    while (r < axes.size() && ++index[r] == axes[r].size()) index[r++] = 0;
-    if (r == axes.size()) break;
-  }
-  const std::string program = identify::probe_plan(model, o);
-  if (args.output.empty() || args.output == "-") {
-    out << program;
-  } else {
-    tables::write_atomically(args.output, [&](std::ostream& file) { file << program; });
-    std::cerr << "volcomp probe-plan: " << args.output << ", " << o.rotary_positions.size() << " poses, 5 points each\n";
-  }
-  return 0;
+void add_laser_command(CLI::App* identify, int& exit_code) {
+  auto args = std::make_shared<IdentifyLaserArgs>();
+  CLI::App* cmd = identify->add_subcommand(
+      "laser", "Laser interferometer runs (ISO 230-2): evaluation, suspicious runs, the error table");
+  cmd->add_option("RUNS", args->runs, "runs CSV: target[mm],run,direction,deviation[um] or target[mm],1+[um],1-[um],...")
+      ->required();
+  cmd->add_option("--error", args->error, "the component error the runs measure: EXX, EYX, EAX, ECC, ...")->required();
+  cmd->add_option("-o,--output", args->output, "error table CSV in the project's format");
+  cmd->add_option("--direction", args->direction, "the table's value: both (mean bidirectional), up or down")
+      ->capture_default_str();
+  cmd->add_flag("--keep-all", args->keep_all, "keep the suspicious runs in the evaluation");
+  cmd->add_option("--machine", args->machine, "machine file whose axis takes the identified table");
+  cmd->add_option("--machine-out", args->machine_out,
+                  "folder: the table and a copy of the machine file with it in place of the error's old values");
+  cmd->add_option("--at", args->at,
+                  "where every axis stood during the runs, e.g. x=0,y=-160,z=-150,b=0,c=0 (default: the runs' '# at:')");
+  cmd->add_option("--tool-length", args->tool_length_mm,
+                  "the tool-side optic's distance below the spindle gauge point, mm (default: the runs' "
+                  "'# tool_length_mm:')");
+  cmd->add_option("--tool-point", args->tool_point_mm,
+                  "the tool-side optic in the spindle frame from the gauge point, X,Y,Z mm (the runs' "
+                  "'# tool_point_mm:'); a tool's tip L long is 0,0,-L")
+      ->delimiter(',')
+      ->expected(3);
+  cmd->add_option("--reference", args->reference,
+                  "none: the readings as they are (positioning, angular: the default); datum: the laser zeroed "
+                  "at the first target, the file keeps its value there; least-squares (a straightness's default) "
+                  "or end-points: the straightness about that line, its slope a squareness")
+      ->check(CLI::IsMember({"datum", "least-squares", "end-points", "none"}));
+  cmd->add_option("--squareness", args->squareness,
+                  "the location error that takes a straightness's slope, e.g. EC0X or EC0Y for EYX (default: the "
+                  "one the file uses, else the measured axis's own)");
+  cmd->add_option("--plot", args->plot,
+                  "the ISO 230-2 graph, .png or .svg (gnuplot); the data it draws goes to a .csv beside it");
+  cmd->callback([args, &exit_code] { exit_code = run_identify_laser(*args, std::cout); });
+}
+
+void add_circle_command(CLI::App* identify, int& exit_code) {
+  auto args = std::make_shared<IdentifyCircleArgs>();
+  CLI::App* cmd = identify->add_subcommand(
+      "circle", "Circular test / ballbar (ISO 230-4): G, H, centre, squareness, scale mismatch, reversal spikes");
+  cmd->add_option("RUN", args->run, "CSV: angle[deg],direction,deviation[um] or angle[deg],ccw[um],cw[um]")->required();
+  cmd->add_option("--plane", args->plane, "XY, YZ or ZX (default: the file's '# plane:')");
+  cmd->add_option("--radius", args->radius_mm, "the circle's radius, mm (default: the file's '# radius_mm:')");
+  cmd->add_option("--machine", args->machine, "machine file: the squareness in its location errors");
+  cmd->add_option("--machine-out", args->machine_out, "folder: a copy of the machine file with the squareness set");
+  cmd->add_option("--symbol", args->symbol, "the location error that takes it (default: the one the file uses)");
+  cmd->add_option("--plot", args->plot,
+                  "the ballbar polar plot, .png or .svg (gnuplot); the data it draws goes to a .csv beside it");
+  cmd->callback([args, &exit_code] { exit_code = run_identify_circle(*args, std::cout); });
+}
+
+void add_sphere_command(CLI::App* identify, int& exit_code) {
+  auto args = std::make_shared<IdentifySphereArgs>();
+  CLI::App* cmd = identify->add_subcommand(
+      "sphere", "Rotary axes' location errors from a sphere's centre probed at several rotary positions");
+  cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
+  cmd->add_option("CENTRES", args->centres, "probe-plan log, or a CSV of the joints at the sphere's centre per pose (x,y,z,b,c)")->required();
+  cmd->add_option("--deviations", args->deviations, "location errors to identify, e.g. EX0C,EA0B (default: all)")
+      ->delimiter(',');
+  cmd->add_option("--tool-length", args->tool_length_mm, "probe length L, mm (default: the machine file's)");
+  cmd->add_option("--machine-out", args->machine_out, "folder: a copy of the machine file with the values");
+  cmd->callback([args, &exit_code] { exit_code = run_identify_sphere(*args, std::cout); });
+}
+
+}  // namespace
+
+void add_identify_commands(CLI::App& volcomp, int& exit_code) {
+  CLI::App* identify = volcomp.add_subcommand("identify", "From measurements to the machine file")->require_subcommand(1);
+  add_laser_command(identify, exit_code);
+  add_circle_command(identify, exit_code);
+  add_sphere_command(identify, exit_code);
 }
 
 }  // namespace vc::cli

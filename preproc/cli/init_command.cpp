@@ -2,12 +2,15 @@
 // geometry of the configuration's kinematics, and the patch that loads volkins in its place
 // (preproc/init/README.md). The patch goes to stdout unless --patch names a file; the summary
 // always goes to stderr, so that stdout is a clean patch. Nothing is written on a refusal.
+#include <CLI/CLI.hpp>
 #include <stdlib.h>
 #include <unistd.h>
 
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
+#include <memory>
 #include <stdexcept>
 
 #include "vc/tables/atomic_file.hpp"
@@ -17,6 +20,12 @@
 
 namespace vc::cli {
 namespace {
+
+struct InitArgs {
+  std::string ini;     // the LinuxCNC configuration's INI file
+  std::string output;  // the machine file to write
+  std::string patch;   // the patch's file; "" or "-": stdout
+};
 
 namespace fs = std::filesystem;
 
@@ -51,8 +60,6 @@ void check_folder(const std::string& file, const char* what) {
   if (!fs::is_directory(folder)) throw std::runtime_error(std::string(what) + ": no folder " + folder.string());
 }
 
-}  // namespace
-
 int run_init(const InitArgs& args, std::ostream& patch_out, std::ostream& report) {
   const init::InitResult r = init::run_init({args.ini, args.output, today()});
   check_loads(r.machine_text);
@@ -78,6 +85,20 @@ int run_init(const InitArgs& args, std::ostream& patch_out, std::ostream& report
   for (const std::string& file : r.not_read) report << "  not read: " << file << '\n';
   for (const std::string& remark : r.machine.remarks) report << "  note: " << remark << '\n';
   return 0;
+}
+
+}  // namespace
+
+void add_init_command(CLI::App& volcomp, int& exit_code) {
+  auto args = std::make_shared<InitArgs>();
+  CLI::App* cmd = volcomp.add_subcommand(
+      "init", "From a LinuxCNC configuration: a machine file with its kinematics' nominal geometry (zero errors) "
+              "and the patch that loads volkins in place of the stock module (summary on stderr)");
+  cmd->add_option("CONFIG", args->ini, "the configuration's INI file")->required();
+  cmd->add_option("-o,--output", args->output, "the machine file to write (.toml)")->required();
+  cmd->add_option("--patch", args->patch,
+                  "write the patch (unified diff, for patch -p1 -d CONFIG_DIR) to this file; - or none: stdout");
+  cmd->callback([args, &exit_code] { exit_code = run_init(*args, std::cout, std::cerr); });
 }
 
 }  // namespace vc::cli

@@ -1,8 +1,13 @@
 // `volcomp error` and `volcomp correct`: one output row per pose, CSV on stdout.
+#include <CLI/CLI.hpp>
 #include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "commands.hpp"
-#include "format.hpp"
+#include "vc/tables/number_text.hpp"
 #include "poses_csv.hpp"
 #include "vc/machine/correct.hpp"
 #include "vc/machine/deviations.hpp"
@@ -12,8 +17,16 @@
 namespace vc::cli {
 namespace {
 
+struct PoseArgs {
+  std::string machine;
+  std::string poses;
+  std::optional<double> tool_length_mm;  // default: the machine file's tool_length_mm
+  std::vector<std::string> only;         // deviations to keep (error): all if empty
+  bool ideal_tip = false;                // error: also the ideal tool tip (tx,ty,tz)
+};
+
 void write_row(std::ostream& out, const std::vector<double>& values) {
-  for (std::size_t i = 0; i < values.size(); ++i) out << (i ? "," : "") << format_number(values[i]);
+  for (std::size_t i = 0; i < values.size(); ++i) out << (i ? "," : "") << number_text(values[i]);
   out << '\n';
 }
 
@@ -22,8 +35,6 @@ std::vector<double> nominal_columns(const Poses& poses, std::size_t row) {
   for (int j : poses.joint_of_column) v.push_back(poses.joints[row][j]);
   return v;
 }
-
-}  // namespace
 
 int run_error(const PoseArgs& args, std::ostream& out) {
   machine::Model model = machine::load_machine(args.machine);
@@ -69,6 +80,35 @@ int run_correct(const PoseArgs& args, std::ostream& out) {
     write_row(out, row);
   }
   return failures == 0 ? 0 : 1;
+}
+
+// The options both commands take.
+std::shared_ptr<PoseArgs> add_pose_options(CLI::App* cmd) {
+  auto args = std::make_shared<PoseArgs>();
+  cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
+  cmd->add_option("--poses", args->poses, "CSV of nominal poses, header of axis letters (x,y,z,b,c)")
+      ->required();
+  cmd->add_option("--tool-length", args->tool_length_mm,
+                  "L in mm: gauge length + tool length (default: the machine file's tool_length_mm)");
+  return args;
+}
+
+}  // namespace
+
+void add_pose_commands(CLI::App& volcomp, int& exit_code) {
+  CLI::App* error_cmd = volcomp.add_subcommand(
+      "error", "Volumetric error at each pose: ex,ey,ez (mm, part frame), ekx,eky,ekz (rad)");
+  CLI::App* correct_cmd = volcomp.add_subcommand(
+      "correct", "Corrected joints at each pose: c<axis>..., residual_mm, residual_rad, iterations");
+  const std::shared_ptr<PoseArgs> error = add_pose_options(error_cmd);
+  const std::shared_ptr<PoseArgs> correct = add_pose_options(correct_cmd);
+  error_cmd->add_option("--only", error->only,
+                        "keep only these deviations, e.g. --only EAX,EC0Y (the others are zero)")
+      ->delimiter(',');
+  error_cmd->add_flag("--ideal-tip", error->ideal_tip,
+                      "also the ideal machine's tool tip, tx,ty,tz (mm, part frame): where each pose puts the tool");
+  error_cmd->callback([error, &exit_code] { exit_code = run_error(*error, std::cout); });
+  correct_cmd->callback([correct, &exit_code] { exit_code = run_correct(*correct, std::cout); });
 }
 
 }  // namespace vc::cli

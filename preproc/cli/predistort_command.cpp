@@ -3,19 +3,21 @@
 // file beside the output and renamed over it only when complete. `-o -` writes to stdout,
 // as a LinuxCNC AXIS program filter does ([FILTER] ngc = volcomp predistort MACHINE -o - ...),
 // with AXIS's FILTER_PROGRESS protocol on stderr.
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <sstream>
-#include <vector>
 #include <unistd.h>
+#include <vector>
 
 #include "vc/tables/atomic_file.hpp"
 #include "commands.hpp"
-#include "format.hpp"
+#include "vc/tables/number_text.hpp"
 #include "program_files.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/predistort/deflection.hpp"
@@ -24,6 +26,24 @@
 
 namespace vc::cli {
 namespace {
+
+struct PredistortArgs {
+  std::string machine;
+  std::string input;
+  std::string output;              // "-": stdout (AXIS filter)
+  std::string var_file;            // LinuxCNC parameter file: work offsets, G28/G30 homes
+  std::string tool_table;          // LinuxCNC tool table: tool lengths
+  std::string machine_units = "mm";  // of the tool table and the .var file: mm or inch
+  std::string process;             // cutting conditions per tool: cutting-force deflection
+  std::string world = "axes";      // world convention of the uncompensated kinematics
+  std::vector<std::string> subroutine_path;  // folders of NAME.ngc subroutine files
+  std::string start;               // where the machine starts: X,Y,Z[,A,B,C] or an INI (homes)
+  std::string line_map;            // CSV: output line -> input file and line
+  double tolerance_mm = 0.0005;
+  double tolerance_rad = 2e-5;     // tool direction between written points (rotary axes)
+  std::vector<std::string> temperatures;  // NAME=VALUE (degC) of the machine file's [temperatures]
+  bool quiet = false;
+};
 
 namespace fs = std::filesystem;
 
@@ -55,8 +75,6 @@ class Progress {
   bool axis_ = false, terminal_ = false;
   int last_ = -1;
 };
-
-}  // namespace
 
 int run_predistort(const PredistortArgs& args, std::ostream& report) {
   if (!(args.tolerance_mm > 0.0 && args.tolerance_mm <= 0.1))
@@ -127,12 +145,12 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
     const auto& c = summary.corrector;
     report << "volcomp predistort: " << summary.lines << " lines, " << c.moves << " moves corrected into "
            << c.pieces << " pieces (" << c.corrections << " corrections, " << c.checks << " checks), max error at "
-           << "the check points " << format_fixed(c.max_checked_error_mm * 1e3, 3) << " um (tolerance "
-           << format_number(args.tolerance_mm * 1e3) << " um)";
+           << "the check points " << fixed_text(c.max_checked_error_mm * 1e3, 3) << " um (tolerance "
+           << number_text(args.tolerance_mm * 1e3) << " um)";
     if (model.rotary_count() > 0)
-      report << ", tool direction " << format_fixed(c.max_checked_error_rad * 1e6, 2) << " urad (tolerance "
-             << format_number(args.tolerance_rad * 1e6) << " urad)";
-    if (c.max_deflection_mm > 0) report << ", max deflection taken off " << format_fixed(c.max_deflection_mm * 1e3, 3) << " um";
+      report << ", tool direction " << fixed_text(c.max_checked_error_rad * 1e6, 2) << " urad (tolerance "
+             << number_text(args.tolerance_rad * 1e6) << " urad)";
+    if (c.max_deflection_mm > 0) report << ", max deflection taken off " << fixed_text(c.max_deflection_mm * 1e3, 3) << " um";
     report << '\n';
     if (summary.written_as_is_moves)
       report << "  " << summary.written_as_is_moves
@@ -142,6 +160,53 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
     for (const std::string& note : predistort::correction_notes(summary, job)) report << "  " << note << '\n';
   }
   return 0;
+}
+
+}  // namespace
+
+void add_predistort_command(CLI::App& volcomp, int& exit_code) {
+  auto args = std::make_shared<PredistortArgs>();
+  CLI::App* cmd = volcomp.add_subcommand(
+      "predistort", "Write a part program that makes the uncompensated machine cut the nominal part");
+  cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
+  cmd->add_option("PROGRAM", args->input, "part program (RS274/NGC)")->required();
+  cmd->add_option("-o,--output", args->output, "pre-distorted program, or - for stdout")
+      ->required();
+  cmd->add_option("--var", args->var_file,
+                  "LinuxCNC parameter file (.var): work offsets G54..G59.3, G28/G30 homes");
+  cmd->add_option("--tool-table", args->tool_table, "LinuxCNC tool table (.tbl): tool lengths");
+  cmd->add_option("--machine-units", args->machine_units,
+                  "the unit of the tool table and the .var file, LinuxCNC's [TRAJ]LINEAR_UNITS: mm or inch")
+      ->capture_default_str();
+  cmd->add_option("--subroutine-path", args->subroutine_path,
+                  "folders searched for NAME.ngc when o<name> call or M98 P<n> finds no definition in the program "
+                  "(the INI's [RS274NGC]SUBROUTINE_PATH and [DISPLAY]PROGRAM_PREFIX); ':'-separated or repeated")
+      ->delimiter(':')
+      ->check(CLI::ExistingDirectory);
+  cmd->add_option("--line-map", args->line_map,
+                  "write output_line,input_file,input_line for every line of the output (CSV): where "
+                  "each line of the flat program comes from");
+  cmd->add_option(
+      "--start", args->start,
+      "where the machine is when the program starts, for a program that cuts before it has moved every axis: "
+      "X,Y,Z[,A,B,C] (machine coordinates, mm and deg) or the machine's LinuxCNC INI file (its [JOINT_n]HOME, "
+      "the position after homing). Without it such a program is refused");
+  cmd->add_option("--process", args->process,
+                  "cutting conditions per tool (.toml): adds the cutting-force deflection");
+  cmd->add_option("--tolerance", args->tolerance_mm,
+                  "largest path deviation from the exact correction, mm")
+      ->capture_default_str();
+  cmd->add_option("--temperature", args->temperatures,
+                  "NAME=VALUE: a temperature input of the machine file, degC (repeatable; default: its reference)");
+  cmd->add_option("--tolerance-rad", args->tolerance_rad,
+                  "largest tool direction deviation from the exact correction between the written points, "
+                  "rad (machines with rotary axes)")
+      ->capture_default_str();
+  cmd->add_option("--world", args->world,
+                  "world convention of the machine's kinematics: axes (trivkins) or tcp")
+      ->capture_default_str();
+  cmd->add_flag("-q,--quiet", args->quiet, "no summary on stderr");
+  cmd->callback([args, &exit_code] { exit_code = run_predistort(*args, std::cerr); });
 }
 
 }  // namespace vc::cli

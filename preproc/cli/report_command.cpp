@@ -1,17 +1,28 @@
 // `volcomp report MACHINE [--measurements DIR] -o report.html`: the machine's accuracy on one
 // self-contained HTML page (preproc/report/README.md). Everything is computed and drawn first;
 // the page is written last, atomically: on any error there is no file (and an older one stays).
+#include <CLI/CLI.hpp>
 #include <filesystem>
+#include <iostream>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
 #include "vc/tables/atomic_file.hpp"
 #include "commands.hpp"
-#include "format.hpp"
+#include "vc/tables/number_text.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/report/accuracy_report.hpp"
 
 namespace vc::cli {
+namespace {
+
+struct ReportArgs {
+  std::string machine;
+  std::string measurements;        // folder of laser runs and circular tests (optional)
+  std::string output;              // the HTML page
+  std::vector<double> tool_lengths_mm;  // of the volume map (default: 0 and the machine file's)
+};
 
 int run_report(const ReportArgs& args, std::ostream& out) {
   namespace fs = std::filesystem;
@@ -28,7 +39,7 @@ int run_report(const ReportArgs& args, std::ostream& out) {
   if (!args.measurements.empty()) command << " --measurements " << args.measurements;
   if (!args.tool_lengths_mm.empty()) {
     command << " --tool-lengths ";
-    for (std::size_t k = 0; k < args.tool_lengths_mm.size(); ++k) command << (k ? "," : "") << format_number(args.tool_lengths_mm[k]);
+    for (std::size_t k = 0; k < args.tool_lengths_mm.size(); ++k) command << (k ? "," : "") << number_text(args.tool_lengths_mm[k]);
   }
   command << " -o " << args.output;
   options.command = command.str();
@@ -38,6 +49,22 @@ int run_report(const ReportArgs& args, std::ostream& out) {
   out << "report written: " << args.output << " (" << r.sections << " sections, " << r.figures << " figures, "
       << r.measurements << " measurements, " << r.html.size() / 1024 << " KiB)\n";
   return 0;
+}
+
+}  // namespace
+
+void add_report_command(CLI::App& volcomp, int& exit_code) {
+  auto args = std::make_shared<ReportArgs>();
+  CLI::App* cmd = volcomp.add_subcommand(
+      "report", "One self-contained HTML page of the machine's accuracy: its file and checksums, tables, location "
+                "errors, accuracy balance, volume map, and the laser runs and circular tests of --measurements");
+  cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
+  cmd->add_option("--measurements", args->measurements,
+                  "folder of laser runs (ISO 230-2) and circular tests (ISO 230-4), CSV (preproc/report/README.md)");
+  cmd->add_option("-o,--output", args->output, "the HTML page to write")->required();
+  cmd->add_option("--tool-lengths", args->tool_lengths_mm, "the volume map's tool lengths, mm (default: 0 and "
+                  "the machine file's)")->delimiter(',');
+  cmd->callback([args, &exit_code] { exit_code = run_report(*args, std::cout); });
 }
 
 }  // namespace vc::cli

@@ -3,19 +3,23 @@
 // derived from Pi and Ri). Local strategy: Pi's path shifted against the deviations. Model
 // strategy: the machine's tables tuned from the deviations (written as a new table set),
 // and the original program pre-distorted with them.
+#include <CLI/CLI.hpp>
 #include <fstream>
+#include <iostream>
+#include <memory>
 #include <optional>
 #include <sstream>
 
 #include "vc/tables/atomic_file.hpp"
 #include "commands.hpp"
-#include "format.hpp"
+#include "vc/tables/number_text.hpp"
 #include "program_files.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/predistort/missing_tool_offset.hpp"
 #include "vc/predistort/predistort.hpp"
 #include "vc/predistort/tool_lengths.hpp"
 #include "vc/shop/first_part.hpp"
+#include "vc/shop/model_fit_advice.hpp"
 #include "vc/shop/selftune_local.hpp"
 #include "vc/shop/selftune_model.hpp"
 #include "vc/tables/source_error.hpp"
@@ -24,13 +28,41 @@
 namespace vc::cli {
 namespace {
 
+struct SelftuneArgs {
+  std::string machine;             // the model (machine file) the program was made for
+  std::string input;               // program Pi that machined the measured part
+  std::string report;              // CMM report Ri
+  std::string report_unit;         // for a CMM export whose file states no unit: mm, um or inch
+  std::string deviation_sign;      // of a CMM export's deviation column: actual-minus-nominal or nominal-minus-actual
+  bool decimal_comma = false;      // a CMM export writes 12,5
+  std::string output;              // program P(i+1)
+  std::string strategy = "local";  // local or model
+  std::string var_file, tool_table, world = "axes";
+  std::string machine_units = "mm";
+  bool compensated = false;        // Pi ran with volkins correcting with MACHINE
+  std::vector<int> ball_end_tools;
+  double flute_length_mm = 30.0;
+  double cutoff_mm = 10.0, outlier_sigmas = 4.0;
+  // local
+  double gain = 1.0, radius_mm = 40.0, angle_deg = 20.0, step_mm = 1.0, tolerance_mm = 0.0005;
+  bool no_tilt = false;            // keep the program's tool axis (tip shifted only)
+  double min_support = 6.0;        // local: widen the window where fewer points carry a shift
+  // model
+  std::string tables_out;          // folder of the updated machine file and tables
+  std::string nominal;             // the original program P0 (default: PROGRAM)
+  std::string next_program, next_points;  // model: another part (program, CMM plan): the noise carried there
+  std::vector<std::string> deviations;
+  int nodes = 5;
+  double regularisation = 1e-3, smoothness = 1e-2;
+};
+
 std::ifstream open_program(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw LoadError({path}, "cannot open the program");
   return in;
 }
 
-std::string um(double mm) { return format_fixed(mm * 1e3, 3) + " um"; }
+std::string um(double mm) { return fixed_text(mm * 1e3, 3) + " um"; }
 
 void print_first_part(const shop::FirstPart& part, std::ostream& report) {
   report << "volcomp selftune: " << part.points.size() << " points matched to the program's cuts; points differ from "
@@ -59,7 +91,7 @@ void print_tilt(const shop::TiltSummary& t, std::ostream& report) {
     return;
   }
   report << "  tool axis: turned on " << t.tilted << " pieces of 5-axis moves (largest "
-         << format_fixed(t.largest_rad * 1e6, 2) << " urad)";
+         << fixed_text(t.largest_rad * 1e6, 2) << " urad)";
   if (t.unseen > 0)
     report << "; not estimated on " << t.unseen
            << " (the points near them lie at one height along the tool: a tilt cannot be told from a shift of the tip)";
@@ -90,9 +122,9 @@ std::string tool_length_cause(const predistort::ToolLengthLog& log, const machin
   if (!first) return text;
   const auto tool = predistort::likely_tool(model, files.tools ? &*files.tools : nullptr, first->tool);
   if (!tool || tool->length_mm == model.correction_length(0.0)) return text;
-  const std::string reference = format_number(model.tool_length_reference_mm) + " mm";
+  const std::string reference = number_text(model.tool_length_reference_mm) + " mm";
   text += "\n  corrected for L = " + reference + " (no G43 in " + program + " from line " +
-          std::to_string(first->line) + "); if the part was cut with a " + format_number(tool->length_mm) +
+          std::to_string(first->line) + "); if the part was cut with a " + number_text(tool->length_mm) +
           " mm tool (" +
           (tool->tool >= 0 ? "tool " + std::to_string(tool->tool) + " in the tool table"
                            : std::string("the machine file's tool_length_mm")) +
@@ -100,8 +132,6 @@ std::string tool_length_cause(const predistort::ToolLengthLog& log, const machin
           " or set tool_length_reference_mm";
   return text;
 }
-
-}  // namespace
 
 int run_selftune(const SelftuneArgs& args, std::ostream& report) {
   if (args.strategy != "local" && args.strategy != "model")
@@ -165,8 +195,8 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
                                     args.world, args.tolerance_mm};
   if (args.strategy == "local") {
     provenance.title = "volcomp selftune (local): " + args.input + " shifted against the deviations of " + args.report +
-                       " (gain " + format_number(args.gain) + ", radius " + format_number(args.radius_mm) + " mm, angle " +
-                       format_number(args.angle_deg) + " deg)";
+                       " (gain " + number_text(args.gain) + ", radius " + number_text(args.radius_mm) + " mm, angle " +
+                       number_text(args.angle_deg) + " deg)";
     shop::LocalOptions local{args.gain, args.radius_mm, args.step_mm, args.tolerance_mm, world, args.angle_deg};
     local.tilt = !args.no_tilt;
     local.min_support = args.min_support;
@@ -176,8 +206,8 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
       summary = shop::shift_program(model, part, in, files.setup(args.input, model, tcp), provenance, out, local);
     });
     report << "  local: " << summary.moves_shifted << " moves shifted (" << summary.pieces << " pieces); the tool tip "
-           << "cuts " << format_fixed(summary.cutting_length_mm, 1) << " mm of path on the part, "
-           << format_fixed(summary.covered_fraction * 100, 1) << " % of it within " << format_number(args.radius_mm)
+           << "cuts " << fixed_text(summary.cutting_length_mm, 1) << " mm of path on the part, "
+           << fixed_text(summary.covered_fraction * 100, 1) << " % of it within " << number_text(args.radius_mm)
            << " mm of measured points\n"
            << "  largest shift of the tool tip on the part " << um(summary.largest_tip_shift_mm)
            << "; of the linear axes' words " << um(summary.largest_axis_shift_mm)
@@ -198,21 +228,22 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
   }
   shop::ModelOptions fit_options{args.deviations, args.nodes, args.regularisation, args.smoothness};
   const shop::ModelFit fit = shop::fit_tables(model, part, fit_options, next ? &*next : nullptr);
+  const shop::ModelFitAdvice advice = shop::advise(fit);
   const std::string comment = "volcomp selftune (model) from " + args.report;
   const std::string machine_out =
       shop::write_machine_with_tables(model, args.tables_out, fit.tables, comment, fit.locations);
   report << "  model: " << fit.parameters << " unknowns (" << fit.unobservable << " not seen by this part) from "
          << fit.points << " points; deviation left unexplained by the model RMS " << um(fit.rms_before_mm) << " -> "
          << um(fit.rms_after_mm) << " after the fit; largest change " << um(fit.largest_change_mm) << ", "
-         << format_fixed(fit.largest_change_rad * 1e6, 3) << " urad\n";
+         << fixed_text(fit.largest_change_rad * 1e6, 3) << " urad\n";
   if (fit.scatter_mm >= 0.0) {
     report << "  noise: the model leaves " << um(fit.scatter_mm) << " per point (1 sigma; " << fit.points
-           << " points, " << format_fixed(fit.effective_unknowns, 1) << " effective unknowns); carried into the tuned "
+           << " points, " << fixed_text(fit.effective_unknowns, 1) << " effective unknowns); carried into the tuned "
            << "model at the measured points " << um(fit.carried_median_mm) << " median, " << um(fit.carried_largest_mm)
            << " largest (1 sigma)\n";
   } else {
     report << "  noise: no freedom left to estimate it (" << fit.points << " points, "
-           << format_fixed(fit.effective_unknowns, 1) << " effective unknowns)\n";
+           << fixed_text(fit.effective_unknowns, 1) << " effective unknowns)\n";
   }
   if (next) {
     report << "  the next part, " << args.next_points << " (" << fit.next_points << " points on " << args.next_program
@@ -224,12 +255,9 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
       report << "    this report's noise, carried: not known (no freedom left to estimate the noise)\n";
     // The deviations this part could not determine, as the next part's points feel them.
     std::string felt;
-    int listed = 0;
-    for (const shop::ModelFit::Unseen& u : fit.next_unseen) {
-      if (u.largest_mm_per_unit * 1e3 < 0.05 || listed == 6) break;
-      felt += (listed++ ? ", " : " ") + u.symbol + " " + format_fixed(u.largest_mm_per_unit * 1e3, 2) + " um per " +
+    for (const shop::ModelFit::Unseen& u : advice.felt_by_next)
+      felt += (felt.empty() ? " " : ", ") + u.symbol + " " + fixed_text(u.largest_mm_per_unit * 1e3, 2) + " um per " +
               (u.angle ? "urad" : "um");
-    }
     report << "    what this part cannot see: the deviations it did not determine stay as the machine file has them, "
               "and their error is not known from this report, so it cannot be bounded here. ";
     if (felt.empty())
@@ -238,24 +266,22 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
       report << "The next part's points feel it most from (largest move per unit of the undetermined part):" << felt
              << "; measure those (laser, ballbar, probing) or cut a first part that exercises them\n";
   }
-  if (fit.effective_unknowns > 0.5 * fit.points)
-    report << "  warning: the fit spends " << format_fixed(fit.effective_unknowns, 0) << " of " << fit.points
+  if (advice.overfitted)
+    report << "  warning: the fit spends " << fixed_text(fit.effective_unknowns, 0) << " of " << fit.points
            << " points on its unknowns, so much of the report's noise goes into the tables: measure more points, "
               "or tune fewer deviations (--deviations)\n";
   // What the part determines: the resolution of each deviation (1: the points alone fix it,
   // 0: only the ridge and the smoothness do, it stays at the model's value).
   std::string shares, unseen;
-  for (const auto& s : fit.seen) {
-    shares += " " + s.symbol + " " + format_fixed(s.share, 2);
-    if (s.share < 0.05) unseen += " " + s.symbol;
-  }
+  for (const auto& s : fit.seen) shares += " " + s.symbol + " " + fixed_text(s.share, 2);
+  for (const std::string& symbol : advice.unseen) unseen += " " + symbol;
   report << "  resolution (1: determined by the points alone, 0: not seen):" << shares << "\n"
          << "  not seen by this part (< 0.05: kept at the model; restrict with --deviations):"
          << (unseen.empty() ? " none" : unseen) << "\n";
   for (const shop::LocationValue& v : fit.locations) {
     const char letter = model.axes[static_cast<std::size_t>(v.joint)].letter;
     report << "  " << tables::ErrorSymbol{v.component, letter, true}.name() << " = "
-           << (v.component < 3 ? um(v.value) : format_fixed(v.value * 1e6, 3) + " urad") << "\n";
+           << (v.component < 3 ? um(v.value) : fixed_text(v.value * 1e6, 3) + " urad") << "\n";
   }
   report << "  updated machine file: " << machine_out << "\n";
   const machine::Model tuned = machine::load_machine(machine_out);  // as the module will read it
@@ -278,6 +304,70 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
   report << "  " << nominal << " pre-distorted with the updated tables: " << summary.corrector.pieces << " pieces\n";
   for (const std::string& note : predistort::correction_notes(summary, job)) report << "  " << note << "\n";
   return 0;
+}
+
+}  // namespace
+
+void add_selftune_command(CLI::App& volcomp, int& exit_code) {
+  auto args = std::make_shared<SelftuneArgs>();
+  CLI::App* cmd = volcomp.add_subcommand(
+      "selftune", "Program of the next part from the measured deviations of this one (local or model strategy)");
+  cmd->add_option("MACHINE", args->machine, "machine file the program was made for (.toml)")->required();
+  cmd->add_option("PROGRAM", args->input, "program Pi that machined the measured part")->required();
+  cmd->add_option("REPORT", args->report,
+                  "CMM report Ri: id,x[mm],y[mm],z[mm],i,j,k,deviation[um], or a CMM software's table "
+                  "export (nominal X Y Z, normal I J K out of the material, actual X Y Z or deviation)")
+      ->required();
+  cmd->add_option("--report-unit", args->report_unit,
+                  "CMM export: the unit of the columns whose header names none (mm, um, inch)");
+  cmd->add_option("--deviation-sign", args->deviation_sign,
+                  "CMM export: what its deviation column is: actual-minus-nominal (+ = material left, along "
+                  "an outward normal) or nominal-minus-actual")
+      ->check(CLI::IsMember({"actual-minus-nominal", "nominal-minus-actual"}));
+  cmd->add_flag("--decimal-comma", args->decimal_comma, "CMM export: numbers are written 12,5");
+  cmd->add_option("-o,--output", args->output, "program P(i+1)");
+  cmd->add_option("--strategy", args->strategy, "local (shift the path) or model (tune the tables)")
+      ->capture_default_str();
+  cmd->add_option("--var", args->var_file, "LinuxCNC parameter file (.var)");
+  cmd->add_option("--tool-table", args->tool_table, "LinuxCNC tool table (.tbl): lengths and diameters");
+  cmd->add_option("--machine-units", args->machine_units,
+                  "the unit of the tool table and the .var file, LinuxCNC's [TRAJ]LINEAR_UNITS: mm or inch")
+      ->capture_default_str();
+  cmd->add_option("--world", args->world, "world convention: axes or tcp")->capture_default_str();
+  cmd->add_flag("--compensated", args->compensated,
+                "PROGRAM ran with volkins correcting with MACHINE (not pre-distorted)");
+  cmd->add_option("--ball-end", args->ball_end_tools, "tools with a ball end")->delimiter(',');
+  cmd->add_option("--flute-length", args->flute_length_mm, "cutting length of the tools, mm")
+      ->capture_default_str();
+  cmd->add_option("--cutoff", args->cutoff_mm, "shorter wavelengths are not tuned (low-pass), mm")
+      ->capture_default_str();
+  cmd->add_option("--outlier-sigmas", args->outlier_sigmas, "outlier threshold, robust sigmas")
+      ->capture_default_str();
+  cmd->add_option("--gain", args->gain, "local: share of the deviation taken off")->capture_default_str();
+  cmd->add_option("--radius", args->radius_mm, "local: deviations reach the path within this, mm")
+      ->capture_default_str();
+  cmd->add_option("--angle", args->angle_deg,
+                  "local: deviations reach path points whose tool frame is turned less than this from the cut's, deg")
+      ->capture_default_str();
+  cmd->add_option("--min-support", args->min_support,
+                  "local: where fewer measured points than this carry a shift, widen its window (radius and angle x 1.5, up to 3 times); 0: never")
+      ->capture_default_str();
+  cmd->add_flag("--no-tilt", args->no_tilt, "local: keep the program's tool axis on 5-axis moves (shift the tip only)");
+  cmd->add_option("--step", args->step_mm, "local: longest piece of a shifted move, mm")->capture_default_str();
+  cmd->add_option("--tolerance", args->tolerance_mm, "chord and blending tolerance, mm")->capture_default_str();
+  cmd->add_option("--tables-out", args->tables_out, "model: folder for the updated machine file and tables");
+  cmd->add_option("--nominal", args->nominal, "model: the original program P0 (default: PROGRAM)");
+  cmd->add_option("--next-program", args->next_program,
+                  "model: the program of another part (with --next-points): the noise the tuned tables carry to its points");
+  cmd->add_option("--next-points", args->next_points, "model: that part's CMM plan (id,x,y,z,i,j,k)");
+  cmd->add_option("--deviations", args->deviations, "model: deviations to tune, e.g. EXX,EX0C (default: every table and the rotary axes' locations)")
+      ->delimiter(',');
+  cmd->add_option("--nodes", args->nodes, "model: table nodes over each axis's travel (a full turn: a Fourier series of order (nodes - 1) / 2)")->capture_default_str();
+  cmd->add_option("--regularisation", args->regularisation, "model: ridge on scaled unknowns")
+      ->capture_default_str();
+  cmd->add_option("--smoothness", args->smoothness, "model: penalty on second differences")
+      ->capture_default_str();
+  cmd->callback([args, &exit_code] { exit_code = run_selftune(*args, std::cerr); });
 }
 
 }  // namespace vc::cli

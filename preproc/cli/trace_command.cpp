@@ -1,14 +1,17 @@
 // volcomp trace: the tool-tip error of a recorded LinuxCNC session, and whether volkins did
 // exactly what the core computes (see vc/trace/session_trace.hpp for the comparison).
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <iterator>
+#include <memory>
 #include <stdexcept>
 
 #include "commands.hpp"
-#include "format.hpp"
+#include "vc/tables/number_text.hpp"
 #include "program_files.hpp"
 #include "vc/fit_tables/comp_file.hpp"
 #include "vc/fit_tables/comp_file_replay.hpp"
@@ -21,6 +24,17 @@
 
 namespace vc::cli {
 namespace {
+
+struct TraceArgs {
+  std::string machine;
+  std::string trace;               // CSV recorded by kins/configs/common/headless_driver.py
+  std::string world = "axes";      // the module's world convention
+  std::string output;              // per-sample errors CSV (optional)
+  double servo_period_s = 0.001;   // for the time column
+  std::string comp_files;          // a folder of fit-tables' COMP_FILEs to replay on the trace (optional)
+  std::string ini;                 // the configuration's INI: the joints' limits for the replay
+  std::string replay_output;       // the replay's per-sample errors CSV (t_s,e_um; optional)
+};
 
 // The COMP_FILEs of args.comp_files replayed on the session (fit_tables::replay_comp_files):
 // the tool-tip error it would have had with them loaded.
@@ -67,18 +81,16 @@ void print_comp_file_replay(const TraceArgs& args, const machine::Model& model, 
   if (!args.replay_output.empty()) tables::write_atomically(args.replay_output, [&](std::ostream& csv) {
     csv << "t_s,e_um\n";
     for (std::size_t k = 0; k < replay.tip_error_um.size(); ++k)
-      csv << format_fixed(static_cast<double>(summary.samples[k].sample) * args.servo_period_s, 3) << ','
-          << format_number(replay.tip_error_um[k]) << '\n';
+      csv << fixed_text(static_cast<double>(summary.samples[k].sample) * args.servo_period_s, 3) << ','
+          << number_text(replay.tip_error_um[k]) << '\n';
   });
   double max_um = 0, sum_sq = 0;
   for (const double e : replay.tip_error_um) max_um = std::max(max_um, e), sum_sq += e * e;
   const double rms_um = std::sqrt(sum_sq / static_cast<double>(std::max<std::size_t>(1, replay.tip_error_um.size())));
   out << "with the COMP_FILEs of " << args.comp_files << " replayed as LinuxCNC applies them (" << with.substr(1)
-      << (without.empty() ? "" : "; none on" + without) << "): tool tip error: max " << format_fixed(max_um, 3)
-      << " um, RMS " << format_fixed(rms_um, 3) << " um\n";
+      << (without.empty() ? "" : "; none on" + without) << "): tool tip error: max " << fixed_text(max_um, 3)
+      << " um, RMS " << fixed_text(rms_um, 3) << " um\n";
 }
-
-}  // namespace
 
 int run_trace(const TraceArgs& args, std::ostream& out) {
   if (args.comp_files.empty() && (!args.ini.empty() || !args.replay_output.empty()))
@@ -110,23 +122,23 @@ int run_trace(const TraceArgs& args, std::ostream& out) {
   if (!args.output.empty()) tables::write_atomically(args.output, [&](std::ostream& csv) {
     csv << "t_s,ex_um,ey_um,ez_um,e_um,ek_urad,gain\n";
     for (const trace::SampleCheck& s : summary.samples) {
-      csv << format_fixed(static_cast<double>(s.sample) * args.servo_period_s, 3);
+      csv << fixed_text(static_cast<double>(s.sample) * args.servo_period_s, 3);
       // Full precision: with compensation on, the errors are nanometres.
-      for (int k = 0; k < 3; ++k) csv << ',' << format_number(s.tip_error_mm[k] * 1e3);
-      csv << ',' << format_number(s.tip_error_mm.norm() * 1e3) << ',' << format_number(s.direction_error_rad * 1e6)
-          << ',' << format_number(session.gain[s.sample]) << '\n';
+      for (int k = 0; k < 3; ++k) csv << ',' << number_text(s.tip_error_mm[k] * 1e3);
+      csv << ',' << number_text(s.tip_error_mm.norm() * 1e3) << ',' << number_text(s.direction_error_rad * 1e6)
+          << ',' << number_text(session.gain[s.sample]) << '\n';
     }
   });
   out << "trace: " << args.trace << " (" << summary.samples.size() << " samples checked, " << summary.skipped
       << " skipped at tool changes)\n"
-      << "tool tip error: max " << format_fixed(max_tip * 1e3, 3) << " um, RMS " << format_fixed(rms * 1e3, 3)
-      << " um; tool direction error: max " << format_fixed(max_dir * 1e6, 2) << " urad\n";
+      << "tool tip error: max " << fixed_text(max_tip * 1e3, 3) << " um, RMS " << fixed_text(rms * 1e3, 3)
+      << " um; tool direction error: max " << fixed_text(max_dir * 1e6, 2) << " urad\n";
   if (corrected > 0 && corrected < summary.samples.size())
     // Near the pole (the tool along the C axis) C cannot turn the tool: volkins fades the
     // direction correction out there and corrects the tip only (model.md, pole fade).
     out << "  where the tool direction is corrected too (gain 1, beyond the pole fade band: "
-        << format_fixed(100.0 * static_cast<double>(corrected) / static_cast<double>(summary.samples.size()), 1)
-        << " % of the samples): tool direction error max " << format_fixed(max_dir_corrected * 1e6, 2)
+        << fixed_text(100.0 * static_cast<double>(corrected) / static_cast<double>(summary.samples.size()), 1)
+        << " % of the samples): tool direction error max " << fixed_text(max_dir_corrected * 1e6, 2)
         << " urad; elsewhere the tip only\n";
   if (!args.comp_files.empty()) {
     // LinuxCNC's COMP_FILEs act on the joints; the replay takes them to be the commanded axes.
@@ -137,13 +149,34 @@ int run_trace(const TraceArgs& args, std::ostream& out) {
   if (!session.with_volkins) {
     // LinuxCNC's own kinematics: what moves the joints off them is the joints' COMP_FILEs.
     out << "joints beyond the nominal kinematics' (COMP_FILE corrections; mm or deg): max "
-        << format_number(max_mismatch) << '\n';
+        << number_text(max_mismatch) << '\n';
     return 0;
   }
-  out << "module against the core (joints, mm or deg): max " << format_number(max_mismatch) << '\n'
-      << "commanded pose residual where fully corrected: max " << format_number(max_pose_mm) << " mm, "
-      << format_number(max_pose_rad) << " rad\n";
+  out << "module against the core (joints, mm or deg): max " << number_text(max_mismatch) << '\n'
+      << "commanded pose residual where fully corrected: max " << number_text(max_pose_mm) << " mm, "
+      << number_text(max_pose_rad) << " rad\n";
   return 0;
+}
+
+}  // namespace
+
+void add_trace_command(CLI::App& volcomp, int& exit_code) {
+  auto args = std::make_shared<TraceArgs>();
+  CLI::App* cmd = volcomp.add_subcommand(
+      "trace", "Tool-tip error along a recorded LinuxCNC session, and volkins checked against the core");
+  cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
+  cmd->add_option("TRACE", args->trace, "trace CSV written by the headless driver")->required();
+  cmd->add_option("--world", args->world, "the module's world convention: axes or tcp")->capture_default_str();
+  cmd->add_option("-o,--output", args->output,
+                  "write t_s,ex_um,ey_um,ez_um,e_um,ek_urad,gain per sample to this CSV");
+  cmd->add_option("--comp-files", args->comp_files,
+                  "a session without correction: also its tool-tip error with these COMP_FILEs (fit-tables' "
+                  "joint_N_<axis>.comp) replayed as LinuxCNC applies them");
+  cmd->add_option("--replay-output", args->replay_output, "with --comp-files: write t_s,e_um per sample of the "
+                  "replay to this CSV");
+  cmd->add_option("--ini", args->ini, "with --comp-files: the configuration's INI ([JOINT_n] MAX_VELOCITY, "
+                  "MAX_ACCELERATION: LinuxCNC's ramp of the correction)");
+  cmd->callback([args, &exit_code] { exit_code = run_trace(*args, std::cout); });
 }
 
 }  // namespace vc::cli
