@@ -7,8 +7,8 @@
 #include <fstream>
 #include <map>
 #include <stdexcept>
-#include <toml++/toml.h>
 
+#include "vc/machine/toml_file.hpp"
 #include "vc/tables/atomic_file.hpp"
 #include "vc/tables/symbols.hpp"
 #include "vc/tables/units.hpp"
@@ -160,7 +160,8 @@ std::string write_machine_with_tables(const machine::Model& model, const std::st
   }
   fs::create_directories(folder);
   const fs::path out_dir = fs::absolute(folder);
-  const toml::table root = toml::parse_file(model.path);  // the model loaded from it: it parses
+  const machine::TomlFile machine_file(model.path);  // the model loaded from it: it parses
+  const toml::table& root = machine_file.root();
 
   std::map<int, std::string> replaced_lines;                // 0-based line -> new text
   std::map<int, std::vector<std::string>, std::greater<>> insertions;  // before 0-based line, last first
