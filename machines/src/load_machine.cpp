@@ -5,9 +5,9 @@
 #include <cmath>
 #include <filesystem>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "vc/machine/forward.hpp"
+#include "vc/machine/toml_file.hpp"
 #include "vc/tables/load_table.hpp"
 #include "vc/tables/units.hpp"
 
@@ -17,12 +17,6 @@ namespace {
 using Eigen::Vector3d;
 namespace fs = std::filesystem;
 
-std::string join(const std::vector<std::string_view>& words) {
-  std::string s;
-  for (auto w : words) s += (s.empty() ? "" : ", ") + std::string(w);
-  return s;
-}
-
 std::string number(double v) {
   std::ostringstream s;
   s.imbue(std::locale::classic());
@@ -30,20 +24,14 @@ std::string number(double v) {
   return s.str();
 }
 
-class MachineReader {
+// The file's typed getters (where, check_keys, table, text, scalar) are TomlFile's.
+class MachineReader : TomlFile {
  public:
-  explicit MachineReader(std::string path) : path_(std::move(path)) {}
+  explicit MachineReader(std::string path) : TomlFile(std::move(path)) {}
 
   Model read() {
-    toml::table root;
-    try {
-      root = toml::parse_file(path_);
-    } catch (const toml::parse_error& e) {
-      throw LoadError(where(e.source()), std::string(e.description()));
-    } catch (const std::exception& e) {
-      throw LoadError({path_}, e.what());
-    }
-    model_.path = path_;
+    const toml::table& root = this->root();
+    model_.path = path();
     check_keys(root, "the machine file",
                {"machine", "measurement", "spindle", "fixture", "correction", "tool_chain",
                 "workpiece_chain", "stiffness", "temperatures"});
@@ -66,66 +54,19 @@ class MachineReader {
   }
 
  private:
-  // ---- locations and typed access -------------------------------------------------------
-  SourceLocation where(const toml::source_region& r) const {
-    return {path_, static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
-  }
-  SourceLocation where(const toml::node& n) const { return where(n.source()); }
-
-  void check_keys(const toml::table& t, const std::string& context,
-                  const std::vector<std::string_view>& allowed) const {
-    for (auto&& [key, value] : t)
-      if (std::find(allowed.begin(), allowed.end(), key.str()) == allowed.end())
-        throw LoadError(where(key.source()), "unknown key '" + std::string(key.str()) + "' in " +
-                                                 context + " (expected one of: " + join(allowed) + ")");
-  }
-
-  const toml::table* table(const toml::table& t, std::string_view key, bool required,
-                           const std::string& context) const {
-    const toml::node* n = t.get(key);
-    if (!n) {
-      if (required) throw LoadError(where(t), context + " needs a [" + std::string(key) + "] table");
-      return nullptr;
-    }
-    if (!n->is_table()) throw LoadError(where(*n), "'" + std::string(key) + "' must be a table");
-    return n->as_table();
-  }
-
-  std::string text(const toml::table& t, std::string_view key, bool required,
-                   const std::string& context) const {
-    const toml::node* n = t.get(key);
-    if (!n) {
-      if (required) throw LoadError(where(t), context + " needs '" + std::string(key) + "'");
-      return {};
-    }
-    if (!n->is_string()) throw LoadError(where(*n), "'" + std::string(key) + "' must be a string");
-    return n->as_string()->get();
-  }
-
-  double scalar(const toml::node& n, std::string_view key) const {
-    const auto v = n.value<double>();
-    if (!v || !std::isfinite(*v))
-      throw LoadError(where(n), "'" + std::string(key) + "' must be a finite number");
-    return *v;
-  }
+  // ---- typed access ----------------------------------------------------------------------
+  using TomlFile::scalar;
 
   double scalar(const toml::table& t, std::string_view key, std::optional<double> fallback,
                 const std::string& context) const {
-    const toml::node* n = t.get(key);
-    if (!n) {
-      if (!fallback) throw LoadError(where(t), context + " needs '" + std::string(key) + "'");
-      return *fallback;
-    }
-    return scalar(*n, key);
+    const toml::node* n = get(t, key, !fallback, context);
+    return n ? scalar(*n, key) : *fallback;
   }
 
   std::vector<double> numbers(const toml::table& t, std::string_view key, std::size_t size,
                               bool required, const std::string& context) const {
-    const toml::node* n = t.get(key);
-    if (!n) {
-      if (required) throw LoadError(where(t), context + " needs '" + std::string(key) + "'");
-      return std::vector<double>(size, 0.0);
-    }
+    const toml::node* n = get(t, key, required, context);
+    if (!n) return std::vector<double>(size, 0.0);
     const toml::array* a = n->as_array();
     if (!a || a->size() != size)
       throw LoadError(where(*n), "'" + std::string(key) + "' must be an array of " +
@@ -440,7 +381,7 @@ class MachineReader {
     if (!pending.tables) return;
     const int joint = pending.axis_order;
     Axis& axis = model_.axes[joint];
-    const fs::path base = fs::path(path_).parent_path();
+    const fs::path base = fs::path(path()).parent_path();
     std::vector<std::string> listed;
     for (const toml::node& item : *pending.tables) {
       const toml::table& t = *item.as_table();
@@ -583,7 +524,6 @@ class MachineReader {
     }
   }
 
-  std::string path_;
   Model model_;
   std::vector<int> tool_order_, part_order_;
   std::vector<PendingTables> pending_;

@@ -1,11 +1,11 @@
 #include "vc/tables/load_table.hpp"
 
 #include "vc/tables/csv.hpp"
+#include "vc/tables/number_text.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <sstream>
 
 namespace vc::tables {
 namespace {
@@ -24,13 +24,6 @@ HeaderCell parse_header_cell(const std::string& path, int line, const CsvCell& c
   return {cell.text.substr(0, open), cell.text.substr(open + 1, close - open - 1)};
 }
 
-std::string format(double v) {
-  std::ostringstream s;
-  s.imbue(std::locale::classic());
-  s.precision(6);
-  s << v;
-  return s.str();
-}
 
 class TableReader {
  public:
@@ -212,7 +205,7 @@ class TableReader {
         const double expected = grid_[d].nodes[(r / stride[d]) % size[d]];
         if (positions_[r][d] != expected)
           throw LoadError(cell_at(r, d), "expected " + grid_[d].name() +
-                                             " = " + format(expected) +
+                                             " = " + significant_text(expected, 6) +
                                              " here: the rows must list the full grid, first "
                                              "column slowest");
       }
@@ -227,7 +220,7 @@ class TableReader {
       throw LoadError(grid_[d].where, "grid column needs at least two different positions");
     for (std::size_t i = 1; i < n.size(); ++i)
       if (n[i] == n[i - 1])
-        throw LoadError(cell_at(i * stride, d), "position " + format(n[i]) + " appears twice (lines " +
+        throw LoadError(cell_at(i * stride, d), "position " + significant_text(n[i], 6) + " appears twice (lines " +
                                                     std::to_string(lines_[(i - 1) * stride]) + " and " +
                                                     std::to_string(lines_[i * stride]) + ")" + grid_hint);
     const bool increasing = n[1] > n[0];
@@ -235,9 +228,9 @@ class TableReader {
       const bool ok = increasing ? n[i] > n[i - 1] : n[i] < n[i - 1];
       if (!ok)
         throw LoadError(cell_at(i * stride, d),
-                        "position " + format(n[i]) + " does not continue the " +
+                        "position " + significant_text(n[i], 6) + " does not continue the " +
                             (increasing ? "increasing" : "decreasing") + " order after " +
-                            format(n[i - 1]) + ": grid positions must be strictly monotonic" + grid_hint);
+                            significant_text(n[i - 1], 6) + ": grid positions must be strictly monotonic" + grid_hint);
     }
   }
 
@@ -305,10 +298,10 @@ class TableReader {
     const std::size_t b = std::max(row_of_node[s.node], row_of_node[s.next]);
     const bool length = columns_[s.column].symbol.quantity() == Quantity::Length;
     const double limit = length ? options_.limits.translation : options_.limits.rotation;
-    const std::string slope = format(s.fraction * limit) + (length ? " mm/" : " rad/") +
+    const std::string slope = significant_text(s.fraction * limit, 6) + (length ? " mm/" : " rad/") +
                               (grid_[s.variable].rotary ? "deg" : "mm");
     const std::string lines = std::to_string(lines_[a]) + " and " + std::to_string(lines_[b]);
-    const std::string why = ", above the limit " + format(limit) + " that keeps the correction invertible";
+    const std::string why = ", above the limit " + significant_text(limit, 6) + " that keeps the correction invertible";
     throw LoadError(cell_at(b, grid_.size() + s.column),
                     table.interpolation() == Interpolation::Cubic
                         ? "the cubic spline between lines " + lines + " reaches a slope of " + slope + why +

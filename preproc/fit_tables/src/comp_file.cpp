@@ -2,21 +2,16 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
+
+#include "vc/tables/number_text.hpp"
 
 namespace vc::fit_tables {
 namespace {
 
 constexpr int kCompSize = 256;  // EMCMOT_COMP_SIZE
-
-std::string number(double v) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, result.ptr);
-}
 
 }  // namespace
 
@@ -50,7 +45,7 @@ std::vector<LinuxcncCompFile> linuxcnc_comp_files(const machine::Model& model, c
     for (std::size_t k = 0; k < t.nodes.size(); ++k) {
       const double value = x[t.unknown_of_node(static_cast<int>(k))];
       const double half_b = r == reversals.end() ? 0.0 : 0.5 * reversal_at(*r, t.nodes[k]);
-      f.text += number(t.nodes[k]) + " " + number(value - half_b) + " " + number(value + half_b) + "\n";
+      f.text += number_text(t.nodes[k]) + " " + number_text(value - half_b) + " " + number_text(value + half_b) + "\n";
     }
     files.push_back(std::move(f));
   }
@@ -89,7 +84,7 @@ LinuxcncComp read_linuxcnc_comp(const std::string& text, int type) {
     if (static_cast<int>(c.nominal.size()) >= kCompSize)
       throw std::invalid_argument("more than 256 compensation entries (LinuxCNC: too many compensation entries)");
     if (!c.nominal.empty() && nom <= c.nominal.back())
-      throw std::invalid_argument("compensation nominal " + number(nom) +
+      throw std::invalid_argument("compensation nominal " + number_text(nom) +
                                   " does not increase (LinuxCNC: compensation "
                                   "values must increase)");
     if (!c.nominal.empty()) {  // the slope from the previous entry, stored as float

@@ -1,12 +1,12 @@
 #include "vc/fit_tables/controller.hpp"
 
-#include <toml++/toml.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
+
+#include "vc/machine/toml_file.hpp"
 
 namespace vc::fit_tables {
 namespace {
@@ -22,35 +22,23 @@ bool is_linear_letter(const std::string& s) {
   return is_axis_letter(s) && std::string("XYZUVW").find(s[0]) != std::string::npos;
 }
 
-std::string join(const std::vector<std::string_view>& words) {
-  std::string s;
-  for (auto w : words) s += (s.empty() ? "" : ", ") + std::string(w);
-  return s;
-}
-
 // The keys a [[table]] entry or [defaults] may set besides the table's axes.
 const std::vector<std::string_view> kSettingKeys{"direction_dependent", "modulo",         "max_nodes",
                                                  "default_nodes",       "spacing",        "outside",
                                                  "resolution_um",       "resolution_deg", "resolution_arcsec"};
 
-class ControllerReader {
+// The file's typed getters (where, check_keys, text) are TomlFile's.
+class ControllerReader : machine::TomlFile {
  public:
-  explicit ControllerReader(std::string path) : path_(std::move(path)) {}
+  explicit ControllerReader(std::string path) : TomlFile(std::move(path)) {}
 
   Controller read() {
-    toml::table root;
-    try {
-      root = toml::parse_file(path_);
-    } catch (const toml::parse_error& e) {
-      throw LoadError(where(e.source()), std::string(e.description()));
-    } catch (const std::exception& e) {
-      throw LoadError({path_}, e.what());
-    }
+    const toml::table& root = this->root();
     Controller c;
-    c.path = path_;
+    c.path = path();
     check_keys(root, "the controller file", {"controller", "defaults", "table"});
     const toml::table* head = root.get_as<toml::table>("controller");
-    if (!head) throw LoadError({path_, 1, 1}, "the controller file needs a [controller] table");
+    if (!head) throw LoadError({path(), 1, 1}, "the controller file needs a [controller] table");
     check_keys(*head, "[controller]", {"name", "title", "checked_against", "format"});
     c.name = text(*head, "name", true);
     c.title = text(*head, "title", false);
@@ -72,34 +60,17 @@ class ControllerReader {
     }
     const toml::node* list = root.get("table");
     if (!list || !list->is_array_of_tables())
-      throw LoadError(list ? where(*list) : SourceLocation{path_, 1, 1},
+      throw LoadError(list ? where(*list) : SourceLocation{path(), 1, 1},
                       "the controller file needs at least one [[table]] entry");
     for (const toml::node& n : *list->as_array()) c.tables.push_back(read_table(*n.as_table(), defaults));
     return c;
   }
 
  private:
-  SourceLocation where(const toml::source_region& r) const {
-    return {path_, static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
-  }
-  SourceLocation where(const toml::node& n) const { return where(n.source()); }
-
-  void check_keys(const toml::table& t, const std::string& context,
-                  const std::vector<std::string_view>& allowed) const {
-    for (auto&& [key, value] : t)
-      if (std::find(allowed.begin(), allowed.end(), key.str()) == allowed.end())
-        throw LoadError(where(key.source()), "unknown key '" + std::string(key.str()) + "' in " + context +
-                                                 " (expected one of: " + join(allowed) + ")");
-  }
-
+  using TomlFile::text;
+  // A controller file's messages name no table: "needs 'name'".
   std::string text(const toml::table& t, std::string_view key, bool required) const {
-    const toml::node* n = t.get(key);
-    if (!n) {
-      if (required) throw LoadError(where(t), "needs '" + std::string(key) + "'");
-      return {};
-    }
-    if (!n->is_string()) throw LoadError(where(*n), "'" + std::string(key) + "' must be a string");
-    return n->as_string()->get();
+    return TomlFile::text(t, key, required, "");
   }
 
   void read_settings(const toml::table& t, TableSpec& s) const {
@@ -108,12 +79,12 @@ class ControllerReader {
     if (const toml::node* n = t.get("max_nodes")) s.max_nodes = count(*n, "max_nodes");
     if (const toml::node* n = t.get("default_nodes")) s.default_nodes = count(*n, "default_nodes");
     if (const toml::node* n = t.get("spacing"))
-      if (word(*n, "spacing") != "equal")
+      if (text(*n, "spacing") != "equal")
         throw LoadError(where(*n),
                         "'spacing' must be \"equal\" (nodes equally spaced over the input axis's travel: "
                         "the only rule the fit models)");
     if (const toml::node* n = t.get("outside"))
-      if (word(*n, "outside") != "hold")
+      if (text(*n, "outside") != "hold")
         throw LoadError(where(*n),
                         "'outside' must be \"hold\" (the first and last values held outside the nodes: "
                         "the only rule the fit models)");
@@ -130,10 +101,6 @@ class ControllerReader {
     if (!n.is_integer() || n.as_integer()->get() < 2 || n.as_integer()->get() > 100000)
       throw LoadError(where(n), "'" + std::string(key) + "' must be a whole number of nodes, 2 .. 100000");
     return static_cast<int>(n.as_integer()->get());
-  }
-  std::string word(const toml::node& n, std::string_view key) const {
-    if (!n.is_string()) throw LoadError(where(n), "'" + std::string(key) + "' must be a string");
-    return n.as_string()->get();
   }
   double resolution(const toml::node& n, std::string_view key) const {
     const auto v = n.value<double>();
@@ -186,7 +153,6 @@ class ControllerReader {
     return s;
   }
 
-  std::string path_;
 };
 
 fs::path controllers_folder() { return fs::path(VC_FIT_TABLES_CONTROLLERS_DIR); }

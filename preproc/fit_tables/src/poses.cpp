@@ -1,20 +1,14 @@
 #include "vc/fit_tables/poses.hpp"
 
-#include <charconv>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "vc/fit_tables/interpolation.hpp"
+#include "vc/tables/number_text.hpp"
 
 namespace vc::fit_tables {
 namespace {
-
-std::string number(double v) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, result.ptr);
-}
 
 }  // namespace
 
@@ -30,8 +24,8 @@ std::vector<Pose> grid_poses(const machine::Model& model, const GridSpec& spec) 
     if (positions.empty()) throw std::invalid_argument(std::string("--rotary ") + letter + ": no positions");
     for (double p : positions)
       if (!std::isfinite(p) || p < a.travel_min - 1e-9 || p > a.travel_max + 1e-9)
-        throw std::invalid_argument(std::string("--rotary ") + letter + "=" + number(p) + ": outside the travel " +
-                                    number(a.travel_min) + " .. " + number(a.travel_max) + " deg");
+        throw std::invalid_argument(std::string("--rotary ") + letter + "=" + number_text(p) + ": outside the travel " +
+                                    number_text(a.travel_min) + " .. " + number_text(a.travel_max) + " deg");
   }
   const int n = model.joint_count();
   std::vector<std::vector<double>> levels(static_cast<std::size_t>(n));

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "vc/tables/number_text.hpp"
+
 namespace vc::fit_tables {
 namespace {
 
@@ -26,13 +28,7 @@ int decimals_of(double resolution) {
 // Fixed decimals without trailing zeros, at least one decimal as the manual writes them
 // ("0.003", "1.0", "-200.0"); never "-0.0".
 std::string decimal_text(double v, int decimals) {
-  char buffer[64];
-  const auto r = std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::fixed, decimals);
-  std::string s(buffer, r.ptr);
-  if (s.find('.') == std::string::npos) s += ".0";
-  while (s.back() == '0' && s[s.size() - 2] != '.') s.pop_back();
-  if (s == "-0.0") s = "0.0";
-  return s;
+  return without_negative_zero(without_trailing_zeros(fixed_text(v, decimals), 1));
 }
 
 std::string value_text(double v, double resolution) {

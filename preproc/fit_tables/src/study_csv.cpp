@@ -1,35 +1,18 @@
 #include "vc/fit_tables/study_csv.hpp"
 
-#include <charconv>
 #include <cmath>
 #include <string>
+
+#include "vc/tables/number_text.hpp"
 
 namespace vc::fit_tables {
 namespace {
 
 constexpr double kRadToArcsec = 180.0 * 3600.0 / M_PI;
 
-// Shortest text that reads back to the same double, never a locale's decimal comma.
-std::string number(double v) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, result.ptr);
-}
 // Fixed decimals without trailing zeros ("7.1", "-5", "0.000123"): table values to 1e-6 um
 // or arcsec, far below any controller's resolution.
-std::string value_text(double v) {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::fixed, 6);
-  std::string s(buffer, result.ptr);
-  while (s.back() == '0') s.pop_back();
-  if (s.back() == '.') s.pop_back();
-  return s == "-0" ? "0" : s;
-}
-std::string fixed(double v, int decimals) {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::fixed, decimals);
-  return std::string(buffer, result.ptr);
-}
+std::string value_text(double v) { return without_negative_zero(without_trailing_zeros(fixed_text(v, 6))); }
 
 bool rotary_output(const machine::Model& model, const Table& t) {
   return model.axes[static_cast<std::size_t>(t.output)].type == machine::AxisType::Rotary;
@@ -37,7 +20,7 @@ bool rotary_output(const machine::Model& model, const Table& t) {
 
 std::string lengths(const std::vector<double>& l) {
   std::string s;
-  for (double v : l) s += (s.empty() ? "" : ", ") + number(v);
+  for (double v : l) s += (s.empty() ? "" : ", ") + number_text(v);
   return s.empty() ? "none" : s;
 }
 
@@ -76,9 +59,10 @@ void write_report_csv(const Study& s, const machine::Model& model, const Control
   out << "tool_length[mm],fitted,set,poses,none_M[um],none_Delta[um],usual_M[um],usual_Delta[um],modified_M[um],"
          "modified_Delta[um],full_M[um],full_Delta[um]\n";
   for (const ReportRow& r : s.rows) {
-    out << number(r.tool_length_mm) << ',' << (r.fitted_length ? "yes" : "no") << ',' << r.set << ',' << r.none.poses;
+    out << number_text(r.tool_length_mm) << ',' << (r.fitted_length ? "yes" : "no") << ',' << r.set << ','
+        << r.none.poses;
     for (const Figures* f : {&r.none, &r.usual, &r.modified, &r.full})
-      out << ',' << fixed(f->max_um, 4) << ',' << fixed(f->delta_um, 4);
+      out << ',' << fixed_text(f->max_um, 4) << ',' << fixed_text(f->delta_um, 4);
     out << '\n';
   }
 }

@@ -1,23 +1,17 @@
 #include "vc/identify/iso230_2.hpp"
 
+#include "vc/tables/number_text.hpp"
 #include "vc/tables/source_error.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <sstream>
 #include <stdexcept>
 
 namespace vc::identify {
 namespace {
 
 const char* name(Direction d) { return d == Direction::Up ? "+" : "-"; }
-
-std::string text(double v) {
-  std::ostringstream out;
-  out << v;
-  return out.str();
-}
 
 
 // Readings by run and direction, each a map target -> deviation (a target read twice: refused).
@@ -29,7 +23,7 @@ std::map<RunKey, std::map<double, double>> by_run(const LaserRuns& runs, const s
     if (left_out.count(key)) continue;
     if (const auto [it, fresh] = lines[key].emplace(r.target, r.line); !fresh)
       throw LoadError({runs.path, r.line}, "run " + std::to_string(r.run) + name(r.direction) + " reads target " +
-                                               text(r.target) + " again (first on line " + std::to_string(it->second) + ")");
+                                               significant_text(r.target, 6) + " again (first on line " + std::to_string(it->second) + ")");
     out[key][r.target] = r.deviation;
   }
   return out;
@@ -118,12 +112,12 @@ Iso230_2 evaluate_iso230_2(const LaserRuns& runs, const std::set<RunKey>& left_o
     for (double t : targets)
       if (!readings.count(t))
         throw LoadError({runs.path}, "run " + std::to_string(key.first) + name(key.second) +
-                                         " has no reading at target " + text(t) + " (every run reads every target)");
+                                         " has no reading at target " + significant_text(t, 6) + " (every run reads every target)");
     if (readings.size() != targets.size())
       for (const auto& [t, x] : readings)
         if (!std::binary_search(targets.begin(), targets.end(), t))
           throw LoadError({runs.path}, "run " + std::to_string(key.first) + name(key.second) +
-                                           " reads target " + text(t) + ", which run " +
+                                           " reads target " + significant_text(t, 6) + ", which run " +
                                    std::to_string(all.begin()->first.first) + name(all.begin()->first.second) +
                                    " does not");
   }

@@ -1,19 +1,16 @@
 #include "vc/identify/probe_plan.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 
 #include "vc/machine/forward.hpp"
+#include "vc/tables/number_text.hpp"
 
 namespace vc::identify {
 namespace {
 
-std::string number(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.4f", std::abs(v) < 5e-5 ? 0.0 : v);
-  return buffer;
-}
+// G-code words to 0.1 um, never "-0.0000".
+std::string number(double v) { return without_negative_zero(fixed_text(v, 4)); }
 
 }  // namespace
 

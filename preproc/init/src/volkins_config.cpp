@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "vc/init/number.hpp"
+#include "vc/tables/number_text.hpp"
 
 namespace vc::init {
 
@@ -40,11 +41,6 @@ double ini_number(const LinuxcncIni& ini, std::string_view section, std::string_
   return v;
 }
 
-std::string um_or_mdeg(double v, bool rotary) {
-  std::ostringstream s;
-  s.precision(2);
-  s << std::fixed << v * 1e3 << (rotary ? " mdeg" : " um");
-  return s.str();
-}
+std::string um_or_mdeg(double v, bool rotary) { return fixed_text(v * 1e3, 2) + (rotary ? " mdeg" : " um"); }
 
 }  // namespace vc::init

@@ -133,7 +133,7 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
   };
   // What the cycle does between two moves, as G-code written after the last move.
   auto then = [&](std::string codes) { effect.after_moves.push_back({effect.moves.size() - 1, std::move(codes)}); };
-  auto dwell = [&](double seconds) { then("G4 P" + number_text(seconds) + "\n"); };
+  auto dwell = [&](double seconds) { then("G4 P" + gcode_number_text(seconds) + "\n"); };
   const char* spindle_on = spindle_clockwise_ ? "M3\n" : "M4\n";
   const char* spindle_reversed = spindle_clockwise_ ? "M4\n" : "M3\n";
 
@@ -147,9 +147,9 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
   const bool pecking = code == 730 || code == 830;
   const double moves = repeats * (4.0 + (pecking ? 3.0 * std::ceil((r - bottom) / cycle_q_) : 0.0));
   if (!(moves <= kMostCycleMoves))
-    fail("this block would make " + number_text(moves) + " moves (" +
+    fail("this block would make " + gcode_number_text(moves) + " moves (" +
          (pecking ? "(R - bottom) / Q pecks of 3 moves" : std::string("4 moves")) + " x L " +
-         std::to_string(repeats) + "); more than " + number_text(kMostCycleMoves) + " are refused");
+         std::to_string(repeats) + "); more than " + gcode_number_text(kMostCycleMoves) + " are refused");
   for (int k = repeats; k > 0; --k) {
     x += dx;
     y += dy;

@@ -15,8 +15,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <string>
+
+#include "vc/tables/number_text.hpp"
 
 namespace vc::interpreter::lathe {
 namespace {
@@ -27,11 +28,8 @@ const Point kI{0.0, 1.0};
 
 double cross(Point a, Point b) { return std::imag(std::conj(a) * b); }
 
-std::string text(Point p) {
-  std::ostringstream out;
-  out << p;
-  return out.str();
-}
+// "(x,z)", as an ostream writes a std::complex.
+std::string text(Point p) { return "(" + significant_text(p.real(), 6) + "," + significant_text(p.imag(), 6) + ")"; }
 
 // --- one segment ---------------------------------------------------------------------------
 

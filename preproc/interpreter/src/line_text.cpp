@@ -49,7 +49,7 @@ std::optional<std::size_t> expanded_message_start(std::string_view comment) {
 
 }  // namespace
 
-std::string number_text(double value) {
+std::string gcode_number_text(double value) {
   char buffer[400];
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed);
   return std::string(buffer, result.ptr);
@@ -172,18 +172,19 @@ std::string evaluated_line(std::string_view raw, const gcode::Block& block, cons
     if (boost::get<double>(&w.value)) continue;  // a number as written
     const double value = gcode::evaluate(w.value, parameters, w.begin);
     if (!std::isfinite(value)) throw gcode::SyntaxError(w.begin, "the value is not a finite number");
-    edits.push_back({w.begin, w.end, std::string(1, w.letter) + number_text(value)});
+    edits.push_back({w.begin, w.end, std::string(1, w.letter) + gcode_number_text(value)});
   }
   for (const gcode::Assignment& a : block.assignments) {
     const double value = gcode::evaluate(a.value, parameters, a.begin);
     std::string text;
     if (const auto* named = boost::get<gcode::ast::NamedParameter>(&a.target)) {
       if (gcode::Parameters::is_global(named->name) || in_main_program)
-        text = "#<" + named->name + ">=" + number_text(value);
+        text = "#<" + named->name + ">=" + gcode_number_text(value);
     } else {
       const auto& numbered = boost::get<boost::spirit::x3::forward_ast<gcode::ast::NumberedParameter>>(a.target).get();
       const double n = std::round(gcode::evaluate(numbered.index, parameters, a.begin));
-      if (n > gcode::Parameters::kLocals || numbered_shared) text = "#" + number_text(n) + "=" + number_text(value);
+      if (n > gcode::Parameters::kLocals || numbered_shared)
+        text = "#" + gcode_number_text(n) + "=" + gcode_number_text(value);
     }
     edits.push_back({a.begin, a.end, text});
   }

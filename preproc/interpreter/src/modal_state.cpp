@@ -5,8 +5,7 @@
 // path mode, then the M codes that differ. Here the same text is made and run as lines of the
 // flat program (ProgramReader), so that the pre-distorted program restores by itself what the
 // original restored: it has no subroutine to return from and no saved state of its own.
-#include <cstdio>
-
+#include "vc/tables/number_text.hpp"
 #include "words.hpp"
 
 namespace vc::interpreter {
@@ -16,12 +15,6 @@ namespace {
 std::string code_text(char letter, int code_x10) {
   return std::string(" ") + letter + std::to_string(code_x10 / 10) +
          (code_x10 % 10 ? "." + std::to_string(code_x10 % 10) : std::string());
-}
-
-std::string formatted(const char* format, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
 }
 
 }  // namespace
@@ -88,14 +81,14 @@ std::string Interpreter::restore_text(const ModalState& saved) const {
   const ModalState now = modal_state();
   std::string text;
   if (saved.inches != now.inches) text += saved.inches ? "G20\n" : "G21\n";
-  text += formatted(" F%.1f", saved.feed) + formatted(" S%.0f", saved.speed);
+  text += " F" + fixed_text(saved.feed, 1) + " S" + fixed_text(saved.speed, 0);
   for (std::size_t i = 0; i < saved.g.size(); ++i)
     if (saved.g[i] != now.g[i] && saved.g[i] != -1) {
       if (i == 1) throw std::logic_error("cutter compensation differs at M72");  // refused before
       text += code_text('G', saved.g[i]);
     }
   if (saved.path_mode == 640)
-    text += saved.path_p < 0 ? std::string(" G64") : " G64" + formatted(" P%f", saved.path_p);
+    text += saved.path_p < 0 ? std::string(" G64") : " G64 P" + fixed_text(saved.path_p, 6);
   else if (saved.path_mode != now.path_mode)
     text += code_text('G', saved.path_mode);
   for (std::size_t i = 0; i < saved.m.size(); ++i)

@@ -3,18 +3,14 @@
 // 5.000000000000001), whatever the locale (a spreadsheet and gnuplot both read '.').
 #pragma once
 
-#include <charconv>
 #include <string>
 #include <vector>
 
+#include "vc/tables/number_text.hpp"
+
 namespace vc::plot {
 
-inline std::string number(double v) {
-  if (v == 0.0) v = 0.0;  // no "-0"
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::general, 12);
-  return std::string(buffer, result.ptr);
-}
+inline std::string number(double v) { return without_negative_zero(significant_text(v, 12)); }
 
 // `text` broken into lines of at most `width` characters at spaces (a longer word stays whole),
 // the lines after the first indented by `indent` spaces: a note in a plot's side column.

@@ -1,22 +1,16 @@
 #include "vc/plot/volume_map_plot.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <sstream>
 
 #include "plot_format.hpp"
+#include "vc/tables/number_text.hpp"
 
 namespace vc::plot {
 namespace {
 
 std::string letter(const machine::Model& model, int joint) {
   return std::string(1, model.axes[static_cast<std::size_t>(joint)].letter);
-}
-
-std::string fixed1(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.1f", v);
-  return buffer;
 }
 
 }  // namespace
@@ -77,7 +71,7 @@ Figure volume_map_plot(const VolumeMap& map, std::size_t sheet_index, const mach
       const std::vector<double>& e = sheet.error_um[c][l];
       const double largest = *std::max_element(e.begin(), e.end());
       gp << "set title " << text_literal(map.compensations[c] + ", " + z + " " + number(map.levels_mm[l]) +
-                                         " mm: max " + fixed1(largest) + " um")
+                                         " mm: max " + fixed_text(largest, 1) + " um")
          << "\nplot DATA index " << c * columns + l << " using 1:2:3 with image\n";
     }
   gp << "unset multiplot\n";

@@ -3,27 +3,21 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <toml++/toml.h>
 
+#include "vc/machine/toml_file.hpp"
 #include "vc/tables/source_error.hpp"
 
 namespace vc::predistort {
 namespace {
 
-class ProcessReader {
+// The file's typed getters (where, get) are TomlFile's.
+class ProcessReader : machine::TomlFile {
  public:
-  explicit ProcessReader(const std::string& path) : path_(path) {}
-
-  SourceLocation where(const toml::node& n) const {
-    return {path_, static_cast<int>(n.source().begin.line), static_cast<int>(n.source().begin.column)};
-  }
+  explicit ProcessReader(const std::string& path) : TomlFile(path) {}
 
   double number(const toml::table& t, const char* key, std::optional<double> fallback, bool positive) const {
-    const toml::node* n = t.get(key);
-    if (!n) {
-      if (!fallback) throw LoadError(where(t), std::string("[[tool]] needs '") + key + "'");
-      return *fallback;
-    }
+    const toml::node* n = get(t, key, !fallback, "[[tool]]");
+    if (!n) return *fallback;
     const auto v = n->value<double>();
     if (!v || !std::isfinite(*v) || (positive ? *v <= 0 : *v < 0))
       throw LoadError(where(*n), std::string("'") + key + "' must be a " + (positive ? "positive" : "non-negative") +
@@ -32,21 +26,13 @@ class ProcessReader {
   }
 
   CuttingProcess read(const interpreter::ToolTable* tool_table) const {
-    toml::table root;
-    try {
-      root = toml::parse_file(path_);
-    } catch (const toml::parse_error& e) {
-      throw LoadError({path_, static_cast<int>(e.source().begin.line), static_cast<int>(e.source().begin.column)},
-                      std::string(e.description()));
-    } catch (const std::exception& e) {
-      throw LoadError({path_}, e.what());
-    }
+    const toml::table& root = this->root();
     CuttingProcess process;
-    process.path = path_;
+    process.path = path();
     for (const auto& [key, node] : root)
       if (key.str() != "tool") throw LoadError(where(node), "unknown key '" + std::string(key.str()) + "' (only [[tool]] tables)");
     const toml::array* tools = root["tool"].as_array();
-    if (!tools) throw LoadError({path_, 1, 1}, "no [[tool]] tables");
+    if (!tools) throw LoadError({path(), 1, 1}, "no [[tool]] tables");
     for (const toml::node& node : *tools) {
       const toml::table* t = node.as_table();
       if (!t) throw LoadError(where(node), "[[tool]] must be a table");
@@ -87,9 +73,6 @@ class ProcessReader {
     }
     return process;
   }
-
- private:
-  std::string path_;
 };
 
 }  // namespace

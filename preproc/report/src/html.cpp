@@ -1,8 +1,7 @@
 #include "vc/report/html.hpp"
 
-#include <charconv>
-
 #include "vc/report/base64.hpp"
+#include "vc/tables/number_text.hpp"
 
 namespace vc::report {
 
@@ -46,10 +45,7 @@ std::string html_png_figure(const std::string& png_bytes, const std::string& alt
 }
 
 std::string fixed(double v, int decimals) {
-  if (v == 0.0) v = 0.0;  // no "-0.0"
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::fixed, decimals);
-  return std::string(buffer, result.ptr);
+  return fixed_text(v == 0.0 ? 0.0 : v, decimals);  // no "-0.0" for a zero (a small negative value keeps its sign)
 }
 
 }  // namespace vc::report

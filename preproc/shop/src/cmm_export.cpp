@@ -4,7 +4,6 @@
 #include <array>
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <optional>
 #include <stdexcept>
@@ -12,6 +11,7 @@
 #include "delimited_text.hpp"
 #include "export_columns.hpp"
 #include "vc/tables/csv.hpp"
+#include "vc/tables/number_text.hpp"
 #include "vc/tables/source_error.hpp"
 
 namespace vc::shop {
@@ -89,11 +89,7 @@ double last_digit(std::string text) {
   return std::pow(10.0, exponent - decimals);
 }
 
-std::string um(double mm) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%+.3f um", mm * 1e3);
-  return buffer;
-}
+std::string um(double mm) { return with_sign(fixed_text(mm * 1e3, 3)) + " um"; }
 
 class ExportReader {
  public:

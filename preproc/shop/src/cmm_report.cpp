@@ -1,5 +1,4 @@
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -8,6 +7,7 @@
 #include "vc/shop/cmm.hpp"
 #include "vc/shop/cmm_export.hpp"
 #include "vc/tables/csv.hpp"
+#include "vc/tables/number_text.hpp"
 #include "vc/tables/source_error.hpp"
 #include "vc/tables/units.hpp"
 
@@ -38,11 +38,6 @@ HeaderCell header_cell(const std::string& path, int line, const tables::CsvCell&
   h.to_mm = u->to_core;
   h.has_unit = true;
   return h;
-}
-
-void put(std::ostream& out, double v) {
-  char buffer[32];
-  out.write(buffer, std::to_chars(buffer, buffer + sizeof buffer, v).ptr - buffer);
 }
 
 // Our CSV: the first line that is neither blank nor a comment starts with the cell "id".
@@ -147,10 +142,10 @@ void write_cmm_report(std::ostream& out, const std::vector<CmmPoint>& points, co
   out << "id,x[mm],y[mm],z[mm],i,j,k,deviation[um]\n";
   for (const CmmPoint& p : points) {
     out << p.id;
-    for (int a = 0; a < 3; ++a) out << ',', put(out, p.nominal[a]);
-    for (int a = 0; a < 3; ++a) out << ',', put(out, p.normal[a]);
+    for (int a = 0; a < 3; ++a) out << ',' << number_text(p.nominal[a]);
+    for (int a = 0; a < 3; ++a) out << ',' << number_text(p.normal[a]);
     out << ',';
-    if (p.deviation_mm) put(out, std::round(*p.deviation_mm * 1e7) / 1e4);  // 0.1 nm
+    if (p.deviation_mm) out << number_text(std::round(*p.deviation_mm * 1e7) / 1e4);  // 0.1 nm
     out << '\n';
   }
 }

@@ -1,15 +1,15 @@
 #include "vc/shop/table_set.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <stdexcept>
-#include <toml++/toml.h>
 
+#include "vc/machine/toml_file.hpp"
 #include "vc/tables/atomic_file.hpp"
+#include "vc/tables/number_text.hpp"
 #include "vc/tables/symbols.hpp"
 #include "vc/tables/units.hpp"
 
@@ -17,11 +17,6 @@ namespace vc::shop {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string number(double v) {
-  char buffer[32];
-  return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, v).ptr);
-}
 
 std::string trimmed(const std::string& s) {
   const auto b = s.find_first_not_of(" \t");
@@ -59,7 +54,7 @@ void write_location(const LocationValue& v, char letter, const std::string& chai
   // The uncertainty in the unit of the key that receives the value (mm or um, arcsec or urad ...).
   const auto with_uncertainty = [&](const std::string& text, const tables::Unit& unit) {
     if (v.uncertainty < 0) return text;
-    return text + " +- " + number(std::round(v.uncertainty / unit.to_core * 1e6) / 1e6 + 0.0) + " " + std::string(unit.name) +
+    return text + " +- " + number_text(std::round(v.uncertainty / unit.to_core * 1e6) / 1e6 + 0.0) + " " + std::string(unit.name) +
            " (standard uncertainty)";
   };
   int last_key_line = -1;
@@ -78,14 +73,15 @@ void write_location(const LocationValue& v, char letter, const std::string& chai
       if (node.source().end.line != node.source().begin.line || end > text.size() || begin >= end)
         throw std::runtime_error("line " + std::to_string(line + 1) + ": cannot rewrite the value of " + k);
       const std::string old = text.substr(begin, end - begin);
-      text = text.substr(0, begin) + number(std::round(v.value / unit->to_core * 1e6) / 1e6 + 0.0) + text.substr(end);
+      text = text.substr(0, begin) + number_text(std::round(v.value / unit->to_core * 1e6) / 1e6 + 0.0) +
+             text.substr(end);
       text += (text.find('#') == std::string::npos ? "   # " : "; ") + with_uncertainty(comment, *unit) + ", was " + old;
       return;
     }
   }
   const bool length = v.component < 3;
   const std::string line = symbol + (length ? "_um = " : "_arcsec = ") +
-                           number(std::round(v.value * (length ? 1e3 : 648000.0 / M_PI) * 1e6) / 1e6 + 0.0) +
+                           number_text(std::round(v.value * (length ? 1e3 : 648000.0 / M_PI) * 1e6) / 1e6 + 0.0) +
                            "   # " + with_uncertainty(comment, *tables::find_unit(length ? "um" : "arcsec"));
   if (location && last_key_line >= 0) {
     insertions[last_key_line + 1].push_back(line);
@@ -121,11 +117,11 @@ void write_table_csv(const tables::ErrorTable& table, std::ostream& out, const s
       index[v] = static_cast<std::size_t>(rest) % grid[v].nodes.size();
       rest /= static_cast<int>(grid[v].nodes.size());
     }
-    for (std::size_t v = 0; v < grid.size(); ++v) out << (v ? "," : "") << number(grid[v].nodes[index[v]] + 0.0);
+    for (std::size_t v = 0; v < grid.size(); ++v) out << (v ? "," : "") << number_text(grid[v].nodes[index[v]] + 0.0);
     for (std::size_t c = 0; c < table.columns().size(); ++c) {
       // um or urad, to a thousandth of them
       const bool length = table.columns()[c].symbol.quantity() == tables::Quantity::Length;
-      out << ',' << number(std::round(table.value(node, static_cast<int>(c)) * (length ? 1e6 : 1e9)) / 1e3 + 0.0);  // no "-0"
+      out << ',' << number_text(std::round(table.value(node, static_cast<int>(c)) * (length ? 1e6 : 1e9)) / 1e3 + 0.0);  // no "-0"
     }
     out << '\n';
   }
@@ -160,7 +156,8 @@ std::string write_machine_with_tables(const machine::Model& model, const std::st
   }
   fs::create_directories(folder);
   const fs::path out_dir = fs::absolute(folder);
-  const toml::table root = toml::parse_file(model.path);  // the model loaded from it: it parses
+  const machine::TomlFile machine_file(model.path);  // the model loaded from it: it parses
+  const toml::table& root = machine_file.root();
 
   std::map<int, std::string> replaced_lines;                // 0-based line -> new text
   std::map<int, std::vector<std::string>, std::greater<>> insertions;  // before 0-based line, last first

@@ -1,9 +1,9 @@
-// The path file: one sample per row, units in the header, full precision (std::to_chars).
-#include <charconv>
+// The path file: one sample per row, units in the header, full precision (number_text).
 #include <ostream>
 
 #include "vc/shop/tool_path.hpp"
 #include "vc/tables/csv.hpp"
+#include "vc/tables/number_text.hpp"
 #include "vc/tables/source_error.hpp"
 
 namespace vc::shop {
@@ -13,11 +13,6 @@ constexpr const char* kColumns[] = {"move", "line",  "tool",  "radius[mm]", "end
                                     "s",    "x[mm]", "y[mm]", "z[mm]",      "i",      "j",
                                     "k",    "ex[um]", "ey[um]", "ez[um]"};
 constexpr int kColumnCount = sizeof kColumns / sizeof kColumns[0];
-
-void put(std::ostream& out, double v) {
-  char buffer[32];
-  out.write(buffer, std::to_chars(buffer, buffer + sizeof buffer, v).ptr - buffer);
-}
 
 }  // namespace
 
@@ -29,12 +24,12 @@ void write_path_header(std::ostream& out, const std::vector<std::string>& commen
 
 void write_path_sample(std::ostream& out, const PathSample& p) {
   out << p.move << ',' << p.line << ',' << p.tool << ',';
-  put(out, p.radius_mm);
+  out << number_text(p.radius_mm);
   out << ',' << (p.end == ToolEnd::Ball ? "ball" : "flat") << ',' << (p.cutting ? 1 : 0) << ',';
-  put(out, p.s);
-  for (int i = 0; i < 3; ++i) out << ',', put(out, p.tip[i]);
-  for (int i = 0; i < 3; ++i) out << ',', put(out, p.axis[i]);
-  for (int i = 0; i < 3; ++i) out << ',', put(out, p.error_mm[i] * 1e3);
+  out << number_text(p.s);
+  for (int i = 0; i < 3; ++i) out << ',' << number_text(p.tip[i]);
+  for (int i = 0; i < 3; ++i) out << ',' << number_text(p.axis[i]);
+  for (int i = 0; i < 3; ++i) out << ',' << number_text(p.error_mm[i] * 1e3);
   out << '\n';
 }
 

@@ -1,5 +1,5 @@
 // Numbers as LinuxCNC's files write them ("-20", "+1.5", "1e3"), read and written
-// locale-proof (std::from_chars, std::to_chars).
+// locale-proof (std::from_chars, vc::number_text).
 #pragma once
 
 #include <array>
@@ -7,6 +7,8 @@
 #include <cmath>
 #include <string>
 #include <string_view>
+
+#include "vc/tables/number_text.hpp"
 
 namespace vc::init {
 
@@ -18,13 +20,9 @@ inline bool parse_number(std::string_view text, double& value) {
   return error == std::errc() && end == text.data() + text.size() && std::isfinite(value);
 }
 
-// The shortest text that reads back to `v` ("-20", "0.1"); -0 is written 0.
-inline std::string format_number(double v) {
-  if (v == 0.0) v = 0.0;
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, result.ptr);
-}
+// The shortest text that reads back to `v` ("-20", "0.1"); -0 is written 0. An alias of
+// vc::number_text (the one formatter) for the init files and preproc/cli, which call it so.
+inline std::string format_number(double v) { return without_negative_zero(number_text(v)); }
 
 // "[x, y, z]", a TOML array.
 inline std::string format_vector(const std::array<double, 3>& v) {

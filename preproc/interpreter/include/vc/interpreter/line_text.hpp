@@ -36,7 +36,8 @@ bool pin_line_number(std::string& raw, int line, const gcode::Parameters& parame
 std::string evaluated_line(std::string_view raw, const gcode::Block& block, const gcode::Parameters& parameters,
                            int line, bool numbered_shared, bool in_main_program);
 
-// The shortest fixed-point decimal that reads back as `value` (G-code has no exponents).
-std::string number_text(double value);
+// The shortest fixed-point decimal that reads back as `value`, as a G-code word or parameter
+// value is written (G-code has no exponents; vc::number_text, the files' formatter, may write "1e-07").
+std::string gcode_number_text(double value);
 
 }  // namespace vc::interpreter
