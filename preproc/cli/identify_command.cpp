@@ -18,7 +18,7 @@
 #include "vc/tables/atomic_file.hpp"
 #include "commands.hpp"
 #include "vc/tables/number_text.hpp"
-#include "vc/identify/circular_test.hpp"
+#include "vc/identify/iso230_4.hpp"
 #include "vc/identify/iso230_2.hpp"
 #include "vc/identify/probe_log.hpp"
 #include "vc/identify/sphere_centres.hpp"
@@ -32,7 +32,7 @@
 #include "vc/plot/laser_plot.hpp"
 #include "vc/tables/csv.hpp"
 #include "vc/tables/source_error.hpp"
-#include "vc/shop/table_set.hpp"
+#include "vc/shop/machine_file_writer.hpp"
 #include "vc/tables/symbols.hpp"
 
 namespace vc::cli {

@@ -13,7 +13,7 @@
 #include "commands.hpp"
 #include "vc/tables/number_text.hpp"
 #include "vc/machine/load_machine.hpp"
-#include "vc/shop/table_set.hpp"
+#include "vc/shop/machine_file_writer.hpp"
 #include "vc/tables/load_table.hpp"
 #include "vc/tables/symbols.hpp"
 

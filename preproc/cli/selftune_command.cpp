@@ -227,7 +227,7 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
     next = analyse(args.next_program, args.next_points, plan);
   }
   shop::ModelOptions fit_options{args.deviations, args.nodes, args.regularisation, args.smoothness};
-  const shop::ModelFit fit = shop::fit_tables(model, part, fit_options, next ? &*next : nullptr);
+  const shop::ModelFit fit = shop::fit_model(model, part, fit_options, next ? &*next : nullptr);
   const shop::ModelFitAdvice advice = shop::advise(fit);
   const std::string comment = "volcomp selftune (model) from " + args.report;
   const std::string machine_out =

@@ -145,14 +145,18 @@ class KilledWriters : public ::testing::Test {
     old["notes.txt"] = "the user's own file\n";
 
     std::mt19937 random(static_cast<unsigned>(std::hash<std::string>{}(name)));
-    // Half the kills anywhere in the run, half near its end, where most commands write.
-    std::uniform_int_distribution<long> anywhere_us(0, duration.count());
-    std::uniform_int_distribution<long> near_end_us(duration.count() * 4 / 5, duration.count() * 11 / 10);
+    // Half the kills anywhere in the run, half near its end, where most commands write. A run
+    // that ends before its kill shows the run shorter than measured (the machine's load
+    // changes while the suite runs): the next delays are drawn within that shorter run.
+    long run_us = duration.count();
     int killed = 0, all_old = 0, all_new = 0, mixed = 0, with_temporaries = 0;
     for (int k = 0; k < kills; ++k) {
       write_files(out, old);
-      const long delay = k % 2 ? near_end_us(random) : anywhere_us(random);
-      killed += run_and_kill(with_out(out), std::chrono::microseconds(delay));
+      const long delay = k % 2 ? std::uniform_int_distribution<long>(run_us * 4 / 5, run_us * 11 / 10)(random)
+                               : std::uniform_int_distribution<long>(0, run_us)(random);
+      const bool was_killed = run_and_kill(with_out(out), std::chrono::microseconds(delay));
+      killed += was_killed;
+      if (!was_killed) run_us = std::min(run_us, delay);
       const Snapshot after = snapshot(out);
       with_temporaries += after.temporaries > 0;
       int olds = 0, news = 0;
@@ -172,7 +176,7 @@ class KilledWriters : public ::testing::Test {
       ASSERT_EQ(after.files.size(), old.size()) << name << ": a file neither old nor new appeared";
       (news == 0 ? all_old : olds == 1 ? all_new : mixed) += 1;  // the user's file stays old
     }
-    std::cout << name << ": run " << duration.count() / 1000.0 << " ms; " << kills << " runs, " << killed
+    std::cout << name << ": run " << duration.count() / 1000.0 << " ms (" << run_us / 1000.0 << " ms at the last kill); " << kills << " runs, " << killed
               << " killed; afterwards all files old " << all_old << ", all new " << all_new << ", some of each " << mixed
               << " (each complete); temporaries left by " << with_temporaries << "\n";
     EXPECT_GE(killed, kills / 4) << name << ": too few runs were killed to show anything";

@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "test_support.hpp"
-#include "vc/identify/circular_test.hpp"
+#include "vc/identify/iso230_4.hpp"
 #include "vc/identify/iso230_2.hpp"
 #include "vc/identify/laser_runs.hpp"
 #include "vc/machine/load_machine.hpp"

@@ -24,7 +24,7 @@
 #include "linuxcnc_run.hpp"
 #include "vc/machine/forward.hpp"
 #include "vc/machine/load_machine.hpp"
-#include "vc/shop/table_set.hpp"
+#include "vc/shop/machine_file_writer.hpp"
 
 namespace vc {
 namespace {

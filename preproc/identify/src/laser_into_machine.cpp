@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "vc/machine/load_machine.hpp"
-#include "vc/shop/table_set.hpp"
+#include "vc/shop/machine_file_writer.hpp"
 #include "vc/tables/csv.hpp"
 #include "vc/tables/number_text.hpp"
 

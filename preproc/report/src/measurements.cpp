@@ -8,7 +8,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "vc/identify/circular_test.hpp"
+#include "vc/identify/iso230_4.hpp"
 #include "vc/identify/iso230_2.hpp"
 #include "vc/identify/laser_runs.hpp"
 #include "vc/plot/circle_plot.hpp"

@@ -2,7 +2,7 @@
 #include <filesystem>
 #include <random>
 
-#include "vc/shop/table_set.hpp"
+#include "vc/shop/machine_file_writer.hpp"
 
 namespace vc::shop {
 

@@ -111,7 +111,7 @@ std::string tuning_table_name(char axis) {
   return std::string("selftune_") + static_cast<char>(std::tolower(axis)) + ".csv";
 }
 
-ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const ModelOptions& options,
+ModelFit fit_model(const machine::Model& model, const FirstPart& part, const ModelOptions& options,
                     const FirstPart* next) {
   if (options.nodes < 2 || options.nodes > 101) throw std::invalid_argument("--nodes must be in [2, 101]");
   const Selection selection = selected(model, options);

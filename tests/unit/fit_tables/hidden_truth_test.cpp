@@ -12,7 +12,7 @@
 #include "test_support.hpp"
 #include "vc/fit_tables/study.hpp"
 #include "vc/machine/load_machine.hpp"
-#include "vc/shop/table_set.hpp"
+#include "vc/shop/machine_file_writer.hpp"
 
 namespace vc::fit_tables {
 namespace {

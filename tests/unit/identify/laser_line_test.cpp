@@ -21,7 +21,7 @@
 #include "vc/identify/laser_line.hpp"
 #include "vc/machine/forward.hpp"
 #include "vc/machine/load_machine.hpp"
-#include "vc/shop/table_set.hpp"
+#include "vc/shop/machine_file_writer.hpp"
 
 namespace vc::identify {
 namespace {

@@ -16,7 +16,7 @@
 #include "vc/shop/cmm.hpp"
 #include "vc/shop/selftune_local.hpp"
 #include "vc/shop/selftune_model.hpp"
-#include "vc/shop/table_set.hpp"
+#include "vc/shop/machine_file_writer.hpp"
 #include "vc/tables/source_error.hpp"
 
 namespace vc {
@@ -285,7 +285,7 @@ TEST_F(Files, ModelFitOnAFullTurnAxisWritesAPeriodicTableThatLoads) {
   shop::ModelOptions options;
   options.deviations = {"EXC", "EYC"};
   options.nodes = 9;
-  const shop::ModelFit fit = shop::fit_tables(model, part, options);
+  const shop::ModelFit fit = shop::fit_model(model, part, options);
   EXPECT_EQ(fit.parameters, 2 * 9);  // 9 nodes round the turn, 8 distinct: a series of order 4 (1, 4 cos, 4 sin)
   EXPECT_LT(fit.rms_after_mm, 0.2 * fit.rms_before_mm);
   const shop::ExtraTable* table_c = nullptr;
@@ -350,7 +350,7 @@ TEST_F(Files, ModelFitFindsARotaryAxisLocationErrorAndWritesIt) {
   const shop::FirstPart& part = setup.part;
   shop::ModelOptions options;
   options.deviations = {"EX0C", "EY0C"};
-  const shop::ModelFit fit = shop::fit_tables(model, part, options);
+  const shop::ModelFit fit = shop::fit_model(model, part, options);
   ASSERT_EQ(fit.locations.size(), 2u);
   for (const shop::LocationValue& v : fit.locations) {
     EXPECT_EQ(v.joint, c);
@@ -424,7 +424,7 @@ TEST_F(Files, ModelFitReportsTheNoiseItCarriesHonestly) {
   for (int draw = 0; draw < kDraws; ++draw) {
     for (int k = 0; k < kPoints; ++k)
       part.points[static_cast<std::size_t>(k)].filtered_mm = exact[static_cast<std::size_t>(k)] + noise(random);
-    const shop::ModelFit fit = shop::fit_tables(model, part, options, &next);
+    const shop::ModelFit fit = shop::fit_model(model, part, options, &next);
     ASSERT_GE(fit.scatter_mm, 0.0);
     ASSERT_EQ(fit.next_points, kNextPoints);
     scatter += fit.scatter_mm / kDraws;
@@ -480,7 +480,7 @@ TEST_F(Files, ModelFitNamesWhatTheNextPartFeelsAndThisPartCannotSee) {
   }
   shop::ModelOptions options;
   options.deviations = {"EX0C", "EY0C", "EXX"};
-  const shop::ModelFit fit = shop::fit_tables(model, setup.part, options, &next);
+  const shop::ModelFit fit = shop::fit_model(model, setup.part, options, &next);
   ASSERT_EQ(fit.next_unseen.size(), 3u);
   EXPECT_EQ(fit.next_unseen[0].symbol, "EXX");
   EXPECT_FALSE(fit.next_unseen[0].angle);

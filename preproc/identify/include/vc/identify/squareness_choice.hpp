@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "vc/identify/circular_test.hpp"
+#include "vc/identify/iso230_4.hpp"
 
 namespace vc::identify {
 

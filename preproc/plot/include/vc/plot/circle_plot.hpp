@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "vc/identify/circular_test.hpp"
+#include "vc/identify/iso230_4.hpp"
 #include "vc/plot/gnuplot.hpp"
 
 namespace vc::plot {

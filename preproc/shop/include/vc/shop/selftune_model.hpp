@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "vc/shop/first_part.hpp"
-#include "vc/shop/table_set.hpp"
+#include "vc/shop/machine_file_writer.hpp"
 
 namespace vc::shop {
 
@@ -72,7 +72,7 @@ struct ModelFit {
 // Throws std::invalid_argument for a deviation symbol the machine does not have. `next`: the
 // points of another part matched to its program's cuts (analyse_first_part of its plan), for
 // the noise the tuned tables carry there.
-ModelFit fit_tables(const machine::Model& model, const FirstPart& part, const ModelOptions& options,
+ModelFit fit_model(const machine::Model& model, const FirstPart& part, const ModelOptions& options,
                     const FirstPart* next = nullptr);
 
 // The file name of an axis's tuning table.

@@ -1,4 +1,4 @@
-#include "vc/shop/table_set.hpp"
+#include "vc/shop/machine_file_writer.hpp"
 
 #include <algorithm>
 #include <cmath>

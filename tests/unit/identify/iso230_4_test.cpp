@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "test_support.hpp"
-#include "vc/identify/circular_test.hpp"
+#include "vc/identify/iso230_4.hpp"
 #include "vc/machine/deviations.hpp"
 #include "vc/machine/forward.hpp"
 #include "vc/machine/load_machine.hpp"

@@ -1,4 +1,4 @@
-#include "vc/identify/circular_test.hpp"
+#include "vc/identify/iso230_4.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
