@@ -22,11 +22,11 @@ constexpr double kSpiralRelativeTolerance = 0.001;
 
 void Interpreter::arc_geometry(const Words& w, const Position& end, int line, Move& m) const {
   Arc& arc = m.arc;
-  arc.clockwise = motion_ == 20;
-  const int offset = w.find_g({20, 30}) ? w.find_g({20, 30})->offset : w[w.has('X') ? 'X' : 'Y'].offset;
+  arc.clockwise = motion_ == G_2;
+  const int offset = w.find_g({G_2, G_3}) ? w.find_g({G_2, G_3})->offset : w[w.has('X') ? 'X' : 'Y'].offset;
   char first_letter, second_letter;  // center words of the plane
-  if (plane_ == 170) { arc.first = 0; arc.second = 1; arc.normal = 2; first_letter = 'I'; second_letter = 'J'; }
-  else if (plane_ == 180) { arc.first = 2; arc.second = 0; arc.normal = 1; first_letter = 'K'; second_letter = 'I'; }
+  if (plane_ == G_17) { arc.first = 0; arc.second = 1; arc.normal = 2; first_letter = 'I'; second_letter = 'J'; }
+  else if (plane_ == G_18) { arc.first = 2; arc.second = 0; arc.normal = 1; first_letter = 'K'; second_letter = 'I'; }
   else { arc.first = 1; arc.second = 2; arc.normal = 0; first_letter = 'J'; second_letter = 'K'; }
   if (w.has('P')) {
     const double p = w.get('P');

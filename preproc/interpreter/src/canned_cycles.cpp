@@ -39,11 +39,12 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
   const int at = word ? word->offset : w.first_motion_offset();
   auto fail = [&](const std::string& why) { refuse(line, at, g_name(code) + ": " + why); };
   // The plane's axes (a, b: the hole's position) and the hole axis n, with their letters.
-  const int a = plane_ == 170 ? 0 : plane_ == 180 ? 2 : 1;
-  const int b = plane_ == 170 ? 1 : plane_ == 180 ? 0 : 2;
+  const int a = plane_ == G_17 ? 0 : plane_ == G_18 ? 2 : 1;
+  const int b = plane_ == G_17 ? 1 : plane_ == G_18 ? 0 : 2;
   const int n = 3 - a - b;
   const char la = kAxisLetters[a], lb = kAxisLetters[b], ln = kAxisLetters[n];
-  if (w.polar() && plane_ != 170) fail("polar coordinates in a canned cycle are translated in the XY plane (G17) only");
+  if (w.polar() && plane_ != G_17)
+    fail("polar coordinates in a canned cycle are translated in the XY plane (G17) only");
   if (inverse_time_) fail("LinuxCNC refuses inverse time feed (G93) with canned cycles");
   if (feed_ == 0.0) fail("LinuxCNC refuses a canned cycle with zero feed rate");
   for (char c : {'A', 'B', 'C'})
@@ -63,14 +64,15 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
   };
   sticky('R', cycle_r_, "R (the retract plane)");
   sticky(ln, cycle_z_, ln == 'Z' ? "Z (the bottom)" : ln == 'Y' ? "Y (the bottom)" : "X (the bottom)");
-  if (code == 820 || code == 890 || code == 860 || code == 880) sticky('P', cycle_p_, "P (the dwell)");
-  if ((code == 740 || code == 840) && w.has('P')) cycle_p_ = w.get('P');  // optional, sticky
-  if (code == 740 || code == 840) {  // LinuxCNC's check_g74_g84_spindle
+  if (code == G_82 || code == G_89 || code == G_86 || code == G_88) sticky('P', cycle_p_, "P (the dwell)");
+  if ((code == G_74 || code == G_84) && w.has('P')) cycle_p_ = w.get('P');  // optional, sticky
+  if (code == G_74 || code == G_84) {  // LinuxCNC's check_g74_g84_spindle
     if (!spindle_on_) fail("LinuxCNC refuses a tapping cycle with the spindle not turning");
-    if (spindle_clockwise_ != (code == 840)) fail(code == 840 ? "spindle turning counterclockwise in G84" : "spindle turning clockwise in G74");
+    if (spindle_clockwise_ != (code == G_84))
+      fail(code == G_84 ? "spindle turning counterclockwise in G84" : "spindle turning clockwise in G74");
   }
-  if ((code == 860 || code == 880) && !spindle_on_) fail("LinuxCNC refuses this cycle with the spindle not turning");
-  if (code == 730 || code == 830) {
+  if ((code == G_86 || code == G_88) && !spindle_on_) fail("LinuxCNC refuses this cycle with the spindle not turning");
+  if (code == G_73 || code == G_83) {
     sticky('Q', cycle_q_, "Q (the peck)");
     if (cycle_q_ <= 0) refuse(line, w.has('Q') ? w['Q'].offset : at, "LinuxCNC refuses a Q that is not positive");
   }
@@ -119,11 +121,11 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
     m.end[b] = to_y;
     m.end[n] = to_z;
     position_ = m.end;
-    if (swapped && plane_ == 180) {
+    if (swapped && plane_ == G_18) {
       m.end[0] = to_z;
       m.end[1] = to_x;
       m.end[2] = to_y;
-    } else if (swapped && plane_ == 190) {
+    } else if (swapped && plane_ == G_19) {
       m.end[0] = to_y;
       m.end[1] = to_z;
       m.end[2] = to_x;
@@ -144,7 +146,7 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
   }
   const double clear = retract_to_r_ ? r : old_z;
   const double peck_clearance = kPeckClearance_inch * kInch;  // the same in G20 and G21
-  const bool pecking = code == 730 || code == 830;
+  const bool pecking = code == G_73 || code == G_83;
   const double moves = repeats * (4.0 + (pecking ? 3.0 * std::ceil((r - bottom) / cycle_q_) : 0.0));
   if (!(moves <= kMostCycleMoves))
     fail("this block would make " + gcode_number_text(moves) + " moves (" +
@@ -167,38 +169,38 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
       if (clear > r) add(MoveKind::Rapid, x, y, r);
     }
     switch (code) {
-      case 810:
+      case G_81:
         add(MoveKind::Line, x, y, bottom);
         add(MoveKind::Rapid, x, y, clear);
         break;
-      case 820:
+      case G_82:
         add(MoveKind::Line, x, y, bottom);
         dwell(cycle_p_);
         add(MoveKind::Rapid, x, y, clear);
         break;
-      case 730:
-      case 830:
+      case G_73:
+      case G_83:
         for (double depth = r - cycle_q_; depth > bottom; depth -= cycle_q_) {
           if (depth - cycle_q_ == depth) fail("Q is below the resolution of the heights it pecks between");
           add(MoveKind::Line, x, y, depth);
-          if (code == 830) add(MoveKind::Rapid, x, y, r);
+          if (code == G_83) add(MoveKind::Rapid, x, y, r);
           add(MoveKind::Rapid, x, y, depth + peck_clearance);
         }
         add(MoveKind::Line, x, y, bottom);
         add(MoveKind::Rapid, x, y, clear);
         break;
-      case 850:
+      case G_85:
         add(MoveKind::Line, x, y, bottom);
         add(MoveKind::Line, x, y, r);
         add(MoveKind::Rapid, x, y, clear);
         break;
-      case 890:
+      case G_89:
         add(MoveKind::Line, x, y, bottom);
         dwell(cycle_p_);
         add(MoveKind::Line, x, y, clear);
         break;
-      case 740:
-      case 840:  // tapping: overrides off, in, reverse, dwell, out, forward, overrides back
+      case G_74:
+      case G_84:  // tapping: overrides off, in, reverse, dwell, out, forward, overrides back
         then("M50 P0\nM51 P0\n");
         add(MoveKind::Line, x, y, bottom, true);
         then(std::string("M5\n") + spindle_reversed);
@@ -206,14 +208,14 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
         add(MoveKind::Line, x, y, clear, true);
         then(std::string("M5\n") + spindle_on + (feed_override_ ? "M50 P1\n" : "") + (spindle_override_ ? "M51 P1\n" : ""));
         break;
-      case 860:  // boring: in, dwell, spindle stop, rapid out, spindle on
+      case G_86:  // boring: in, dwell, spindle stop, rapid out, spindle on
         add(MoveKind::Line, x, y, bottom);
         dwell(cycle_p_);
         then("M5\n");
         add(MoveKind::Rapid, x, y, clear);
         then(spindle_on);
         break;
-      case 880:  // boring, manual retract: in, dwell, spindle stop, program stop, spindle on
+      case G_88:  // boring, manual retract: in, dwell, spindle stop, program stop, spindle on
         add(MoveKind::Line, x, y, bottom);
         dwell(cycle_p_);
         then(std::string("M5\nM0\n") + spindle_on);
@@ -225,7 +227,7 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
 
   // Written as plain moves in exact path mode, then the mode the program was in.
   effect.translate = true;
-  effect.exact_path = path_mode_ != 610;
+  effect.exact_path = path_mode_ != G_61;
   effect.restore_path_mode = path_mode_;
   effect.restore_path_p_mm = path_p_;
   for (char c : {'X', 'Y', 'Z', 'R', 'P', 'Q', 'L', '@', '^'})

@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "vc/interpreter/codes.hpp"
+
 namespace vc::interpreter {
 namespace {
 
@@ -37,7 +39,7 @@ void CutterCompensation::start(Side side, double radius_mm, int plane, int orien
   side_ = side;
   radius_ = radius_mm;
   orientation_ = orientation;
-  xz_ = plane == 180;
+  xz_ = plane == G_18;
   if (xz_) {
     a_ = 2; b_ = 0; n_ = 1;
   } else {

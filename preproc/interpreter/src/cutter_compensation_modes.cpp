@@ -27,22 +27,23 @@ bool is_message(const std::string& text) {
 
 void Interpreter::compensation_rules(const gcode::Block& block, const Words& w, int line) const {
   const auto is_frame_or_cycle = [](int g) {
-    return g == 100 || g == 280 || g == 300 || g == 281 || g == 301 || g == 520 || (g >= 920 && g <= 923) ||
-           (g >= 540 && g <= 593) || g == 430 || g == 431 || g == 490 || g == 530 || is_cycle(g);
+    return g == G_10 || g == G_28 || g == G_30 || g == G_28_1 || g == G_30_1 || g == G_52 ||
+           (g >= G_92 && g <= G_92_3) || (g >= G_54 && g <= G_59_3) || g == G_43 || g == G_43_1 || g == G_49 ||
+           g == G_53 || is_cycle(g);
   };
   if (!compensation_.on()) return;
   for (const Words::Code& c : w.g) {
     const int g = c.code;
     std::string what;
-    if (g == 410 || g == 411 || g == 420 || g == 421) what = "turn cutter radius compensation on when it is on";
+    if (g == G_41 || g == G_41_1 || g == G_42 || g == G_42_1) what = "turn cutter radius compensation on when it is on";
     else if (is_frame_or_cycle(g)) what = "use " + g_name(g);
-    else if ((g == 170 || g == 180 || g == 190) && g != plane_) what = "change the plane";
-    else if ((g == 200 && !inches_) || (g == 210 && inches_)) what = "change units";
+    else if ((g == G_17 || g == G_18 || g == G_19) && g != plane_) what = "change the plane";
+    else if ((g == G_20 && !inches_) || (g == G_21 && inches_)) what = "change units";
     if (!what.empty()) refuse(line, c.offset, "cannot " + what + " with cutter radius compensation on (turn it off with G40)");
   }
-  if (const auto* m = w.find_m({60, 610}))
+  if (const auto* m = w.find_m({M_6, M_61}))
     refuse(line, m->offset, "cannot change tools with cutter radius compensation on (turn it off with G40)");
-  if (const auto* m = w.find_m({700, 710, 720, 730}))
+  if (const auto* m = w.find_m({M_70, M_71, M_72, M_73}))
     refuse(line, m->offset, "M70-M73 with cutter radius compensation on are not translated (turn it off with G40)");
   if (!compensation_.holding()) return;
   // LinuxCNC runs a T word and shows a message before the move it holds back: written after
@@ -74,16 +75,16 @@ void Interpreter::take_released(std::vector<ReleasedMove>& out, Effect& effect) 
 }
 
 void Interpreter::set_compensation(const Words& w, int line, Effect& effect) {
-  const Words::Code* c = w.find_g({400, 410, 411, 420, 421});
+  const Words::Code* c = w.find_g({G_40, G_41, G_41_1, G_42, G_42_1});
   if (!c) {
-    if (w.has('D') && !w.find_g({700, 710, 711, 712, 720, 721, 722}))  // (a lathe cycle's allowance)
+    if (w.has('D') && !w.find_g({G_70, G_71, G_71_1, G_71_2, G_72, G_72_1, G_72_2}))  // (a lathe cycle's allowance)
       refuse(line, w['D'].offset, "D word without G41, G42, G41.1, G42.1 or G70-G72");
     return;
   }
   for (char letter : {'D', 'L'})
     if (w.has(letter)) effect.dropped_words.push_back(w[letter].index);
-  if (c->code != 400) effect.dropped_words.push_back(c->index);  // the output is offset already
-  if (c->code == 400) {
+  if (c->code != G_40) effect.dropped_words.push_back(c->index);  // the output is offset already
+  if (c->code == G_40) {
     const bool moved = compensation_.offsets() && !compensation_.first_move();
     compensating(line, c->offset, effect, [&] { compensation_.stop(own_); });
     if (moved) {
@@ -93,16 +94,16 @@ void Interpreter::set_compensation(const Words& w, int line, Effect& effect) {
     }
     return;
   }
-  if (plane_ != 170 && plane_ != 180)
+  if (plane_ != G_17 && plane_ != G_18)
     refuse(line, c->offset, "cutter radius compensation is only possible in the XY (G17) or XZ (G18) plane");
-  const auto side = c->code == 410 || c->code == 411 ? CutterCompensation::kLeft : CutterCompensation::kRight;
+  const auto side = c->code == G_41 || c->code == G_41_1 ? CutterCompensation::kLeft : CutterCompensation::kRight;
   double radius = 0.0;
   int orientation = 0;
-  if (c->code == 411 || c->code == 421) {  // the diameter in D, in program units
+  if (c->code == G_41_1 || c->code == G_42_1) {  // the diameter in D, in program units
     if (!w.has('D')) refuse(line, c->offset, g_name(c->code) + " needs D (the tool diameter)");
     radius = w.get('D') * (inches_ ? kInch : 1.0) / 2;
     if (w.has('L')) {
-      if (plane_ != 180) refuse(line, w['L'].offset, g_name(c->code) + " with L (lathe tool orientation) needs G18");
+      if (plane_ != G_18) refuse(line, w['L'].offset, g_name(c->code) + " with L (lathe tool orientation) needs G18");
       orientation = w.whole('L');
       if (orientation < 0 || orientation > 9) refuse(line, w['L'].offset, "L (tool orientation) must be 0..9");
     }

@@ -25,7 +25,7 @@ void Effect::clear() {
   dropped_words.clear();
   after_moves.clear();
   exact_path = false;
-  modal_motion = 800;
+  modal_motion = G_80;
   inches = incremental = arc_absolute = program_end = false;
 }
 
@@ -135,30 +135,32 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
   for (const Words::Code& c : w.g) {
     const int g = c.code;
     const char* reason = nullptr;
-    if (g == 760)
+    if (g == G_76)
       reason = "G76 is spindle-synchronised threading: it cannot be pre-distorted honestly";
-    else if (g == 870)
+    else if (g == G_87)
       reason = "the back boring cycle G87 is not translated (the other canned cycles are): expand it into G0/G1 "
                "moves in the post-processor";
-    else if (g == 330 || g == 331)
+    else if (g == G_33 || g == G_33_1)
       reason = "spindle-synchronised motion (threading, rigid tapping) cannot be pre-distorted honestly: the pieces "
                "of a corrected move would each wait for the spindle";
-    else if (g >= 382 && g <= 385)
+    else if (g >= G_38_2 && g <= G_38_5)
       reason = "probing: where the probe stops is known only when the program runs, so the moves after it cannot be "
                "corrected offline";
-    else if (g == 70)
+    else if (g == G_7)
       reason = "lathe diameter mode (G7) is not translated: program radii (G8)";
-    else if (g == 432 || g == 171 || g == 181 || g == 191)
+    else if (g == G_43_2 || g == G_17_1 || g == G_18_1 || g == G_19_1)
       reason = "not supported by the pre-distorter (G43.2, G17.1-G19.1)";
     if (reason) refuse(line, c.offset, g_name(g) + ": " + reason);
-    static constexpr int kKnown[] = {0,   10,  20,  30,  40,  100, 170, 180, 190, 200, 210, 280,
-                                     281, 300, 301, 400, 430, 431, 490, 530, 540, 550, 560, 570,
-                                     580, 590, 591, 592, 593, 610, 611, 640, 800, 900, 901, 910, 410, 411, 420, 421,
-                                     911, 920, 921, 922, 923, 520, 930, 940, 950, 960, 970, 980, 990,
-                                     730, 740, 810, 820, 830, 840, 850, 860, 880, 890,
-                                     700, 710, 711, 712, 720, 721, 722,
-                                     50,  51,  52,  53,  // splines and NURBS (splines.cpp)
-                                     80};  // G8: lathe radius mode, LinuxCNC's default (G7 is refused)
+    static constexpr int kKnown[] = {G_0,    G_1,    G_2,    G_3,    G_4,    G_10,   G_17,   G_18,   G_19,   G_20,
+                                     G_21,   G_28,   G_28_1, G_30,   G_30_1, G_40,   G_43,   G_43_1, G_49,   G_53,
+                                     G_54,   G_55,   G_56,   G_57,   G_58,   G_59,   G_59_1, G_59_2, G_59_3, G_61,
+                                     G_61_1, G_64,   G_80,   G_90,   G_90_1, G_91,   G_41,   G_41_1, G_42,   G_42_1,
+                                     G_91_1, G_92,   G_92_1, G_92_2, G_92_3, G_52,   G_93,   G_94,   G_95,   G_96,
+                                     G_97,   G_98,   G_99,
+                                     G_73,   G_74,   G_81,   G_82,   G_83,   G_84,   G_85,   G_86,   G_88,   G_89,
+                                     G_70,   G_71,   G_71_1, G_71_2, G_72,   G_72_1, G_72_2,
+                                     G_5,    G_5_1,  G_5_2,  G_5_3,  // splines and NURBS (splines.cpp)
+                                     G_8};  // G8: lathe radius mode, LinuxCNC's default (G7 is refused)
     if (std::find(std::begin(kKnown), std::end(kKnown), g) == std::end(kKnown))
       refuse(line, c.offset, "unknown G code " + g_name(g));
   }
@@ -170,7 +172,7 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     const bool known = m <= 9 || m == 19 || m == 30 || (m >= 70 && m <= 73) || (m >= 48 && m <= 53) || (m >= 60 && m <= 68) || (m >= 100 && m <= 199);
     if (!known) refuse(line, c.offset, "unknown M code M" + std::to_string(m));
   }
-  if (w.has('E') && !w.find_g({700})) refuse(line, w['E'].offset, "E word without G70 or G76");
+  if (w.has('E') && !w.find_g({G_70})) refuse(line, w['E'].offset, "E word without G70 or G76");
   for (char c : {'U', 'V', 'W'})
     if (w.has(c)) refuse(line, w[c].offset, std::string("the ") + c + " axis is not supported (machines have X Y Z A B C)");
   if (block.block_delete) {
@@ -186,20 +188,20 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
   state_codes(w, line, effect);
 
   // LinuxCNC's order of execution (RS274/NGC 3.8, LinuxCNC docs "Order of Execution").
-  if (w.find_g({930})) inverse_time_ = true;
-  if (w.find_g({940, 950})) inverse_time_ = false;
-  if (w.find_g({950})) refuse(line, w.find_g({950})->offset, "G95 (feed per revolution) is not supported");
+  if (w.find_g({G_93})) inverse_time_ = true;
+  if (w.find_g({G_94, G_95})) inverse_time_ = false;
+  if (w.find_g({G_95})) refuse(line, w.find_g({G_95})->offset, "G95 (feed per revolution) is not supported");
   if (w.has('F')) feed_ = w.get('F');
   if (w.has('S')) spindle_rpm_ = w.get('S');
   if (w.has('T')) {
     selected_tool_ = w.whole('T');
     if (selected_tool_ < 0) refuse(line, w['T'].offset, "T must be a whole number >= 0");
   }
-  if (w.find_m({60})) {
+  if (w.find_m({M_6})) {
     tool_in_spindle_ = selected_tool_;
     tool_data_known_ = true;
   }
-  if (const auto* m61 = w.find_m({610})) {
+  if (const auto* m61 = w.find_m({M_61})) {
     if (!w.has('Q')) refuse(line, m61->offset, "M61 needs a Q word (tool number)");
     tool_in_spindle_ = w.whole('Q');
     tool_data_known_ = false;
@@ -207,28 +209,28 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
   }
   const bool p_on = !w.has('P') || w.get('P') != 0;  // M50-M53 P0 switches off, P1 or none on
   for (const Words::Code& c : w.m) switch (c.code) {
-      case 30: spindle_on_ = spindle_clockwise_ = true; break;
-      case 40: spindle_on_ = true; spindle_clockwise_ = false; break;
-      case 50: spindle_on_ = false; break;
-      case 70: mist_ = true; break;
-      case 80: flood_ = true; break;
-      case 90: mist_ = flood_ = false; break;
-      case 480: feed_override_ = spindle_override_ = true; break;
-      case 490: feed_override_ = spindle_override_ = false; break;
-      case 500: feed_override_ = p_on; break;
-      case 510: spindle_override_ = p_on; break;
-      case 520: adaptive_feed_ = p_on; break;
-      case 530: feed_hold_ = p_on; break;
+      case M_3: spindle_on_ = spindle_clockwise_ = true; break;
+      case M_4: spindle_on_ = true; spindle_clockwise_ = false; break;
+      case M_5: spindle_on_ = false; break;
+      case M_7: mist_ = true; break;
+      case M_8: flood_ = true; break;
+      case M_9: mist_ = flood_ = false; break;
+      case M_48: feed_override_ = spindle_override_ = true; break;
+      case M_49: feed_override_ = spindle_override_ = false; break;
+      case M_50: feed_override_ = p_on; break;
+      case M_51: spindle_override_ = p_on; break;
+      case M_52: adaptive_feed_ = p_on; break;
+      case M_53: feed_hold_ = p_on; break;
       default: break;
     }
-  if (w.find_g({960})) constant_surface_speed_ = true;
-  if (w.find_g({970})) constant_surface_speed_ = false;
-  if (w.find_g({170})) plane_ = 170;
-  if (w.find_g({180})) plane_ = 180;
-  if (w.find_g({190})) plane_ = 190;
+  if (w.find_g({G_96})) constant_surface_speed_ = true;
+  if (w.find_g({G_97})) constant_surface_speed_ = false;
+  if (w.find_g({G_17})) plane_ = G_17;
+  if (w.find_g({G_18})) plane_ = G_18;
+  if (w.find_g({G_19})) plane_ = G_19;
   const bool was_inches = inches_;
-  if (w.find_g({200})) inches_ = true;
-  if (w.find_g({210})) inches_ = false;
+  if (w.find_g({G_20})) inches_ = true;
+  if (w.find_g({G_21})) inches_ = false;
   if (inches_ != was_inches && program_xy_.known) {  // LinuxCNC's convert_length_units
     const double factor = inches_ ? 1.0 / kInch : kInch;
     program_xy_.x *= factor;
@@ -236,43 +238,43 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     program_xy_.inches = inches_;
   }
   set_compensation(w, line, effect);
-  if (w.find_g({430, 431, 490})) set_tool_length(w, line);
-  if (const auto* c = w.find_g({540, 550, 560, 570, 580, 590, 591, 592, 593})) {
-    static constexpr int kSystems[] = {540, 550, 560, 570, 580, 590, 591, 592, 593};
+  if (w.find_g({G_43, G_43_1, G_49})) set_tool_length(w, line);
+  if (const auto* c = w.find_g({G_54, G_55, G_56, G_57, G_58, G_59, G_59_1, G_59_2, G_59_3})) {
+    static constexpr int kSystems[] = {G_54, G_55, G_56, G_57, G_58, G_59, G_59_1, G_59_2, G_59_3};
     const int index = static_cast<int>(std::find(std::begin(kSystems), std::end(kSystems), c->code) -
                                        std::begin(kSystems)) + 1;
     set_coordinate_system(index);
   }
-  if (const auto* mode = w.find_g({610, 611, 640})) {
+  if (const auto* mode = w.find_g({G_61, G_61_1, G_64})) {
     path_mode_ = mode->code;
-    path_p_ = mode->code == 640 && w.has('P') ? w.get('P') * (inches_ ? kInch : 1.0) : -1.0;
+    path_p_ = mode->code == G_64 && w.has('P') ? w.get('P') * (inches_ ? kInch : 1.0) : -1.0;
   }
-  if (w.find_g({980})) retract_to_r_ = false;
-  if (w.find_g({990})) retract_to_r_ = true;
-  if (const auto* g64 = w.find_g({640})) {
+  if (w.find_g({G_98})) retract_to_r_ = false;
+  if (w.find_g({G_99})) retract_to_r_ = true;
+  if (const auto* g64 = w.find_g({G_64})) {
     effect.g64_word = g64->index;
     effect.g64_p_word = w['P'].index;
     effect.g64_q_word = w['Q'].index;
   }
-  if (w.find_g({900})) incremental_ = false;
-  if (w.find_g({910})) incremental_ = true;
-  if (w.find_g({901})) arc_absolute_ = true;
-  if (w.find_g({911})) arc_absolute_ = false;
-  if (w.find_g({100})) set_offsets(w, line);
-  if (const auto* g92 = w.find_g({520, 920, 921, 922, 923})) set_axis_offsets(w, g92->code, line);
-  if (const auto* home = w.find_g({280, 300})) go_home(w, home->code, line, effect);
-  if (const auto* store = w.find_g({281, 301})) {
+  if (w.find_g({G_90})) incremental_ = false;
+  if (w.find_g({G_91})) incremental_ = true;
+  if (w.find_g({G_90_1})) arc_absolute_ = true;
+  if (w.find_g({G_91_1})) arc_absolute_ = false;
+  if (w.find_g({G_10})) set_offsets(w, line);
+  if (const auto* g92 = w.find_g({G_52, G_92, G_92_1, G_92_2, G_92_3})) set_axis_offsets(w, g92->code, line);
+  if (const auto* home = w.find_g({G_28, G_30})) go_home(w, home->code, line, effect);
+  if (const auto* store = w.find_g({G_28_1, G_30_1})) {
     const Position world = world_position();
-    const int base = store->code == 281 ? kG28Home : kG30Home;
+    const int base = store->code == G_28_1 ? kG28Home : kG30Home;
     for (int i = 0; i < kAxes; ++i) parameters_[base + i] = world[i] / machine_unit(i);
   }
   // G80 with a motion code on the same line: the motion code is the mode (rs274 reads it so).
   const Words::Code* motion = w.motion_code();
   const int previous_motion = motion_;
   if (motion) motion_ = motion->code;
-  if (w.find_g({280, 300, 100, 431, 520, 920})) {
+  if (w.find_g({G_28, G_30, G_10, G_43_1, G_52, G_92})) {
     // their axis words are not motion
-  } else if (is_spline(motion_) || w.find_g({53})) {  // (G5.3 ends a NURBS whatever the line's mode)
+  } else if (is_spline(motion_) || w.find_g({G_5_3})) {  // (G5.3 ends a NURBS whatever the line's mode)
     spline(w, previous_motion, line, effect);
   } else if (is_cycle(motion_)) {
     cycle(w, previous_motion, motion != nullptr, line, effect);
@@ -283,9 +285,9 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     if (effect.translate || effect.moved_as_written) cycle_start_z_known_ = false;  // LinuxCNC's cycle_il_flag
   }
   for (const Words::Code& c : w.m)
-    if (c.code == 0 || c.code == 10 || c.code == 20 || c.code == 300 || c.code == 600) {
+    if (c.code == M_0 || c.code == M_1 || c.code == M_2 || c.code == M_30 || c.code == M_60) {
       effect.stop_words.push_back(c.index);
-      if (c.code == 20 || c.code == 300) effect.program_end = true;
+      if (c.code == M_2 || c.code == M_30) effect.program_end = true;
     }
   if (!effect.stop_words.empty()) {  // LinuxCNC's convert_stop: the held moves end where they are
     compensating(line, 0, effect, [&] {
@@ -293,18 +295,18 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
       else compensation_.flush(own_);
     });
   }
-  if (const auto* code = w.find_g({0, 10, 20, 30})) effect.motion_code_word = code->index;
-  const auto* length_code = w.find_g({430, 431, 490});
-  if (length_code && w.find_m({60, 610}) && effect.moves.empty() && !effect.moved_as_written) {
+  if (const auto* code = w.find_g({G_0, G_1, G_2, G_3})) effect.motion_code_word = code->index;
+  const auto* length_code = w.find_g({G_43, G_43_1, G_49});
+  if (length_code && w.find_m({M_6, M_61}) && effect.moves.empty() && !effect.moved_as_written) {
     std::vector<int>& words = effect.after_tool_change_words;
     words.push_back(length_code->index);
     if (w.has('H')) words.push_back(w['H'].index);
-    if (length_code->code == 431)
+    if (length_code->code == G_43_1)
       for (int i = 0; i < kAxes; ++i)
         if (w.has(kAxisLetters[i])) words.push_back(w[kAxisLetters[i]].index);
     words.insert(words.end(), effect.stop_words.begin(), effect.stop_words.end());
   }
-  if (tool_elsewhere_ && w.find_m({60, 610}))  // LinuxCNC reads its position back after a tool change
+  if (tool_elsewhere_ && w.find_m({M_6, M_61}))  // LinuxCNC reads its position back after a tool change
     position_ = take_move_start(frame(), position_);
   effect.modal_motion = motion_;
   effect.inches = inches_;
@@ -363,7 +365,7 @@ void Interpreter::polar_end_point(const Words& w, int line, double& x, double& y
   // the one not given is the current point's; in G91 both are increments of the current point's.
   const int at = w.has('@') ? w['@'].offset : w['^'].offset;
   if (w.has('X') || w.has('Y')) refuse(line, at, "X or Y words with polar coordinates");
-  if (plane_ != 170) refuse(line, at, "polar coordinates are translated in the XY plane (G17) only");
+  if (plane_ != G_17) refuse(line, at, "polar coordinates are translated in the XY plane (G17) only");
   const double px = position_[0], py = position_[1];
   const double r0 = std::hypot(px, py), t0 = std::atan2(py, px);
   const double scale = inches_ ? kInch : 1.0;
@@ -384,9 +386,9 @@ void Interpreter::move(const Words& w, int line, Effect& effect) {
   for (int i = 0; i < kAxes; ++i)
     if (w.has(kAxisLetters[i])) named |= 1u << i;
   if (w.polar()) named |= 0b11u;
-  const auto* g53 = w.find_g({530});
+  const auto* g53 = w.find_g({G_53});
   if (g53 && w.polar()) refuse(line, g53->offset, "LinuxCNC refuses polar coordinates with G53");
-  const bool arc_words = w.has('I') || w.has('J') || w.has('K') || (w.has('R') && !w.find_m({190}));  // M19 R: an angle
+  const bool arc_words = w.has('I') || w.has('J') || w.has('K') || (w.has('R') && !w.find_m({M_19}));  // M19 R: an angle
   if (!named && !arc_words) {
     if (g53) refuse(line, g53->offset, "G53 without axis words");
     return;
@@ -398,7 +400,7 @@ void Interpreter::move(const Words& w, int line, Effect& effect) {
   if (!g53) require_known_offsets(line, w.first_motion_offset());
 
   Move m = new_move(line, frame());
-  m.kind = motion_ == 0 ? MoveKind::Rapid : motion_ == 10 ? MoveKind::Line : MoveKind::Arc;
+  m.kind = motion_ == G_0 ? MoveKind::Rapid : motion_ == G_1 ? MoveKind::Line : MoveKind::Arc;
 
   if (g53) {
     if (m.kind == MoveKind::Arc) refuse(line, g53->offset, "G53 is only allowed with G0 or G1");

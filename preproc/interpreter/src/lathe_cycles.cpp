@@ -28,7 +28,7 @@ class MovesOfTheCycle final : public lathe::PassWriter {
   explicit MovesOfTheCycle(std::function<void(int, Point, Point)> add) : add_(std::move(add)) {}
   void rapid(Point end) override { add(0, end, {}); }
   void line(Point end) override { add(10, end, {}); }
-  void arc(bool ccw, Point center, Point end) override { add(ccw ? 30 : 20, end, center); }
+  void arc(bool ccw, Point center, Point end) override { add(ccw ? G_3 : G_2, end, center); }
 
  private:
   void add(int code, Point end, Point center) {
@@ -44,18 +44,18 @@ class MovesOfTheCycle final : public lathe::PassWriter {
 }  // namespace
 
 void Interpreter::lathe_cycle(const Words& w, int line, Effect& effect) {
-  const Words::Code* word = w.find_g({700, 710, 711, 712, 720, 721, 722});
+  const Words::Code* word = w.find_g({G_70, G_71, G_71_1, G_71_2, G_72, G_72_1, G_72_2});
   const int code = motion_;
   const int at = word ? word->offset : w.first_motion_offset();
   auto fail = [&](const std::string& why) { refuse(line, at, g_name(code) + ": " + why); };
   if (!word) fail("a lathe cycle runs on the line that names it (G70-G72 are not modal)");
   if (!w.has('Q')) fail("G7x.x requires a Q word (the subroutine that draws the profile)");
   if (compensation_.on())
-    fail(code == 700 ? "G70 with cutter compensation on is not translated: this LinuxCNC (Debian 12's 2.9.0~pre1) "
+    fail(code == G_70 ? "G70 with cutter compensation on is not translated: this LinuxCNC (Debian 12's 2.9.0~pre1) "
                        "compensates the approach rapids too and makes a stray rapid move (fixed in LinuxCNC 2.9.3); "
                        "cut the finishing pass with G40, or write it out with G41/G42"
                      : "LinuxCNC refuses this cycle with cutter compensation on");
-  if (plane_ != 180) fail("LinuxCNC runs the lathe cycles in the XZ plane (G18) only");
+  if (plane_ != G_18) fail("LinuxCNC runs the lathe cycles in the XZ plane (G18) only");
   if (incremental_)
     fail("in incremental mode (G91) LinuxCNC's rapid to the cycle's start reads X Z as absolute: not translated; "
          "program the cycle in G90");
@@ -80,7 +80,7 @@ void Interpreter::lathe_cycle(const Words& w, int line, Effect& effect) {
                                {'U', &c->u}, {'W', &c->w}})
     if (w.has(letter)) *value = w.get(letter);
   if (c->i <= 0) refuse(line, w['I'].offset, "G7X error: I must be greater than zero");
-  if (code == 700 && (c->p < 1 || c->p > 1000)) refuse(line, w['P'].offset, "G70: P (passes) must be 1..1000");
+  if (code == G_70 && (c->p < 1 || c->p > 1000)) refuse(line, w['P'].offset, "G70: P (passes) must be 1..1000");
 
   lathe_ = std::move(c);
   lathe_move(0, lathe_->from, {}, line, at, effect);  // the rapid to X Z
@@ -99,8 +99,9 @@ void Interpreter::profile_block(const gcode::Block& block, int line) {
   auto fail = [&](char letter, const std::string& why) {
     refuse(line, w.has(letter) ? w[letter].offset : 0, "G7X error: " + why);
   };
-  if (const auto* g = w.find_g({0, 10, 20, 30, 330, 331, 382, 383, 384, 385, 50, 51, 52, 730, 740, 760, 800, 810, 820,
-                                830, 840, 850, 860, 870, 880, 890, 700, 710, 711, 712, 720, 721, 722}))
+  if (const auto* g = w.find_g({G_0, G_1, G_2, G_3, G_33, G_33_1, G_38_2, G_38_3, G_38_4, G_38_5, G_5, G_5_1, G_5_2,
+                                G_73, G_74, G_76, G_80, G_81, G_82, G_83, G_84, G_85, G_86, G_87, G_88, G_89, G_70,
+                                G_71, G_71_1, G_71_2, G_72, G_72_1, G_72_2}))
     motion_ = g->code;
   Point end = c.at;
   if (w.has('U')) {
@@ -116,7 +117,7 @@ void Interpreter::profile_block(const gcode::Block& block, int line) {
     end.real(w.get('Z'));
   }
   if (end == c.at) return;  // no move: nothing else on the line counts
-  const bool straight = motion_ == 0 || motion_ == 10, round = motion_ == 20 || motion_ == 30;
+  const bool straight = motion_ == G_0 || motion_ == G_1, round = motion_ == G_2 || motion_ == G_3;
   if (straight) {
     c.profile.push_back(Segment::line(c.at, end));
   } else if (round) {
@@ -126,12 +127,12 @@ void Interpreter::profile_block(const gcode::Block& block, int line) {
       const double r = w.get('R'), chord2 = std::norm(end - c.at);
       if (r * r < chord2 / 4) fail('R', "the radius R is shorter than half the chord");
       const Point d = Point(0, 1) * std::sqrt((r * r - chord2 / 4) / chord2) * (end - c.at);
-      center = (c.at + end) / 2.0 + (motion_ == 30 ? d : -d);
+      center = (c.at + end) / 2.0 + (motion_ == G_3 ? d : -d);
     } else {
       if (!w.has('I') && !w.has('K')) fail('X', "either I or K must be present for arc");
       if (!arc_absolute_) center += c.at;
     }
-    c.profile.push_back(Segment::arc(motion_ == 30, c.at, center, end));
+    c.profile.push_back(Segment::arc(motion_ == G_3, c.at, center, end));
   }
   if (straight || round) {
     if (w.has('A') && w.has('C')) fail('A', "Both A and C parameters on a corner");
@@ -158,7 +159,7 @@ void Interpreter::finish_lathe_cycle(Effect& effect) {
          ") has fewer than two segments: LinuxCNC then cuts nothing and loses track of where the tool is");
   MovesOfTheCycle out([&](int code, Point to, Point center) { lathe_move(code, to, center, line, c.offset, effect); });
   try {
-    if (c.code == 700)
+    if (c.code == G_70)
       lathe::finishing_passes(c.profile, c.from, c.d, c.e, c.p, out);
     else
       lathe::roughing_passes(c.profile, c.code / 10 == 72, c.code % 10, c.from, Point(c.w, c.u), c.d, c.i, c.r, out);
@@ -171,14 +172,14 @@ void Interpreter::finish_lathe_cycle(Effect& effect) {
 void Interpreter::lathe_move(int code, Point end, Point center, int line, int offset, Effect& effect) {
   const double scale = inches_ ? kInch : 1.0;
   // LinuxCNC leaves out an arc that ends where it starts (within its TOLERANCE_EQUAL).
-  if ((code == 20 || code == 30) && std::abs(position_[0] / scale - end.imag()) < 1e-6 &&
+  if ((code == G_2 || code == G_3) && std::abs(position_[0] / scale - end.imag()) < 1e-6 &&
       std::abs(position_[2] / scale - end.real()) < 1e-6)
     return;
   Words w;
   auto set = [&](char letter, double value) { w.letters[Words::slot(letter)] = {true, value, -1, offset}; };
   set('X', end.imag());
   set('Z', end.real());
-  if (code == 20 || code == 30) {
+  if (code == G_2 || code == G_3) {
     set('I', center.imag());
     set('K', center.real());
   }

@@ -23,17 +23,17 @@ Interpreter::ModalState Interpreter::modal_state() const {
   ModalState s;
   s.inches = inches_;
   s.g[0] = plane_;
-  s.g[1] = compensation_.side() == CutterCompensation::kLeft ? 410
-           : compensation_.side() == CutterCompensation::kRight ? 420 : 400;
-  s.g[2] = incremental_ ? 910 : 900;
-  s.g[3] = inverse_time_ ? 930 : 940;
-  s.g[4] = coordinate_system_ < 7 ? 530 + 10 * coordinate_system_ : 584 + coordinate_system_;
-  s.g[5] = tool_offset_ != 0.0 ? 430 : 490;
-  s.g[6] = retract_to_r_ ? 990 : 980;
-  s.g[7] = constant_surface_speed_ ? 960 : 970;
-  s.g[8] = arc_absolute_ ? 901 : 911;
-  s.g[9] = 80;  // G8: radius mode (G7 is not translated)
-  s.g[10] = parameters_[kG92Applied] != 0.0 ? 923 : -1;
+  s.g[1] = compensation_.side() == CutterCompensation::kLeft ? G_41
+           : compensation_.side() == CutterCompensation::kRight ? G_42 : G_40;
+  s.g[2] = incremental_ ? G_91 : G_90;
+  s.g[3] = inverse_time_ ? G_93 : G_94;
+  s.g[4] = coordinate_system_ < 7 ? G_53 + 10 * coordinate_system_ : G_59_1 + coordinate_system_ - 7;  // G54 .. G59.3
+  s.g[5] = tool_offset_ != 0.0 ? G_43 : G_49;
+  s.g[6] = retract_to_r_ ? G_99 : G_98;
+  s.g[7] = constant_surface_speed_ ? G_96 : G_97;
+  s.g[8] = arc_absolute_ ? G_90_1 : G_91_1;
+  s.g[9] = G_8;  // G8: radius mode (G7 is not translated)
+  s.g[10] = parameters_[kG92Applied] != 0.0 ? G_92_3 : -1;
   s.path_mode = path_mode_;
   s.path_p = path_p_ < 0 ? -1.0 : path_p_ / (inches_ ? kInch : 1.0);  // as the program gave it
   s.feed = feed_;
@@ -48,7 +48,7 @@ Interpreter::ModalState Interpreter::modal_state() const {
 }
 
 void Interpreter::state_codes(const Words& w, int line, Effect& effect) {
-  const Words::Code* code = w.find_m({700, 710, 720, 730});
+  const Words::Code* code = w.find_m({M_70, M_71, M_72, M_73});
   if (!code) return;
   for (const Words::Code& g : w.g) refuse(line, g.offset, "M70-M73 are translated on a line of their own");
   for (const Words::Code& m : w.m)
@@ -61,15 +61,15 @@ void Interpreter::state_codes(const Words& w, int line, Effect& effect) {
   if (contexts_.size() <= level) contexts_.resize(level + 1);
   Context& context = contexts_[level];
   switch (code->code) {
-    case 700:
-    case 730:
+    case M_70:
+    case M_73:
       context.saved = modal_state();
-      context.restore_on_return = code->code == 730 && call_level_ > 0;
+      context.restore_on_return = code->code == M_73 && call_level_ > 0;
       break;
-    case 710:
+    case M_71:
       context.saved.reset();
       break;
-    case 720:
+    case M_72:
       if (!context.saved)
         refuse(line, code->offset, "cannot restore context from invalid stack frame - missing M70/M73?");
       restore_lines_ = restore_text(*context.saved);
@@ -87,7 +87,7 @@ std::string Interpreter::restore_text(const ModalState& saved) const {
       if (i == 1) throw std::logic_error("cutter compensation differs at M72");  // refused before
       text += code_text('G', saved.g[i]);
     }
-  if (saved.path_mode == 640)
+  if (saved.path_mode == G_64)
     text += saved.path_p < 0 ? std::string(" G64") : " G64 P" + fixed_text(saved.path_p, 6);
   else if (saved.path_mode != now.path_mode)
     text += code_text('G', saved.path_mode);

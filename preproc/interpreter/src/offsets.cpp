@@ -7,11 +7,11 @@ namespace vc::interpreter {
 
 void Interpreter::set_tool_length(const Words& w, int line) {
   const Position world = world_position();
-  const auto* g = w.find_g({430, 431, 490});
-  if (g->code == 490) {
+  const auto* g = w.find_g({G_43, G_43_1, G_49});
+  if (g->code == G_49) {
     tool_offset_ = 0.0;
     tool_offset_from_ = ToolOffsetFrom::None;
-  } else if (g->code == 431) {
+  } else if (g->code == G_43_1) {
     if (!w.has('Z')) refuse(line, g->offset, "G43.1 needs a Z word (tool length)");
     tool_offset_ = w.get('Z') * (inches_ ? kInch : 1.0);
     tool_offset_from_ = ToolOffsetFrom::G43_1;
@@ -50,7 +50,7 @@ void Interpreter::set_coordinate_system(int index) {
 }
 
 void Interpreter::set_offsets(const Words& w, int line) {
-  const auto* g10 = w.find_g({100});
+  const auto* g10 = w.find_g({G_10});
   if (!w.has('L')) refuse(line, g10->offset, "G10 needs an L word");
   const int l = w.whole('L');
   if (l == 1 || l == 10 || l == 11) return set_tool_entry(w, l, line);
@@ -100,7 +100,7 @@ void Interpreter::set_tool_entry(const Words& w, int l, int line) {
   // coordinates given; L11 the same in G59.3 without G92 (a touch-off fixture). R: radius, I J:
   // a lathe tool's angles, Q: its orientation. X Y A B C offsets are kept, and a G43 with them
   // is refused (set_tool_length).
-  const auto* g10 = w.find_g({100});
+  const auto* g10 = w.find_g({G_10});
   const std::string name = "G10 L" + std::to_string(l);
   if (!w.has('P')) refuse(line, g10->offset, name + " needs a P word (the tool number)");
   const int number = w.whole('P');
@@ -159,7 +159,7 @@ void Interpreter::set_axis_offsets(const Words& w, int code, int line) {
   const Position world = world_position();
   const std::array<double, 2> xy = program_xy();
   const double scale = inches_ ? kInch : 1.0;
-  if (code == 920 || code == 520) {
+  if (code == G_92 || code == G_52) {
     bool any = false;
     for (int i = 0; i < kAxes; ++i) {
       const char letter = kAxisLetters[i];
@@ -167,25 +167,25 @@ void Interpreter::set_axis_offsets(const Words& w, int code, int line) {
       any = true;
       if (!(setup_.machine_axes >> i & 1u))
         refuse(line, w[letter].offset, std::string("this machine has no ") + letter + " axis");
-      if (code == 920 && !(known_ >> i & 1u))
+      if (code == G_92 && !(known_ >> i & 1u))
         refuse(line, w[letter].offset, std::string("G92: the current ") + letter + " is not known yet");
       const double value = w.get(letter) * (is_linear(i) ? scale : 1.0);
-      g92_[i] = code == 920 ? position_[i] + g92_[i] - value : value;
+      g92_[i] = code == G_92 ? position_[i] + g92_[i] - value : value;
     }
     if (!any) refuse(line, w.find_g({code})->offset, g_name(code) + " needs at least one axis word");
     parameters_[kG92Applied] = 1.0;
     for (int i = 0; i < kAxes; ++i) parameters_[kG92 + i] = g92_[i] / machine_unit(i);
-  } else if (code == 921 || code == 922) {
+  } else if (code == G_92_1 || code == G_92_2) {
     g92_ = {};
     parameters_[kG92Applied] = 0.0;
-    if (code == 921)
+    if (code == G_92_1)
       for (int i = 0; i < kAxes; ++i) parameters_[kG92 + i] = 0.0;
   } else {  // G92.3
     parameters_[kG92Applied] = 1.0;
     for (int i = 0; i < kAxes; ++i) g92_[i] = parameters_[kG92 + i] * machine_unit(i);
   }
   set_world_position(world);
-  if (code == 920)  // LinuxCNC's current X Y are then the words as written
+  if (code == G_92)  // LinuxCNC's current X Y are then the words as written
     note_program_xy(w.has('X') ? w.get('X') : xy[0], w.has('Y') ? w.get('Y') : xy[1]);
 }
 
@@ -194,7 +194,7 @@ void Interpreter::go_home(const Words& w, int code, int line, Effect& effect) {
   // (machine coordinates) on those axes, or on all axes if none is given. The pre-distorter
   // writes these lines as they are: rapids away from the part, to a position stored in the
   // controller.
-  const int base = code == 280 ? kG28Home : kG30Home;
+  const int base = code == G_28 ? kG28Home : kG30Home;
   if (!setup_.var_file && !(offsets_set_ & 1u))
     refuse(line, w.find_g({code})->offset,
            g_name(code) + " goes to a position stored in the parameter file: pass --var FILE");

@@ -213,12 +213,12 @@ bool finite(const CurvePiece& p) {
 
 void Interpreter::spline_rules(const Words& w, int line) const {
   const Words::Code* code = w.motion_code();
-  const Words::Code* nurbs_end = w.find_g({53});
+  const Words::Code* nurbs_end = w.find_g({G_5_3});
   unsigned named = 0;
   for (int i = 0; i < kAxes; ++i)
     if (w.has(kAxisLetters[i])) named |= 1u << i;
-  const bool modal_nurbs = !code && motion_ == 52 && (named || w.polar()) &&
-                           !w.find_g({100, 280, 300, 520, 920});  // (their axis words are theirs)
+  const bool modal_nurbs = !code && motion_ == G_5_2 && (named || w.polar()) &&
+                           !w.find_g({G_10, G_28, G_30, G_52, G_92});  // (their axis words are theirs)
   const bool spline_code = code && is_spline(code->code);
   if (!spline_code && !nurbs_end && !modal_nurbs) return;
   const int at = spline_code ? code->offset : nurbs_end ? nurbs_end->offset : w.first_motion_offset();
@@ -226,24 +226,25 @@ void Interpreter::spline_rules(const Words& w, int line) const {
   // Codes that do not go with them (LinuxCNC refuses them all).
   int motion_codes = 0;
   for (const Words::Code& c : w.g)
-    if (c.code == 0 || c.code == 10 || c.code == 20 || c.code == 30 || is_spline(c.code) || is_cycle(c.code) ||
-        c.code == 800)
+    if (c.code == G_0 || c.code == G_1 || c.code == G_2 || c.code == G_3 || is_spline(c.code) || is_cycle(c.code) ||
+        c.code == G_80)
       ++motion_codes;
   if (motion_codes > 1) refuse(line, at, name + " with another motion code on the line (the same modal group)");
-  if (nurbs_end && code && code->code != 52)
+  if (nurbs_end && code && code->code != G_5_2)
     refuse(line, code->offset, "between G5.2 and G5.3 only more G5.2 codes are allowed (LinuxCNC)");
-  if (const auto* other = w.find_g({40, 100, 280, 281, 300, 301, 431, 520, 530, 920, 921, 922, 923}))
+  if (const auto* other =
+          w.find_g({G_4, G_10, G_28, G_28_1, G_30, G_30_1, G_43_1, G_52, G_53, G_92, G_92_1, G_92_2, G_92_3}))
     refuse(line, other->offset, g_name(other->code) + " on a line with " + name +
-                                    (nurbs_end && other->code != 431 ? " (the same modal group, LinuxCNC refuses it)"
+                                    (nurbs_end && other->code != G_43_1 ? " (the same modal group, LinuxCNC refuses it)"
                                                                      : ": write it on a line of its own"));
   // Words the curve's moves, written on this line, would read as theirs: a P, Q or L of
   // another code (G64, M-codes) on a line whose moves may be G2/G3, a word only arcs take.
-  const bool g5 = spline_code && code->code == 50;
-  const bool g52 = (spline_code && code->code == 52) || modal_nurbs || (nurbs_end && (named || w.polar()));
+  const bool g5 = spline_code && code->code == G_5;
+  const bool g52 = (spline_code && code->code == G_5_2) || modal_nurbs || (nurbs_end && (named || w.polar()));
   const bool p_own = g5 || g52, q_own = g5, l_own = g52;
-  const bool p_other = w.find_g({640}) || w.find_m({190, 500, 510, 520, 530, 620, 630, 640, 650, 660});
-  const bool q_other = w.find_g({640}) || w.find_m({190, 610, 660, 670, 680});
-  const bool l_other = w.find_m({660}) != nullptr;
+  const bool p_other = w.find_g({G_64}) || w.find_m({M_19, M_50, M_51, M_52, M_53, M_62, M_63, M_64, M_65, M_66});
+  const bool q_other = w.find_g({G_64}) || w.find_m({M_19, M_61, M_66, M_67, M_68});
+  const bool l_other = w.find_m({M_66}) != nullptr;
   const auto shared = [&](char letter, bool own, bool other) {
     if (!w.has(letter) || (own && !other)) return;
     const std::string word(1, letter);
@@ -261,7 +262,7 @@ void Interpreter::spline_rules(const Words& w, int line) const {
   shared('L', l_own, l_other);
   for (char c : {'K', 'R'})
     if (w.has(c)) refuse(line, w[c].offset, std::string(1, c) + " word on a line with " + name + " (LinuxCNC refuses it)");
-  if (!spline_code || code->code == 52)
+  if (!spline_code || code->code == G_5_2)
     for (char c : {'I', 'J'})
       if (w.has(c))
         refuse(line, w[c].offset, std::string(1, c) + " word on a line with " + name + " (LinuxCNC refuses it: only G5 "
@@ -276,7 +277,7 @@ void Interpreter::spline(const Words& w, int previous_motion, int line, Effect& 
   // LinuxCNC's order: G5.3 (modal group 0) first, then the motion: the line's code, or with
   // axis words the mode the line started in.
   int mode_before = previous_motion;
-  if (w.find_g({53})) {
+  if (w.find_g({G_5_3})) {
     end_nurbs(w, previous_motion, line, effect);
     mode_before = -1;
   }
@@ -288,7 +289,7 @@ void Interpreter::spline(const Words& w, int previous_motion, int line, Effect& 
     else effect.motion_words.push_back(code->index);  // (G5.3 G5.2: the G5.3 takes the moves' place)
   }
   effect.translate = true;
-  if (motion == 52) {
+  if (motion == G_5_2) {
     nurbs_point(w, mode_before, line);
     for (char c : {'X', 'Y', 'Z', 'A', 'B', 'C', 'P', 'L'})
       if (w.has(c)) effect.motion_words.push_back(w[c].index);
@@ -298,7 +299,7 @@ void Interpreter::spline(const Words& w, int previous_motion, int line, Effect& 
     refuse(line, code->offset, g_name(motion) + " without axis words (LinuxCNC: all axes missing with motion code)");
   cubic_or_quadratic_spline(w, motion, line, effect);
   for (char c : {'X', 'Y', 'I', 'J', 'P', 'Q', '@', '^'})
-    if (w.has(c) && (motion == 50 || (c != 'P' && c != 'Q'))) effect.motion_words.push_back(w[c].index);
+    if (w.has(c) && (motion == G_5 || (c != 'P' && c != 'Q'))) effect.motion_words.push_back(w[c].index);
   motion_ = previous_motion;  // G5 and G5.1 leave the mode as it was (LinuxCNC sets none)
 }
 
@@ -308,7 +309,7 @@ void Interpreter::spline_start_rules(int line, int offset, const std::string& wh
                                          "offset it"
                                        : " with cutter radius compensation on (LinuxCNC refuses it)") +
                              "; turn compensation off with G40");
-  if (plane_ != 170)
+  if (plane_ != G_17)
     refuse(line, offset, what + (nurbs ? " outside the XY plane (G17) is not translated: LinuxCNC 2.9 draws its X Y "
                                          "as arcs of the active plane"
                                        : " outside the XY plane (LinuxCNC: splines must be in the XY plane, G17)"));
@@ -354,7 +355,7 @@ void Interpreter::cubic_or_quadratic_spline(const Words& w, int code, int line, 
     if (w.has('Y')) y_end = incremental_ ? y0 + w.get('Y') : w.get('Y');
   }
   std::vector<ControlPoint> points{{x0, y0, 1.0}};
-  if (code == 51) {
+  if (code == G_5_1) {
     if (!w.has('I') || !w.has('J')) refuse(line, at, "G5.1 needs both I and J (LinuxCNC)");
     points.push_back({x0 + w.get('I'), y0 + w.get('J'), 1.0});
   } else {
@@ -367,8 +368,8 @@ void Interpreter::cubic_or_quadratic_spline(const Words& w, int code, int line, 
   points.push_back({x_end, y_end, 1.0});
   if (!nurbs_points_.empty())
     refuse(line, at, name + " after G5.2 points no G5.3 ended: LinuxCNC 2.9 would draw them into this spline");
-  curve_moves(points, code == 51 ? 3 : 4, line, at, effect);
-  if (code == 50) {
+  curve_moves(points, code == G_5_1 ? 3 : 4, line, at, effect);
+  if (code == G_5) {
     spline_i_ = -w.get('P');
     spline_j_ = -w.get('Q');
   }
@@ -378,7 +379,7 @@ void Interpreter::cubic_or_quadratic_spline(const Words& w, int code, int line, 
 }
 
 void Interpreter::nurbs_point(const Words& w, int mode_before, int line) {
-  const auto* word = w.find_g({52});
+  const auto* word = w.find_g({G_5_2});
   const int at = word ? word->offset : w.first_motion_offset();
   const bool x = w.has('X'), y = w.has('Y');
   const double p = w.has('P') ? w.get('P') : -1.0;  // (LinuxCNC's value for no P)
@@ -409,7 +410,7 @@ void Interpreter::nurbs_point(const Words& w, int mode_before, int line) {
     if (w.has(c) && !(setup_.machine_axes >> (c - 'X') & 1u))
       refuse(line, w[c].offset, std::string("this machine has no ") + c + " axis");
   const auto [x0, y0] = program_xy();
-  if (mode_before != 52) nurbs_points_.clear();
+  if (mode_before != G_5_2) nurbs_points_.clear();
   if (nurbs_points_.empty()) {  // the first point: where the curve starts
     nurbs_points_.push_back({x0, y0, !x && p > 0 ? p : 1.0});
     nurbs_order_ = 3;
@@ -420,13 +421,13 @@ void Interpreter::nurbs_point(const Words& w, int mode_before, int line) {
     const double py = incremental_ ? y0 + w.get('Y') : w.get('Y');
     nurbs_points_.push_back({px, py, p});
   }
-  motion_ = 52;
+  motion_ = G_5_2;
 }
 
 void Interpreter::end_nurbs(const Words& w, int previous_motion, int line, Effect& effect) {
-  const Words::Code& word = *w.find_g({53});
+  const Words::Code& word = *w.find_g({G_5_3});
   const int at = word.offset;
-  if (previous_motion != 52) refuse(line, at, "G5.3 without G5.2 first (LinuxCNC refuses it)");
+  if (previous_motion != G_5_2) refuse(line, at, "G5.3 without G5.2 first (LinuxCNC refuses it)");
   if (nurbs_points_.size() < nurbs_order_)
     refuse(line, at, "a NURBS of order L = " + std::to_string(nurbs_order_) + " needs at least " +
                          std::to_string(nurbs_order_) + " control points, the start included; this one has " +

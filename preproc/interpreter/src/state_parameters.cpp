@@ -64,7 +64,9 @@ std::optional<double> Interpreter::StateView::named(const std::string& name) con
   if (name == "_motion_mode") return i.motion_;
   if (name == "_plane") return i.plane_;
   if (name == "_ccomp")
-    return i.compensation_.side() == CutterCompensation::kLeft ? 410 : i.compensation_.side() == CutterCompensation::kRight ? 420 : 400;
+    return i.compensation_.side() == CutterCompensation::kLeft    ? G_41
+           : i.compensation_.side() == CutterCompensation::kRight ? G_42
+                                                                   : G_40;
   if (name == "_metric") return flag(!i.inches_);
   if (name == "_imperial") return flag(i.inches_);
   if (name == "_absolute") return flag(!i.incremental_);
@@ -72,7 +74,8 @@ std::optional<double> Interpreter::StateView::named(const std::string& name) con
   if (name == "_inverse_time") return flag(i.inverse_time_);
   if (name == "_units_per_minute") return flag(!i.inverse_time_);
   if (name == "_units_per_rev") return 0.0;
-  if (name == "_coord_system") return i.coordinate_system_ < 7 ? 530 + 10 * i.coordinate_system_ : 584 + i.coordinate_system_;
+  if (name == "_coord_system")  // G54 .. G59.3
+    return i.coordinate_system_ < 7 ? G_53 + 10 * i.coordinate_system_ : G_59_1 + i.coordinate_system_ - 7;
   if (name == "_tool_offset") return flag(i.tool_offset_ != 0.0);
   if (name == "_retract_r_plane") return flag(i.retract_to_r_);
   if (name == "_retract_old_z") return flag(!i.retract_to_r_);

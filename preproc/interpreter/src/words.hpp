@@ -69,9 +69,10 @@ struct Interpreter::Words {
   }
   // The line's motion code (group 1), if any: G80 only if there is no other.
   const Code* motion_code() const {
-    const Code* c = find_g({0, 10, 20, 30, 50, 51, 52, 730, 740, 810, 820, 830, 840, 850, 860, 880, 890,  // (G5.3: splines.cpp)
-                            700, 710, 711, 712, 720, 721, 722});
-    return c ? c : find_g({800});
+    const Code* c = find_g({G_0, G_1, G_2, G_3, G_5, G_5_1, G_5_2, G_73, G_74, G_81, G_82, G_83, G_84, G_85, G_86,
+                            G_88, G_89,  // (G5.3: splines.cpp)
+                            G_70, G_71, G_71_1, G_71_2, G_72, G_72_1, G_72_2});
+    return c ? c : find_g({G_80});
   }
   const Code* find_m(std::initializer_list<int> codes) const {
     for (const Code& c : m)

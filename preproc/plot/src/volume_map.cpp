@@ -4,7 +4,6 @@
 #include <cctype>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <optional>
 #include <stdexcept>
 
@@ -12,6 +11,7 @@
 #include "vc/fit_tables/evaluate.hpp"
 #include "vc/fit_tables/study.hpp"
 #include "vc/machine/forward.hpp"
+#include "vc/tables/number_text.hpp"
 
 namespace vc::plot {
 namespace {
@@ -213,10 +213,8 @@ VolumeMap volume_map(const machine::Model& model, const VolumeMapOptions& option
 
 std::string full_correction_statement(const VolumeMap& map) {
   // Up to the Newton solver's tolerance (1e-10 mm): what is printed is what was computed.
-  char largest[32];
-  std::snprintf(largest, sizeof largest, "%.1e", map.full_correction_max_um);
   return "volkins: 0 on the model; what remains is measurement uncertainty (full correction: largest |e| " +
-         std::string(largest) + " um over the map's " + std::to_string(map.poses) + " poses)";
+         scientific_text(map.full_correction_max_um, 1) + " um over the map's " + std::to_string(map.poses) + " poses)";
 }
 
 }  // namespace vc::plot

@@ -17,7 +17,10 @@ constexpr double kInch = 25.4;
 int decimals(int axis, bool inches) { return interpreter::is_linear(axis) ? (inches ? 7 : 6) : 6; }
 
 int code_of(MoveKind kind, bool clockwise) {
-  return kind == MoveKind::Rapid ? 0 : kind == MoveKind::Line ? 10 : clockwise ? 20 : 30;
+  return kind == MoveKind::Rapid  ? interpreter::G_0
+         : kind == MoveKind::Line ? interpreter::G_1
+         : clockwise              ? interpreter::G_2
+                                  : interpreter::G_3;
 }
 
 constexpr double kScale[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8};
@@ -287,9 +290,9 @@ void Writer::translated(std::string_view raw, const gcode::Block& block, const i
   }
   if (effect.exact_path) {  // the program's path control mode again
     line_.clear();
-    if (effect.restore_path_mode == 611) {
+    if (effect.restore_path_mode == interpreter::G_61_1) {
       line_ = "G61.1";
-    } else if (effect.restore_path_mode == 640) {
+    } else if (effect.restore_path_mode == interpreter::G_64) {
       const double p = effect.restore_path_p_mm >= 0 ? effect.restore_path_p_mm : tolerance_mm_;
       line_ = "G64";
       append_number(line_, 'P', effect.inches ? p / kInch : p, effect.inches ? 7 : 6);

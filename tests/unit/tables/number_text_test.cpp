@@ -24,6 +24,7 @@ TEST(NumberText, FixedAndSignificantAsPrintf) {
     EXPECT_EQ(significant_text(v, 6), printed("%.6g", v)) << v;
     EXPECT_EQ(significant_text(v, 12), printed("%.12g", v)) << v;
     EXPECT_EQ(with_sign(fixed_text(v, 3)), printed("%+.3f", v)) << v;
+    EXPECT_EQ(scientific_text(v, 1), printed("%.1e", v)) << v;
   }
   EXPECT_EQ(fixed_text(1e308, 2).size(), 312u);
 }

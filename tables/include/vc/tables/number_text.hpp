@@ -1,6 +1,6 @@
 // Numbers in files and messages, locale-proof (std::to_chars: a German locale never writes
 // "1,5"): the one place every layer formats a double. The texts are printf's in the C locale
-// (%g, %.Nf, %.Ng: std::to_chars is specified as printf), and the last three functions shape
+// (%g, %.Nf, %.Ng, %.Ne: std::to_chars is specified as printf), and the last three functions shape
 // such a text as some files and messages want it.
 #pragma once
 
@@ -28,6 +28,13 @@ inline std::string fixed_text(double v, int decimals) {
 inline std::string significant_text(double v, int digits) {
   char buffer[32];
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::general, digits);
+  return std::string(buffer, result.ptr);
+}
+
+// Scientific notation, e.g. scientific_text(0.000123, 1) = "1.2e-04" (printf's %.1e).
+inline std::string scientific_text(double v, int decimals) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::scientific, decimals);
   return std::string(buffer, result.ptr);
 }
 

@@ -18,6 +18,7 @@
 
 #include "vc/gcode/block.hpp"
 #include "vc/gcode/parameters.hpp"
+#include "vc/interpreter/codes.hpp"
 #include "vc/interpreter/cutter_compensation.hpp"
 #include "vc/interpreter/linuxcnc_files.hpp"
 #include "vc/interpreter/move.hpp"
@@ -62,8 +63,7 @@ struct Effect {
   int g64_word = -1, g64_p_word = -1, g64_q_word = -1;  // path blending words, if any
   int f_word = -1;                   // F word, if any
   int motion_code_word = -1;         // G0/G1/G2/G3 word, if any (replaced with the moves)
-  int modal_motion = 800;            // motion mode after the block, G code x10 (800: G80, -1: none
-                                     // after G5.3)
+  int modal_motion = G_80;           // motion mode after the block, G code x10 (-1: none after G5.3)
   // Modal state the moves are written in.
   bool inches = false;
   bool incremental = false;          // G91
@@ -73,7 +73,7 @@ struct Effect {
   // the writer states G61 before them and the program's mode after (G61.1, or G64 with this P
   // in mm, < 0: none).
   bool exact_path = false;
-  int restore_path_mode = 640;
+  int restore_path_mode = G_64;
   double restore_path_p_mm = -1.0;
   bool moved_as_written = false;     // the block moves the machine but is written as it is (G28/G30, a
                                      // rapid to a partly known position)
@@ -177,7 +177,7 @@ class Interpreter {
     bool inches = false;
     std::array<int, 11> g{};  // plane, cutter comp, distance, feed mode, system, tool offset, retract,
                               // spindle mode, arc centres, lathe mode, G92 applied (-1: not restored)
-    int path_mode = 640;
+    int path_mode = G_64;
     double path_p = -1.0;     // program units
     double feed = 0.0, speed = 0.0;
     std::array<int, 6> m{};   // spindle, mist, flood, overrides, adaptive feed, feed hold
@@ -192,19 +192,19 @@ class Interpreter {
   // Where the next move starts, in `in`: `otherwise` (the current point), or where the tool was
   // left (tool_elsewhere_, which this clears).
   Position take_move_start(const Frame& in, const Position& otherwise);
-  static bool is_cycle(int motion) { return motion == 730 || motion == 740 || (motion >= 810 && motion <= 890); }
+  static bool is_cycle(int motion) { return motion == G_73 || motion == G_74 || (motion >= G_81 && motion <= G_89); }
   // A canned cycle block (canned_cycles.cpp); `code_on_line`: the cycle's G code is written here.
   void cycle(const Words& w, int previous_motion, bool code_on_line, int line, Effect& effect);
   // Lathe cycles G70-G72 (lathe_cycles.cpp): the rapid to X Z, then the profile is read.
   struct LatheCycle;
-  static bool is_lathe_cycle(int motion) { return motion >= 700 && motion <= 722; }
+  static bool is_lathe_cycle(int motion) { return motion >= G_70 && motion <= G_72_2; }
   void lathe_cycle(const Words& w, int line, Effect& effect);
   // One move of a lathe cycle (G0, G1, G2, G3 as code x10) in the XZ plane, in program units.
   void lathe_move(int code, std::complex<double> end, std::complex<double> center, int line, int offset,
                   Effect& effect);
   // Splines and NURBS (splines.cpp): G5, G5.1, G5.2 (the line's motion code, or the mode with
   // axis words) and G5.3, as LinuxCNC runs them; the rules of the words on such a line.
-  static bool is_spline(int motion) { return motion == 50 || motion == 51 || motion == 52; }
+  static bool is_spline(int motion) { return motion == G_5 || motion == G_5_1 || motion == G_5_2; }
   void spline_rules(const Words& w, int line) const;
   void spline(const Words& w, int previous_motion, int line, Effect& effect);
   void cubic_or_quadratic_spline(const Words& w, int code, int line, Effect& effect);  // G5, G5.1
@@ -214,7 +214,7 @@ class Interpreter {
   void curve_moves(const std::vector<ControlPoint>& points, unsigned order, int line, int offset, Effect& effect);
   void spline_start_rules(int line, int offset, const std::string& what, bool nurbs) const;  // what a curve needs
   void require_known_offsets(int line, int offset) const;
-  bool no_motion_mode() const { return motion_ == 800 || motion_ == -1; }
+  bool no_motion_mode() const { return motion_ == G_80 || motion_ == -1; }
   Position world_position() const;
   // frame() in coordinate system 1..9; without G92/G52 or the tool length offset on request.
   Frame frame_for(int system, bool with_g92 = true, bool with_tool_length = true) const;
@@ -240,9 +240,9 @@ class Interpreter {
   bool inches_ = false;
   bool incremental_ = false;
   bool arc_absolute_ = false;
-  int plane_ = 170;            // G17 x10
-  int motion_ = 800;           // G80 x10: none yet (-1: none after G5.3, as LinuxCNC)
-  int path_mode_ = 640;        // G61, G61.1, G64 (x10), and G64's P (mm; < 0: none)
+  int plane_ = G_17;
+  int motion_ = G_80;          // none yet (-1: none after G5.3, as LinuxCNC)
+  int path_mode_ = G_64;       // G61, G61.1, G64, and G64's P (mm; < 0: none)
   double path_p_ = -1.0;
   // Canned cycles: retract to R (G99, rs274's start) or to the start Z (G98); the words that
   // stay from block to block (R, Z, P, Q, in mm and s) and the Z the cycles started from.
