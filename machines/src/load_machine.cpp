@@ -4,11 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <sstream>
 
 #include "vc/machine/forward.hpp"
 #include "vc/machine/toml_file.hpp"
 #include "vc/tables/load_table.hpp"
+#include "vc/tables/number_text.hpp"
 #include "vc/tables/units.hpp"
 
 namespace vc::machine {
@@ -17,12 +17,8 @@ namespace {
 using Eigen::Vector3d;
 namespace fs = std::filesystem;
 
-std::string number(double v) {
-  std::ostringstream s;
-  s.imbue(std::locale::classic());
-  s << v;
-  return s.str();
-}
+// As an ostream writes a double (six significant digits), locale-proof.
+std::string number(double v) { return significant_text(v, 6); }
 
 // The file's typed getters (where, check_keys, table, text, scalar) are TomlFile's.
 class MachineReader : TomlFile {
