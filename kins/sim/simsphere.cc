@@ -55,8 +55,8 @@ struct Sphere {
   double reach_mm = 0;        // ball centre to sphere centre at contact
   double length_mm = 0;       // probe length: gauge point to ball centre
   double noise_mm = 0;
-  double trigger_mm = 0;      // this touch's trigger gap (noise)
-  std::uint64_t random = 0;   // xorshift64 state
+  double trigger_mm = 0;     // this touch's trigger gap (noise)
+  std::uint64_t random = 0;  // xorshift64 state
 };
 
 Sphere* sphere = nullptr;
@@ -127,7 +127,8 @@ Sphere* make_sphere() {
     double c[3];
     const std::string text = centre ? centre : "";
     if (std::sscanf(text.c_str(), "%lf,%lf,%lf", &c[0], &c[1], &c[2]) != 3)
-      throw std::runtime_error("centre=X,Y,Z (mm): the joints at which the ball's centre is at the sphere's, rotary axes at 0");
+      throw std::runtime_error(
+          "centre=X,Y,Z (mm): the joints at which the ball's centre is at the sphere's, rotary axes at 0");
     const double diameter = number(sphere_diameter, "sphere_diameter", 25.0);
     const double ball = number(ball_diameter, "ball_diameter", 2.0);
     s->length_mm = number(probe_length, "probe_length", s->model.tool_length_mm);

@@ -46,9 +46,8 @@ struct Follower {
     }
     const double most_rate = 2.0 * span / time_s, most_change = 4.0 * span / (time_s * time_s) * period_s;
     const double left = target - value;
-    const double wanted =
-        std::copysign(std::min({most_rate, braking_rate(std::abs(left), most_change, period_s), std::abs(left) / period_s}),
-                      left);
+    const double wanted = std::copysign(
+        std::min({most_rate, braking_rate(std::abs(left), most_change, period_s), std::abs(left) / period_s}), left);
     rate += std::clamp(wanted - rate, -most_change, most_change);
     const double next = value + rate * period_s;
     // On the target (within rounding): exactly there, at the rate this period moved; the next

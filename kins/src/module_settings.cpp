@@ -24,8 +24,7 @@ std::string lower(std::string s) {
 
 ModuleSettings settings_from_parameters(const char* machine, const char* coordinates, const char* world,
                                         const char* sparm) {
-  if (!machine || !*machine)
-    refuse("no machine file: load it as `loadrt volkins machine=/path/to/machine.toml`");
+  if (!machine || !*machine) refuse("no machine file: load it as `loadrt volkins machine=/path/to/machine.toml`");
   ModuleSettings s;
   // A relative path is taken from rtapi_app's working directory (LinuxCNC starts it in the
   // configuration's directory); made absolute here so every message names the file tried.
@@ -33,8 +32,9 @@ ModuleSettings settings_from_parameters(const char* machine, const char* coordin
   // Temperature inputs become HAL pins volkins.temperature.<name>.
   // (at most machine::kMaxTemperatureInputs: the loader refuses more)
   for (const machine::TemperatureInput& t : s.model.temperatures)
-    if (t.name.empty() || t.name.size() > 24 ||
-        !std::all_of(t.name.begin(), t.name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'; }))
+    if (t.name.empty() || t.name.size() > 24 || !std::all_of(t.name.begin(), t.name.end(), [](char c) {
+          return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+        }))
       refuse("temperature input '" + t.name + "' of " + s.model.path +
              ": a HAL pin name needs 1-24 letters, digits, '_' or '-'");
 
@@ -66,14 +66,16 @@ ModuleSettings settings_from_parameters(const char* machine, const char* coordin
     if (s.principal_joint[axis] < 0) s.principal_joint[axis] = k;
   }
   for (std::size_t axis = 0; axis < axes.size(); ++axis)
-    if (s.principal_joint[axis] < 0) mismatch(std::string("no joint drives its axis ") + static_cast<char>(std::toupper(axes[axis])));
+    if (s.principal_joint[axis] < 0)
+      mismatch(std::string("no joint drives its axis ") + static_cast<char>(std::toupper(axes[axis])));
   if (tool_axis) s.tool_axis_field = field_of(tool_axis);
 
   // Type 0's world: world=, else sparm=identityfirst (identity), else identity.
   const std::string convention = world && *world ? lower(world) : "";
   const std::string switchkins = sparm && *sparm ? lower(sparm) : "";
   if (!switchkins.empty() && switchkins != "identityfirst")
-    refuse("sparm=" + std::string(sparm) + " is not a volkins parameter: sparm=identityfirst (kinematics type 0 is "
+    refuse("sparm=" + std::string(sparm) +
+           " is not a volkins parameter: sparm=identityfirst (kinematics type 0 is "
            "the identity, as with LinuxCNC's trt modules) or none; world=tcp makes type 0 the TCP kinematics");
   if (convention == "axes" || convention.empty())
     s.kinematics_types = {machine::WorldConvention::Axes, machine::WorldConvention::Tcp};
@@ -82,8 +84,9 @@ ModuleSettings settings_from_parameters(const char* machine, const char* coordin
   else
     refuse("world=" + std::string(world) + " is not a world convention: use world=axes or world=tcp");
   if (convention == "tcp" && !switchkins.empty())
-    refuse("world=tcp and sparm=identityfirst contradict each other: kinematics type 0 is either TCP (world=tcp) or "
-           "the identity (sparm=identityfirst or world=axes)");
+    refuse(
+        "world=tcp and sparm=identityfirst contradict each other: kinematics type 0 is either TCP (world=tcp) or "
+        "the identity (sparm=identityfirst or world=axes)");
 
   s.z_joint = s.model.joint_of('Z');
   if (s.kinematics_types[0] == machine::WorldConvention::Tcp && s.z_joint < 0)

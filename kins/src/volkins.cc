@@ -54,32 +54,32 @@ constexpr int kMaxTemperatures = vc::kins::kMaxTemperatureInputs;
 
 struct HalData {
   // Pins.
-  hal_bit_t* enable;                          // in: correction wanted
-  hal_float_t* tool_offset;                   // in: tool length offset (mm), net to motion.tooloffset.z
-  hal_float_t* gain;                          // out: fraction applied now (ramp, 0..1)
-  hal_bit_t* active;                          // out: a correction is applied (gain > 0)
-  hal_bit_t* update_missing;                  // out: the kinematics ran before volkins.update ever did
-  hal_float_t* correction_length;             // out: L the correction is computed for now (mm)
-  hal_float_t* correction[vc::kins::kMaxJoints];  // out: LinuxCNC joint - its nominal value, last inverse
-  hal_s32_t* iterations;                      // out: Newton steps of the last inverse
-  hal_s32_t* forward_iterations;              // out: Newton steps (and band corrections) of the last forward
-  hal_bit_t* out_of_table;                    // out: last inverse beyond a table's grid
-  hal_bit_t* limit_exceeded;                  // out: last inverse refused (max correction)
-  hal_s32_t* failures;                        // out: inverse and forward calls refused so far
-  hal_s32_t* inverse_time;                    // out: ns the last kinematicsInverse took (rtapi_get_time)
+  hal_bit_t* enable;                                    // in: correction wanted
+  hal_float_t* tool_offset;                             // in: tool length offset (mm), net to motion.tooloffset.z
+  hal_float_t* gain;                                    // out: fraction applied now (ramp, 0..1)
+  hal_bit_t* active;                                    // out: a correction is applied (gain > 0)
+  hal_bit_t* update_missing;                            // out: the kinematics ran before volkins.update ever did
+  hal_float_t* correction_length;                       // out: L the correction is computed for now (mm)
+  hal_float_t* correction[vc::kins::kMaxJoints];        // out: LinuxCNC joint - its nominal value, last inverse
+  hal_s32_t* iterations;                                // out: Newton steps of the last inverse
+  hal_s32_t* forward_iterations;                        // out: Newton steps (and band corrections) of the last forward
+  hal_bit_t* out_of_table;                              // out: last inverse beyond a table's grid
+  hal_bit_t* limit_exceeded;                            // out: last inverse refused (max correction)
+  hal_s32_t* failures;                                  // out: inverse and forward calls refused so far
+  hal_s32_t* inverse_time;                              // out: ns the last kinematicsInverse took (rtapi_get_time)
   hal_float_t* temperature[kMaxTemperatures];           // in: volkins.temperature.<name>, degC
   hal_float_t* temperature_filtered[kMaxTemperatures];  // out: what the correction uses, degC
-  hal_bit_t* temperature_fault;               // out: an input is missing or out of its range (held)
-  hal_bit_t* kinstype_is[3];                  // out: kinstype.is-N, as LinuxCNC's switchable modules
-  hal_bit_t* tcp;                             // out: the world is the tool tip (TCP kinematics type)
+  hal_bit_t* temperature_fault;                         // out: an input is missing or out of its range (held)
+  hal_bit_t* kinstype_is[3];                            // out: kinstype.is-N, as LinuxCNC's switchable modules
+  hal_bit_t* tcp;                                       // out: the world is the tool tip (TCP kinematics type)
   // Parameters.
-  hal_float_t ramp_time;                      // s: 0 -> 1 (and back) takes this long
-  hal_float_t max_correction_mm;              // largest linear joint correction allowed
-  hal_float_t max_correction_deg;             // largest rotary joint correction allowed
-  hal_float_t pole_fade_start_deg;            // phi0 (model.md): no orientation correction below
-  hal_float_t pole_fade_full_deg;             // phi1: full orientation correction above
-  hal_float_t tool_offset_slew_time;          // s: a tool length offset change reaches the correction in this time
-  hal_float_t temperature_time_constant;      // s: of the low-pass on every temperature input
+  hal_float_t ramp_time;                  // s: 0 -> 1 (and back) takes this long
+  hal_float_t max_correction_mm;          // largest linear joint correction allowed
+  hal_float_t max_correction_deg;         // largest rotary joint correction allowed
+  hal_float_t pole_fade_start_deg;        // phi0 (model.md): no orientation correction below
+  hal_float_t pole_fade_full_deg;         // phi1: full orientation correction above
+  hal_float_t tool_offset_slew_time;      // s: a tool length offset change reaches the correction in this time
+  hal_float_t temperature_time_constant;  // s: of the low-pass on every temperature input
   // State of the ramp (only volkins.update writes it).
   vc::kins::GainRamp ramp;
   // Whether volkins.update has run, and whether the kinematics ran before it did (then it
@@ -101,10 +101,10 @@ struct HalData {
 // after volkins.update has compared the last inverse's pose with the one of the cycle before.
 struct KinematicsType {
   int type = 0;
-  EmcPose last_inverse_pose{};   // the pose of the newest kinematicsInverse call
-  EmcPose pose_at_update{};      // last_inverse_pose when volkins.update last ran
-  bool pose_known = false;       // pose_at_update holds an inverse's pose of this world
-  bool moving = false;           // it changed between the last two volkins.update calls
+  EmcPose last_inverse_pose{};  // the pose of the newest kinematicsInverse call
+  EmcPose pose_at_update{};     // last_inverse_pose when volkins.update last ran
+  bool pose_known = false;      // pose_at_update holds an inverse's pose of this world
+  bool moving = false;          // it changed between the last two volkins.update calls
 };
 KinematicsType kinematics;
 
@@ -154,15 +154,24 @@ char* sparm = nullptr;
 template <class Pose>
 auto& pose_field(Pose& pose, int field) {
   switch (field) {
-    case 0: return pose.tran.x;
-    case 1: return pose.tran.y;
-    case 2: return pose.tran.z;
-    case 3: return pose.a;
-    case 4: return pose.b;
-    case 5: return pose.c;
-    case 6: return pose.u;
-    case 7: return pose.v;
-    default: return pose.w;
+    case 0:
+      return pose.tran.x;
+    case 1:
+      return pose.tran.y;
+    case 2:
+      return pose.tran.z;
+    case 3:
+      return pose.a;
+    case 4:
+      return pose.b;
+    case 5:
+      return pose.c;
+    case 6:
+      return pose.u;
+    case 7:
+      return pose.v;
+    default:
+      return pose.w;
   }
 }
 
@@ -279,16 +288,20 @@ double applied_gain() {
 int inverse(const EmcPose* pose, double* joints) {
   const vm::Model& model = settings->model;
   const int n = model.joint_count();
-  const double offset = *hal->tool_offset;       // LinuxCNC's tool length offset (G43)
-  const double L = correction_length();          // the tool-length rule, slewed
+  const double offset = *hal->tool_offset;  // LinuxCNC's tool length offset (G43)
+  const double L = correction_length();     // the tool-length rule, slewed
   const double w = tool_axis_of(*pose);
   Joints previous(n);  // LinuxCNC's seed: its principal joints
   for (int j = 0; j < n; ++j) previous[j] = joints[settings->principal_joint[j]];
   kinematics.last_inverse_pose = *pose;
   Joints extrapolated, extrapolated_full;
-  const vm::Applied applied{applied_gain(), &previous, applied_corrections.for_inverse(extrapolated),
-                            &*settings->contraction, full_corrections.for_inverse(extrapolated_full),
-                            model.correction_length(offset) + w, &hal->conditions};
+  const vm::Applied applied{applied_gain(),
+                            &previous,
+                            applied_corrections.for_inverse(extrapolated),
+                            &*settings->contraction,
+                            full_corrections.for_inverse(extrapolated_full),
+                            model.correction_length(offset) + w,
+                            &hal->conditions};
   Joints q;
   vm::Correction report;
   const vm::Status s = vm::joints_from_world(model, current_world(), world_of(*pose, offset), L, applied, q, &report);
@@ -306,8 +319,7 @@ int inverse(const EmcPose* pose, double* joints) {
   }
   bool too_large = false;
   for (int j = 0; j < n; ++j) {
-    const double limit =
-        model.axes[j].type == vm::AxisType::Linear ? hal->max_correction_mm : hal->max_correction_deg;
+    const double limit = model.axes[j].type == vm::AxisType::Linear ? hal->max_correction_mm : hal->max_correction_deg;
     too_large |= !(std::abs(q[j] - report.nominal[j]) <= limit);
   }
   for (int k = 0; k < settings->joint_count; ++k) {
@@ -330,16 +342,14 @@ extern "C" {
 
 // Timed (volkins.inverse-time, ns, the monotonic clock rtapi_get_time reads: no allocation, lock
 // or I/O; clamped to the pin's range).
-int kinematicsInverse(const EmcPose* pose, double* joints, const KINEMATICS_INVERSE_FLAGS*,
-                      KINEMATICS_FORWARD_FLAGS*) {
+int kinematicsInverse(const EmcPose* pose, double* joints, const KINEMATICS_INVERSE_FLAGS*, KINEMATICS_FORWARD_FLAGS*) {
   const long long start = rtapi_get_time();
   const int result = inverse(pose, joints);
   *hal->inverse_time = static_cast<std::int32_t>(std::min(rtapi_get_time() - start, 2147483647LL));
   return result;
 }
 
-int kinematicsForward(const double* joints, EmcPose* pose, const KINEMATICS_FORWARD_FLAGS*,
-                      KINEMATICS_INVERSE_FLAGS*) {
+int kinematicsForward(const double* joints, EmcPose* pose, const KINEMATICS_FORWARD_FLAGS*, KINEMATICS_INVERSE_FLAGS*) {
   const vm::Model& model = settings->model;
   Joints q(model.joint_count());  // the principal joint of each axis, as LinuxCNC's modules read them
   for (int j = 0; j < q.size(); ++j) q[j] = joints[settings->principal_joint[j]];
@@ -349,8 +359,12 @@ int kinematicsForward(const double* joints, EmcPose* pose, const KINEMATICS_FORW
   const Joints seed = world_of(*pose, offset);  // LinuxCNC passes the previous position (or home)
   Joints w, way_point, way_point_full;
   int iterations = 0;
-  const vm::Applied applied{applied_gain(), &seed, applied_corrections.for_forward(way_point), nullptr,
-                            full_corrections.for_forward(way_point_full), model.correction_length(offset) + tool_axis,
+  const vm::Applied applied{applied_gain(),
+                            &seed,
+                            applied_corrections.for_forward(way_point),
+                            nullptr,
+                            full_corrections.for_forward(way_point_full),
+                            model.correction_length(offset) + tool_axis,
                             &hal->conditions};
   const vm::Status s = vm::world_from_joints(model, current_world(), q, L, applied, w, &iterations);
   *hal->forward_iterations = iterations;
@@ -380,11 +394,12 @@ int kinematicsSwitch(int type) {
   }
   if (type == kinematics.type) return 0;
   if (kinematics.moving) {
-    rtapi_print_msg(RTAPI_MSG_ERR,
-                    "volkins: switch to kinematics type %d refused while the commanded position moves (the queued moves "
-                    "are in the old world's coordinates); volkins stays in type %d (%s). Switch at rest: M66 E0 L0 "
-                    "before and after setting motion.switchkins-type, as LinuxCNC's M428/M429 remaps do\n",
-                    type, kinematics.type, names[current_world() == vm::WorldConvention::Tcp]);
+    rtapi_print_msg(
+        RTAPI_MSG_ERR,
+        "volkins: switch to kinematics type %d refused while the commanded position moves (the queued moves "
+        "are in the old world's coordinates); volkins stays in type %d (%s). Switch at rest: M66 E0 L0 "
+        "before and after setting motion.switchkins-type, as LinuxCNC's M428/M429 remaps do\n",
+        type, kinematics.type, names[current_world() == vm::WorldConvention::Tcp]);
     return -1;
   }
   kinematics.type = type;

@@ -30,7 +30,8 @@ ContractionBound::ContractionBound(const Model& model, const std::vector<double>
       position_kappa_(std::numeric_limits<double>::infinity()),
       fade_band_kappa_sin_(std::numeric_limits<double>::infinity()) {
   for (int j = 0; j < model.joint_count(); ++j)
-    if (model.axes[static_cast<std::size_t>(j)].type == AxisType::Rotary) rotary_[static_cast<std::size_t>(rotary_count_++)] = j;
+    if (model.axes[static_cast<std::size_t>(j)].type == AxisType::Rotary)
+      rotary_[static_cast<std::size_t>(rotary_count_++)] = j;
   kappa_.fill(std::numeric_limits<double>::infinity());
   for (int e = 0; e < kBands; ++e) {
     const double edge = (e == 0 ? 1.0 : kBandEdges[e - 1]) * full_rad_;
@@ -48,7 +49,8 @@ ContractionBound::ContractionBound(const Model& model, const std::vector<double>
     const double overall = taken >= kBandSamples ? *std::max_element(largest.band.begin(), largest.band.end())
                                                  : std::numeric_limits<double>::infinity();
     for (std::size_t band = 0; band < kBands; ++band)
-      kappa_[band] = std::max(kappa_[band], kMargin * (largest.count[band] >= kBandSamples ? largest.band[band] : overall));
+      kappa_[band] =
+          std::max(kappa_[band], kMargin * (largest.count[band] >= kBandSamples ? largest.band[band] : overall));
     position = std::max(position, largest.position_count >= kBandSamples ? kMargin * largest.position
                                                                          : std::numeric_limits<double>::infinity());
     fade_band = std::max(fade_band, largest.fade_band_count >= kBandSamples ? kMargin * largest.fade_band
@@ -84,7 +86,8 @@ ContractionBound::Largest ContractionBound::sample(const Model& model, double to
     const Joints q = samples.next();
     if (over_temperatures)
       for (std::size_t i = 0; i < model.temperatures.size(); ++i)
-        conditions.temperature_degC[i] = samples.uniform(model.temperatures[i].min_degC, model.temperatures[i].max_degC);
+        conditions.temperature_degC[i] =
+            samples.uniform(model.temperatures[i].min_degC, model.temperatures[i].max_degC);
     PoseDerivatives d;
     const ToolPose ideal = tool_pose(model, Machine::Ideal, q, tool_length_mm, d);
     const int band = band_at(ideal, d);
@@ -109,7 +112,7 @@ ContractionBound::Largest ContractionBound::sample(const Model& model, double to
       ++largest.count[static_cast<std::size_t>(band)];
     }
     if (fade_band_wanted && core.full_joints.size() > 0) {  // (at phi = start exactly the fade is 0: none)
-      PoseDerivatives real_full;  // where the full correction's Newton ends
+      PoseDerivatives real_full;                            // where the full correction's Newton ends
       tool_pose(model, conditions, Machine::Real, core.full_joints, tool_length_mm, real_full);
       largest.fade_band = std::max(largest.fade_band, full_contraction(real_full) * std::sin(phi));
       ++largest.fade_band_count;
@@ -147,8 +150,8 @@ int ContractionBound::band_at(const ToolPose& ideal, const PoseDerivatives& d) c
     const Eigen::Vector3d line = d.axis_line.col(rotary_[static_cast<std::size_t>(r)]);
     const double across = line.cross(ideal.direction).norm(), along = std::abs(line.dot(ideal.direction));
     int beyond = 0;
-    while (beyond < kBands && across * edge_cos_[static_cast<std::size_t>(beyond)] >=
-                                  along * edge_sin_[static_cast<std::size_t>(beyond)])
+    while (beyond < kBands &&
+           across * edge_cos_[static_cast<std::size_t>(beyond)] >= along * edge_sin_[static_cast<std::size_t>(beyond)])
       ++beyond;
     band = std::min(band, beyond);
   }

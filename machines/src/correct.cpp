@@ -60,7 +60,8 @@ Status newton(const Model& model, const Conditions& conditions, const Correction
     if (step == opt.max_iterations) return Status::NotConverged;
     const double norm = position + kDirectionLeverMm * direction;
     if (step == 0) {
-      if (by_blocks ? !blocks.factorize(target, ideal) : !lu.compute(correction_jacobian(target, ideal, index, unknowns)))
+      if (by_blocks ? !blocks.factorize(target, ideal)
+                    : !lu.compute(correction_jacobian(target, ideal, index, unknowns)))
         return Status::Singular;
     } else if (norm > 1e-2 * previous_norm) {
       PoseDerivatives exact;
@@ -116,7 +117,7 @@ struct Start {
   Correction out;
   PoseDerivatives d;
   ToolPose ideal;
-  ToolPose real;  // the real pose at out.joints, set by newton() (before an unchecked step)
+  ToolPose real;                  // the real pose at out.joints, set by newton() (before an unchecked step)
   double unchecked_bound = -1.0;  // newton()'s bound after an unchecked step, else -1
   FreeJoints linear{};
   bool ok = false;
@@ -169,9 +170,9 @@ Start start(const Model& model, const Conditions& conditions, const Joints& nomi
     const double tolerance =
         s.out.fade < 1.0 ? model.solver.direction_tolerance_rad * std::sin(s.out.pole_angle_rad) : 0.0;
     if (full_seed) s.out.joints = *full_seed;
-    s.out.status = newton(model, conditions, full_target(model, s.ideal, s.d), tool_length_mm, all, s.d, s.out.joints,
-                          s.out.iterations, s.real, s.unchecked_bound,
-                          {tolerance, kappa_for(bound, tool_length_mm, s.out)});
+    s.out.status =
+        newton(model, conditions, full_target(model, s.ideal, s.d), tool_length_mm, all, s.d, s.out.joints,
+               s.out.iterations, s.real, s.unchecked_bound, {tolerance, kappa_for(bound, tool_length_mm, s.out)});
     if (s.out.status != Status::Ok) return s;
   }
   s.ok = true;
@@ -187,14 +188,15 @@ void set_residuals(Correction& out, const Start& s, bool position_alone = false)
   out.unchecked_step = s.unchecked_bound >= 0.0;
   out.residual_mm = out.unchecked_step ? s.unchecked_bound : (s.real.tip_mm - s.ideal.tip_mm).norm();
   out.residual_rad = out.unchecked_step && !position_alone ? s.unchecked_bound / kDirectionLeverMm
-                                                          : s.ideal.direction.cross(s.real.direction).norm();
+                                                           : s.ideal.direction.cross(s.real.direction).norm();
 }
 
 }  // namespace
 
 Correction full_correction(const Model& model, const Conditions& conditions, const Joints& nominal,
                            double tool_length_mm, const Joints& seed) noexcept {
-  if (model.rotary_count() == 0) return correct(model, conditions, nominal, tool_length_mm, seed);  // no fade to leave out
+  if (model.rotary_count() == 0)
+    return correct(model, conditions, nominal, tool_length_mm, seed);  // no fade to leave out
   Start s = start(model, conditions, nominal, tool_length_mm, seed, Full::Always);
   if (s.ok) set_residuals(s.out, s);
   return s.out;
@@ -230,15 +232,15 @@ Correction correct(const Model& model, const Conditions& conditions, const Joint
   }
   const bool position_alone = rotary > 0 && out.fade < 1.0;
   if (rotary == 0 || position_alone)
-    out.status = newton(model, conditions, target, tool_length_mm, linear, d, out.joints, out.iterations, s.real,
-                        s.unchecked_bound,
-                        {0.0, rotary == 0 ? kappa_for(bound, tool_length_mm, out) : position_kappa_for(bound, tool_length_mm)});
+    out.status = newton(
+        model, conditions, target, tool_length_mm, linear, d, out.joints, out.iterations, s.real, s.unchecked_bound,
+        {0.0, rotary == 0 ? kappa_for(bound, tool_length_mm, out) : position_kappa_for(bound, tool_length_mm)});
   set_residuals(out, s, position_alone);
   return out;
 }
 
-Uncorrection uncorrect(const Model& model, const Conditions& conditions, const Joints& corrected,
-                       double tool_length_mm, double gain, const Joints& nominal_seed) noexcept {
+Uncorrection uncorrect(const Model& model, const Conditions& conditions, const Joints& corrected, double tool_length_mm,
+                       double gain, const Joints& nominal_seed) noexcept {
   Uncorrection out;
   out.nominal = corrected;
   if (!corrected.allFinite() || !nominal_seed.allFinite() || !std::isfinite(gain)) {

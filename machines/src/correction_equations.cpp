@@ -18,9 +18,7 @@ std::array<Vector3d, 2> perpendicular_basis(const Vector3d& k) {
 
 }  // namespace
 
-CorrectionTarget position_target(const ToolPose& ideal) noexcept {
-  return {ideal.tip_mm, ideal.direction, {}, 0};
-}
+CorrectionTarget position_target(const ToolPose& ideal) noexcept { return {ideal.tip_mm, ideal.direction, {}, 0}; }
 
 CorrectionTarget full_target(const Model& model, const ToolPose& ideal, const PoseDerivatives& d) noexcept {
   CorrectionTarget target = position_target(ideal);

@@ -6,14 +6,10 @@
 namespace vc::machine {
 namespace {
 
-std::string location_symbol(int component, char line) {
-  return tables::ErrorSymbol{component, line, true}.name();
-}
+std::string location_symbol(int component, char line) { return tables::ErrorSymbol{component, line, true}.name(); }
 
 // Location errors of a line: d0 (mm) and e0 (rad), components X Y Z A B C.
-double& location_component(Eigen::Vector3d& d0, Eigen::Vector3d& e0, int k) {
-  return k < 3 ? d0[k] : e0[k - 3];
-}
+double& location_component(Eigen::Vector3d& d0, Eigen::Vector3d& e0, int k) { return k < 3 ? d0[k] : e0[k - 3]; }
 
 void list_locations(Eigen::Vector3d d0, Eigen::Vector3d e0, char line, std::vector<std::string>& out) {
   for (int k = 0; k < 6; ++k)
@@ -32,8 +28,7 @@ std::vector<std::string> deviation_symbols(const Model& model) {
   std::vector<std::string> out;
   for (const Axis& axis : model.axes) {
     for (int t : axis.tables)
-      for (const auto& c : model.tables[t].table.columns())
-        out.push_back(c.symbol.name());
+      for (const auto& c : model.tables[t].table.columns()) out.push_back(c.symbol.name());
     list_locations(axis.location_mm, axis.location_rad, axis.letter, out);
   }
   list_locations(model.spindle.location_mm, model.spindle.location_rad, 'S', out);
@@ -44,7 +39,9 @@ Model keep_only(const Model& model, const std::vector<std::string>& keep) {
   for (const std::string& s : keep) {
     const auto symbol = tables::parse_error_symbol(s);
     if (!symbol || (symbol->axis != 'S' && model.joint_of(symbol->axis) < 0))
-      throw std::invalid_argument("'" + s + "' is not a deviation of this machine (component errors such as EXX, location errors such as EC0Y)");
+      throw std::invalid_argument(
+          "'" + s +
+          "' is not a deviation of this machine (component errors such as EXX, location errors such as EC0Y)");
   }
   auto kept = [&](const std::string& s) { return std::find(keep.begin(), keep.end(), s) != keep.end(); };
 

@@ -33,9 +33,8 @@ Matrix3d rotation_about(const Vector3d& u, double angle_deg) {
   const double v = 1.0 - c;
   const double x = u.x(), y = u.y(), z = u.z();
   Matrix3d r;
-  r << 1.0 + v * (x * x - 1.0), -s * z + v * (x * y), s * y + v * (x * z),
-       s * z + v * (x * y), 1.0 + v * (y * y - 1.0), -s * x + v * (y * z),
-       -s * y + v * (x * z), s * x + v * (y * z), 1.0 + v * (z * z - 1.0);
+  r << 1.0 + v * (x * x - 1.0), -s * z + v * (x * y), s * y + v * (x * z), s * z + v * (x * y), 1.0 + v * (y * y - 1.0),
+      -s * x + v * (y * z), -s * y + v * (x * z), s * x + v * (y * z), 1.0 + v * (z * z - 1.0);
   return r;
 }
 
@@ -50,9 +49,7 @@ struct Frame {
   Matrix3d rotation = Matrix3d::Identity();
   Vector3d origin = Vector3d::Zero();
 
-  Frame then(const Isometry3d& t) const {
-    return {rotation * t.linear(), origin + rotation * t.translation()};
-  }
+  Frame then(const Isometry3d& t) const { return {rotation * t.linear(), origin + rotation * t.translation()}; }
   Isometry3d isometry() const {
     Isometry3d t = Isometry3d::Identity();
     t.linear() = rotation;
@@ -79,8 +76,8 @@ Frame walk_ideal_chain(const Model& model, const std::vector<int>& chain, const 
 }
 
 // The real machine's pose and its motion (error slopes included).
-Frame walk_real_chain(const Model& model, const Conditions& conditions, const std::vector<int>& chain,
-                      const Joints& q, ChainMotion& motion) noexcept {
+Frame walk_real_chain(const Model& model, const Conditions& conditions, const std::vector<int>& chain, const Joints& q,
+                      ChainMotion& motion) noexcept {
   Frame parent;
   AxisErrors err;
   for (int i : chain) {
@@ -94,8 +91,7 @@ Frame walk_real_chain(const Model& model, const Conditions& conditions, const st
     // T(delta) R(eps) Rot(u, q) for a rotary one (model.md, One axis).
     const bool linear = axis.type == AxisType::Linear;
     const Vector3d motion_origin = linear ? Vector3d(q[i] * axis.direction + delta) : delta;
-    const Matrix3d motion_rotation =
-        linear ? r_eps : Matrix3d(r_eps * rotation_about(axis.direction, q[i]));
+    const Matrix3d motion_rotation = linear ? r_eps : Matrix3d(r_eps * rotation_about(axis.direction, q[i]));
     // Frame after `base` (the fixed placement of the axis line), then the child frame.
     const Frame base = parent.then(axis.real_base);
     const Vector3d child_origin = base.origin + base.rotation * motion_origin;
@@ -310,8 +306,7 @@ class CarriedIdealRates {
   std::array<int, kMaxAxes> tip_rate_, direction_rate_, line_;  // column of joint j, or kNone
 };
 
-ToolPose carried_ideal_rates(const Model& model, const Joints& q, double tool_length_mm,
-                             PoseDerivatives& d) noexcept {
+ToolPose carried_ideal_rates(const Model& model, const Joints& q, double tool_length_mm, PoseDerivatives& d) noexcept {
   const Vector3d direction = model.spindle.ideal.linear().col(2);
   CarriedIdealRates carried(model.spindle.ideal.translation() - tool_length_mm * direction, direction);
   for (auto i = model.tool_chain.rbegin(); i != model.tool_chain.rend(); ++i)
@@ -356,14 +351,16 @@ void axis_errors(const Model& model, const Conditions& conditions, int joint, co
     // Grid variables: joint positions, or temperatures at their current (volkins: filtered) value.
     std::array<double, tables::ErrorTable::kMaxVariables> at{};
     for (std::size_t v = 0; v < grid.size(); ++v)
-      at[v] = bound.joint[v] >= 0 ? q[bound.joint[v]] : conditions.temperature_degC[static_cast<std::size_t>(bound.input[v])];
+      at[v] = bound.joint[v] >= 0 ? q[bound.joint[v]]
+                                  : conditions.temperature_degC[static_cast<std::size_t>(bound.input[v])];
     if (!with_slopes) {  // the pose alone: the table adds its values by component
       bound.table.add_components(at.data(), sum);
       continue;
     }
     bound.table.evaluate(at.data(), sample, true);
     const auto& columns = bound.table.columns();
-    for (std::size_t c = 0; c < columns.size(); ++c) sum[static_cast<std::size_t>(columns[c].symbol.component)] += sample.value[c];
+    for (std::size_t c = 0; c < columns.size(); ++c)
+      sum[static_cast<std::size_t>(columns[c].symbol.component)] += sample.value[c];
     for (std::size_t c = 0; c < columns.size(); ++c)
       for (std::size_t v = 0; v < grid.size(); ++v)
         if (bound.joint[v] >= 0) out.slope(columns[c].symbol.component, bound.joint[v]) += sample.slope[c][v];

@@ -17,7 +17,7 @@ bool usable_correction(const Joints* correction, const Joints& point) noexcept {
 StepRemainder ideal_step_remainder(const Model& model, const Joints& from, const Joints& to,
                                    double tool_length_mm) noexcept {
   double reach = model.spindle.ideal.translation().norm() + std::abs(tool_length_mm);  // R
-  double turn = 0.0, travel = 0.0;                                                    // Omega, V
+  double turn = 0.0, travel = 0.0;                                                     // Omega, V
   for (int j = 0; j < model.joint_count(); ++j) {
     const Axis& axis = model.axes[j];
     const double step = std::abs(to[j] - from[j]);
@@ -178,8 +178,7 @@ Uncorrection invert_correction(const Model& model, const Conditions& conditions,
                                const Joints* full_correction) noexcept {
   Uncorrection out;
   out.nominal = corrected;
-  if (!corrected.allFinite() || !nominal_seed.allFinite() || !std::isfinite(gain) ||
-      !std::isfinite(tool_length_mm)) {
+  if (!corrected.allFinite() || !nominal_seed.allFinite() || !std::isfinite(gain) || !std::isfinite(tool_length_mm)) {
     out.status = Status::NonFinite;
     return out;
   }
@@ -188,8 +187,8 @@ Uncorrection invert_correction(const Model& model, const Conditions& conditions,
 
   // Newton needs a start near the answer (a far one may lie nearer another turn of a rotary
   // joint or another branch of the ideal inverse); q_c is always within the correction.
-  const bool near = nominal_seed.size() == corrected.size() &&
-                    (nominal_seed - corrected).cwiseAbs().maxCoeff() <= kSeedRadius;
+  const bool near =
+      nominal_seed.size() == corrected.size() && (nominal_seed - corrected).cwiseAbs().maxCoeff() <= kSeedRadius;
   const Joints start = near ? nominal_seed : corrected;
   const ToolPose real = tool_pose(model, conditions, Machine::Real, corrected, tool_length_mm);
   IdealPose ideal;
@@ -215,7 +214,8 @@ Uncorrection invert_correction(const Model& model, const Conditions& conditions,
   if (seed_fade > 0.0 && seed_fade < 1.0 && near && usable_correction(full_correction, corrected)) {
     // In the band with a full correction at hand (the servo thread's, of the last commands):
     // straight to the band's solve from the seed, without the full solution's estimate of D.
-    if (band_solve(model, conditions, corrected, tool_length_mm, *full_correction, position, q, out.iterations, ideal)) {
+    if (band_solve(model, conditions, corrected, tool_length_mm, *full_correction, position, q, out.iterations,
+                   ideal)) {
       out.nominal = q;
       return out;
     }
@@ -241,8 +241,8 @@ Uncorrection invert_correction(const Model& model, const Conditions& conditions,
   // that was not evaluated, the one judged there if the pole angle cannot have crossed into
   // the band (it moves by at most twice the turn from the seed), else the pose is evaluated.
   const bool at_seed = evaluated && out.iterations == steps_before;
-  if (unchecked &&
-      seed_pole_angle - conditions.fade.full_rad <= 2.0 * ideal_step_remainder(model, start, q, tool_length_mm).turn_rad) {
+  if (unchecked && seed_pole_angle - conditions.fade.full_rad <=
+                       2.0 * ideal_step_remainder(model, start, q, tool_length_mm).turn_rad) {
     unchecked = false;
     ideal.pose = tool_pose(model, Machine::Ideal, q, tool_length_mm, ideal.d);
   }
@@ -259,9 +259,8 @@ Uncorrection invert_correction(const Model& model, const Conditions& conditions,
   for (int j = 0; j < model.joint_count(); ++j)
     if (model.axes[j].type == AxisType::Rotary) estimate[j] = corrected[j] - fade * (corrected[j] - q[j]);
   s = ideal_newton(model, position, tool_length_mm, estimate, out.iterations, ideal);
-  if (s == Status::Ok &&
-      band_solve(model, conditions, corrected, tool_length_mm, Joints(corrected - q), position, estimate,
-                 out.iterations, ideal)) {
+  if (s == Status::Ok && band_solve(model, conditions, corrected, tool_length_mm, Joints(corrected - q), position,
+                                    estimate, out.iterations, ideal)) {
     out.nominal = estimate;
     return out;
   }

@@ -6,8 +6,8 @@
 
 namespace vc::machine {
 
-Status nominal_inverse(const Model& model, WorldConvention convention, const Joints& world,
-                       double tool_length_mm, Joints& nominal) noexcept {
+Status nominal_inverse(const Model& model, WorldConvention convention, const Joints& world, double tool_length_mm,
+                       Joints& nominal) noexcept {
   nominal = world;
   if (!world.allFinite()) return Status::NonFinite;
   if (convention == WorldConvention::Axes) return Status::Ok;
@@ -58,19 +58,18 @@ bool near(const Joints* seed, const Joints& point) {
 
 }  // namespace
 
-Status joints_from_world(const Model& model, WorldConvention convention, const Joints& world,
-                         double tool_length_mm, Joints& joints, Correction* report) noexcept {
+Status joints_from_world(const Model& model, WorldConvention convention, const Joints& world, double tool_length_mm,
+                         Joints& joints, Correction* report) noexcept {
   return joints_from_world(model, convention, world, tool_length_mm, Applied{}, joints, report);
 }
 
-Status world_from_joints(const Model& model, WorldConvention convention, const Joints& joints,
-                         double tool_length_mm, Joints& world) noexcept {
+Status world_from_joints(const Model& model, WorldConvention convention, const Joints& joints, double tool_length_mm,
+                         Joints& world) noexcept {
   return world_from_joints(model, convention, joints, tool_length_mm, Applied{}, world);
 }
 
-Status joints_from_world(const Model& model, WorldConvention convention, const Joints& world,
-                         double tool_length_mm, const Applied& applied, Joints& joints,
-                         Correction* report) noexcept {
+Status joints_from_world(const Model& model, WorldConvention convention, const Joints& world, double tool_length_mm,
+                         const Applied& applied, Joints& joints, Correction* report) noexcept {
   Joints nominal;
   const Status s = nominal_inverse(model, convention, world, nominal_length(applied, tool_length_mm), nominal);
   if (s != Status::Ok) return s;
@@ -83,8 +82,8 @@ Status joints_from_world(const Model& model, WorldConvention convention, const J
     return Status::Ok;
   }
   const Joints seed = usable_correction(applied.correction, nominal) ? Joints(nominal + *applied.correction)
-                      : near(applied.seed, nominal)                    ? *applied.seed
-                                                                       : nominal;
+                      : near(applied.seed, nominal)                  ? *applied.seed
+                                                                     : nominal;
   const bool full_seeded = usable_correction(applied.full_correction, nominal);
   const Joints full_seed = full_seeded ? Joints(nominal + *applied.full_correction) : Joints();
   const Correction c = correct(model, applied.conditions ? *applied.conditions : model.reference_conditions(), nominal,
@@ -95,15 +94,15 @@ Status joints_from_world(const Model& model, WorldConvention convention, const J
   return Status::Ok;
 }
 
-Status world_from_joints(const Model& model, WorldConvention convention, const Joints& joints,
-                         double tool_length_mm, const Applied& applied, Joints& world,
-                         int* iterations) noexcept {
+Status world_from_joints(const Model& model, WorldConvention convention, const Joints& joints, double tool_length_mm,
+                         const Applied& applied, Joints& world, int* iterations) noexcept {
   Joints nominal_seed = joints;
   if (usable_correction(applied.correction, joints)) {
     nominal_seed = joints - applied.gain * *applied.correction;
   } else if (applied.seed) {
     Joints from_seed;
-    if (nominal_inverse(model, convention, *applied.seed, nominal_length(applied, tool_length_mm), from_seed) == Status::Ok &&
+    if (nominal_inverse(model, convention, *applied.seed, nominal_length(applied, tool_length_mm), from_seed) ==
+            Status::Ok &&
         near(&from_seed, joints))
       nominal_seed = from_seed;
   }

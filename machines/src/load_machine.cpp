@@ -29,8 +29,8 @@ class MachineReader : TomlFile {
     const toml::table& root = this->root();
     model_.path = path();
     check_keys(root, "the machine file",
-               {"machine", "measurement", "spindle", "fixture", "correction", "tool_chain",
-                "workpiece_chain", "stiffness", "temperatures"});
+               {"machine", "measurement", "spindle", "fixture", "correction", "tool_chain", "workpiece_chain",
+                "stiffness", "temperatures"});
     read_info(root);
     read_temperatures(root);
     read_spindle(root);
@@ -59,28 +59,25 @@ class MachineReader : TomlFile {
     return n ? scalar(*n, key) : *fallback;
   }
 
-  std::vector<double> numbers(const toml::table& t, std::string_view key, std::size_t size,
-                              bool required, const std::string& context) const {
+  std::vector<double> numbers(const toml::table& t, std::string_view key, std::size_t size, bool required,
+                              const std::string& context) const {
     const toml::node* n = get(t, key, required, context);
     if (!n) return std::vector<double>(size, 0.0);
     const toml::array* a = n->as_array();
     if (!a || a->size() != size)
-      throw LoadError(where(*n), "'" + std::string(key) + "' must be an array of " +
-                                     std::to_string(size) + " numbers");
+      throw LoadError(where(*n), "'" + std::string(key) + "' must be an array of " + std::to_string(size) + " numbers");
     std::vector<double> out;
     for (const toml::node& e : *a) out.push_back(scalar(e, key));
     return out;
   }
 
-  Vector3d vec3(const toml::table& t, std::string_view key, bool required,
-                const std::string& context) const {
+  Vector3d vec3(const toml::table& t, std::string_view key, bool required, const std::string& context) const {
     const auto v = numbers(t, key, 3, required, context);
     return {v[0], v[1], v[2]};
   }
 
   // Location errors "EC0Y_arcsec = -5" of the line `letter` ('S' for the spindle).
-  void read_location(const toml::table* t, char letter, Vector3d& position_mm,
-                     Vector3d& orientation_rad) const {
+  void read_location(const toml::table* t, char letter, Vector3d& position_mm, Vector3d& orientation_rad) const {
     position_mm.setZero();
     orientation_rad.setZero();
     if (!t) return;
@@ -88,18 +85,16 @@ class MachineReader : TomlFile {
       const std::string k(key.str());
       const std::size_t underscore = k.rfind('_');
       const auto symbol = tables::parse_error_symbol(k.substr(0, underscore));
-      const auto unit = underscore == std::string::npos
-                            ? std::nullopt
-                            : tables::find_unit(k.substr(underscore + 1));
+      const auto unit = underscore == std::string::npos ? std::nullopt : tables::find_unit(k.substr(underscore + 1));
       const std::string expected = std::string("E{X,Y,Z,A,B,C}0") + letter + "_<unit>";
       if (!symbol || !symbol->location || symbol->axis != letter)
-        throw LoadError(where(key.source()), "'" + k + "' is not a location error of " +
-                                                 std::string(1, letter) + " (expected " + expected +
-                                                 ", e.g. EC0" + letter + "_arcsec)");
+        throw LoadError(where(key.source()), "'" + k + "' is not a location error of " + std::string(1, letter) +
+                                                 " (expected " + expected + ", e.g. EC0" + letter + "_arcsec)");
       const std::string kind = symbol->quantity() == tables::Quantity::Length ? "a length" : "an angle";
       const std::string units = std::string(tables::unit_names(symbol->quantity()));
       if (underscore == std::string::npos)
-        throw LoadError(where(key.source()), "'" + k + "' needs a unit suffix (" + k + "_<unit>, unit one of " + units + ")");
+        throw LoadError(where(key.source()),
+                        "'" + k + "' needs a unit suffix (" + k + "_<unit>, unit one of " + units + ")");
       const std::string unit_name = k.substr(underscore + 1);
       if (!unit)
         throw LoadError(where(key.source()), "unknown unit '" + unit_name + "' in '" + k + "' (use " + units + ")");
@@ -107,8 +102,7 @@ class MachineReader : TomlFile {
         throw LoadError(where(key.source()), "unit '" + unit_name + "' does not fit " + k.substr(0, underscore) +
                                                  ", which is " + kind + " (use " + units + ")");
       const double v = scalar(value, k) * unit->to_core;
-      (symbol->component < 3 ? position_mm[symbol->component]
-                             : orientation_rad[symbol->component - 3]) = v;
+      (symbol->component < 3 ? position_mm[symbol->component] : orientation_rad[symbol->component - 3]) = v;
     }
   }
 
@@ -136,7 +130,9 @@ class MachineReader : TomlFile {
     for (auto&& [key, value] : *temps) {
       const std::string name(key.str());
       const toml::table* t = value.as_table();
-      if (!t) throw LoadError(where(key.source()), "temperature input '" + name + "' = { reference_degC = 20.0, min_degC = ..., max_degC = ... }");
+      if (!t)
+        throw LoadError(where(key.source()),
+                        "temperature input '" + name + "' = { reference_degC = 20.0, min_degC = ..., max_degC = ... }");
       const std::string context = "temperature input '" + name + "'";
       check_keys(*t, context, {"reference_degC", "min_degC", "max_degC"});
       TemperatureInput in;
@@ -144,11 +140,13 @@ class MachineReader : TomlFile {
       in.reference_degC = scalar(*t, "reference_degC", 20.0, context);
       in.min_degC = scalar(*t, "min_degC", 0.0, context);
       in.max_degC = scalar(*t, "max_degC", 50.0, context);
-      if (!(in.min_degC <= in.reference_degC && in.reference_degC <= in.max_degC) || in.min_degC < -50 || in.max_degC > 150)
+      if (!(in.min_degC <= in.reference_degC && in.reference_degC <= in.max_degC) || in.min_degC < -50 ||
+          in.max_degC > 150)
         throw LoadError(where(*t), context + ": needs -50 <= min_degC <= reference_degC <= max_degC <= 150");
       if (model_.temperatures.size() == static_cast<std::size_t>(kMaxTemperatureInputs))
-        throw LoadError(where(*t), "more than " + std::to_string(kMaxTemperatureInputs) + " temperature inputs (the model takes " +
-                                       std::to_string(kMaxTemperatureInputs) + ")");
+        throw LoadError(where(*t), "more than " + std::to_string(kMaxTemperatureInputs) +
+                                       " temperature inputs (the model takes " + std::to_string(kMaxTemperatureInputs) +
+                                       ")");
       model_.temperatures.push_back(in);
     }
   }
@@ -160,7 +158,9 @@ class MachineReader : TomlFile {
     const toml::table* t = n->as_table();
     if (!t) throw LoadError(where(*n), "thermal = { input = \"name\", expansion_um_per_m_K = 11.5, reference_mm = 0 }");
     if (axis.type != AxisType::Linear || (axis.letter != 'X' && axis.letter != 'Y' && axis.letter != 'Z'))
-      throw LoadError(where(*n), "thermal expansion is for the linear axes X, Y, Z (a rotary axis's thermal drift goes in a table)");
+      throw LoadError(
+          where(*n),
+          "thermal expansion is for the linear axes X, Y, Z (a rotary axis's thermal drift goes in a table)");
     const std::string where_text = context + " thermal";
     check_keys(*t, where_text, {"input", "expansion_um_per_m_K", "reference_mm"});
     const std::string input = text(*t, "input", true, where_text);
@@ -169,8 +169,9 @@ class MachineReader : TomlFile {
       throw LoadError(where(*t->get("input")), "no temperature input '" + input + "' in [temperatures]");
     const double um_per_m_K = scalar(*t, "expansion_um_per_m_K", std::nullopt, where_text);
     if (std::abs(um_per_m_K) > 50)
-      throw LoadError(where(*t->get("expansion_um_per_m_K")), "expansion_um_per_m_K must be within +-50 (steel 11.5, "
-                                                               "cast iron 10.5, glass scales 0-8)");
+      throw LoadError(where(*t->get("expansion_um_per_m_K")),
+                      "expansion_um_per_m_K must be within +-50 (steel 11.5, "
+                      "cast iron 10.5, glass scales 0-8)");
     axis.thermal.expansion_per_K = um_per_m_K * 1e-6;
     axis.thermal.reference_mm = scalar(*t, "reference_mm", 0.0, where_text);
   }
@@ -187,8 +188,9 @@ class MachineReader : TomlFile {
     if (s.get("tool_axis_coordinate")) {
       if (tool_axis.size() != 1 || std::string_view("UVW").find(tool_axis[0]) == std::string_view::npos)
         throw LoadError(where(*s.get("tool_axis_coordinate")),
-                        "tool_axis_coordinate '" + tool_axis + "' must be one of U, V, W (the LinuxCNC coordinate "
-                        "that moves the tool along its own axis, e.g. 5axiskins' W)");
+                        "tool_axis_coordinate '" + tool_axis +
+                            "' must be one of U, V, W (the LinuxCNC coordinate "
+                            "that moves the tool along its own axis, e.g. 5axiskins' W)");
       model_.tool_axis_coordinate = tool_axis[0];
       tool_axis_at_ = where(*s.get("tool_axis_coordinate"));
     }
@@ -214,14 +216,12 @@ class MachineReader : TomlFile {
     if (c->get("pole_fade_deg")) {
       const auto fade = numbers(*c, "pole_fade_deg", 2, true, "[correction]");
       if (!(fade[0] >= 0.0 && fade[1] > fade[0] && fade[1] <= 90.0))
-        throw LoadError(where(*c->get("pole_fade_deg")),
-                        "pole_fade_deg = [start, full] needs 0 <= start < full <= 90");
+        throw LoadError(where(*c->get("pole_fade_deg")), "pole_fade_deg = [start, full] needs 0 <= start < full <= 90");
       model_.fade = {fade[0] * tables::kDegToRad, fade[1] * tables::kDegToRad};
     }
     if (const toml::node* n = c->get("max_iterations")) {
       const auto v = n->value<int64_t>();
-      if (!v || *v < 1 || *v > 100)
-        throw LoadError(where(*n), "max_iterations must be an integer from 1 to 100");
+      if (!v || *v < 1 || *v > 100) throw LoadError(where(*n), "max_iterations must be an integer from 1 to 100");
       model_.solver.max_iterations = static_cast<int>(*v);
     }
   }
@@ -255,7 +255,8 @@ class MachineReader : TomlFile {
           if (!(c.position_mm[i] > c.position_mm[i - 1]))
             throw LoadError(where(*positions), "position_mm must increase");
       } else {
-        if (axis->get("position_mm")) throw LoadError(where(*axis->get("position_mm")), "position_mm needs a list of compliances");
+        if (axis->get("position_mm"))
+          throw LoadError(where(*axis->get("position_mm")), "position_mm needs a list of compliances");
         c.mm_per_N = {scalar(*values, "compliance_um_per_N")};
       }
       for (double& v : c.mm_per_N) {
@@ -275,23 +276,21 @@ class MachineReader : TomlFile {
     if (!n) return;
     const toml::array* list = n->as_array();
     if (!list || !list->is_array_of_tables())
-      throw LoadError(where(*n), std::string("'") + std::string(key) +
-                                     "' must be a list of axes: [[" + std::string(key) + "]]");
+      throw LoadError(where(*n),
+                      std::string("'") + std::string(key) + "' must be a list of axes: [[" + std::string(key) + "]]");
     std::vector<int>& chain_list = chain == Chain::Tool ? tool_order_ : part_order_;
     for (const toml::node& item : *list) {
       const toml::table& t = *item.as_table();
       const std::string context = "[[" + std::string(key) + "]]";
-      check_keys(t, context, {"axis", "type", "direction", "pole_mm", "travel_mm", "travel_deg",
-                              "location", "tables", "thermal"});
+      check_keys(t, context,
+                 {"axis", "type", "direction", "pole_mm", "travel_mm", "travel_deg", "location", "tables", "thermal"});
       Axis axis{};
       const std::string letter = text(t, "axis", true, context);
       if (letter.size() != 1 || tables::kAxisLetters.find(letter[0]) == std::string_view::npos)
-        throw LoadError(where(*t.get("axis")), "axis '" + letter +
-                                                   "' must be one upper-case letter of XYZABCUVW");
+        throw LoadError(where(*t.get("axis")), "axis '" + letter + "' must be one upper-case letter of XYZABCUVW");
       axis.letter = letter[0];
       for (const Axis& other : model_.axes)
-        if (other.letter == axis.letter)
-          throw LoadError(where(*t.get("axis")), "axis " + letter + " appears twice");
+        if (other.letter == axis.letter) throw LoadError(where(*t.get("axis")), "axis " + letter + " appears twice");
       const std::string type = text(t, "type", true, context);
       if (type != "linear" && type != "rotary")
         throw LoadError(where(*t.get("type")), "type must be \"linear\" or \"rotary\"");
@@ -304,8 +303,7 @@ class MachineReader : TomlFile {
       const char* travel_key = axis.type == AxisType::Linear ? "travel_mm" : "travel_deg";
       const char* wrong_key = axis.type == AxisType::Linear ? "travel_deg" : "travel_mm";
       if (t.get(wrong_key))
-        throw LoadError(where(*t.get(wrong_key)), std::string("a ") + type + " axis gives its travel as " +
-                                                      travel_key);
+        throw LoadError(where(*t.get(wrong_key)), std::string("a ") + type + " axis gives its travel as " + travel_key);
       const auto travel = numbers(t, travel_key, 2, true, context);
       if (!(travel[0] < travel[1]))
         throw LoadError(where(*t.get(travel_key)), std::string(travel_key) + " = [min, max] needs min < max");
@@ -330,8 +328,7 @@ class MachineReader : TomlFile {
     std::vector<int> order(n);
     for (int i = 0; i < n; ++i) order[i] = i;
     std::sort(order.begin(), order.end(), [&](int a, int b) {
-      return tables::kAxisLetters.find(model_.axes[a].letter) <
-             tables::kAxisLetters.find(model_.axes[b].letter);
+      return tables::kAxisLetters.find(model_.axes[a].letter) < tables::kAxisLetters.find(model_.axes[b].letter);
     });
     std::vector<int> joint_of_read(n);
     std::vector<Axis> axes;
@@ -350,8 +347,8 @@ class MachineReader : TomlFile {
     int linear = 0;
     for (const Axis& a : model_.axes) linear += a.type == AxisType::Linear;
     if (linear != 3)
-      throw LoadError(where(root), "the machine has " + std::to_string(linear) +
-                                       " linear axes; the model needs exactly 3");
+      throw LoadError(where(root),
+                      "the machine has " + std::to_string(linear) + " linear axes; the model needs exactly 3");
     if (model_.rotary_count() > 2)
       throw LoadError(where(root), "the machine has " + std::to_string(model_.rotary_count()) +
                                        " rotary axes; the correction handles at most 2");
@@ -404,11 +401,10 @@ class MachineReader : TomlFile {
       if (scale)
         for (auto&& [key, value] : *scale) {
           bool found = false;
-          for (const auto& c : bound.table.columns())
-            found |= c.symbol.name() == key.str();
+          for (const auto& c : bound.table.columns()) found |= c.symbol.name() == key.str();
           if (!found)
-            throw LoadError(where(key.source()), "scale names " + std::string(key.str()) +
-                                                     ", which is not a column of " + table_path);
+            throw LoadError(where(key.source()),
+                            "scale names " + std::string(key.str()) + ", which is not a column of " + table_path);
         }
       if (const toml::node* m = t.get("measured_at_mm"))
         rereference(bound, axis, vec3(t, "measured_at_mm", true, context), where(*m));
@@ -436,9 +432,10 @@ class MachineReader : TomlFile {
         throw LoadError(grid[v].where, std::string("grid variable ") + static_cast<char>(std::tolower(grid[v].axis)) +
                                            " is not an axis of this machine (" + model_.coordinates() + ")" + listed);
       if (grid[v].rotary != (model_.axes[j].type == AxisType::Rotary))
-        throw LoadError(grid[v].where, std::string("axis ") + grid[v].axis + " is " +
-                                           (grid[v].rotary ? "linear: its positions are in mm"
-                                                           : "rotary: its positions are in deg") + listed);
+        throw LoadError(grid[v].where,
+                        std::string("axis ") + grid[v].axis + " is " +
+                            (grid[v].rotary ? "linear: its positions are in mm" : "rotary: its positions are in deg") +
+                            listed);
       bound.joint[v] = j;
     }
     for (const auto& c : bound.table.columns())
@@ -455,7 +452,8 @@ class MachineReader : TomlFile {
     if (i < 0) {
       std::string names;
       for (const TemperatureInput& t : model_.temperatures) names += (names.empty() ? "" : ", ") + t.name;
-      throw LoadError(g.where, "temperature '" + g.temperature + "' is not an input of the machine file's [temperatures] (" +
+      throw LoadError(g.where, "temperature '" + g.temperature +
+                                   "' is not an input of the machine file's [temperatures] (" +
                                    (names.empty() ? "it has none" : "it has: " + names) + ")" + listed);
     }
     const TemperatureInput& t = model_.temperatures[static_cast<std::size_t>(i)];
@@ -464,15 +462,15 @@ class MachineReader : TomlFile {
                                    number(g.nodes.back()) + " degC but the input's range is " + number(t.min_degC) +
                                    " .. " + number(t.max_degC) +
                                    " degC: a temperature grid must cover min_degC .. max_degC (extend the table or "
-                                   "narrow the range)" + listed);
+                                   "narrow the range)" +
+                                   listed);
     return i;
   }
 
   // A table measured at p_meas instead of the pole, node by node (model.md, exact):
   //     delta_pole = delta_meas - (R(eps) - I) * (p_meas - p_pole)
   // eps is the table's own angular columns at the same node.
-  void rereference(BoundTable& bound, const Axis& axis, const Vector3d& offset,
-                   const SourceLocation& at) const {
+  void rereference(BoundTable& bound, const Axis& axis, const Vector3d& offset, const SourceLocation& at) const {
     tables::ErrorTable& table = bound.table;
     if (table.grid().size() != 1 || table.grid()[0].axis != axis.letter)
       throw LoadError(at, std::string("measured_at_mm applies to a table over the axis's own position (") +
@@ -481,8 +479,8 @@ class MachineReader : TomlFile {
     bool has_angles = false;
     for (const auto& c : columns) has_angles |= c.symbol.component >= 3;
     if (!has_angles)
-      throw LoadError(at, std::string("measured_at_mm needs the angular errors (EA") + axis.letter +
-                              ", EB" + axis.letter + ", EC" + axis.letter +
+      throw LoadError(at, std::string("measured_at_mm needs the angular errors (EA") + axis.letter + ", EB" +
+                              axis.letter + ", EC" + axis.letter +
                               ") in the same table, to move its translations to the pole");
     for (int node = 0; node < table.node_count(); ++node) {
       Vector3d eps = Vector3d::Zero();
@@ -512,10 +510,9 @@ class MachineReader : TomlFile {
       if (a.travel_min < lo - 1e-9 || a.travel_max > hi + 1e-9) {
         const char* unit = grid[v].rotary ? " deg" : " mm";
         model_.warnings.push_back(
-            {grid[v].where, std::string("the table covers ") + static_cast<char>(std::tolower(a.letter)) +
-                                " = " + number(lo) + " .. " + number(hi) + unit + " but the travel is " +
-                                number(a.travel_min) + " .. " + number(a.travel_max) + unit +
-                                ": end values are held outside the table"});
+            {grid[v].where, std::string("the table covers ") + static_cast<char>(std::tolower(a.letter)) + " = " +
+                                number(lo) + " .. " + number(hi) + unit + " but the travel is " + number(a.travel_min) +
+                                " .. " + number(a.travel_max) + unit + ": end values are held outside the table"});
       }
     }
   }

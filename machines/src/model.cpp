@@ -72,8 +72,9 @@ void Model::set_temperature(Conditions& conditions, const std::string& name, dou
   }
   const TemperatureInput& t = temperatures[static_cast<std::size_t>(i)];
   if (!(degC >= t.min_degC && degC <= t.max_degC))
-    throw std::invalid_argument("temperature " + name + " = " + std::to_string(degC) + " degC is outside the range the model holds for (" +
-                                std::to_string(t.min_degC) + " .. " + std::to_string(t.max_degC) + " degC)");
+    throw std::invalid_argument("temperature " + name + " = " + std::to_string(degC) +
+                                " degC is outside the range the model holds for (" + std::to_string(t.min_degC) +
+                                " .. " + std::to_string(t.max_degC) + " degC)");
   conditions.temperature_degC[static_cast<std::size_t>(i)] = degC;
 }
 

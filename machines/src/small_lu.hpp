@@ -60,9 +60,9 @@ class SmallLu {
   }
 
  private:
-  double m_[kMaxAxes][kMaxAxes];  // U on and above the diagonal, L below (unit diagonal)
+  double m_[kMaxAxes][kMaxAxes];    // U on and above the diagonal, L below (unit diagonal)
   double inverse_pivot_[kMaxAxes];  // 1 / U's diagonal
-  int row_[kMaxAxes];             // the row swapped with row c at step c
+  int row_[kMaxAxes];               // the row swapped with row c at step c
   int n_ = 0;
   bool ok_ = false;
 };

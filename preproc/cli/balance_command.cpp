@@ -26,14 +26,13 @@ struct BalanceArgs {
 };
 
 void write_csv(const identify::Balance& b, std::ostream& out) {
-  out << "# volcomp balance: each deviation alone at the tool tip, " << b.poses << " poses over the travel, L = "
-      << number_text(b.tool_length_mm) << " mm\n"
+  out << "# volcomp balance: each deviation alone at the tool tip, " << b.poses
+      << " poses over the travel, L = " << number_text(b.tool_length_mm) << " mm\n"
       << "# M = max |error|, delta = M - min |error| (seeds/000 Appendix 6), share = RMS^2 / sum of RMS^2\n"
       << "deviation,M[um],delta[um],RMS[um],share[%],direction_max[urad]\n";
   for (const identify::DeviationEffect& e : b.effects)
     out << e.symbol << ',' << fixed_text(e.max_um, 4) << ',' << fixed_text(e.delta_um, 4) << ','
-        << fixed_text(e.rms_um, 4) << ',' << fixed_text(e.share * 100, 2) << ',' << fixed_text(e.max_urad, 3)
-        << '\n';
+        << fixed_text(e.rms_um, 4) << ',' << fixed_text(e.share * 100, 2) << ',' << fixed_text(e.max_urad, 3) << '\n';
 }
 
 // A bar chart of M and RMS per deviation, largest first (gnuplot, preproc/plot).
@@ -42,8 +41,9 @@ void draw_bar_chart(const identify::Balance& b, const std::string& machine_name,
   write_csv(b, data);
   std::ostringstream gp;
   gp << "set datafile separator ','\n"
-     << "set title " << plot::text_literal("Accuracy balance of " + machine_name + ": each deviation alone at the tool tip (" +
-                                     std::to_string(b.poses) + " poses, L = " + number_text(b.tool_length_mm) + " mm)")
+     << "set title "
+     << plot::text_literal("Accuracy balance of " + machine_name + ": each deviation alone at the tool tip (" +
+                           std::to_string(b.poses) + " poses, L = " + number_text(b.tool_length_mm) + " mm)")
      << "\nset style data histograms\nset style histogram clustered gap 1\n"
      << "set style fill solid 0.8 border -1\nset boxwidth 0.9\nset grid ytics\nset key top right\n"
      << "set ylabel 'tool-tip error (um)'\nset xtics rotate by -60 font 'sans,9'\n"
@@ -89,14 +89,16 @@ int run_balance(const BalanceArgs& args, std::ostream& out) {
 
 void add_balance_command(CLI::App& volcomp, int& exit_code) {
   auto args = std::make_shared<BalanceArgs>();
-  CLI::App* cmd = volcomp.add_subcommand(
-      "balance", "Accuracy balance: each deviation's effect at the tool tip over the travel, largest first "
-                 "(what to measure first)");
+  CLI::App* cmd =
+      volcomp.add_subcommand("balance",
+                             "Accuracy balance: each deviation's effect at the tool tip over the travel, largest first "
+                             "(what to measure first)");
   cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
   cmd->add_option("--levels", args->levels, "positions per joint over its travel (2..21)")->capture_default_str();
   cmd->add_option("--tool-length", args->tool_length_mm, "tool length L, mm (default: the machine file's)");
   cmd->add_option("-o,--output", args->output, "CSV: deviation, M, delta, RMS (um), share (%), direction (urad)");
-  cmd->add_option("--plot", args->plot, "bar chart, .png or .svg (gnuplot); the data it draws goes to a .csv beside it");
+  cmd->add_option("--plot", args->plot,
+                  "bar chart, .png or .svg (gnuplot); the data it draws goes to a .csv beside it");
   cmd->callback([args, &exit_code] { exit_code = run_balance(*args, std::cout); });
 }
 

@@ -50,11 +50,12 @@ void print_axes(const Model& model, std::ostream& out) {
         << number_text(a.travel_min) << " .. " << number_text(a.travel_max) << ' ' << unit_of(a);
     for (int k = 0; k < 3; ++k)
       if (a.location_mm[k] != 0.0)
-        out << ", E" << "XYZ"[k] << '0' << a.letter << " = " << fixed_text(a.location_mm[k] * 1e3, 2) << " um";
+        out << ", E"
+            << "XYZ"[k] << '0' << a.letter << " = " << fixed_text(a.location_mm[k] * 1e3, 2) << " um";
     for (int k = 0; k < 3; ++k)
       if (a.location_rad[k] != 0.0)
-        out << ", E" << "ABC"[k] << '0' << a.letter << " = "
-            << fixed_text(a.location_rad[k] * kRadToArcsec, 2) << " arcsec";
+        out << ", E"
+            << "ABC"[k] << '0' << a.letter << " = " << fixed_text(a.location_rad[k] * kRadToArcsec, 2) << " arcsec";
     out << '\n';
   }
   auto chain = [&](const std::vector<int>& c) {
@@ -77,8 +78,7 @@ double print_tables(const Model& model, std::ostream& out) {
       out << ' ' << g.name() << ": " << g.nodes.size() << " nodes " << number_text(g.nodes.front()) << " .. "
           << number_text(g.nodes.back()) << ' ' << g.unit() << (g.periodic ? " (periodic)" : "");
     out << "; " << (t.interpolation() == tables::Interpolation::Cubic ? "cubic" : "linear") << "; columns";
-    for (const auto& c : t.columns())
-      out << ' ' << c.symbol.name();
+    for (const auto& c : t.columns()) out << ' ' << c.symbol.name();
     const tables::SteepestSlope s = tables::steepest_slope(t);
     worst = std::max(worst, s.fraction);
     out << "\n     steepest slope " << fixed_text(100.0 * s.fraction, 1) << " % of the invertibility limit";
@@ -96,14 +96,18 @@ bool print_configuration(const Model& model, const std::string& ini_path, std::o
   const init::VolkinsParameters volkins = init::read_volkins_parameters(ini);
   const init::HomeCheck home = init::check_home_position(ini, model, volkins);
   const init::JointRoomCheck room = init::check_joint_room(ini, model, volkins);
-  const auto unit = [&](char letter) { return model.axes[model.joint_of(letter)].type == AxisType::Rotary ? " deg" : " mm"; };
-  out << "LinuxCNC configuration " << ini_path << ":\n  after homing (each joint at its HOME, no tool length offset, world="
+  const auto unit = [&](char letter) {
+    return model.axes[model.joint_of(letter)].type == AxisType::Rotary ? " deg" : " mm";
+  };
+  out << "LinuxCNC configuration " << ini_path
+      << ":\n  after homing (each joint at its HOME, no tool length offset, world="
       << (home.convention == machine::WorldConvention::Tcp ? "tcp" : "axes") << "):\n";
   for (const init::HomedAxis& a : home.axes)
     out << "    " << a.letter << "  HOME " << number_text(a.home) << " -> world " << fixed_text(a.world, 4)
         << unit(a.letter) << ", axis limits " << number_text(a.min_limit) << " .. " << number_text(a.max_limit) << '\n';
-  out << "  the joints over the axes' limits, corrected (" << room.poses << " poses, L = "
-      << number_text(room.tool_lengths_mm[0]) << " and " << number_text(room.tool_lengths_mm[1]) << " mm):\n";
+  out << "  the joints over the axes' limits, corrected (" << room.poses
+      << " poses, L = " << number_text(room.tool_lengths_mm[0]) << " and " << number_text(room.tool_lengths_mm[1])
+      << " mm):\n";
   for (const init::JointRoom& j : room.joints)
     out << "    joint " << j.joint << " (" << j.letter << ")  " << fixed_text(j.lowest, 4) << " .. "
         << fixed_text(j.highest, 4) << unit(j.letter) << ", joint limits " << number_text(j.min_limit) << " .. "
@@ -117,12 +121,13 @@ int run_check(const CheckArgs& args, std::ostream& out) {
   const Model model = machine::load_machine(args.machine);
   out << "machine " << model.info.name;
   if (!model.info.serial.empty()) out << " (" << model.info.serial << ")";
-  out << "\n  file " << model.path << "\n  measured: " << (model.info.measured_on.empty() ? "date not given" : model.info.measured_on)
-      << ", " << fixed_text(model.info.temperature_C, 1) << " C";
+  out << "\n  file " << model.path
+      << "\n  measured: " << (model.info.measured_on.empty() ? "date not given" : model.info.measured_on) << ", "
+      << fixed_text(model.info.temperature_C, 1) << " C";
   if (!model.info.instrument.empty()) out << ", " << model.info.instrument;
-  out << "\n  tool length L = " << number_text(model.tool_length_mm) << " mm (checked here); in use L = "
-      << number_text(model.tool_length_reference_mm) << " mm + the G43 tool length offset; pole fade "
-      << number_text(model.fade.start_rad * 180.0 / M_PI) << " .. "
+  out << "\n  tool length L = " << number_text(model.tool_length_mm)
+      << " mm (checked here); in use L = " << number_text(model.tool_length_reference_mm)
+      << " mm + the G43 tool length offset; pole fade " << number_text(model.fade.start_rad * 180.0 / M_PI) << " .. "
       << number_text(model.fade.full_rad * 180.0 / M_PI) << " deg\n";
   if (model.tool_axis_coordinate)
     out << "  tool-axis coordinate " << model.tool_axis_coordinate << ": moves the tool along its own axis (volkins: "
@@ -144,17 +149,16 @@ int run_check(const CheckArgs& args, std::ostream& out) {
       << " mm):\n  largest position error " << fixed_text(s.max_position_mm * 1e3, 2) << " um at "
       << pose_text(model, s.worst_position) << '\n';
   if (model.rotary_count() > 0 || s.max_direction_rad > 0.0)
-    out << "  largest tool-direction error " << fixed_text(s.max_direction_rad * kRadToUrad, 2)
-        << " urad at " << pose_text(model, s.worst_direction) << '\n';
-  out << "invertibility margin: steepest table slope " << fixed_text(100.0 * steepest, 1)
-      << " % of the limit\n";
+    out << "  largest tool-direction error " << fixed_text(s.max_direction_rad * kRadToUrad, 2) << " urad at "
+        << pose_text(model, s.worst_direction) << '\n';
+  out << "invertibility margin: steepest table slope " << fixed_text(100.0 * steepest, 1) << " % of the limit\n";
   out << "correction: ";
   if (s.failures == 0) {
     out << "converged at all " << s.poses << " poses, at most " << s.max_iterations
         << " Newton steps, largest residual " << number_text(s.max_residual_mm) << " mm\n";
   } else {
-    out << "FAILED at " << s.failures << " of " << s.poses << " poses, first at "
-        << pose_text(model, s.first_failure) << '\n';
+    out << "FAILED at " << s.failures << " of " << s.poses << " poses, first at " << pose_text(model, s.first_failure)
+        << '\n';
   }
   bool usable = s.failures == 0;
   if (!args.ini.empty()) usable = print_configuration(model, args.ini, out) && usable;
@@ -169,8 +173,7 @@ void add_check_command(CLI::App& volcomp, int& exit_code) {
   CLI::App* cmd = volcomp.add_subcommand(
       "check", "Validate a machine file and its tables; summarise axes, tables, error and invertibility");
   cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
-  cmd->add_option("--samples", args->samples, "random poses sampled over the travel")
-      ->capture_default_str();
+  cmd->add_option("--samples", args->samples, "random poses sampled over the travel")->capture_default_str();
   cmd->add_option("--ini", args->ini,
                   "a LinuxCNC configuration that loads this machine with volkins: is every axis inside its "
                   "limits after homing?")

@@ -33,21 +33,21 @@ namespace {
 
 struct FitTablesArgs {
   std::string machine;
-  std::string controller;                      // a shipped controller's name or a controller file
-  std::string output;                          // folder: report.csv, tables.csv, the controller's files
-  std::string criterion = "minimax";           // minimax or ls
-  std::vector<std::string> tool_lengths;       // mm, fitted (default: the machine file's)
-  std::vector<std::string> check_tool_lengths; // mm, judged only (default: midpoints, largest + 50)
-  std::vector<std::string> rotary;             // "B=-90,-60,0": rotary grid positions, deg
-  std::optional<int> nodes;                    // per table (default: the controller's)
-  std::optional<int> levels;                   // grid positions per joint (default: the nodes)
-  int fresh = 2000;                            // random poses per tool length in each fresh set
-  double ridge = 1e-2, smoothness = 1e-2;      // the fit's regularisation (fit.hpp)
-  std::vector<std::string> programs;           // part programs whose poses are fitted too
-  bool programs_only = false;                  // ... and nothing else (the volume judged only)
-  std::string tool_table, var_file;            // LinuxCNC's files the programs are read with
+  std::string controller;                       // a shipped controller's name or a controller file
+  std::string output;                           // folder: report.csv, tables.csv, the controller's files
+  std::string criterion = "minimax";            // minimax or ls
+  std::vector<std::string> tool_lengths;        // mm, fitted (default: the machine file's)
+  std::vector<std::string> check_tool_lengths;  // mm, judged only (default: midpoints, largest + 50)
+  std::vector<std::string> rotary;              // "B=-90,-60,0": rotary grid positions, deg
+  std::optional<int> nodes;                     // per table (default: the controller's)
+  std::optional<int> levels;                    // grid positions per joint (default: the nodes)
+  int fresh = 2000;                             // random poses per tool length in each fresh set
+  double ridge = 1e-2, smoothness = 1e-2;       // the fit's regularisation (fit.hpp)
+  std::vector<std::string> programs;            // part programs whose poses are fitted too
+  bool programs_only = false;                   // ... and nothing else (the volume judged only)
+  std::string tool_table, var_file;             // LinuxCNC's files the programs are read with
   std::string machine_units = "mm";
-  std::vector<std::string> reversal;           // "X=runs.csv": laser runs whose reversal the COMP_FILE takes
+  std::vector<std::string> reversal;  // "X=runs.csv": laser runs whose reversal the COMP_FILE takes
 };
 
 double parse_number(const std::string& text, const std::string& option) {
@@ -80,8 +80,8 @@ void draw_figures(const fit_tables::Study& study, const std::string& machine_nam
           "modified_Delta[um],full_Delta[um]\n";
   for (const fit_tables::ReportRow& r : study.rows) {
     if (r.set != "fresh") continue;
-    data << number_text(r.tool_length_mm) << " mm" << (r.fitted_length ? "" : " (check)")
-         << ',' << number_text(r.tool_length_mm) << ',' << (r.fitted_length ? "yes" : "no");
+    data << number_text(r.tool_length_mm) << " mm" << (r.fitted_length ? "" : " (check)") << ','
+         << number_text(r.tool_length_mm) << ',' << (r.fitted_length ? "yes" : "no");
     for (const auto* f : {&r.none, &r.usual, &r.modified, &r.full}) data << ',' << fixed_text(f->max_um, 3);
     for (const auto* f : {&r.none, &r.usual, &r.modified, &r.full}) data << ',' << fixed_text(f->delta_um, 3);
     data << '\n';
@@ -89,20 +89,20 @@ void draw_figures(const fit_tables::Study& study, const std::string& machine_nam
   std::ostringstream gp;
   gp << "set datafile separator ','\nset style data histograms\nset style histogram clustered gap 1\n"
      << "set style fill solid 0.85 border -1\nset boxwidth 0.9\nset grid ytics\nset key outside right top\n"
-     << "set multiplot layout 2,1 title " << plot::text_literal(machine_name + ", " + controller_title +
-                                                               ":\ntool-tip error on poses never fitted") << '\n'
+     << "set multiplot layout 2,1 title "
+     << plot::text_literal(machine_name + ", " + controller_title + ":\ntool-tip error on poses never fitted") << '\n'
      << "set xlabel 'tool length L (check: not fitted)'\n";
   const char* names[] = {"none", "usual practice", "modified method", "full correction (volkins): 0"};
   const char* colours[] = {"#c0392b", "#e67e22", "#2471a3", "#1e8449"};
-  for (const auto& [first_column, label] : {std::pair{4, "M = max |error| (um)"}, std::pair{8, "Delta = max - min (um)"}}) {
+  for (const auto& [first_column, label] :
+       {std::pair{4, "M = max |error| (um)"}, std::pair{8, "Delta = max - min (um)"}}) {
     gp << "set ylabel '" << label << "'\nplot ";
     for (int k = 0; k < 4; ++k)
-      gp << (k ? ", '' " : "DATA ") << "every ::1 using " << first_column + k << (k ? "" : ":xtic(1)")
-         << " title " << plot::text_literal(names[k]) << " lc rgb '" << colours[k] << "'";
+      gp << (k ? ", '' " : "DATA ") << "every ::1 using " << first_column + k << (k ? "" : ":xtic(1)") << " title "
+         << plot::text_literal(names[k]) << " lc rgb '" << colours[k] << "'";
     gp << '\n';
   }
-  gp
-     << "unset multiplot\n";
+  gp << "unset multiplot\n";
   plot::draw({image, data.str(), gp.str(), 1400, 900});
 }
 
@@ -119,8 +119,9 @@ std::vector<fit_tables::Pose> program_poses(const machine::Model& model, const F
     options.step_mm = 2.0;
     options.world = machine::WorldConvention::Axes;
     std::vector<fit_tables::Pose> poses;
-    shop::simulate(model, in, files.setup(program, model, false), options,
-                   [&](const shop::PathSample& sample) { poses.push_back({sample.joints, sample.tool_length_mm}); });
+    shop::simulate(model, in, files.setup(program, model, false), options, [&](const shop::PathSample& sample) {
+      poses.push_back({sample.joints, sample.tool_length_mm});
+    });
     if (poses.empty()) throw LoadError({program}, "the program has no moves");
     const std::size_t keep = std::min(poses.size(), most);
     for (std::size_t k = 0; k < keep; ++k) all.push_back(poses[k * poses.size() / keep]);
@@ -152,7 +153,8 @@ fit_tables::JointReversal read_reversal(const machine::Model& model, const std::
   const bool rotary = model.axes[static_cast<std::size_t>(joint)].type == machine::AxisType::Rotary;
   if (runs.rotary != rotary || runs.quantity != (rotary ? tables::Quantity::Angle : tables::Quantity::Length))
     throw std::invalid_argument(path + ": not " + letter + "'s positioning (" +
-                                (rotary ? "targets in deg, deviations angles" : "targets in mm, deviations lengths") + ")");
+                                (rotary ? "targets in deg, deviations angles" : "targets in mm, deviations lengths") +
+                                ")");
   std::set<identify::RunKey> left_out;
   for (const identify::SuspiciousRun& s : identify::suspicious_runs(runs)) left_out.insert(s.run);
   const identify::Iso230_2 e = identify::evaluate_iso230_2(runs, left_out);
@@ -165,9 +167,8 @@ fit_tables::JointReversal read_reversal(const machine::Model& model, const std::
   }
   const double shown = rotary ? 3600.0 * 180.0 / M_PI : 1e3;
   const char* symbol = rotary ? " arcsec" : " um";
-  out << "reversal of " << letter << " from " << path << " (" << e.targets.size() << " targets, "
-      << e.runs_up << " + " << e.runs_down << " runs"
-      << (left_out.empty() ? "" : ", " + std::to_string(left_out.size()) + " left out")
+  out << "reversal of " << letter << " from " << path << " (" << e.targets.size() << " targets, " << e.runs_up << " + "
+      << e.runs_down << " runs" << (left_out.empty() ? "" : ", " + std::to_string(left_out.size()) + " left out")
       << "): B = " << fixed_text(e.reversal * shown, 2) << symbol << ", mean " << fixed_text(e.mean_reversal * shown, 2)
       << symbol << ": its COMP_FILE's forward column is the value - B/2, the reverse one + B/2\n";
   return r;
@@ -234,13 +235,14 @@ int run_fit_tables(const FitTablesArgs& args, std::ostream& out) {
     ini_lines = fit_tables::linuxcnc_ini_lines(comp);
     files.emplace_back("linuxcnc_ini_lines.txt", ini_lines);
     // The usual practice's tables too, to run the comparison on the machine itself.
-    for (const fit_tables::LinuxcncCompFile& f : fit_tables::linuxcnc_comp_files(model, study.set, study.usual, reversals))
+    for (const fit_tables::LinuxcncCompFile& f :
+         fit_tables::linuxcnc_comp_files(model, study.set, study.usual, reversals))
       files.emplace_back("usual_practice/" + f.file_name, f.text);
   }
   std::string sinumerik_setup;
   if (controller.format == "sinumerik-lec-cec") {
-    const auto sinumerik = fit_tables::sinumerik_files(model, study.set, study.modified,
-                                                       fit_tables::sinumerik_resolution(controller));
+    const auto sinumerik =
+        fit_tables::sinumerik_files(model, study.set, study.modified, fit_tables::sinumerik_resolution(controller));
     for (const fit_tables::SinumerikFile& f : sinumerik) files.emplace_back(f.file_name, f.text);
     sinumerik_setup = fit_tables::sinumerik_setup_lines(study.set, sinumerik);
     files.emplace_back("sinumerik_setup.txt", sinumerik_setup);
@@ -257,7 +259,8 @@ int run_fit_tables(const FitTablesArgs& args, std::ostream& out) {
 
   out << "fit-tables: " << model.info.name << " with " << controller.name << " (" << controller.title << ")\n";
   for (const std::string& note : study.set.notes) out << "note: " << note << '\n';
-  out << study.set.tables.size() << " tables, " << study.set.unknowns << " values; criterion " << args.criterion << "; ";
+  out << study.set.tables.size() << " tables, " << study.set.unknowns << " values; criterion " << args.criterion
+      << "; ";
   if (o.programs_only)
     out << "fitted to " << study.program_poses << " poses of the part programs alone (the grid's " << study.grid_poses
         << " poses and the fresh ones judged only: see what the tables leave there)\n";
@@ -273,8 +276,8 @@ int run_fit_tables(const FitTablesArgs& args, std::ostream& out) {
   for (const fit_tables::ReportRow& r : study.rows) {
     std::string l = number_text(r.tool_length_mm);
     out << "  " << std::string(l.size() < 6 ? 6 - l.size() : 1, ' ') << l << "  "
-        << (r.fitted_length ? "  yes " : "   no ") << "  " << padded(r.set, 8) << figure(r.none)
-        << figure(r.usual) << figure(r.modified) << figure(r.full) << '\n';
+        << (r.fitted_length ? "  yes " : "   no ") << "  " << padded(r.set, 8) << figure(r.none) << figure(r.usual)
+        << figure(r.modified) << figure(r.full) << '\n';
   }
   if (!ini_lines.empty()) out << "the INI lines (" << args.output << "/linuxcnc_ini_lines.txt):\n" << ini_lines;
   if (!sinumerik_setup.empty())
@@ -290,17 +293,18 @@ int run_fit_tables(const FitTablesArgs& args, std::ostream& out) {
 void add_fit_tables_command(CLI::App& volcomp, int& exit_code) {
   auto args = std::make_shared<FitTablesArgs>();
   CLI::App* cmd = volcomp.add_subcommand(
-      "fit-tables", "A stock controller's compensation tables by the source's modified method: all tables fitted "
-                    "together to the whole model; M and Delta of none, usual practice, fit and full correction");
+      "fit-tables",
+      "A stock controller's compensation tables by the source's modified method: all tables fitted "
+      "together to the whole model; M and Delta of none, usual practice, fit and full correction");
   cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
   cmd->add_option("--controller", args->controller,
-                  "the controller's tables: linuxcnc, source14, or a controller file (.toml)")->required();
+                  "the controller's tables: linuxcnc, source14, or a controller file (.toml)")
+      ->required();
   cmd->add_option("-o,--output", args->output,
                   "folder for report.csv, tables.csv and the controller's own files (LinuxCNC: COMP_FILEs "
                   "and the INI lines)")
       ->required();
-  cmd->add_option("--criterion", args->criterion, "minimax (smallest M) or ls (least squares)")
-      ->capture_default_str();
+  cmd->add_option("--criterion", args->criterion, "minimax (smallest M) or ls (least squares)")->capture_default_str();
   cmd->add_option("--tool-lengths", args->tool_lengths,
                   "tool lengths L fitted together, mm, e.g. 0,100,200 (default: the machine file's)")
       ->delimiter(',');
@@ -310,7 +314,8 @@ void add_fit_tables_command(CLI::App& volcomp, int& exit_code) {
   cmd->add_option("--rotary", args->rotary,
                   "rotary grid positions, deg, e.g. --rotary B=-90,-60,-30,0,30 (repeatable; default: --levels "
                   "positions over the travel)");
-  cmd->add_option("--nodes", args->nodes, "nodes per table, equally spaced over the travel (default: the controller's)");
+  cmd->add_option("--nodes", args->nodes,
+                  "nodes per table, equally spaced over the travel (default: the controller's)");
   cmd->add_option("--levels", args->levels, "grid positions per joint (default: the nodes)");
   cmd->add_option("--fresh", args->fresh, "random poses per tool length in each fresh set (refit, check)")
       ->capture_default_str();

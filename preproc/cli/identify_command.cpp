@@ -39,29 +39,29 @@ namespace vc::cli {
 namespace {
 
 struct IdentifyLaserArgs {
-  std::string runs;                // laser runs CSV
-  std::string error;               // the component error they measure: EXX, EYX, EAX, ECC, ...
-  std::string output;              // error table CSV (optional)
-  std::string direction = "both";  // the table's value: both (mean bidirectional), up or down
-  bool keep_all = false;           // keep the suspicious runs in the evaluation
-  std::string machine;             // machine file whose axis takes the table (optional)
-  std::string machine_out;         // folder: the table and a copy of the machine file using it
-  std::string at;                  // where the axes stood, "x=0,y=-160,..." (default: the runs' "# at:")
+  std::string runs;                      // laser runs CSV
+  std::string error;                     // the component error they measure: EXX, EYX, EAX, ECC, ...
+  std::string output;                    // error table CSV (optional)
+  std::string direction = "both";        // the table's value: both (mean bidirectional), up or down
+  bool keep_all = false;                 // keep the suspicious runs in the evaluation
+  std::string machine;                   // machine file whose axis takes the table (optional)
+  std::string machine_out;               // folder: the table and a copy of the machine file using it
+  std::string at;                        // where the axes stood, "x=0,y=-160,..." (default: the runs' "# at:")
   std::optional<double> tool_length_mm;  // the tool-side optic L below the gauge point (default: the runs')
   std::vector<double> tool_point_mm;     // ... or anywhere in the spindle frame, x,y,z from the gauge point
-  std::string reference;           // datum, least-squares, end-points, none (default by the error)
-  std::string squareness;          // a straightness's slope goes into this location error (e.g. EC0X)
-  std::string plot;                // the ISO 230-2 graph, .png or .svg (optional, gnuplot; its data: .csv beside it)
+  std::string reference;                 // datum, least-squares, end-points, none (default by the error)
+  std::string squareness;                // a straightness's slope goes into this location error (e.g. EC0X)
+  std::string plot;  // the ISO 230-2 graph, .png or .svg (optional, gnuplot; its data: .csv beside it)
 };
 
 struct IdentifyCircleArgs {
-  std::string run;                 // circular test CSV
-  std::string plane;               // XY, YZ, ZX (default: the file's "# plane:")
-  std::optional<double> radius_mm; // default: the file's "# radius_mm:"
-  std::string machine;             // to express the squareness in its terms (optional)
-  std::string machine_out;         // folder for the machine file with the squareness set
-  std::string symbol;              // which term takes it (default: the one the file uses)
-  std::string plot;                // the polar plot, .png or .svg (optional, gnuplot; its data: .csv beside it)
+  std::string run;                  // circular test CSV
+  std::string plane;                // XY, YZ, ZX (default: the file's "# plane:")
+  std::optional<double> radius_mm;  // default: the file's "# radius_mm:"
+  std::string machine;              // to express the squareness in its terms (optional)
+  std::string machine_out;          // folder for the machine file with the squareness set
+  std::string symbol;               // which term takes it (default: the one the file uses)
+  std::string plot;                 // the polar plot, .png or .svg (optional, gnuplot; its data: .csv beside it)
 };
 
 struct IdentifySphereArgs {
@@ -74,8 +74,9 @@ struct IdentifySphereArgs {
 
 // Deviations in um (lengths) or arcsec and urad (angles), for the printout.
 std::string shown(double v, tables::Quantity q) {
-  return q == tables::Quantity::Length ? fixed_text(v * 1e3, 2) + " um"
-                                       : fixed_text(v * 648000.0 / M_PI, 2) + " arcsec (" + fixed_text(v * 1e6, 1) + " urad)";
+  return q == tables::Quantity::Length
+             ? fixed_text(v * 1e3, 2) + " um"
+             : fixed_text(v * 648000.0 / M_PI, 2) + " arcsec (" + fixed_text(v * 1e6, 1) + " urad)";
 }
 
 // A plot's image or its data CSV (the image's name with .csv) must not be one of the command's
@@ -94,7 +95,8 @@ void refuse_plot_over(const std::string& image, const std::vector<std::string>& 
 int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
   const auto symbol = tables::parse_error_symbol(args.error);
   if (!symbol || symbol->location)
-    throw std::runtime_error("--error " + args.error + ": the component error the runs measure (EXX positioning, EYX "
+    throw std::runtime_error("--error " + args.error +
+                             ": the component error the runs measure (EXX positioning, EYX "
                              "straightness, EAX angular, ECC a rotary axis's positioning ...)");
   if (args.direction != "both" && args.direction != "up" && args.direction != "down")
     throw std::runtime_error("--direction must be both, up or down");
@@ -111,7 +113,8 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
   if (runs.quantity != symbol->quantity())
     throw std::runtime_error(args.runs + ": the deviations are " +
                              (runs.quantity == tables::Quantity::Length ? "lengths" : "angles") + " but " + args.error +
-                             " is " + (symbol->quantity() == tables::Quantity::Length ? "a translation" : "a rotation"));
+                             " is " +
+                             (symbol->quantity() == tables::Quantity::Length ? "a translation" : "a rotation"));
 
   const std::vector<identify::SuspiciousRun> suspicious = identify::suspicious_runs(runs);
   std::set<identify::RunKey> left_out;
@@ -126,7 +129,9 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
   for (const auto& s : suspicious)
     out << "  " << (args.keep_all ? "suspicious (kept): " : "left out: ") << s.reason << "\n";
   // The figures, printed and (--plot) written on the graph: the same text.
-  const auto up_down = [&](double up, double down) { return " (up " + shown(up, q) + ", down " + shown(down, q) + ")"; };
+  const auto up_down = [&](double up, double down) {
+    return " (up " + shown(up, q) + ", down " + shown(down, q) + ")";
+  };
   const std::vector<std::array<std::string, 3>> figures = {
       {"reversal value", "B", shown(e.reversal, q) + " (mean " + shown(e.mean_reversal, q) + ")"},
       {"repeatability", "R", shown(e.repeatability, q) + up_down(e.repeatability_up, e.repeatability_down)},
@@ -149,7 +154,8 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
   if (identify::spans_one_turn(e, runs.rotary))
     out << "One full turn: 0 and 360 deg are one position; the table holds their mean there (periodic), they read "
         << shown(e.targets.front().mean, q) << " and " << shown(e.targets.back().mean, q) << ".\n";
-  out << "The table holds the " << (args.direction == "both" ? "mean bidirectional deviation" : args.direction + " runs' mean")
+  out << "The table holds the "
+      << (args.direction == "both" ? "mean bidirectional deviation" : args.direction + " runs' mean")
       << " at each target. The reversal (B = " << shown(e.reversal, q)
       << ") is not part of the geometric model: volkins leaves it (the drive's backlash compensation takes it)";
   if (std::string("XYZABC")[static_cast<std::size_t>(symbol->component)] == symbol->axis)  // positioning
@@ -159,14 +165,15 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
 
   const std::vector<identify::TableRow> rows = identify::laser_table_rows(e, runs.rotary, which);
   std::vector<std::string> comments = {
-      args.error + " identified by volcomp identify laser from " + args.runs + " (ISO 230-2: " +
-      std::to_string(e.runs_up) + " runs up, " + std::to_string(e.runs_down) + " down" +
+      args.error + " identified by volcomp identify laser from " + args.runs +
+      " (ISO 230-2: " + std::to_string(e.runs_up) + " runs up, " + std::to_string(e.runs_down) + " down" +
       (left_out.empty() ? "" : ", " + std::to_string(left_out.size()) + " left out") + ")"};
   for (const auto& [key, text] : runs.metadata) comments.push_back(key + ": " + text);
-  comments.push_back("value: " + (args.direction == "both" ? std::string("mean bidirectional deviation")
-                                                          : args.direction + " runs' mean") +
-                     "; reversal B " + shown(e.reversal, q) + ", repeatability R " + shown(e.repeatability, q) +
-                     ", accuracy A " + shown(e.accuracy, q));
+  comments.push_back(
+      "value: " +
+      (args.direction == "both" ? std::string("mean bidirectional deviation") : args.direction + " runs' mean") +
+      "; reversal B " + shown(e.reversal, q) + ", repeatability R " + shown(e.repeatability, q) + ", accuracy A " +
+      shown(e.accuracy, q));
 
   if (!args.machine_out.empty() && args.machine.empty())
     throw std::runtime_error("--machine-out needs --machine: the machine file whose axis takes the table");
@@ -196,7 +203,8 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
       throw std::runtime_error(args.runs + ": where did the axes stand during the runs? Add a '# at: " + [&] {
         std::string example;
         for (int j = 0; j < model->joint_count(); ++j)
-          example += std::string(j ? ", " : "") + static_cast<char>(std::tolower(model->axes[static_cast<std::size_t>(j)].letter)) + "=...";
+          example += std::string(j ? ", " : "") +
+                     static_cast<char>(std::tolower(model->axes[static_cast<std::size_t>(j)].letter)) + "=...";
         return example;
       }() + "' line or give --at: the laser reads the machine's errors there too");
     try {
@@ -220,23 +228,32 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
       if (v.size() != 3) throw std::runtime_error(what + ": three numbers, x, y, z (mm)");
       return Eigen::Vector3d(v[0], v[1], v[2]);
     };
-    if (!args.tool_point_mm.empty()) line.setup.tool_point_mm = Eigen::Vector3d(args.tool_point_mm[0], args.tool_point_mm[1], args.tool_point_mm[2]);
-    else if (args.tool_length_mm) line.setup.tool_point_mm = Eigen::Vector3d(0, 0, -*args.tool_length_mm);
-    else if (!metadata("tool_point_mm").empty()) line.setup.tool_point_mm = vector3(metadata("tool_point_mm"), args.runs + ": '# tool_point_mm:'");
-    else if (!metadata("tool_length_mm").empty()) line.setup.tool_point_mm = Eigen::Vector3d(0, 0, -vector3(metadata("tool_length_mm") + ",0,0", args.runs + ": '# tool_length_mm:'").x());
+    if (!args.tool_point_mm.empty())
+      line.setup.tool_point_mm = Eigen::Vector3d(args.tool_point_mm[0], args.tool_point_mm[1], args.tool_point_mm[2]);
+    else if (args.tool_length_mm)
+      line.setup.tool_point_mm = Eigen::Vector3d(0, 0, -*args.tool_length_mm);
+    else if (!metadata("tool_point_mm").empty())
+      line.setup.tool_point_mm = vector3(metadata("tool_point_mm"), args.runs + ": '# tool_point_mm:'");
+    else if (!metadata("tool_length_mm").empty())
+      line.setup.tool_point_mm =
+          Eigen::Vector3d(0, 0, -vector3(metadata("tool_length_mm") + ",0,0", args.runs + ": '# tool_length_mm:'").x());
     else
-      throw std::runtime_error(args.runs + ": where was the tool-side optic? Add a '# tool_length_mm: L' line (the optic L "
-                               "below the spindle gauge point, on its axis) or '# tool_point_mm: x, y, z' (in the spindle "
-                               "frame), or give --tool-length / --tool-point");
+      throw std::runtime_error(
+          args.runs +
+          ": where was the tool-side optic? Add a '# tool_length_mm: L' line (the optic L "
+          "below the spindle gauge point, on its axis) or '# tool_point_mm: x, y, z' (in the spindle "
+          "frame), or give --tool-length / --tool-point");
     if (!metadata("measured_at_mm").empty())
-      throw std::runtime_error(args.runs + ": '# measured_at_mm:' says where the optics sat relative to the axis's pole; "
-                               "with --machine-out give where the tool-side optic sat instead ('# tool_point_mm: x, y, z' in "
-                               "the spindle frame from its gauge point): the solve reads the Abbe terms from there");
-    line.reference = args.reference.empty() ? identify::default_reference(*symbol, runs.rotary)
-                     : args.reference == "datum"        ? identify::Reference::Datum
+      throw std::runtime_error(
+          args.runs +
+          ": '# measured_at_mm:' says where the optics sat relative to the axis's pole; "
+          "with --machine-out give where the tool-side optic sat instead ('# tool_point_mm: x, y, z' in "
+          "the spindle frame from its gauge point): the solve reads the Abbe terms from there");
+    line.reference = args.reference.empty()              ? identify::default_reference(*symbol, runs.rotary)
+                     : args.reference == "datum"         ? identify::Reference::Datum
                      : args.reference == "least-squares" ? identify::Reference::LeastSquares
-                     : args.reference == "end-points"   ? identify::Reference::EndPoints
-                                                        : identify::Reference::None;
+                     : args.reference == "end-points"    ? identify::Reference::EndPoints
+                                                         : identify::Reference::None;
     for (const identify::TargetStatistics& t : e.targets) {
       line.targets.push_back(t.target);
       line.readings.push_back(identify::table_value(t, which));
@@ -244,7 +261,7 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
     }
     line.squareness = args.squareness;
     line.comments = comments;
-}
+  }
   // The graph before any other output: a failing gnuplot leaves nothing written.
   if (!args.plot.empty()) {
     plot::LaserPlotText text;
@@ -253,7 +270,8 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
     for (const auto& [key, note] : runs.metadata) text.notes.push_back(key + ": " + note);
     for (const auto& s : suspicious)
       text.notes.push_back((args.keep_all ? "suspicious (kept): " : "left out (not drawn): ") + s.reason);
-    for (const auto& [name, figure_symbol, figure_text] : figures) text.figures.emplace_back(figure_symbol, figure_text);
+    for (const auto& [name, figure_symbol, figure_text] : figures)
+      text.figures.emplace_back(figure_symbol, figure_text);
     plot::draw(plot::laser_plot(runs, left_out, e, text, args.plot));
     out << "plot written: " << args.plot << " (its data: " << plot::data_path(args.plot) << ")\n";
   }
@@ -282,10 +300,12 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
   const identify::LaserIntoMachine r =
       identify::laser_into_machine(*model, line, args.machine_out, "volcomp identify laser from " + args.runs);
 
-  const auto in_unit = [&](double v) { return fixed_text(v * unit, 3) + (q == tables::Quantity::Length ? " um" : " urad"); };
+  const auto in_unit = [&](double v) {
+    return fixed_text(v * unit, 3) + (q == tables::Quantity::Length ? " um" : " urad");
+  };
   const auto per = [&](double slope) {  // um/m or urad/m (linear axes), per deg (rotary)
-    return fixed_text(slope * unit * (runs.rotary ? 1.0 : 1e3), 3) +
-           (q == tables::Quantity::Length ? " um" : " urad") + (runs.rotary ? "/deg" : "/m");
+    return fixed_text(slope * unit * (runs.rotary ? 1.0 : 1e3), 3) + (q == tables::Quantity::Length ? " um" : " urad") +
+           (runs.rotary ? "/deg" : "/m");
   };
   out << "Into " << args.machine << " (" << model->info.name << "): the runs at " << at << ", the tool-side optic at "
       << number_text(line.setup.tool_point_mm.x()) << ", " << number_text(line.setup.tool_point_mm.y()) << ", "
@@ -298,9 +318,9 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
       out << "  reference none: the readings as they are\n";
       break;
     case identify::Reference::Datum:
-      out << "  reference datum: the runs read " << in_unit(r.runs_reference.offset) << " at " << number_text(line.targets.front())
-          << (runs.rotary ? " deg" : " mm") << " (the laser's zero), the file " << in_unit(r.file_reference.offset)
-          << ": the file keeps its origin\n";
+      out << "  reference datum: the runs read " << in_unit(r.runs_reference.offset) << " at "
+          << number_text(line.targets.front()) << (runs.rotary ? " deg" : " mm") << " (the laser's zero), the file "
+          << in_unit(r.file_reference.offset) << ": the file keeps its origin\n";
       break;
     default:
       out << "  reference " << identify::reference_name(line.reference) << " (ISO 230-1): the runs' line "
@@ -310,7 +330,8 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
             << arcsec(r.squareness_rad) << " (was " << arcsec(r.squareness_before_rad)
             << "; one value in the file: identify circle and sphere set the same one)\n";
       else
-        out << "; " << symbol->axis << " carries the part, so no squareness turns its line against it: the slope is the "
+        out << "; " << symbol->axis
+            << " carries the part, so no squareness turns its line against it: the slope is the "
             << "optics' alignment, replaced by the file's " << per(r.file_reference.slope)
             << " (--reference none keeps the runs' slope, for optics aligned to the part)\n";
   }
@@ -320,7 +341,8 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
   out << "  " << r.table_file << ": " << args.error << " " << in_unit(*low) << " .. " << in_unit(*high)
       << " (the axis's own motion, in its frame)\n"
       << "  self-check: the written file reads the runs within " << in_unit(r.largest_misfit) << "\n"
-      << "machine file written: " << r.written << " (axis " << symbol->axis << ": " << args.error << " from " << r.table_file;
+      << "machine file written: " << r.written << " (axis " << symbol->axis << ": " << args.error << " from "
+      << r.table_file;
   if (!r.zeroed_copy.empty())
     out << "; in " << r.zeroed_copy << ", the copy of the table that held it, " << args.error << " is zero";
   out << ")\n";
@@ -337,8 +359,8 @@ int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
   const auto um = [](double mm) { return fixed_text(mm * 1e3, 2) + " um"; };
   const auto arcsec = [](double rad) { return fixed_text(rad * 648000.0 / M_PI, 2) + " arcsec"; };
   const std::string first(1, test.plane[0]), second(1, test.plane[1]);
-  out << "volcomp identify circle: " << args.run << ", plane " << test.plane << ", radius " << number_text(test.radius_mm)
-      << " mm\n";
+  out << "volcomp identify circle: " << args.run << ", plane " << test.plane << ", radius "
+      << number_text(test.radius_mm) << " mm\n";
   for (const auto& [key, value] : test.metadata) out << "  " << key << ": " << value << "\n";
   // Each figure's text once: printed (joined as before) and, with --plot, written on the plot.
   const std::string both = "bidirectional circular deviation G(b) " + um(e.circular_deviation_mm);
@@ -360,8 +382,8 @@ int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
       spike_texts.push_back(number_text(angle) + " deg " + um(height));
       spikes += " " + spike_texts.back();
     }
-    out << "  " << (f.ccw ? "ccw" : "cw ") << ": " << deviation << ", " << radial << "; " << centre << "; " << square << "; "
-        << residual << "\n    " << spikes << "\n";
+    out << "  " << (f.ccw ? "ccw" : "cw ") << ": " << deviation << ", " << radial << "; " << centre << "; " << square
+        << "; " << residual << "\n    " << spikes << "\n";
     plotted.push_back(std::string(f.ccw ? "ccw" : "cw") + ":");
     for (const std::string& line : {deviation, radial, centre, square, residual}) plotted.push_back("   " + line);
     plotted.push_back("   reversal spikes:");  // two a line: the plot's column is narrower than the printout
@@ -369,8 +391,8 @@ int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
       plotted.push_back("      " + spike_texts[k] + (k + 1 < spike_texts.size() ? ",  " + spike_texts[k + 1] : ""));
   }
   const std::string theta = "theta = " + arcsec(e.squareness_rad),
-                    mismatch = "scale mismatch e" + first + " - e" + second + " = " + fixed_text(e.scale_mismatch * 1e6, 2) +
-                               " um/m";
+                    mismatch = "scale mismatch e" + first + " - e" + second + " = " +
+                               fixed_text(e.scale_mismatch * 1e6, 2) + " um/m";
   out << "squareness (both directions' mean; " << first << "' = " << first << " + theta " << second << "): " << theta
       << "; " << mismatch << " (a positioning table's slope: measure it with the laser)\n";
   plotted.push_back("squareness (both directions' mean): " + theta);
@@ -392,26 +414,30 @@ int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
   if (!model) return 0;
   const std::vector<identify::SquarenessTerm> terms =
       identify::squareness_terms(*model, test.plane, test.radius_mm, e.squareness_rad);
-  out << "in " << args.machine << "'s terms (measured with the compensation off: the machine's own squareness): the file "
-      << "shows " << arcsec(terms.empty() ? 0.0 : terms.front().file_squareness_rad) << " now (its lines and its tables' "
+  out << "in " << args.machine
+      << "'s terms (measured with the compensation off: the machine's own squareness): the file "
+      << "shows " << arcsec(terms.empty() ? 0.0 : terms.front().file_squareness_rad)
+      << " now (its lines and its tables' "
       << "slopes); for the measured one, with its other errors as they are:\n";
   for (const auto& t : terms)
     out << "  " << t.symbol << " = " << arcsec(t.value_rad) << " (the file has " << arcsec(t.in_file_rad) << ")\n";
   if (args.machine_out.empty()) return 0;
   const identify::SquarenessTerm* chosen = identify::chosen_squareness_term(terms, args.symbol);
   if (!chosen)
-    throw std::runtime_error("--symbol " + args.symbol + " is not one of the squareness terms of the " + test.plane + " plane");
+    throw std::runtime_error("--symbol " + args.symbol + " is not one of the squareness terms of the " + test.plane +
+                             " plane");
   const auto s = tables::parse_error_symbol(chosen->symbol);
-  const std::string written = shop::write_machine_with_tables(*model, args.machine_out, {}, "volcomp identify circle from " + args.run,
-                                                              {{model->joint_of(s->axis), s->component, chosen->value_rad}});
+  const std::string written =
+      shop::write_machine_with_tables(*model, args.machine_out, {}, "volcomp identify circle from " + args.run,
+                                      {{model->joint_of(s->axis), s->component, chosen->value_rad}});
   // The self-check: the written file shows the measured squareness.
   const std::vector<identify::SquarenessTerm> after =
       identify::squareness_terms(machine::load_machine(written), test.plane, test.radius_mm, e.squareness_rad);
   if (after.empty() || std::abs(after.front().file_squareness_rad - e.squareness_rad) > 0.005 * M_PI / 648000) {
     std::filesystem::remove(written);
     throw std::runtime_error("the written file shows a squareness of " +
-                             arcsec(after.empty() ? 0.0 : after.front().file_squareness_rad) + " where the circle measured " +
-                             arcsec(e.squareness_rad) + ": nothing written");
+                             arcsec(after.empty() ? 0.0 : after.front().file_squareness_rad) +
+                             " where the circle measured " + arcsec(e.squareness_rad) + ": nothing written");
   }
   out << "machine file written: " << written << " (" << chosen->symbol << " = " << arcsec(chosen->value_rad)
       << "; it shows " << arcsec(after.front().file_squareness_rad) << ")\n";
@@ -425,7 +451,8 @@ int run_identify_sphere(const IdentifySphereArgs& args, std::ostream& out) {
   {
     std::ifstream in(args.centres);
     if (!in) throw LoadError({args.centres}, "cannot open the probe log or centres");
-    while (std::getline(in, first) && first.find_first_not_of(" \t\r") == std::string::npos) {}
+    while (std::getline(in, first) && first.find_first_not_of(" \t\r") == std::string::npos) {
+    }
   }
   std::vector<identify::SpherePose> poses;
   double length = args.tool_length_mm.value_or(model.tool_length_mm);
@@ -434,8 +461,8 @@ int run_identify_sphere(const IdentifySphereArgs& args, std::ostream& out) {
     poses = log.centres;
     if (!args.tool_length_mm && log.probe_length_mm > 0) length = log.probe_length_mm;
     out << "probe log: " << poses.size() << " poses, sphere " << number_text(log.sphere_diameter_mm) << " mm, ball "
-        << number_text(log.ball_diameter_mm) << " mm; the points lie within "
-        << fixed_text(log.largest_residual_um, 2) << " um of their fitted spheres\n";
+        << number_text(log.ball_diameter_mm) << " mm; the points lie within " << fixed_text(log.largest_residual_um, 2)
+        << " um of their fitted spheres\n";
   } else {
     poses = identify::read_sphere_centres(args.centres, model);
   }
@@ -447,8 +474,8 @@ int run_identify_sphere(const IdentifySphereArgs& args, std::ostream& out) {
       << " at L = " << number_text(length) << " mm (the linear axes' errors enter the centres: identify after the "
       << "linear tables are in the machine file)\n"
       << "  " << fit.rank << " of " << fit.parameters << " location errors identified, condition "
-      << fixed_text(fit.condition, 1) << "; sphere centre in the part frame " << fixed_text(fit.centre_mm.x(), 4) << ", "
-      << fixed_text(fit.centre_mm.y(), 4) << ", " << fixed_text(fit.centre_mm.z(), 4) << " mm\n";
+      << fixed_text(fit.condition, 1) << "; sphere centre in the part frame " << fixed_text(fit.centre_mm.x(), 4)
+      << ", " << fixed_text(fit.centre_mm.y(), 4) << ", " << fixed_text(fit.centre_mm.z(), 4) << " mm\n";
   for (const identify::LocationEstimate& e : fit.estimates)
     out << "  " << e.symbol << " = " << value(e.component, e.value) << " +- " << value(e.component, e.uncertainty)
         << " (standard uncertainty; the file has " << value(e.component, e.before) << ")\n";
@@ -459,15 +486,15 @@ int run_identify_sphere(const IdentifySphereArgs& args, std::ostream& out) {
   }
   out << "  distance of the model's tip from the common centre per pose, um (before -> after):";
   for (std::size_t k = 0; k < poses.size(); ++k)
-    out << (k % 6 ? " " : "\n   ") << "line " << poses[k].line << ": " << fixed_text(fit.residual_before_um[k], 2) << " -> "
-        << fixed_text(fit.residual_after_um[k], 2);
+    out << (k % 6 ? " " : "\n   ") << "line " << poses[k].line << ": " << fixed_text(fit.residual_before_um[k], 2)
+        << " -> " << fixed_text(fit.residual_after_um[k], 2);
   out << "\n  RMS " << fixed_text(fit.rms_before_um, 3) << " -> " << fixed_text(fit.rms_after_um, 3) << " um\n";
   if (args.machine_out.empty()) return 0;
   std::vector<shop::LocationValue> values;
   for (const identify::LocationEstimate& e : fit.estimates)
     values.push_back({e.joint, e.component, e.value, e.uncertainty});
-  const std::string written =
-      shop::write_machine_with_tables(model, args.machine_out, {}, "volcomp identify sphere from " + args.centres, values);
+  const std::string written = shop::write_machine_with_tables(model, args.machine_out, {},
+                                                              "volcomp identify sphere from " + args.centres, values);
   machine::load_machine(written);  // it loads
   out << "machine file written: " << written << "\n";
   return 0;
@@ -477,7 +504,8 @@ void add_laser_command(CLI::App* identify, int& exit_code) {
   auto args = std::make_shared<IdentifyLaserArgs>();
   CLI::App* cmd = identify->add_subcommand(
       "laser", "Laser interferometer runs (ISO 230-2): evaluation, suspicious runs, the error table");
-  cmd->add_option("RUNS", args->runs, "runs CSV: target[mm],run,direction,deviation[um] or target[mm],1+[um],1-[um],...")
+  cmd->add_option("RUNS", args->runs,
+                  "runs CSV: target[mm],run,direction,deviation[um] or target[mm],1+[um],1-[um],...")
       ->required();
   cmd->add_option("--error", args->error, "the component error the runs measure: EXX, EYX, EAX, ECC, ...")->required();
   cmd->add_option("-o,--output", args->output, "error table CSV in the project's format");
@@ -487,8 +515,9 @@ void add_laser_command(CLI::App* identify, int& exit_code) {
   cmd->add_option("--machine", args->machine, "machine file whose axis takes the identified table");
   cmd->add_option("--machine-out", args->machine_out,
                   "folder: the table and a copy of the machine file with it in place of the error's old values");
-  cmd->add_option("--at", args->at,
-                  "where every axis stood during the runs, e.g. x=0,y=-160,z=-150,b=0,c=0 (default: the runs' '# at:')");
+  cmd->add_option(
+      "--at", args->at,
+      "where every axis stood during the runs, e.g. x=0,y=-160,z=-150,b=0,c=0 (default: the runs' '# at:')");
   cmd->add_option("--tool-length", args->tool_length_mm,
                   "the tool-side optic's distance below the spindle gauge point, mm (default: the runs' "
                   "'# tool_length_mm:')");
@@ -530,7 +559,9 @@ void add_sphere_command(CLI::App* identify, int& exit_code) {
   CLI::App* cmd = identify->add_subcommand(
       "sphere", "Rotary axes' location errors from a sphere's centre probed at several rotary positions");
   cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
-  cmd->add_option("CENTRES", args->centres, "probe-plan log, or a CSV of the joints at the sphere's centre per pose (x,y,z,b,c)")->required();
+  cmd->add_option("CENTRES", args->centres,
+                  "probe-plan log, or a CSV of the joints at the sphere's centre per pose (x,y,z,b,c)")
+      ->required();
   cmd->add_option("--deviations", args->deviations, "location errors to identify, e.g. EX0C,EA0B (default: all)")
       ->delimiter(',');
   cmd->add_option("--tool-length", args->tool_length_mm, "probe length L, mm (default: the machine file's)");
@@ -541,7 +572,8 @@ void add_sphere_command(CLI::App* identify, int& exit_code) {
 }  // namespace
 
 void add_identify_commands(CLI::App& volcomp, int& exit_code) {
-  CLI::App* identify = volcomp.add_subcommand("identify", "From measurements to the machine file")->require_subcommand(1);
+  CLI::App* identify =
+      volcomp.add_subcommand("identify", "From measurements to the machine file")->require_subcommand(1);
   add_laser_command(identify, exit_code);
   add_circle_command(identify, exit_code);
   add_sphere_command(identify, exit_code);

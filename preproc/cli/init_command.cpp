@@ -68,8 +68,10 @@ int run_init(const InitArgs& args, std::ostream& patch_out, std::ostream& report
   if (patch_to_file) check_folder(args.patch, "--patch");
 
   tables::write_atomically(args.output, [&](std::ostream& out) { out << r.machine_text; });
-  if (patch_to_file) tables::write_atomically(args.patch, [&](std::ostream& out) { out << r.patch.diff; });
-  else patch_out << r.patch.diff << std::flush;
+  if (patch_to_file)
+    tables::write_atomically(args.patch, [&](std::ostream& out) { out << r.patch.diff; });
+  else
+    patch_out << r.patch.diff << std::flush;
 
   report << "volcomp init: " << r.machine.name << " (" << fs::absolute(args.ini).lexically_normal().string() << ")\n"
          << "  kinematics: " << r.machine.module << ", joints " << r.machine.coordinates << " -> " << r.patch.kinematics
@@ -92,8 +94,9 @@ int run_init(const InitArgs& args, std::ostream& patch_out, std::ostream& report
 void add_init_command(CLI::App& volcomp, int& exit_code) {
   auto args = std::make_shared<InitArgs>();
   CLI::App* cmd = volcomp.add_subcommand(
-      "init", "From a LinuxCNC configuration: a machine file with its kinematics' nominal geometry (zero errors) "
-              "and the patch that loads volkins in place of the stock module (summary on stderr)");
+      "init",
+      "From a LinuxCNC configuration: a machine file with its kinematics' nominal geometry (zero errors) "
+      "and the patch that loads volkins in place of the stock module (summary on stderr)");
   cmd->add_option("CONFIG", args->ini, "the configuration's INI file")->required();
   cmd->add_option("-o,--output", args->output, "the machine file to write (.toml)")->required();
   cmd->add_option("--patch", args->patch,

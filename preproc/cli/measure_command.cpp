@@ -19,9 +19,9 @@ namespace vc::cli {
 namespace {
 
 struct MeasureArgs {
-  std::string path;                // tool path CSV (volcomp simulate)
-  std::string plan;                // CMM plan CSV
-  std::string output;              // CMM report CSV
+  std::string path;    // tool path CSV (volcomp simulate)
+  std::string plan;    // CMM plan CSV
+  std::string output;  // CMM report CSV
   double noise_um = 0.0;
   double probe_radius_mm = 0.0;
   double flute_length_mm = 30.0;
@@ -30,7 +30,8 @@ struct MeasureArgs {
 
 int run_measure(const MeasureArgs& args, std::ostream& report) {
   if (!(args.noise_um >= 0 && args.noise_um <= 100)) throw std::runtime_error("--noise must be in [0, 100] um");
-  if (!(args.probe_radius_mm >= 0 && args.probe_radius_mm <= 5)) throw std::runtime_error("--probe-radius must be in [0, 5] mm");
+  if (!(args.probe_radius_mm >= 0 && args.probe_radius_mm <= 5))
+    throw std::runtime_error("--probe-radius must be in [0, 5] mm");
   const shop::ToolPath path = shop::read_tool_path(args.path);
   for (const shop::PathSample& s : path)
     if (s.cutting && !(s.radius_mm > 0))
@@ -50,10 +51,10 @@ int run_measure(const MeasureArgs& args, std::ostream& report) {
   for (const auto& p : measured) largest = std::max(largest, std::abs(*p.deviation_mm));
   tables::write_atomically(args.output, [&](std::ostream& out) {
     shop::write_cmm_report(out, measured,
-                     {"volcomp measure: virtual CMM, deviation along the normal, + = material left",
-                      "tool path " + args.path + ", plan " + args.plan,
-                      "noise " + number_text(args.noise_um) + " um (seed " + std::to_string(args.seed) +
-                          "), probe radius " + number_text(args.probe_radius_mm) + " mm"});
+                           {"volcomp measure: virtual CMM, deviation along the normal, + = material left",
+                            "tool path " + args.path + ", plan " + args.plan,
+                            "noise " + number_text(args.noise_um) + " um (seed " + std::to_string(args.seed) +
+                                "), probe radius " + number_text(args.probe_radius_mm) + " mm"});
   });
   report << "volcomp measure: " << measured.size() << " points, largest deviation " << fixed_text(largest * 1e3, 3)
          << " um\n";
@@ -71,8 +72,7 @@ void add_measure_command(CLI::App& volcomp, int& exit_code) {
   cmd->add_option("-o,--output", args->output, "CMM report CSV")->required();
   cmd->add_option("--noise", args->noise_um, "gaussian noise (standard deviation), um")->capture_default_str();
   cmd->add_option("--probe-radius", args->probe_radius_mm, "stylus ball radius, mm")->capture_default_str();
-  cmd->add_option("--flute-length", args->flute_length_mm, "cutting length of the tools, mm")
-      ->capture_default_str();
+  cmd->add_option("--flute-length", args->flute_length_mm, "cutting length of the tools, mm")->capture_default_str();
   cmd->add_option("--seed", args->seed, "seed of the noise")->capture_default_str();
   cmd->callback([args, &exit_code] { exit_code = run_measure(*args, std::cerr); });
 }

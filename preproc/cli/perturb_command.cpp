@@ -25,8 +25,8 @@ struct PerturbArgs {
   std::string folder;
   double low = 0.2, high = 0.5;
   unsigned seed = 1;
-  std::vector<std::string> locations;  // "EX0C=15um": only these location errors, changed by these
-  std::vector<std::string> add_tables; // error tables the true machine has in addition (each under its columns' axis)
+  std::vector<std::string> locations;   // "EX0C=15um": only these location errors, changed by these
+  std::vector<std::string> add_tables;  // error tables the true machine has in addition (each under its columns' axis)
 };
 
 // --location EX0C=15um ... and --add-table FILE ...: a true machine that differs from the file in
@@ -41,8 +41,8 @@ int perturb_named(const machine::Model& model, const PerturbArgs& args, std::ost
     const char letter = table.columns().front().symbol.axis;
     const int joint = model.joint_of(letter);
     if (joint < 0)
-      throw std::runtime_error("--add-table " + file + ": its errors are of axis " + std::string(1, letter) + ", which " +
-                               model.info.name + " does not have");
+      throw std::runtime_error("--add-table " + file + ": its errors are of axis " + std::string(1, letter) +
+                               ", which " + model.info.name + " does not have");
     const std::string name = std::filesystem::path(file).filename().string();
     for (const int t : model.axes[static_cast<std::size_t>(joint)].tables)
       if (std::filesystem::path(model.tables[static_cast<std::size_t>(t)].table.path()).filename() == name)
@@ -68,9 +68,9 @@ int perturb_named(const machine::Model& model, const PerturbArgs& args, std::ost
     }
     const std::string unit = amount.substr(used);
     const bool length = symbol->component < 3;
-    const std::map<std::string, double> scale = length
-        ? std::map<std::string, double>{{"um", 1e-3}, {"mm", 1.0}}
-        : std::map<std::string, double>{{"arcsec", M_PI / 648000.0}, {"urad", 1e-6}};
+    const std::map<std::string, double> scale =
+        length ? std::map<std::string, double>{{"um", 1e-3}, {"mm", 1.0}}
+               : std::map<std::string, double>{{"arcsec", M_PI / 648000.0}, {"urad", 1e-6}};
     if (used == 0 || !scale.count(unit))
       throw std::runtime_error("--location " + spec + ": the change needs its unit (" +
                                (length ? "um or mm" : "arcsec or urad") + ")");
@@ -94,7 +94,8 @@ int run_perturb(const PerturbArgs& args, std::ostream& report) {
   const machine::Model model = machine::load_machine(args.machine);
   if (!args.locations.empty() || !args.add_tables.empty()) return perturb_named(model, args, report);
   const std::vector<shop::ExtraTable> extras = shop::perturbation_tables(model, args.low, args.high, args.seed);
-  const std::vector<shop::LocationValue> locations = shop::perturbation_locations(model, args.low, args.high, args.seed);
+  const std::vector<shop::LocationValue> locations =
+      shop::perturbation_locations(model, args.low, args.high, args.seed);
   const std::string written = shop::write_machine_with_tables(
       model, args.folder, extras,
       "virtual shop: the true machine's tables and location errors are off by " + number_text(args.low * 100) + "-" +
@@ -112,8 +113,7 @@ void add_perturb_command(CLI::App& volcomp, int& exit_code) {
   CLI::App* cmd = volcomp.add_subcommand(
       "perturb", "Write a \"true\" machine for the virtual shop: every table off by a smooth 20-50 %");
   cmd->add_option("MACHINE", args->machine, "machine file (.toml)")->required();
-  cmd->add_option("-o,--output", args->folder, "folder for the true machine file and its extra tables")
-      ->required();
+  cmd->add_option("-o,--output", args->folder, "folder for the true machine file and its extra tables")->required();
   cmd->add_option("--low", args->low, "smallest relative change")->capture_default_str();
   cmd->add_option("--high", args->high, "largest relative change")->capture_default_str();
   cmd->add_option("--seed", args->seed, "seed of the shapes")->capture_default_str();

@@ -25,9 +25,9 @@ namespace {
 
 struct PlotArgs {
   std::string machine;
-  std::string folder;              // per axis <letter>_axis.png (or .svg) and .csv; location_errors.csv
-  std::string format = "png";      // png or svg
-  bool volume = false;             // also the volume map: volume_L<mm>_rotary0 / _worst images and CSVs
+  std::string folder;                   // per axis <letter>_axis.png (or .svg) and .csv; location_errors.csv
+  std::string format = "png";           // png or svg
+  bool volume = false;                  // also the volume map: volume_L<mm>_rotary0 / _worst images and CSVs
   std::vector<double> tool_lengths_mm;  // of the volume map (default: the machine file's)
   std::string plane;                    // of the volume map: "xz", "yz" ... (default: the first two linear axes)
   std::string controller = "linuxcnc";  // whose tables the volume map judges; "none" for none
@@ -50,7 +50,8 @@ void draw_volume_map(const plot::VolumeMap& map, const machine::Model& model, co
       out << (c ? ", " : " ") << map.compensations[c] << " " << fixed_text(sheet.max_um[c], 1);
     out << "  (" << image << ")\n";
   }
-  if (!map.controller_title.empty()) out << "  (tables: " << map.controller_title << ", fitted over these tool lengths)\n";
+  if (!map.controller_title.empty())
+    out << "  (tables: " << map.controller_title << ", fitted over these tool lengths)\n";
   out << "  " << plot::full_correction_statement(map) << "\n";
 }
 
@@ -100,8 +101,9 @@ int run_plot(const PlotArgs& args, std::ostream& out) {
 void add_plot_command(CLI::App& volcomp, int& exit_code) {
   auto args = std::make_shared<PlotArgs>();
   CLI::App* cmd = volcomp.add_subcommand(
-      "plot", "Draw a machine file's errors: per axis its component errors against its position (PNG or SVG with "
-              "the data as CSV), and the location errors listed with units");
+      "plot",
+      "Draw a machine file's errors: per axis its component errors against its position (PNG or SVG with "
+      "the data as CSV), and the location errors listed with units");
   cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
   cmd->add_option("-o,--output", args->folder, "folder for <axis>_axis.png and .csv and location_errors.csv")
       ->required();
@@ -109,12 +111,17 @@ void add_plot_command(CLI::App& volcomp, int& exit_code) {
   cmd->add_flag("--volume", args->volume,
                 "also the volume map: the tool-tip error |e| (um) over X-Y at three Z levels, rotary axes at 0 "
                 "and at their worst, before correction and with LinuxCNC's tables (usual practice, modified method)");
-  cmd->add_option("--tool-lengths", args->tool_lengths_mm, "the volume map's tool lengths, mm, e.g. 0,100 "
-                  "(default: the machine file's)")->delimiter(',');
-  cmd->add_option("--plane", args->plane, "the volume map's plane, two linear axes, e.g. xz or yz, the third "
+  cmd->add_option("--tool-lengths", args->tool_lengths_mm,
+                  "the volume map's tool lengths, mm, e.g. 0,100 "
+                  "(default: the machine file's)")
+      ->delimiter(',');
+  cmd->add_option("--plane", args->plane,
+                  "the volume map's plane, two linear axes, e.g. xz or yz, the third "
                   "giving the levels (default: the first two, X-Y)");
-  cmd->add_option("--controller", args->controller, "the stock controller whose tables the volume map judges "
-                  "(as fit-tables --controller), or none")->capture_default_str();
+  cmd->add_option("--controller", args->controller,
+                  "the stock controller whose tables the volume map judges "
+                  "(as fit-tables --controller), or none")
+      ->capture_default_str();
   cmd->callback([args, &exit_code] { exit_code = run_plot(*args, std::cout); });
 }
 

@@ -49,7 +49,8 @@ int run_error(const PoseArgs& args, std::ostream& out) {
     for (int k = 0; k < 3; ++k) row.push_back(e.position_mm[k]);
     for (int k = 0; k < 3; ++k) row.push_back(e.direction_rad[k]);
     if (args.ideal_tip) {
-      const Eigen::Vector3d tip = machine::tool_pose(model, machine::Machine::Ideal, poses.joints[r], tool_length).tip_mm;
+      const Eigen::Vector3d tip =
+          machine::tool_pose(model, machine::Machine::Ideal, poses.joints[r], tool_length).tip_mm;
       for (int k = 0; k < 3; ++k) row.push_back(tip[k]);
     }
     write_row(out, row);
@@ -69,8 +70,7 @@ int run_correct(const PoseArgs& args, std::ostream& out) {
     const machine::Correction c = machine::correct(model, poses.joints[r], tool_length);
     if (c.status != machine::Status::Ok) {
       ++failures;
-      std::cerr << args.poses << ':' << poses.lines[r] << ": error: correction "
-                << machine::describe(c.status) << '\n';
+      std::cerr << args.poses << ':' << poses.lines[r] << ": error: correction " << machine::describe(c.status) << '\n';
     }
     std::vector<double> row = nominal_columns(poses, r);
     for (int j : poses.joint_of_column) row.push_back(c.joints[j]);
@@ -86,8 +86,7 @@ int run_correct(const PoseArgs& args, std::ostream& out) {
 std::shared_ptr<PoseArgs> add_pose_options(CLI::App* cmd) {
   auto args = std::make_shared<PoseArgs>();
   cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
-  cmd->add_option("--poses", args->poses, "CSV of nominal poses, header of axis letters (x,y,z,b,c)")
-      ->required();
+  cmd->add_option("--poses", args->poses, "CSV of nominal poses, header of axis letters (x,y,z,b,c)")->required();
   cmd->add_option("--tool-length", args->tool_length_mm,
                   "L in mm: gauge length + tool length (default: the machine file's tool_length_mm)");
   return args;
@@ -96,14 +95,13 @@ std::shared_ptr<PoseArgs> add_pose_options(CLI::App* cmd) {
 }  // namespace
 
 void add_pose_commands(CLI::App& volcomp, int& exit_code) {
-  CLI::App* error_cmd = volcomp.add_subcommand(
-      "error", "Volumetric error at each pose: ex,ey,ez (mm, part frame), ekx,eky,ekz (rad)");
+  CLI::App* error_cmd =
+      volcomp.add_subcommand("error", "Volumetric error at each pose: ex,ey,ez (mm, part frame), ekx,eky,ekz (rad)");
   CLI::App* correct_cmd = volcomp.add_subcommand(
       "correct", "Corrected joints at each pose: c<axis>..., residual_mm, residual_rad, iterations");
   const std::shared_ptr<PoseArgs> error = add_pose_options(error_cmd);
   const std::shared_ptr<PoseArgs> correct = add_pose_options(correct_cmd);
-  error_cmd->add_option("--only", error->only,
-                        "keep only these deviations, e.g. --only EAX,EC0Y (the others are zero)")
+  error_cmd->add_option("--only", error->only, "keep only these deviations, e.g. --only EAX,EC0Y (the others are zero)")
       ->delimiter(',');
   error_cmd->add_flag("--ideal-tip", error->ideal_tip,
                       "also the ideal machine's tool tip, tx,ty,tz (mm, part frame): where each pose puts the tool");

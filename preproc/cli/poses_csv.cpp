@@ -17,25 +17,26 @@ Poses read_poses(const std::string& path, const machine::Model& model) {
     const int number = row.line;
     if (!header_read) {
       for (const tables::CsvCell& c : cells) {
-        const int j = c.text.size() == 1 ? model.joint_of(static_cast<char>(std::toupper(static_cast<unsigned char>(c.text[0])))) : -1;
+        const int j = c.text.size() == 1
+                          ? model.joint_of(static_cast<char>(std::toupper(static_cast<unsigned char>(c.text[0]))))
+                          : -1;
         if (j < 0)
-          throw LoadError({path, number, c.column}, "column '" + c.text + "' is not an axis of " +
-                                                        model.info.name + " (" + model.coordinates() + ")");
+          throw LoadError({path, number, c.column}, "column '" + c.text + "' is not an axis of " + model.info.name +
+                                                        " (" + model.coordinates() + ")");
         for (int k : poses.joint_of_column)
           if (k == j) throw LoadError({path, number, c.column}, "column '" + c.text + "' appears twice");
         poses.header.push_back(c.text);
         poses.joint_of_column.push_back(j);
       }
       if (static_cast<int>(cells.size()) != n)
-        throw LoadError({path, number, 1}, "the header must name every axis of " + model.info.name +
-                                               ": " + model.coordinates());
+        throw LoadError({path, number, 1},
+                        "the header must name every axis of " + model.info.name + ": " + model.coordinates());
       header_read = true;
       continue;
     }
     if (cells.size() != poses.header.size())
-      throw LoadError({path, number, cells.back().column},
-                      "expected " + std::to_string(poses.header.size()) + " values, found " +
-                          std::to_string(cells.size()));
+      throw LoadError({path, number, cells.back().column}, "expected " + std::to_string(poses.header.size()) +
+                                                               " values, found " + std::to_string(cells.size()));
     machine::Joints q(n);
     for (std::size_t c = 0; c < cells.size(); ++c) {
       const std::string& t = cells[c].text;
@@ -48,7 +49,8 @@ Poses read_poses(const std::string& path, const machine::Model& model) {
     poses.joints.push_back(q);
     poses.lines.push_back(number);
   }
-  if (!header_read) throw LoadError({path}, "the poses file is empty: it needs a header such as " + model.coordinates());
+  if (!header_read)
+    throw LoadError({path}, "the poses file is empty: it needs a header such as " + model.coordinates());
   return poses;
 }
 

@@ -10,10 +10,10 @@
 namespace vc::cli {
 
 struct Poses {
-  std::vector<std::string> header;          // as written, e.g. {"x","y","z","b","c"}
-  std::vector<int> joint_of_column;         // joint index of each header column
-  std::vector<machine::Joints> joints;      // one per row, in joint order
-  std::vector<int> lines;                   // line of each row in the file
+  std::vector<std::string> header;      // as written, e.g. {"x","y","z","b","c"}
+  std::vector<int> joint_of_column;     // joint index of each header column
+  std::vector<machine::Joints> joints;  // one per row, in joint order
+  std::vector<int> lines;               // line of each row in the file
 };
 
 // Throws vc::LoadError naming file, line and column of the first problem.

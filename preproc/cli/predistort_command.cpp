@@ -30,17 +30,17 @@ namespace {
 struct PredistortArgs {
   std::string machine;
   std::string input;
-  std::string output;              // "-": stdout (AXIS filter)
-  std::string var_file;            // LinuxCNC parameter file: work offsets, G28/G30 homes
-  std::string tool_table;          // LinuxCNC tool table: tool lengths
-  std::string machine_units = "mm";  // of the tool table and the .var file: mm or inch
-  std::string process;             // cutting conditions per tool: cutting-force deflection
-  std::string world = "axes";      // world convention of the uncompensated kinematics
+  std::string output;                        // "-": stdout (AXIS filter)
+  std::string var_file;                      // LinuxCNC parameter file: work offsets, G28/G30 homes
+  std::string tool_table;                    // LinuxCNC tool table: tool lengths
+  std::string machine_units = "mm";          // of the tool table and the .var file: mm or inch
+  std::string process;                       // cutting conditions per tool: cutting-force deflection
+  std::string world = "axes";                // world convention of the uncompensated kinematics
   std::vector<std::string> subroutine_path;  // folders of NAME.ngc subroutine files
-  std::string start;               // where the machine starts: X,Y,Z[,A,B,C] or an INI (homes)
-  std::string line_map;            // CSV: output line -> input file and line
+  std::string start;                         // where the machine starts: X,Y,Z[,A,B,C] or an INI (homes)
+  std::string line_map;                      // CSV: output line -> input file and line
   double tolerance_mm = 0.0005;
-  double tolerance_rad = 2e-5;     // tool direction between written points (rotary axes)
+  double tolerance_rad = 2e-5;            // tool direction between written points (rotary axes)
   std::vector<std::string> temperatures;  // NAME=VALUE (degC) of the machine file's [temperatures]
   bool quiet = false;
 };
@@ -84,7 +84,7 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
   const machine::WorldConvention world = world_convention(args.world);
   const machine::Model model = machine::load_machine(args.machine);
   machine::Conditions temperatures = model.reference_conditions();  // the program is made for
-  std::string conditions;  // the same, for its header
+  std::string conditions;                                           // the same, for its header
   for (const std::string& t : args.temperatures) {
     const auto eq = t.find('=');
     double value = 0;
@@ -110,8 +110,9 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
   job.corrector.tolerance_rad = args.tolerance_rad;
   job.corrector.world = world;
   job.deflection = deflection ? &*deflection : nullptr;
-  job.provenance = {{}, args.machine, model.info.name + conditions, {}, args.var_file, args.tool_table, args.process,
-                    args.world, args.tolerance_mm};
+  job.provenance = {{},           args.machine,  model.info.name + conditions,
+                    {},           args.var_file, args.tool_table,
+                    args.process, args.world,    args.tolerance_mm};
   for (const auto& t : model.tables) job.provenance.tables.push_back(t.table.path());
 
   // Read in 1 MiB pieces, not the stream's default 8 KiB: a million-line program is then
@@ -136,21 +137,23 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
     std::cout.flush();
     if (!std::cout) throw std::runtime_error("cannot write to stdout");
   } else {
-    tables::write_atomically(args.output, [&](std::ostream& out) { summary = predistort::predistort(in, out, job, std::ref(progress)); });
+    tables::write_atomically(
+        args.output, [&](std::ostream& out) { summary = predistort::predistort(in, out, job, std::ref(progress)); });
   }
 
   if (!args.line_map.empty())
     tables::write_atomically(args.line_map, [&](std::ostream& out) { out << line_map.str(); });
   if (!args.quiet) {
     const auto& c = summary.corrector;
-    report << "volcomp predistort: " << summary.lines << " lines, " << c.moves << " moves corrected into "
-           << c.pieces << " pieces (" << c.corrections << " corrections, " << c.checks << " checks), max error at "
+    report << "volcomp predistort: " << summary.lines << " lines, " << c.moves << " moves corrected into " << c.pieces
+           << " pieces (" << c.corrections << " corrections, " << c.checks << " checks), max error at "
            << "the check points " << fixed_text(c.max_checked_error_mm * 1e3, 3) << " um (tolerance "
            << number_text(args.tolerance_mm * 1e3) << " um)";
     if (model.rotary_count() > 0)
       report << ", tool direction " << fixed_text(c.max_checked_error_rad * 1e6, 2) << " urad (tolerance "
              << number_text(args.tolerance_rad * 1e6) << " urad)";
-    if (c.max_deflection_mm > 0) report << ", max deflection taken off " << fixed_text(c.max_deflection_mm * 1e3, 3) << " um";
+    if (c.max_deflection_mm > 0)
+      report << ", max deflection taken off " << fixed_text(c.max_deflection_mm * 1e3, 3) << " um";
     report << '\n';
     if (summary.written_as_is_moves)
       report << "  " << summary.written_as_is_moves
@@ -170,10 +173,8 @@ void add_predistort_command(CLI::App& volcomp, int& exit_code) {
       "predistort", "Write a part program that makes the uncompensated machine cut the nominal part");
   cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
   cmd->add_option("PROGRAM", args->input, "part program (RS274/NGC)")->required();
-  cmd->add_option("-o,--output", args->output, "pre-distorted program, or - for stdout")
-      ->required();
-  cmd->add_option("--var", args->var_file,
-                  "LinuxCNC parameter file (.var): work offsets G54..G59.3, G28/G30 homes");
+  cmd->add_option("-o,--output", args->output, "pre-distorted program, or - for stdout")->required();
+  cmd->add_option("--var", args->var_file, "LinuxCNC parameter file (.var): work offsets G54..G59.3, G28/G30 homes");
   cmd->add_option("--tool-table", args->tool_table, "LinuxCNC tool table (.tbl): tool lengths");
   cmd->add_option("--machine-units", args->machine_units,
                   "the unit of the tool table and the .var file, LinuxCNC's [TRAJ]LINEAR_UNITS: mm or inch")
@@ -191,10 +192,8 @@ void add_predistort_command(CLI::App& volcomp, int& exit_code) {
       "where the machine is when the program starts, for a program that cuts before it has moved every axis: "
       "X,Y,Z[,A,B,C] (machine coordinates, mm and deg) or the machine's LinuxCNC INI file (its [JOINT_n]HOME, "
       "the position after homing). Without it such a program is refused");
-  cmd->add_option("--process", args->process,
-                  "cutting conditions per tool (.toml): adds the cutting-force deflection");
-  cmd->add_option("--tolerance", args->tolerance_mm,
-                  "largest path deviation from the exact correction, mm")
+  cmd->add_option("--process", args->process, "cutting conditions per tool (.toml): adds the cutting-force deflection");
+  cmd->add_option("--tolerance", args->tolerance_mm, "largest path deviation from the exact correction, mm")
       ->capture_default_str();
   cmd->add_option("--temperature", args->temperatures,
                   "NAME=VALUE: a temperature input of the machine file, degC (repeatable; default: its reference)");
@@ -202,8 +201,7 @@ void add_predistort_command(CLI::App& volcomp, int& exit_code) {
                   "largest tool direction deviation from the exact correction between the written points, "
                   "rad (machines with rotary axes)")
       ->capture_default_str();
-  cmd->add_option("--world", args->world,
-                  "world convention of the machine's kinematics: axes (trivkins) or tcp")
+  cmd->add_option("--world", args->world, "world convention of the machine's kinematics: axes (trivkins) or tcp")
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", args->quiet, "no summary on stderr");
   cmd->callback([args, &exit_code] { exit_code = run_predistort(*args, std::cerr); });

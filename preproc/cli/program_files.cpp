@@ -39,7 +39,7 @@ interpreter::Setup ProgramFiles::setup(const std::string& program, const machine
 }
 
 std::optional<predistort::Deflection> ProgramFiles::deflection(const std::string& process,
-                                                                const machine::Model& model) const {
+                                                               const machine::Model& model) const {
   if (process.empty()) return std::nullopt;
   bool stiff = false;
   for (const auto& c : model.compliance) stiff = stiff || !c.mm_per_N.empty();
@@ -72,7 +72,8 @@ interpreter::Position start_position(const std::string& value, double unit_mm) {
   double ini_unit_mm = 1.0;
   if (const init::IniEntry* units = ini.find("TRAJ", "LINEAR_UNITS")) {
     const std::string& u = units->value;
-    if (u == "in" || u == "inch" || u == "imperial") ini_unit_mm = 25.4;
+    if (u == "in" || u == "inch" || u == "imperial")
+      ini_unit_mm = 25.4;
     else if (u != "mm" && u != "metric")
       throw LoadError(units->where(), "--start: LINEAR_UNITS " + u + " is not mm, metric, in, inch or imperial");
     if (ini_unit_mm != unit_mm)
@@ -91,7 +92,8 @@ interpreter::Position start_position(const std::string& value, double unit_mm) {
       std::size_t used = 0;
       try {
         const int i = static_cast<int>(axis - interpreter::kAxisLetters);
-        start[static_cast<std::size_t>(i)] = std::stod(home->value, &used) * (interpreter::is_linear(i) ? unit_mm : 1.0);
+        start[static_cast<std::size_t>(i)] =
+            std::stod(home->value, &used) * (interpreter::is_linear(i) ? unit_mm : 1.0);
       } catch (const std::exception&) {
         used = 0;
       }

@@ -19,14 +19,15 @@ namespace {
 
 struct ReportArgs {
   std::string machine;
-  std::string measurements;        // folder of laser runs and circular tests (optional)
-  std::string output;              // the HTML page
+  std::string measurements;             // folder of laser runs and circular tests (optional)
+  std::string output;                   // the HTML page
   std::vector<double> tool_lengths_mm;  // of the volume map (default: 0 and the machine file's)
 };
 
 int run_report(const ReportArgs& args, std::ostream& out) {
   namespace fs = std::filesystem;
-  if (fs::is_directory(args.output)) throw std::runtime_error("-o " + args.output + ": a folder; give the page's file name");
+  if (fs::is_directory(args.output))
+    throw std::runtime_error("-o " + args.output + ": a folder; give the page's file name");
   const fs::path folder = fs::path(args.output).parent_path();
   if (!folder.empty() && !fs::is_directory(folder))
     throw std::runtime_error("-o " + args.output + ": its folder " + folder.string() + " does not exist");
@@ -39,7 +40,8 @@ int run_report(const ReportArgs& args, std::ostream& out) {
   if (!args.measurements.empty()) command << " --measurements " << args.measurements;
   if (!args.tool_lengths_mm.empty()) {
     command << " --tool-lengths ";
-    for (std::size_t k = 0; k < args.tool_lengths_mm.size(); ++k) command << (k ? "," : "") << number_text(args.tool_lengths_mm[k]);
+    for (std::size_t k = 0; k < args.tool_lengths_mm.size(); ++k)
+      command << (k ? "," : "") << number_text(args.tool_lengths_mm[k]);
   }
   command << " -o " << args.output;
   options.command = command.str();
@@ -56,14 +58,17 @@ int run_report(const ReportArgs& args, std::ostream& out) {
 void add_report_command(CLI::App& volcomp, int& exit_code) {
   auto args = std::make_shared<ReportArgs>();
   CLI::App* cmd = volcomp.add_subcommand(
-      "report", "One self-contained HTML page of the machine's accuracy: its file and checksums, tables, location "
-                "errors, accuracy balance, volume map, and the laser runs and circular tests of --measurements");
+      "report",
+      "One self-contained HTML page of the machine's accuracy: its file and checksums, tables, location "
+      "errors, accuracy balance, volume map, and the laser runs and circular tests of --measurements");
   cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
   cmd->add_option("--measurements", args->measurements,
                   "folder of laser runs (ISO 230-2) and circular tests (ISO 230-4), CSV (preproc/report/README.md)");
   cmd->add_option("-o,--output", args->output, "the HTML page to write")->required();
-  cmd->add_option("--tool-lengths", args->tool_lengths_mm, "the volume map's tool lengths, mm (default: 0 and "
-                  "the machine file's)")->delimiter(',');
+  cmd->add_option("--tool-lengths", args->tool_lengths_mm,
+                  "the volume map's tool lengths, mm (default: 0 and "
+                  "the machine file's)")
+      ->delimiter(',');
   cmd->callback([args, &exit_code] { exit_code = run_report(*args, std::cout); });
 }
 

@@ -39,17 +39,17 @@ struct SelftuneArgs {
   std::string strategy = "local";  // local or model
   std::string var_file, tool_table, world = "axes";
   std::string machine_units = "mm";
-  bool compensated = false;        // Pi ran with volkins correcting with MACHINE
+  bool compensated = false;  // Pi ran with volkins correcting with MACHINE
   std::vector<int> ball_end_tools;
   double flute_length_mm = 30.0;
   double cutoff_mm = 10.0, outlier_sigmas = 4.0;
   // local
   double gain = 1.0, radius_mm = 40.0, angle_deg = 20.0, step_mm = 1.0, tolerance_mm = 0.0005;
-  bool no_tilt = false;            // keep the program's tool axis (tip shifted only)
-  double min_support = 6.0;        // local: widen the window where fewer points carry a shift
+  bool no_tilt = false;      // keep the program's tool axis (tip shifted only)
+  double min_support = 6.0;  // local: widen the window where fewer points carry a shift
   // model
-  std::string tables_out;          // folder of the updated machine file and tables
-  std::string nominal;             // the original program P0 (default: PROGRAM)
+  std::string tables_out;                 // folder of the updated machine file and tables
+  std::string nominal;                    // the original program P0 (default: PROGRAM)
   std::string next_program, next_points;  // model: another part (program, CMM plan): the noise carried there
   std::vector<std::string> deviations;
   int nodes = 5;
@@ -101,9 +101,10 @@ void print_tilt(const shop::TiltSummary& t, std::ostream& report) {
               "its noise)";
   if (t.singular > 0) report << "; not turned on " << t.singular << " (the rotary axes cannot give it there: a pole)";
   if (t.rotary_held > 0)
-    report << "; " << t.rotary_held
-           << " pieces of moves that hold the rotary axes (3+2; pre-distorted: turned by less than 0.01 deg) keep their "
-              "tool axis (tip shifted only)";
+    report
+        << "; " << t.rotary_held
+        << " pieces of moves that hold the rotary axes (3+2; pre-distorted: turned by less than 0.01 deg) keep their "
+           "tool axis (tip shifted only)";
   report << "\n";
 }
 
@@ -124,8 +125,7 @@ std::string tool_length_cause(const predistort::ToolLengthLog& log, const machin
   if (!tool || tool->length_mm == model.correction_length(0.0)) return text;
   const std::string reference = number_text(model.tool_length_reference_mm) + " mm";
   text += "\n  corrected for L = " + reference + " (no G43 in " + program + " from line " +
-          std::to_string(first->line) + "); if the part was cut with a " + number_text(tool->length_mm) +
-          " mm tool (" +
+          std::to_string(first->line) + "); if the part was cut with a " + number_text(tool->length_mm) + " mm tool (" +
           (tool->tool >= 0 ? "tool " + std::to_string(tool->tool) + " in the tool table"
                            : std::string("the machine file's tool_length_mm")) +
           "), add G43" + (tool->tool >= 0 ? " H" + std::to_string(tool->tool) : std::string()) +
@@ -148,7 +148,8 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
     throw std::runtime_error("--next-program and --next-points go together (the other part's program and CMM plan)");
   if (!args.next_program.empty() && args.strategy != "model")
     throw std::runtime_error("--next-program and --next-points need --strategy model (the tuned tables carry over)");
-  if (!(args.tolerance_mm > 0.0 && args.tolerance_mm <= 0.1)) throw std::runtime_error("--tolerance must be in (0, 0.1] mm");
+  if (!(args.tolerance_mm > 0.0 && args.tolerance_mm <= 0.1))
+    throw std::runtime_error("--tolerance must be in (0, 0.1] mm");
 
   const machine::WorldConvention world = world_convention(args.world);
   const machine::Model model = machine::load_machine(args.machine);
@@ -191,8 +192,8 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
   const shop::FormError before = shop::form_error(measured);
   report << "  measured form error: largest " << um(before.largest_mm) << ", RMS " << um(before.rms_mm) << "\n";
 
-  predistort::Provenance provenance{"", args.machine, model.info.name, {}, args.var_file, args.tool_table, "",
-                                    args.world, args.tolerance_mm};
+  predistort::Provenance provenance{"", args.machine, model.info.name,  {}, args.var_file, args.tool_table,
+                                    "", args.world,   args.tolerance_mm};
   if (args.strategy == "local") {
     provenance.title = "volcomp selftune (local): " + args.input + " shifted against the deviations of " + args.report +
                        " (gain " + number_text(args.gain) + ", radius " + number_text(args.radius_mm) + " mm, angle " +
@@ -237,8 +238,8 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
          << um(fit.rms_after_mm) << " after the fit; largest change " << um(fit.largest_change_mm) << ", "
          << fixed_text(fit.largest_change_rad * 1e6, 3) << " urad\n";
   if (fit.scatter_mm >= 0.0) {
-    report << "  noise: the model leaves " << um(fit.scatter_mm) << " per point (1 sigma; " << fit.points
-           << " points, " << fixed_text(fit.effective_unknowns, 1) << " effective unknowns); carried into the tuned "
+    report << "  noise: the model leaves " << um(fit.scatter_mm) << " per point (1 sigma; " << fit.points << " points, "
+           << fixed_text(fit.effective_unknowns, 1) << " effective unknowns); carried into the tuned "
            << "model at the measured points " << um(fit.carried_median_mm) << " median, " << um(fit.carried_largest_mm)
            << " largest (1 sigma)\n";
   } else {
@@ -337,36 +338,37 @@ void add_selftune_command(CLI::App& volcomp, int& exit_code) {
   cmd->add_flag("--compensated", args->compensated,
                 "PROGRAM ran with volkins correcting with MACHINE (not pre-distorted)");
   cmd->add_option("--ball-end", args->ball_end_tools, "tools with a ball end")->delimiter(',');
-  cmd->add_option("--flute-length", args->flute_length_mm, "cutting length of the tools, mm")
-      ->capture_default_str();
+  cmd->add_option("--flute-length", args->flute_length_mm, "cutting length of the tools, mm")->capture_default_str();
   cmd->add_option("--cutoff", args->cutoff_mm, "shorter wavelengths are not tuned (low-pass), mm")
       ->capture_default_str();
-  cmd->add_option("--outlier-sigmas", args->outlier_sigmas, "outlier threshold, robust sigmas")
-      ->capture_default_str();
+  cmd->add_option("--outlier-sigmas", args->outlier_sigmas, "outlier threshold, robust sigmas")->capture_default_str();
   cmd->add_option("--gain", args->gain, "local: share of the deviation taken off")->capture_default_str();
   cmd->add_option("--radius", args->radius_mm, "local: deviations reach the path within this, mm")
       ->capture_default_str();
   cmd->add_option("--angle", args->angle_deg,
                   "local: deviations reach path points whose tool frame is turned less than this from the cut's, deg")
       ->capture_default_str();
-  cmd->add_option("--min-support", args->min_support,
-                  "local: where fewer measured points than this carry a shift, widen its window (radius and angle x 1.5, up to 3 times); 0: never")
+  cmd->add_option(
+         "--min-support", args->min_support,
+         "local: where fewer measured points than this carry a shift, widen its window (radius and angle x 1.5, up to 3 times); 0: never")
       ->capture_default_str();
   cmd->add_flag("--no-tilt", args->no_tilt, "local: keep the program's tool axis on 5-axis moves (shift the tip only)");
   cmd->add_option("--step", args->step_mm, "local: longest piece of a shifted move, mm")->capture_default_str();
   cmd->add_option("--tolerance", args->tolerance_mm, "chord and blending tolerance, mm")->capture_default_str();
   cmd->add_option("--tables-out", args->tables_out, "model: folder for the updated machine file and tables");
   cmd->add_option("--nominal", args->nominal, "model: the original program P0 (default: PROGRAM)");
-  cmd->add_option("--next-program", args->next_program,
-                  "model: the program of another part (with --next-points): the noise the tuned tables carry to its points");
+  cmd->add_option(
+      "--next-program", args->next_program,
+      "model: the program of another part (with --next-points): the noise the tuned tables carry to its points");
   cmd->add_option("--next-points", args->next_points, "model: that part's CMM plan (id,x,y,z,i,j,k)");
-  cmd->add_option("--deviations", args->deviations, "model: deviations to tune, e.g. EXX,EX0C (default: every table and the rotary axes' locations)")
+  cmd->add_option("--deviations", args->deviations,
+                  "model: deviations to tune, e.g. EXX,EX0C (default: every table and the rotary axes' locations)")
       ->delimiter(',');
-  cmd->add_option("--nodes", args->nodes, "model: table nodes over each axis's travel (a full turn: a Fourier series of order (nodes - 1) / 2)")->capture_default_str();
-  cmd->add_option("--regularisation", args->regularisation, "model: ridge on scaled unknowns")
+  cmd->add_option("--nodes", args->nodes,
+                  "model: table nodes over each axis's travel (a full turn: a Fourier series of order (nodes - 1) / 2)")
       ->capture_default_str();
-  cmd->add_option("--smoothness", args->smoothness, "model: penalty on second differences")
-      ->capture_default_str();
+  cmd->add_option("--regularisation", args->regularisation, "model: ridge on scaled unknowns")->capture_default_str();
+  cmd->add_option("--smoothness", args->smoothness, "model: penalty on second differences")->capture_default_str();
   cmd->callback([args, &exit_code] { exit_code = run_selftune(*args, std::cerr); });
 }
 

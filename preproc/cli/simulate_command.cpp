@@ -22,12 +22,12 @@ namespace vc::cli {
 namespace {
 
 struct SimulateArgs {
-  std::string machine;             // the "true" machine
+  std::string machine;  // the "true" machine
   std::string input;
-  std::string output;              // tool path CSV
+  std::string output;  // tool path CSV
   std::string var_file, tool_table, process;
   std::string machine_units = "mm";
-  std::string compensation;        // machine file volkins corrects with (none: uncompensated)
+  std::string compensation;  // machine file volkins corrects with (none: uncompensated)
   std::string world = "axes";
   double step_mm = 0.5;
   std::vector<int> ball_end_tools;
@@ -54,10 +54,11 @@ int run_simulate(const SimulateArgs& args, std::ostream& report) {
   long samples = 0, cutting = 0;
   double largest = 0;
   tables::write_atomically(args.output, [&](std::ostream& out) {
-    shop::write_path_header(out, {"volcomp simulate: tool tip and axis in the part frame, error = tip - ideal tip",
-                            "machine " + args.machine + ", program " + args.input,
-                            "compensation " + (args.compensation.empty() ? std::string("none") : args.compensation) +
-                                ", cutting-force deflection " + (args.process.empty() ? std::string("none") : args.process)});
+    shop::write_path_header(
+        out, {"volcomp simulate: tool tip and axis in the part frame, error = tip - ideal tip",
+              "machine " + args.machine + ", program " + args.input,
+              "compensation " + (args.compensation.empty() ? std::string("none") : args.compensation) +
+                  ", cutting-force deflection " + (args.process.empty() ? std::string("none") : args.process)});
     shop::simulate(machine, in, files.setup(args.input, machine, world == machine::WorldConvention::Tcp), options,
                    [&](const shop::PathSample& s) {
                      shop::write_path_sample(out, s);
@@ -68,12 +69,12 @@ int run_simulate(const SimulateArgs& args, std::ostream& report) {
                      }
                    });
   });
-  report << "volcomp simulate: " << samples << " samples (" << cutting << " cutting), largest tool-tip error while cutting "
-         << fixed_text(largest * 1e3, 3) << " um\n";
+  report << "volcomp simulate: " << samples << " samples (" << cutting
+         << " cutting), largest tool-tip error while cutting " << fixed_text(largest * 1e3, 3) << " um\n";
   if (compensation) {  // it corrects: for which L, and from where (a second, interpreting-only pass)
     std::ifstream again(args.input, std::ios::binary);
-    const predistort::ToolLengthLog lengths = predistort::read_tool_lengths(
-        again, files.setup(args.input, machine, world == machine::WorldConvention::Tcp));
+    const predistort::ToolLengthLog lengths =
+        predistort::read_tool_lengths(again, files.setup(args.input, machine, world == machine::WorldConvention::Tcp));
     report << "  compensation " << lengths.describe(*compensation, args.input, args.tool_table) << "\n";
   }
   return 0;
@@ -98,8 +99,7 @@ void add_simulate_command(CLI::App& volcomp, int& exit_code) {
                   "machine file the kinematics module corrects with (default: none, uncompensated)");
   cmd->add_option("--world", args->world, "world convention: axes or tcp")->capture_default_str();
   cmd->add_option("--step", args->step_mm, "largest distance between samples, mm")->capture_default_str();
-  cmd->add_option("--ball-end", args->ball_end_tools, "tools with a ball end, e.g. --ball-end 2,5")
-      ->delimiter(',');
+  cmd->add_option("--ball-end", args->ball_end_tools, "tools with a ball end, e.g. --ball-end 2,5")->delimiter(',');
   cmd->callback([args, &exit_code] { exit_code = run_simulate(*args, std::cerr); });
 }
 

@@ -27,13 +27,13 @@ namespace {
 
 struct TraceArgs {
   std::string machine;
-  std::string trace;               // CSV recorded by kins/configs/common/headless_driver.py
-  std::string world = "axes";      // the module's world convention
-  std::string output;              // per-sample errors CSV (optional)
-  double servo_period_s = 0.001;   // for the time column
-  std::string comp_files;          // a folder of fit-tables' COMP_FILEs to replay on the trace (optional)
-  std::string ini;                 // the configuration's INI: the joints' limits for the replay
-  std::string replay_output;       // the replay's per-sample errors CSV (t_s,e_um; optional)
+  std::string trace;              // CSV recorded by kins/configs/common/headless_driver.py
+  std::string world = "axes";     // the module's world convention
+  std::string output;             // per-sample errors CSV (optional)
+  double servo_period_s = 0.001;  // for the time column
+  std::string comp_files;         // a folder of fit-tables' COMP_FILEs to replay on the trace (optional)
+  std::string ini;                // the configuration's INI: the joints' limits for the replay
+  std::string replay_output;      // the replay's per-sample errors CSV (t_s,e_um; optional)
 };
 
 // The COMP_FILEs of args.comp_files replayed on the session (fit_tables::replay_comp_files):
@@ -41,7 +41,8 @@ struct TraceArgs {
 void print_comp_file_replay(const TraceArgs& args, const machine::Model& model, const trace::SessionTrace& session,
                             const trace::TraceSummary& summary, std::ostream& out) {
   namespace fs = std::filesystem;
-  if (args.ini.empty()) throw std::runtime_error("--comp-files needs --ini: the joints' limits, which LinuxCNC's ramp uses");
+  if (args.ini.empty())
+    throw std::runtime_error("--comp-files needs --ini: the joints' limits, which LinuxCNC's ramp uses");
   if (!fs::is_directory(args.comp_files)) throw std::runtime_error(args.comp_files + ": no such folder");
   const init::LinuxcncIni ini = init::LinuxcncIni::read(args.ini);
   std::vector<fit_tables::LinuxcncComp> comps;
@@ -78,12 +79,13 @@ void print_comp_file_replay(const TraceArgs& args, const machine::Model& model, 
   }
   const fit_tables::CompReplay replay =
       fit_tables::replay_comp_files(model, session, summary, comps, limits, args.servo_period_s);
-  if (!args.replay_output.empty()) tables::write_atomically(args.replay_output, [&](std::ostream& csv) {
-    csv << "t_s,e_um\n";
-    for (std::size_t k = 0; k < replay.tip_error_um.size(); ++k)
-      csv << fixed_text(static_cast<double>(summary.samples[k].sample) * args.servo_period_s, 3) << ','
-          << number_text(replay.tip_error_um[k]) << '\n';
-  });
+  if (!args.replay_output.empty())
+    tables::write_atomically(args.replay_output, [&](std::ostream& csv) {
+      csv << "t_s,e_um\n";
+      for (std::size_t k = 0; k < replay.tip_error_um.size(); ++k)
+        csv << fixed_text(static_cast<double>(summary.samples[k].sample) * args.servo_period_s, 3) << ','
+            << number_text(replay.tip_error_um[k]) << '\n';
+    });
   double max_um = 0, sum_sq = 0;
   for (const double e : replay.tip_error_um) max_um = std::max(max_um, e), sum_sq += e * e;
   const double rms_um = std::sqrt(sum_sq / static_cast<double>(std::max<std::size_t>(1, replay.tip_error_um.size())));
@@ -119,16 +121,17 @@ int run_trace(const TraceArgs& args, std::ostream& out) {
   }
   const double rms = std::sqrt(sum_sq / static_cast<double>(summary.samples.size()));
 
-  if (!args.output.empty()) tables::write_atomically(args.output, [&](std::ostream& csv) {
-    csv << "t_s,ex_um,ey_um,ez_um,e_um,ek_urad,gain\n";
-    for (const trace::SampleCheck& s : summary.samples) {
-      csv << fixed_text(static_cast<double>(s.sample) * args.servo_period_s, 3);
-      // Full precision: with compensation on, the errors are nanometres.
-      for (int k = 0; k < 3; ++k) csv << ',' << number_text(s.tip_error_mm[k] * 1e3);
-      csv << ',' << number_text(s.tip_error_mm.norm() * 1e3) << ',' << number_text(s.direction_error_rad * 1e6)
-          << ',' << number_text(session.gain[s.sample]) << '\n';
-    }
-  });
+  if (!args.output.empty())
+    tables::write_atomically(args.output, [&](std::ostream& csv) {
+      csv << "t_s,ex_um,ey_um,ez_um,e_um,ek_urad,gain\n";
+      for (const trace::SampleCheck& s : summary.samples) {
+        csv << fixed_text(static_cast<double>(s.sample) * args.servo_period_s, 3);
+        // Full precision: with compensation on, the errors are nanometres.
+        for (int k = 0; k < 3; ++k) csv << ',' << number_text(s.tip_error_mm[k] * 1e3);
+        csv << ',' << number_text(s.tip_error_mm.norm() * 1e3) << ',' << number_text(s.direction_error_rad * 1e6) << ','
+            << number_text(session.gain[s.sample]) << '\n';
+      }
+    });
   out << "trace: " << args.trace << " (" << summary.samples.size() << " samples checked, " << summary.skipped
       << " skipped at tool changes)\n"
       << "tool tip error: max " << fixed_text(max_tip * 1e3, 3) << " um, RMS " << fixed_text(rms * 1e3, 3)
@@ -148,8 +151,8 @@ int run_trace(const TraceArgs& args, std::ostream& out) {
   }
   if (!session.with_volkins) {
     // LinuxCNC's own kinematics: what moves the joints off them is the joints' COMP_FILEs.
-    out << "joints beyond the nominal kinematics' (COMP_FILE corrections; mm or deg): max "
-        << number_text(max_mismatch) << '\n';
+    out << "joints beyond the nominal kinematics' (COMP_FILE corrections; mm or deg): max " << number_text(max_mismatch)
+        << '\n';
     return 0;
   }
   out << "module against the core (joints, mm or deg): max " << number_text(max_mismatch) << '\n'
@@ -167,14 +170,15 @@ void add_trace_command(CLI::App& volcomp, int& exit_code) {
   cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
   cmd->add_option("TRACE", args->trace, "trace CSV written by the headless driver")->required();
   cmd->add_option("--world", args->world, "the module's world convention: axes or tcp")->capture_default_str();
-  cmd->add_option("-o,--output", args->output,
-                  "write t_s,ex_um,ey_um,ez_um,e_um,ek_urad,gain per sample to this CSV");
+  cmd->add_option("-o,--output", args->output, "write t_s,ex_um,ey_um,ez_um,e_um,ek_urad,gain per sample to this CSV");
   cmd->add_option("--comp-files", args->comp_files,
                   "a session without correction: also its tool-tip error with these COMP_FILEs (fit-tables' "
                   "joint_N_<axis>.comp) replayed as LinuxCNC applies them");
-  cmd->add_option("--replay-output", args->replay_output, "with --comp-files: write t_s,e_um per sample of the "
+  cmd->add_option("--replay-output", args->replay_output,
+                  "with --comp-files: write t_s,e_um per sample of the "
                   "replay to this CSV");
-  cmd->add_option("--ini", args->ini, "with --comp-files: the configuration's INI ([JOINT_n] MAX_VELOCITY, "
+  cmd->add_option("--ini", args->ini,
+                  "with --comp-files: the configuration's INI ([JOINT_n] MAX_VELOCITY, "
                   "MAX_ACCELERATION: LinuxCNC's ramp of the correction)");
   cmd->callback([args, &exit_code] { exit_code = run_trace(*args, std::cout); });
 }

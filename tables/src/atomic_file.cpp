@@ -38,8 +38,8 @@ void write_atomically(const std::string& path, const std::function<void(std::ost
     write(out);
     out.close();
     if (!out) throw std::runtime_error("cannot write " + temporary);
-    fs::permissions(temporary, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read |
-                                   fs::perms::others_read);
+    fs::permissions(temporary,
+                    fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read | fs::perms::others_read);
     sync_to_disk(temporary);
     fs::rename(temporary, output);
   } catch (...) {

@@ -59,14 +59,12 @@ double csv_number(const std::string& path, int line, const CsvCell& cell) {
   // from_chars takes no '+'; skip one, but never before another sign ("+-1").
   if (cell.text.size() > 1 && *begin == '+' && begin[1] != '-' && begin[1] != '+') ++begin;
   const auto [ptr, ec] = std::from_chars(begin, end, v);
-  if (cell.text.empty())
-    throw LoadError({path, line, cell.column}, "empty cell: every cell needs a number");
+  if (cell.text.empty()) throw LoadError({path, line, cell.column}, "empty cell: every cell needs a number");
   if (ec == std::errc::result_out_of_range && ptr == end)
     throw LoadError({path, line, cell.column}, "'" + cell.text + "' is out of the range of a number");
   if (ec != std::errc() || ptr != end)
     throw LoadError({path, line, cell.column}, "'" + cell.text + "' is not a number");
-  if (!std::isfinite(v))
-    throw LoadError({path, line, cell.column}, "'" + cell.text + "' is not a finite number");
+  if (!std::isfinite(v)) throw LoadError({path, line, cell.column}, "'" + cell.text + "' is not a finite number");
   return v;
 }
 

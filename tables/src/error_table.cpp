@@ -11,10 +11,10 @@ namespace {
 
 // Where a position falls on one grid variable: cell index, fraction in the cell and its rate.
 struct Cell {
-  int index;      // left node of the cell
-  double t;       // 0..1 within the cell
-  double h;       // cell width
-  double dt_dx;   // d t / d position; 0 where the table holds its end value
+  int index;     // left node of the cell
+  double t;      // 0..1 within the cell
+  double h;      // cell width
+  double dt_dx;  // d t / d position; 0 where the table holds its end value
 };
 
 // Inline and without division: this runs for every table of every axis in every chain walk.
@@ -52,9 +52,8 @@ std::string GridVariable::name() const {
   return std::string(1, static_cast<char>(std::tolower(static_cast<unsigned char>(axis))));
 }
 
-ErrorTable::ErrorTable(std::string path, std::vector<GridVariable> grid,
-                       std::vector<Column> columns, std::vector<double> values,
-                       Interpolation interpolation)
+ErrorTable::ErrorTable(std::string path, std::vector<GridVariable> grid, std::vector<Column> columns,
+                       std::vector<double> values, Interpolation interpolation)
     : grid_(std::move(grid)),
       columns_(std::move(columns)),
       values_(std::move(values)),
@@ -77,8 +76,7 @@ ErrorTable::ErrorTable(std::string path, std::vector<GridVariable> grid,
 
 void ErrorTable::set_value(int node, int column, double value) {
   values_[static_cast<std::size_t>(node) * columns_.size() + static_cast<std::size_t>(column)] = value;
-  if (!by_component_.empty())
-    by_component_[component_slot(node, column)] = value;
+  if (!by_component_.empty()) by_component_[component_slot(node, column)] = value;
   if (interpolation_ == Interpolation::Cubic) refresh();  // the spline's curvatures depend on every node
 }
 
@@ -155,8 +153,7 @@ void ErrorTable::evaluate_linear(const double* positions, Sample& out, bool with
   }
 }
 
-void ErrorTable::add_components(const double* positions,
-                                std::array<double, kMaxColumns>& components) const noexcept {
+void ErrorTable::add_components(const double* positions, std::array<double, kMaxColumns>& components) const noexcept {
   if (!by_component_.empty()) {  // as evaluate_linear's 1-D case, on every component at once
     const Cell cell = locate(grid_.front(), positions[0]);
     const double* v0 = &by_component_[static_cast<std::size_t>(cell.index * kMaxColumns)];
@@ -180,8 +177,7 @@ void ErrorTable::evaluate_cubic(double position, Sample& out, bool with_slopes) 
     // Standard cubic spline segment in terms of the end values and curvatures.
     out.value[c] = a * y0 + b * y1 + ((a * a * a - a) * m0 + (b * b * b - b) * m1) * h * h / 6.0;
     if (!with_slopes) continue;
-    const double dvalue_dt =
-        y1 - y0 + ((1.0 - 3.0 * a * a) * m0 + (3.0 * b * b - 1.0) * m1) * h * h / 6.0;
+    const double dvalue_dt = y1 - y0 + ((1.0 - 3.0 * a * a) * m0 + (3.0 * b * b - 1.0) * m1) * h * h / 6.0;
     out.slope[c] = {dvalue_dt * dt_dx, 0.0, 0.0};
   }
 }

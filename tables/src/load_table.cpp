@@ -24,11 +24,9 @@ HeaderCell parse_header_cell(const std::string& path, int line, const CsvCell& c
   return {cell.text.substr(0, open), cell.text.substr(open + 1, close - open - 1)};
 }
 
-
 class TableReader {
  public:
-  TableReader(std::string path, const TableOptions& options)
-      : path_(std::move(path)), options_(options) {}
+  TableReader(std::string path, const TableOptions& options) : path_(std::move(path)), options_(options) {}
 
   ErrorTable read() {
     rows_ = read_csv_rows(path_, "table file");
@@ -51,8 +49,8 @@ class TableReader {
       // whose unit is none of the lengths and angles (x_screw[C]: a temperature in the wrong unit,
       // not an unknown error symbol).
       const bool is_temperature =
-          h.unit == "degC" || (h.name.size() > 1 && std::islower(static_cast<unsigned char>(h.name[0])) &&
-                               !find_unit(h.unit));
+          h.unit == "degC" ||
+          (h.name.size() > 1 && std::islower(static_cast<unsigned char>(h.name[0])) && !find_unit(h.unit));
       if (is_temperature) {
         read_temperature_variable(h, where);
         continue;
@@ -63,8 +61,7 @@ class TableReader {
         if (kAxisLetters.find(axis) == std::string_view::npos)
           throw LoadError(where, "'" + h.name + "' is not an axis letter (x y z a b c u v w)");
         if (!columns_.empty())
-          throw LoadError(where, "grid column '" + h.name +
-                                     "' after an error column: grid positions come first");
+          throw LoadError(where, "grid column '" + h.name + "' after an error column: grid positions come first");
         if (h.unit != "mm" && h.unit != "deg")
           throw LoadError(where, "unit '" + h.unit + "' of grid column '" + h.name +
                                      "': positions are in mm (linear axis) or deg (rotary axis)");
@@ -90,24 +87,20 @@ class TableReader {
                                    std::string(unit_names(symbol->quantity())) + ")");
       if (unit->quantity != symbol->quantity())
         throw LoadError(where, "unit '" + h.unit + "' does not fit " + h.name + ", which is " +
-                                   (symbol->quantity() == Quantity::Length ? "a length (use "
-                                                                           : "an angle (use ") +
+                                   (symbol->quantity() == Quantity::Length ? "a length (use " : "an angle (use ") +
                                    std::string(unit_names(symbol->quantity())) + ")");
       for (const Column& c : columns_)
         if (c.symbol.component == symbol->component && c.symbol.axis == symbol->axis)
           throw LoadError(where, "error column " + h.name + " appears twice");
-      if (columns_.size() == ErrorTable::kMaxColumns)
-        throw LoadError(where, "more than 6 error columns");
+      if (columns_.size() == ErrorTable::kMaxColumns) throw LoadError(where, "more than 6 error columns");
       double factor = unit->to_core;
       if (auto it = options_.scale.find(h.name); it != options_.scale.end()) factor *= it->second;
       columns_.push_back({*symbol, where});
       factors_.push_back(factor);
     }
     if (grid_.empty())
-      throw LoadError({path_, header.line, 1},
-                      "the first column must be a grid position, as in x[mm] or b[deg]");
-    if (columns_.empty())
-      throw LoadError({path_, header.line, 1}, "the table has no error column (EXX[um], ...)");
+      throw LoadError({path_, header.line, 1}, "the first column must be a grid position, as in x[mm] or b[deg]");
+    if (columns_.empty()) throw LoadError({path_, header.line, 1}, "the table has no error column (EXX[um], ...)");
   }
 
   // A grid column over a temperature input of the machine file, "x_screw[degC]" (the machine
@@ -120,10 +113,11 @@ class TableReader {
       return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
     });
     if (!name_ok)
-      throw LoadError(where, "temperature column '" + h.name +
-                                 "': the name of a temperature input is letters, digits, '_' or '-'");
+      throw LoadError(
+          where, "temperature column '" + h.name + "': the name of a temperature input is letters, digits, '_' or '-'");
     if (!columns_.empty())
-      throw LoadError(where, "grid column '" + h.name + "' after an error column: grid positions and temperatures come first");
+      throw LoadError(where,
+                      "grid column '" + h.name + "' after an error column: grid positions and temperatures come first");
     for (const GridVariable& g : grid_)
       if (g.temperature == h.name) throw LoadError(where, "grid column '" + h.name + "' appears twice");
     if (grid_.size() == ErrorTable::kMaxVariables)
@@ -143,24 +137,20 @@ class TableReader {
       if (row.cells.size() < width) {
         const CsvCell& last = row.cells.back();
         throw LoadError({path_, row.line, last.column + static_cast<int>(last.text.size())},
-                        "expected " + std::to_string(width) + " cells, found " +
-                            std::to_string(row.cells.size()) + ": no value for " +
-                            header_name(row.cells.size()));
+                        "expected " + std::to_string(width) + " cells, found " + std::to_string(row.cells.size()) +
+                            ": no value for " + header_name(row.cells.size()));
       }
       if (row.cells.size() > width)
         throw LoadError({path_, row.line, row.cells[width].column},
-                        "expected " + std::to_string(width) + " cells, found " +
-                            std::to_string(row.cells.size()));
+                        "expected " + std::to_string(width) + " cells, found " + std::to_string(row.cells.size()));
       std::vector<double> numbers;
       for (const CsvCell& cell : row.cells) numbers.push_back(csv_number(path_, row.line, cell));
       positions_.emplace_back(numbers.begin(), numbers.begin() + static_cast<long>(grid_.size()));
-      for (std::size_t c = 0; c < columns_.size(); ++c)
-        values_.push_back(numbers[grid_.size() + c] * factors_[c]);
+      for (std::size_t c = 0; c < columns_.size(); ++c) values_.push_back(numbers[grid_.size() + c] * factors_[c]);
       lines_.push_back(row.line);
     }
     if (positions_.size() < 2)
-      throw LoadError({path_, rows_.front().line, 1},
-                      "the table needs at least two rows of values");
+      throw LoadError({path_, rows_.front().line, 1}, "the table needs at least two rows of values");
   }
 
   std::string header_name(std::size_t column) const { return rows_.front().cells[column].text; }
@@ -196,16 +186,14 @@ class TableReader {
       std::string shape;
       for (std::size_t d = 0; d < dims; ++d) shape += (d ? " x " : "") + std::to_string(size[d]);
       throw LoadError({path_, lines_[std::min(r, lines_.size() - 1)], 1},
-                      "the rows do not form a full grid: a " + shape + " grid has " +
-                          std::to_string(s) + " rows, the table has " +
-                          std::to_string(positions_.size()));
+                      "the rows do not form a full grid: a " + shape + " grid has " + std::to_string(s) +
+                          " rows, the table has " + std::to_string(positions_.size()));
     }
     for (std::size_t r = 0; r < positions_.size(); ++r)
       for (std::size_t d = 0; d < dims; ++d) {
         const double expected = grid_[d].nodes[(r / stride[d]) % size[d]];
         if (positions_[r][d] != expected)
-          throw LoadError(cell_at(r, d), "expected " + grid_[d].name() +
-                                             " = " + significant_text(expected, 6) +
+          throw LoadError(cell_at(r, d), "expected " + grid_[d].name() + " = " + significant_text(expected, 6) +
                                              " here: the rows must list the full grid, first "
                                              "column slowest");
       }
@@ -216,8 +204,7 @@ class TableReader {
     const std::vector<double>& n = grid_[d].nodes;
     const std::string grid_hint =
         grid_.size() > 1 ? " (on a grid of several columns, the rows list every node, first column slowest)" : "";
-    if (n.size() < 2)
-      throw LoadError(grid_[d].where, "grid column needs at least two different positions");
+    if (n.size() < 2) throw LoadError(grid_[d].where, "grid column needs at least two different positions");
     for (std::size_t i = 1; i < n.size(); ++i)
       if (n[i] == n[i - 1])
         throw LoadError(cell_at(i * stride, d), "position " + significant_text(n[i], 6) + " appears twice (lines " +
@@ -227,10 +214,10 @@ class TableReader {
     for (std::size_t i = 1; i < n.size(); ++i) {
       const bool ok = increasing ? n[i] > n[i - 1] : n[i] < n[i - 1];
       if (!ok)
-        throw LoadError(cell_at(i * stride, d),
-                        "position " + significant_text(n[i], 6) + " does not continue the " +
-                            (increasing ? "increasing" : "decreasing") + " order after " +
-                            significant_text(n[i - 1], 6) + ": grid positions must be strictly monotonic" + grid_hint);
+        throw LoadError(cell_at(i * stride, d), "position " + significant_text(n[i], 6) + " does not continue the " +
+                                                    (increasing ? "increasing" : "decreasing") + " order after " +
+                                                    significant_text(n[i - 1], 6) +
+                                                    ": grid positions must be strictly monotonic" + grid_hint);
     }
   }
 
@@ -238,8 +225,7 @@ class TableReader {
   void check_periodic_ends() {
     for (std::size_t d = 0; d < grid_.size(); ++d) {
       GridVariable& g = grid_[d];
-      if (!g.rotary || std::abs(std::abs(g.nodes.back() - g.nodes.front()) - 360.0) > 1e-9)
-        continue;
+      if (!g.rotary || std::abs(std::abs(g.nodes.back() - g.nodes.front()) - 360.0) > 1e-9) continue;
       g.periodic = true;
       const std::size_t last = (g.nodes.size() - 1) * stride_[d];
       for (std::size_t r = 0; r < positions_.size(); ++r) {
@@ -250,7 +236,8 @@ class TableReader {
           if (std::abs(a - b) > 1e-12 * std::max(1.0, std::abs(a)))
             throw LoadError(cell_at(r + last, grid_.size() + c),
                             "the grid spans 360 deg, so the table is periodic and this value must "
-                            "equal the one on line " + std::to_string(lines_[r]));
+                            "equal the one on line " +
+                                std::to_string(lines_[r]));
         }
       }
     }
@@ -258,8 +245,7 @@ class TableReader {
 
   void check_cubic() const {
     if (grid_.size() != 1)
-      throw LoadError(grid_[1].where,
-                      "cubic interpolation is for 1-D tables; use linear on a cross-axis grid");
+      throw LoadError(grid_[1].where, "cubic interpolation is for 1-D tables; use linear on a cross-axis grid");
     if (grid_[0].periodic && grid_[0].nodes.size() < 5)
       throw LoadError(grid_[0].where, "a periodic cubic table needs at least 5 rows");
   }
@@ -302,11 +288,11 @@ class TableReader {
                               (grid_[s.variable].rotary ? "deg" : "mm");
     const std::string lines = std::to_string(lines_[a]) + " and " + std::to_string(lines_[b]);
     const std::string why = ", above the limit " + significant_text(limit, 6) + " that keeps the correction invertible";
-    throw LoadError(cell_at(b, grid_.size() + s.column),
-                    table.interpolation() == Interpolation::Cubic
-                        ? "the cubic spline between lines " + lines + " reaches a slope of " + slope + why +
-                              " (use linear interpolation or smoother data)"
-                        : "slope between lines " + lines + " is " + slope + why);
+    throw LoadError(cell_at(b, grid_.size() + s.column), table.interpolation() == Interpolation::Cubic
+                                                             ? "the cubic spline between lines " + lines +
+                                                                   " reaches a slope of " + slope + why +
+                                                                   " (use linear interpolation or smoother data)"
+                                                             : "slope between lines " + lines + " is " + slope + why);
   }
 
   std::string path_;

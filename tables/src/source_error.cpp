@@ -12,9 +12,7 @@ std::string SourceLocation::to_string() const {
 }
 
 LoadError::LoadError(SourceLocation where, const std::string& message)
-    : std::runtime_error(where.to_string() + ": error: " + message),
-      where_(std::move(where)),
-      message_(message) {}
+    : std::runtime_error(where.to_string() + ": error: " + message), where_(std::move(where)), message_(message) {}
 
 std::string Warning::to_string() const { return where.to_string() + ": warning: " + message; }
 

@@ -7,10 +7,8 @@ namespace {
 
 // Solves a tridiagonal system: sub[i] x[i-1] + diag[i] x[i] + super[i] x[i+1] = rhs[i]
 // (Thomas algorithm; the systems here are diagonally dominant).
-std::vector<double> solve_tridiagonal(const std::vector<double>& sub,
-                                      const std::vector<double>& diag,
-                                      const std::vector<double>& super,
-                                      std::vector<double> rhs) {
+std::vector<double> solve_tridiagonal(const std::vector<double>& sub, const std::vector<double>& diag,
+                                      const std::vector<double>& super, std::vector<double> rhs) {
   const std::size_t n = diag.size();
   std::vector<double> c(n, 0.0);
   double d = diag[0];
@@ -31,8 +29,7 @@ double slope(const std::vector<double>& x, const std::vector<double>& y, std::si
 
 }  // namespace
 
-std::vector<double> natural_spline_curvature(const std::vector<double>& x,
-                                             const std::vector<double>& y) {
+std::vector<double> natural_spline_curvature(const std::vector<double>& x, const std::vector<double>& y) {
   const std::size_t n = x.size();
   std::vector<double> m(n, 0.0);
   if (n < 3) return m;
@@ -53,8 +50,7 @@ std::vector<double> natural_spline_curvature(const std::vector<double>& x,
   return m;
 }
 
-std::vector<double> periodic_spline_curvature(const std::vector<double>& x,
-                                              const std::vector<double>& y) {
+std::vector<double> periodic_spline_curvature(const std::vector<double>& x, const std::vector<double>& y) {
   const std::size_t n = x.size() - 1;  // distinct nodes; node n repeats node 0
   std::vector<double> sub(n), diag(n), super(n), rhs(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -79,8 +75,7 @@ std::vector<double> periodic_spline_curvature(const std::vector<double>& x,
   u[0] = gamma;
   u[n - 1] = bottom_left;
   const std::vector<double> z = solve_tridiagonal(sub, d, super, u);
-  const double factor =
-      (xs[0] + top_right * xs[n - 1] / gamma) / (1.0 + z[0] + top_right * z[n - 1] / gamma);
+  const double factor = (xs[0] + top_right * xs[n - 1] / gamma) / (1.0 + z[0] + top_right * z[n - 1] / gamma);
   std::vector<double> m(n + 1);
   for (std::size_t i = 0; i < n; ++i) m[i] = xs[i] - factor * z[i];
   m[n] = m[0];

@@ -99,8 +99,8 @@ std::vector<ServoCycle> contour_cycles(const Model& model) {
     points.push_back(p);
     corrections.push_back(joints - p);
     full.push_back(report.full_joints.size() ? Joints(report.full_joints - p)
-                   : report.fade == 1.0     ? Joints(joints - p)
-                                            : Joints());
+                   : report.fade == 1.0      ? Joints(joints - p)
+                                             : Joints());
   }
   std::vector<ServoCycle> cycles;
   const auto command = [&](int k) { return Joints(points[k] + corrections[k]); };
@@ -171,9 +171,8 @@ void BM_IdealPoseDerivatives(benchmark::State& state, const std::string& machine
 }
 
 void BM_Correct(benchmark::State& state, const std::string& machine) {
-  run(state, machine, [](const Fixture& f, std::size_t i) {
-    return correct(f.model, f.poses[i], f.model.tool_length_mm).joints[0];
-  });
+  run(state, machine,
+      [](const Fixture& f, std::size_t i) { return correct(f.model, f.poses[i], f.model.tool_length_mm).joints[0]; });
 }
 
 // The servo thread seeds with the previous cycle's solution, a few micrometres away.
@@ -211,16 +210,19 @@ void BM_ForwardSeeded(benchmark::State& state, const std::string& machine) {
 // checked (volkins before the bound).
 double servo_pair(const Fixture& f, const ServoCycle& c, bool correction_seeds, bool bound) {
   const double L = f.model.tool_length_mm;
-  const Joints* forward_seed =
-      !correction_seeds ? nullptr : c.feedback.size() ? &c.feedback_correction : &c.previous_correction;
+  const Joints* forward_seed = !correction_seeds   ? nullptr
+                               : c.feedback.size() ? &c.feedback_correction
+                                                   : &c.previous_correction;
   const Joints* inverse_seed = correction_seeds ? &c.extrapolated_correction : nullptr;
-  const auto full = [correction_seeds](const Joints& kept) { return correction_seeds && kept.size() ? &kept : nullptr; };
+  const auto full = [correction_seeds](const Joints& kept) {
+    return correction_seeds && kept.size() ? &kept : nullptr;
+  };
   Joints world, joints;
   world_from_joints(f.model, WorldConvention::Axes, c.feedback.size() ? c.feedback : c.previous_joints, L,
                     Applied{1.0, &c.before_before, forward_seed, nullptr, full(c.feedback_full)}, world);
-  joints_from_world(f.model, WorldConvention::Axes, c.world, L,
-                    Applied{1.0, &c.previous_joints, inverse_seed, bound ? &f.bound : nullptr, full(c.extrapolated_full)},
-                    joints);
+  joints_from_world(
+      f.model, WorldConvention::Axes, c.world, L,
+      Applied{1.0, &c.previous_joints, inverse_seed, bound ? &f.bound : nullptr, full(c.extrapolated_full)}, joints);
   return world[0] + joints[0];
 }
 
@@ -228,9 +230,12 @@ void BM_ServoCycle(benchmark::State& state, const std::string& machine, bool cor
                    bool contour = false) {
   static const std::vector<ServoCycle> none;
   const std::vector<ServoCycle>& along_contour = contour ? contour_of(machine) : none;
-  run(state, machine, [correction_seeds, bound, contour, &along_contour](const Fixture& f, std::size_t i) {
-    return servo_pair(f, contour ? along_contour[i] : f.cycles[i], correction_seeds, bound);
-  }, contour ? along_contour.size() : 0);
+  run(
+      state, machine,
+      [correction_seeds, bound, contour, &along_contour](const Fixture& f, std::size_t i) {
+        return servo_pair(f, contour ? along_contour[i] : f.cycles[i], correction_seeds, bound);
+      },
+      contour ? along_contour.size() : 0);
 }
 
 // The same pair along the contour with cold caches: before each call a buffer larger than the

@@ -37,7 +37,8 @@ Program interpreted(const std::string& machine, int lines) {
                               std::to_string(lines) + " " + path;
   if (std::system(command.c_str()) != 0) throw std::runtime_error("cannot run " + command);
   Program p{machine::load_machine(test::machine_path(machine)), {}};
-  const interpreter::ToolTable tools = interpreter::read_tool_table(test::source_path("tests/programs/" + machine + ".tbl"));
+  const interpreter::ToolTable tools =
+      interpreter::read_tool_table(test::source_path("tests/programs/" + machine + ".tbl"));
   gcode::Parameters var;
   interpreter::read_var_file(test::source_path("tests/programs/" + machine + ".var"), var);
   interpreter::Setup setup;

@@ -34,7 +34,8 @@ TEST_P(IdentifyLaserOnEitherChain, WrittenFileReadsTheTrueMachine) {
   const fs::path dir = fs::temp_directory_path() / ("vc_chain_" + std::string(c.machine) + "_" + c.error);
   fs::remove_all(dir);
   const std::string nominal = test::machine_path(c.machine);
-  auto r = test::run_volcomp("perturb " + nominal + " -o " + (dir / "true").string() + " --low 0.5 --high 1.0 --seed 5");
+  auto r =
+      test::run_volcomp("perturb " + nominal + " -o " + (dir / "true").string() + " --low 0.5 --high 1.0 --seed 5");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const machine::Model file = machine::load_machine(nominal);
   const machine::Model truth = machine::load_machine((dir / "true" / (std::string(c.machine) + ".toml")).string());
@@ -54,7 +55,8 @@ TEST_P(IdentifyLaserOnEitherChain, WrittenFileReadsTheTrueMachine) {
   r = test::run_volcomp("identify laser " + runs + " --error " + c.error + " --machine " + nominal + " --machine-out " +
                         (dir / "identified").string() + " " + c.options);
   ASSERT_EQ(r.exit_code, 0) << r.out;
-  const machine::Model written = machine::load_machine((dir / "identified" / (std::string(c.machine) + ".toml")).string());
+  const machine::Model written =
+      machine::load_machine((dir / "identified" / (std::string(c.machine) + ".toml")).string());
   double size = 0, before = 0, after = 0;
   for (const double t : targets) {
     const double true_reading = test::simulated_reading(truth, line, t);
@@ -64,8 +66,9 @@ TEST_P(IdentifyLaserOnEitherChain, WrittenFileReadsTheTrueMachine) {
   }
   const bool length = symbol->component < 3;
   const double unit = length ? 1e3 : 1e6;
-  std::cout << c.machine << " " << c.error << ": the true machine reads up to " << size * unit << (length ? " um" : " urad")
-            << "; the file is off it by " << before * unit << ", the identified file by " << after * unit << "\n";
+  std::cout << c.machine << " " << c.error << ": the true machine reads up to " << size * unit
+            << (length ? " um" : " urad") << "; the file is off it by " << before * unit << ", the identified file by "
+            << after * unit << "\n";
   EXPECT_LE(after, 1e-3 * size + (length ? 2e-6 : 2e-9)) << r.out;
   EXPECT_GT(before, 0.1 * size);  // the file did not read the truth: the check above can fail
   fs::remove_all(dir);
@@ -74,7 +77,8 @@ TEST_P(IdentifyLaserOnEitherChain, WrittenFileReadsTheTrueMachine) {
 INSTANTIATE_TEST_SUITE_P(Issue48, IdentifyLaserOnEitherChain,
                          ::testing::Values(ChainCase{"mill3", "EXX", 0, 500, 25}, ChainCase{"mill3", "EYY", 0, 300, 25},
                                            ChainCase{"mill3", "EYX", 0, 500, 25, "--reference none"},
-                                           ChainCase{"mc300", "EYX", -600, 0, 25}, ChainCase{"mill3", "EZZ", -300, 0, 25},
+                                           ChainCase{"mc300", "EYX", -600, 0, 25},
+                                           ChainCase{"mill3", "EZZ", -300, 0, 25},
                                            ChainCase{"knee_mill", "EZZ", -400, 0, 25},
                                            ChainCase{"mc300", "ECC", 0, 360, 30}),
                          [](const auto& p) { return std::string(p.param.machine) + "_" + p.param.error; });

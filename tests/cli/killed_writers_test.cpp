@@ -92,13 +92,15 @@ class KilledWriters : public ::testing::Test {
     fs::create_directories(dir_);
     // What selftune reads: a mill3 part machined on a perturbed mill3 and measured.
     run("perturb " + test::machine_path("mill3") + " -o " + path("true") + " --seed 11");
-    run("predistort " + test::machine_path("mill3") + " " + part("part_a.ngc") + " -o " + path("p1.ngc") + mill3_files());
+    run("predistort " + test::machine_path("mill3") + " " + part("part_a.ngc") + " -o " + path("p1.ngc") +
+        mill3_files());
     run("simulate " + path("true/mill3.toml") + " " + path("p1.ngc") + " -o " + path("p1.path.csv") + mill3_files());
     run("measure " + path("p1.path.csv") + " " + part("part_a_points.csv") + " -o " + path("r1.csv") +
         " --noise 0.3 --seed 1");
     // What identify laser reads: 3 runs each way over 7 targets.
     std::ofstream laser(path("laser_runs.csv"));
-    laser << "# at: x=0, y=-160, z=-150, b=0, c=0\n# tool_length_mm: 100\ntarget[mm],1+[um],1-[um],2+[um],2-[um],3+[um],3-[um]\n";
+    laser
+        << "# at: x=0, y=-160, z=-150, b=0, c=0\n# tool_length_mm: 100\ntarget[mm],1+[um],1-[um],2+[um],2-[um],3+[um],3-[um]\n";
     for (int k = 0; k <= 6; ++k)
       laser << -100 * k << ',' << 0.5 * k << ',' << 0.5 * k - 1 << ',' << 0.5 * k + 0.2 << ',' << 0.5 * k - 0.8 << ','
             << 0.5 * k - 0.2 << ',' << 0.5 * k - 1.2 << '\n';
@@ -134,7 +136,8 @@ class KilledWriters : public ::testing::Test {
     for (int i = 0; i < 3; ++i) {
       const auto start = std::chrono::steady_clock::now();
       ASSERT_EQ(test::run_volcomp(with_out(reference)).exit_code, 0) << with_out(reference);
-      duration = std::min(duration, std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - start));
+      duration = std::min(
+          duration, std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - start));
     }
     const Snapshot fresh = snapshot(reference);
     ASSERT_FALSE(fresh.files.empty());
@@ -162,22 +165,25 @@ class KilledWriters : public ::testing::Test {
       int olds = 0, news = 0;
       for (const auto& [file, text] : old) {
         const auto found = after.files.find(file);
-        ASSERT_NE(found, after.files.end()) << name << ", kill " << k << " after " << delay << " us: " << file << " gone";
+        ASSERT_NE(found, after.files.end())
+            << name << ", kill " << k << " after " << delay << " us: " << file << " gone";
         const auto made = fresh.files.find(file);
         if (found->second == text) {
           ++olds;
         } else if (made != fresh.files.end() && found->second == made->second) {
           ++news;
         } else {
-          FAIL() << name << ", kill " << k << " after " << delay << " us: " << file << " is neither the old file nor the new one ("
-                 << found->second.size() << " bytes; new " << (made == fresh.files.end() ? 0 : made->second.size()) << ")";
+          FAIL() << name << ", kill " << k << " after " << delay << " us: " << file
+                 << " is neither the old file nor the new one (" << found->second.size() << " bytes; new "
+                 << (made == fresh.files.end() ? 0 : made->second.size()) << ")";
         }
       }
       ASSERT_EQ(after.files.size(), old.size()) << name << ": a file neither old nor new appeared";
       (news == 0 ? all_old : olds == 1 ? all_new : mixed) += 1;  // the user's file stays old
     }
-    std::cout << name << ": run " << duration.count() / 1000.0 << " ms (" << run_us / 1000.0 << " ms at the last kill); " << kills << " runs, " << killed
-              << " killed; afterwards all files old " << all_old << ", all new " << all_new << ", some of each " << mixed
+    std::cout << name << ": run " << duration.count() / 1000.0 << " ms (" << run_us / 1000.0
+              << " ms at the last kill); " << kills << " runs, " << killed << " killed; afterwards all files old "
+              << all_old << ", all new " << all_new << ", some of each " << mixed
               << " (each complete); temporaries left by " << with_temporaries << "\n";
     EXPECT_GE(killed, kills / 4) << name << ": too few runs were killed to show anything";
     fs::remove_all(out);
@@ -192,8 +198,8 @@ constexpr int kKills = 40;
 TEST_F(KilledWriters, Predistort) {
   check_writer("predistort",
                "predistort " + test::machine_path("mc300") + " " + source("kins/configs/mc300/nc/sample_part.ngc") +
-                   " -o OUT/sample_part.ngc --line-map OUT/sample_part.map --var " + source("kins/configs/mc300/mc300.var") +
-                   " --tool-table " + source("kins/configs/mc300/mc300.tbl"),
+                   " -o OUT/sample_part.ngc --line-map OUT/sample_part.map --var " +
+                   source("kins/configs/mc300/mc300.var") + " --tool-table " + source("kins/configs/mc300/mc300.tbl"),
                kKills);
 }
 
@@ -207,8 +213,9 @@ TEST_F(KilledWriters, Selftune) {
 }
 
 TEST_F(KilledWriters, IdentifyMachineOut) {
-  check_writer("identify", "identify laser " + path("laser_runs.csv") + " --error EXX --machine " +
-                               test::machine_path("mc300") + " --machine-out OUT -o OUT/x_runs.csv",
+  check_writer("identify",
+               "identify laser " + path("laser_runs.csv") + " --error EXX --machine " + test::machine_path("mc300") +
+                   " --machine-out OUT -o OUT/x_runs.csv",
                kKills);
 }
 

@@ -48,8 +48,7 @@ TEST(VolcompCli, ErrorMatchesTheReferenceAtSixtyControlPoints) {
 TEST(VolcompCli, CorrectMatchesTheReferenceAtSixtyControlPoints) {
   const auto r = test::run_volcomp("correct " + kMc300 + " --poses " + kPoses + " --tool-length 100");
   ASSERT_EQ(r.exit_code, 0) << r.out;
-  EXPECT_EQ(r.out.substr(0, r.out.find('\n')),
-            "x,y,z,b,c,cx,cy,cz,cb,cc,residual_mm,residual_rad,iterations");
+  EXPECT_EQ(r.out.substr(0, r.out.find('\n')), "x,y,z,b,c,cx,cy,cz,cb,cc,residual_mm,residual_rad,iterations");
   const test::CsvTable got(write_temp("correct.csv", r.out)),
       ref(test::source_path("tests/reference/mc300/ctrl60_ref.csv"));
   for (std::size_t i = 0; i < 60; ++i) {
@@ -111,7 +110,8 @@ TEST(VolcompCli, BalanceListsTheDeviationsAndWritesItsCsv) {
 }
 
 TEST(VolcompCli, IdentifyLaserWritesATableTheLoaderReads) {
-  std::string runs = "# instrument: test\n# measured_at_mm: 0, 0, -100\ntarget[mm],1+[um],1-[um],2+[um],2-[um],3+[um],3-[um]\n";
+  std::string runs =
+      "# instrument: test\n# measured_at_mm: 0, 0, -100\ntarget[mm],1+[um],1-[um],2+[um],2-[um],3+[um],3-[um]\n";
   for (int k = 0; k <= 6; ++k)
     runs += std::to_string(-100 * k) + "," + std::to_string(0.5 * k) + "," + std::to_string(0.5 * k - 1) + "," +
             std::to_string(0.5 * k + 0.2) + "," + std::to_string(0.5 * k - 0.8) + "," + std::to_string(0.5 * k - 0.2) +
@@ -144,8 +144,9 @@ TEST(VolcompCli, IdentifyLaserWritesATableTheLoaderReads) {
 // are as they were.
 TEST(VolcompCli, IdentifyLaserMachineOutReplacesTheErrorOfTheAxis) {
   const auto reading_um = [](double x) { return 4 * std::sin(x / 150) - 0.01 * x; };  // x in mm
-  std::string runs = "# at: x=0, y=-160, z=-150, b=0, c=0\n# tool_length_mm: 100\n"
-                     "target[mm],1+[um],1-[um],2+[um],2-[um],3+[um],3-[um]\n";
+  std::string runs =
+      "# at: x=0, y=-160, z=-150, b=0, c=0\n# tool_length_mm: 100\n"
+      "target[mm],1+[um],1-[um],2+[um],2-[um],3+[um],3-[um]\n";
   for (int k = 0; k <= 6; ++k) {
     const double x = -600.0 + 100.0 * k, v = reading_um(x);  // up +0.75, down -0.75, run offsets +0.1, -0.1, 0
     runs += std::to_string(x) + "," + std::to_string(v + 0.85) + "," + std::to_string(v - 0.65) + "," +
@@ -170,7 +171,8 @@ TEST(VolcompCli, IdentifyLaserMachineOutReplacesTheErrorOfTheAxis) {
     const auto e = test::run_volcomp("error " + machine + " --poses " + poses_file + " --ideal-tip" + only);
     const test::CsvTable t(write_temp("replace_error.csv", e.out));
     std::vector<double> um;
-    const double dx = t.at(6, "tx") - t.at(0, "tx"), dy = t.at(6, "ty") - t.at(0, "ty"), dz = t.at(6, "tz") - t.at(0, "tz");
+    const double dx = t.at(6, "tx") - t.at(0, "tx"), dy = t.at(6, "ty") - t.at(0, "ty"),
+                 dz = t.at(6, "tz") - t.at(0, "tz");
     const double n = std::sqrt(dx * dx + dy * dy + dz * dz);
     EXPECT_NEAR(dx / n, -1.0, 1e-12);  // the MC-300's +X moves the tool -x
     for (std::size_t i = 0; i < t.size(); ++i)
@@ -179,8 +181,8 @@ TEST(VolcompCli, IdentifyLaserMachineOutReplacesTheErrorOfTheAxis) {
   };
   const std::vector<double> before = read_along_x(kMc300, ""), after = read_along_x(written, "");
   for (int k = 0; k <= 6; ++k) EXPECT_NEAR(after[k], reading_um(-600.0 + 100.0 * k), 2e-3) << "x = " << -600 + 100 * k;
-  r = test::run_volcomp("identify laser " + in + " --error EXX --reference datum --machine " + kMc300 + " --machine-out " +
-                        folder + "_datum");
+  r = test::run_volcomp("identify laser " + in + " --error EXX --reference datum --machine " + kMc300 +
+                        " --machine-out " + folder + "_datum");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const std::vector<double> datum = read_along_x(folder + "_datum/mc300.toml", "");
   EXPECT_GT(std::abs(before[0] - reading_um(-600)), 1.0);  // the file does not read the runs' zero there
@@ -195,7 +197,8 @@ TEST(VolcompCli, IdentifyLaserMachineOutReplacesTheErrorOfTheAxis) {
   std::ifstream table(folder + "/x_EXX_laser.csv");
   ASSERT_TRUE(table) << r.out;
   std::string line;
-  while (std::getline(table, line) && line.rfind('#', 0) == 0) {}
+  while (std::getline(table, line) && line.rfind('#', 0) == 0) {
+  }
   EXPECT_EQ(line, "x[mm],EXX[um]");
   const std::vector<double> exx_alone = read_along_x(written, " --only EXX");
   int rows = 0;
@@ -207,7 +210,8 @@ TEST(VolcompCli, IdentifyLaserMachineOutReplacesTheErrorOfTheAxis) {
   // X's other errors as they were (x.csv copied as it is, EXX zero).
   for (const char* other : {"EYX", "EAX", "EBX"})
     EXPECT_EQ(test::run_volcomp("error " + written + " --poses " + poses_file + " --only " + other).out,
-              test::run_volcomp("error " + kMc300 + " --poses " + poses_file + " --only " + other).out) << other;
+              test::run_volcomp("error " + kMc300 + " --poses " + poses_file + " --only " + other).out)
+        << other;
 
   // EXX also in a table over X and a temperature (mc300_thermal: EXX(x, coolant)): that one stays,
   // read where the runs stood; x.csv's EXX is replaced.
@@ -226,12 +230,14 @@ TEST(VolcompCli, IdentifyLaserMachineOutReplacesTheErrorOfTheAxis) {
   EXPECT_NE(r.out.find("the machine file's own folder"), std::string::npos) << r.out;
   std::string bare = runs.substr(runs.find("target"));
   const std::string bare_in = write_temp("bare_runs.csv", bare);
-  r = test::run_volcomp("identify laser " + bare_in + " --error EXX --machine " + kMc300 + " --machine-out " + folder + "_bare");
+  r = test::run_volcomp("identify laser " + bare_in + " --error EXX --machine " + kMc300 + " --machine-out " + folder +
+                        "_bare");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.out.find("where did the axes stand during the runs? Add a '# at: x=..., y=..., z=..., b=..., c=...'"),
-            std::string::npos) << r.out;
-  r = test::run_volcomp("identify laser " + bare_in + " --error EXX --machine " + kMc300 + " --at x=0,y=-160 --machine-out " +
-                        folder + "_bare");
+            std::string::npos)
+      << r.out;
+  r = test::run_volcomp("identify laser " + bare_in + " --error EXX --machine " + kMc300 +
+                        " --at x=0,y=-160 --machine-out " + folder + "_bare");
   EXPECT_NE(r.out.find("where did z, b, c stand during the runs?"), std::string::npos) << r.out;
   r = test::run_volcomp("identify laser " + bare_in + " --error EXX --machine " + kMc300 +
                         " --at x=0,y=-160,z=-150,b=0,c=0 --machine-out " + folder + "_bare -o " + folder + "_bare.csv");
@@ -252,17 +258,20 @@ TEST(VolcompCli, SimulatedLaserRunsOnATrueMachineGiveItsTableBack) {
   const std::string folder = (std::filesystem::temp_directory_path() / "vc_cli_simulated_laser").string();
   std::filesystem::remove_all(folder);
   std::string pitch = "x[mm],EXX[um]\n";
-  for (int x = -600; x <= 0; x += 25)  // 0 at -600 mm, the laser's datum: what the laser cannot know is right in the file
+  for (int x = -600; x <= 0;
+       x += 25)  // 0 at -600 mm, the laser's datum: what the laser cannot know is right in the file
     pitch += std::to_string(x) + "," + std::to_string(4 * std::sin((x + 600) / 70.0) + 0.012 * (x + 600)) + "\n";
-  auto r = test::run_volcomp("perturb " + kMc300 + " -o " + folder + "/true --add-table " + write_temp("sim_pitch.csv", pitch));
+  auto r = test::run_volcomp("perturb " + kMc300 + " -o " + folder + "/true --add-table " +
+                             write_temp("sim_pitch.csv", pitch));
   ASSERT_EQ(r.exit_code, 0) << r.out;
   std::string targets;
   for (int x = -600; x <= 0; x += 50) targets += std::to_string(x) + " ";
   const std::string runs = folder + "/runs.csv";
-  const std::string command = test::source_path("preproc/identify/simulate-laser-runs") + " " + VC_VOLCOMP + " " + folder +
-                              "/true/mc300.toml EXX x,y,z,b,c 0,-160,-150,0,0 '" + targets + "' 7 > " + runs;
+  const std::string command = test::source_path("preproc/identify/simulate-laser-runs") + " " + VC_VOLCOMP + " " +
+                              folder + "/true/mc300.toml EXX x,y,z,b,c 0,-160,-150,0,0 '" + targets + "' 7 > " + runs;
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
-  r = test::run_volcomp("identify laser " + runs + " --error EXX --machine " + kMc300 + " --machine-out " + folder + "/laser");
+  r = test::run_volcomp("identify laser " + runs + " --error EXX --machine " + kMc300 + " --machine-out " + folder +
+                        "/laser");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const std::size_t at = r.out.find("(mean ", r.out.find("reversal value B"));
   ASSERT_NE(at, std::string::npos) << r.out;
@@ -271,12 +280,14 @@ TEST(VolcompCli, SimulatedLaserRunsOnATrueMachineGiveItsTableBack) {
   std::string poses = "x,y,z,b,c\n";
   for (int x = -600; x <= 0; x += 50) poses += std::to_string(x) + ",-160,-150,0,0\n";
   const std::string poses_file = write_temp("sim_poses.csv", poses);
-  const test::CsvTable truth(write_temp("sim_truth.csv", test::run_volcomp("error " + folder + "/true/mc300.toml --poses " +
-                                                                           poses_file + " --only EXX").out));
-  const test::CsvTable got(write_temp("sim_got.csv", test::run_volcomp("error " + folder + "/laser/mc300.toml --poses " +
-                                                                         poses_file + " --only EXX").out));
-  const test::CsvTable nominal(write_temp("sim_nominal.csv", test::run_volcomp("error " + kMc300 + " --poses " +
-                                                                               poses_file + " --only EXX").out));
+  const test::CsvTable truth(
+      write_temp("sim_truth.csv",
+                 test::run_volcomp("error " + folder + "/true/mc300.toml --poses " + poses_file + " --only EXX").out));
+  const test::CsvTable got(
+      write_temp("sim_got.csv",
+                 test::run_volcomp("error " + folder + "/laser/mc300.toml --poses " + poses_file + " --only EXX").out));
+  const test::CsvTable nominal(write_temp(
+      "sim_nominal.csv", test::run_volcomp("error " + kMc300 + " --poses " + poses_file + " --only EXX").out));
   ASSERT_EQ(got.size(), 13u);
   double off_nominal = 0;
   for (std::size_t i = 0; i < got.size(); ++i) {
@@ -319,7 +330,8 @@ TEST(VolcompCli, SelftuneRefusesAnAmbiguousCmmExportAndWritesNothing) {
   const std::string files = " --var " + test::source_path("tests/programs/mill3.var") + " --tool-table " +
                             test::source_path("tests/programs/mill3.tbl");
   const std::string next = write_temp("selftune_next.ngc", "");
-  const std::string report = write_temp("export.txt", "Units: mm\nPoint;X Nom;Y Nom;Z Nom;I;J;K;Dev\nP1;100;0;-5;1;0;0;0.004\n");
+  const std::string report =
+      write_temp("export.txt", "Units: mm\nPoint;X Nom;Y Nom;Z Nom;I;J;K;Dev\nP1;100;0;-5;1;0;0;0.004\n");
   const auto run = [&](const std::string& options) {
     std::filesystem::remove(next);
     return test::run_volcomp("selftune " + test::machine_path("mill3") + " " + program + " " + report + " -o " + next +
@@ -328,7 +340,8 @@ TEST(VolcompCli, SelftuneRefusesAnAmbiguousCmmExportAndWritesNothing) {
   auto r = run("");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.out.find(report + ":2:31: error: the sign of 'Dev' is not stated: give --deviation-sign"),
-            std::string::npos) << r.out;
+            std::string::npos)
+      << r.out;
   EXPECT_FALSE(std::filesystem::exists(next));
   r = run(" --deviation-sign actual-minus-nominal --report-unit inch");
   EXPECT_EQ(r.exit_code, 2);
@@ -337,7 +350,8 @@ TEST(VolcompCli, SelftuneRefusesAnAmbiguousCmmExportAndWritesNothing) {
   r = run(" --deviation-sign plus");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.out.find("--deviation-sign"), std::string::npos) << r.out;
-  r = run(" --deviation-sign actual-minus-nominal --strategy model --tables-out " + next + ".d --next-program " + program);
+  r = run(" --deviation-sign actual-minus-nominal --strategy model --tables-out " + next + ".d --next-program " +
+          program);
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.out.find("--next-program and --next-points go together"), std::string::npos) << r.out;
   r = run(" --deviation-sign actual-minus-nominal --next-program " + program + " --next-points " + report);
@@ -362,8 +376,8 @@ TEST(VolcompCli, PerturbLocationChangesOnlyTheNamedLocationErrors) {
   EXPECT_NE(r.out.find("3 location errors changed, 0 tables added"), std::string::npos) << r.out;
   const machine::Model before = machine::load_machine(test::machine_path("mc300"));
   const machine::Model after = machine::load_machine(folder + "/mc300.toml");
-  const auto& b0 = before.axes[before.joint_of('B')], & b1 = after.axes[after.joint_of('B')];
-  const auto& c0 = before.axes[before.joint_of('C')], & c1 = after.axes[after.joint_of('C')];
+  const auto &b0 = before.axes[before.joint_of('B')], &b1 = after.axes[after.joint_of('B')];
+  const auto &c0 = before.axes[before.joint_of('C')], &c1 = after.axes[after.joint_of('C')];
   EXPECT_NEAR(c1.location_mm[0] - c0.location_mm[0], 0.015, 1e-12);
   EXPECT_NEAR(c1.location_rad[0] - c0.location_rad[0], -3 * M_PI / 648000, 1e-12);
   EXPECT_NEAR(b1.location_mm[2] - b0.location_mm[2], 0.008, 1e-12);
@@ -377,11 +391,11 @@ TEST(VolcompCli, PerturbLocationChangesOnlyTheNamedLocationErrors) {
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("0 location errors changed, 1 tables added"), std::string::npos) << r.out;
   const std::string poses = write_temp("pitch_poses.csv", "x,y,z,b,c\n-450,-160,-150,0,0\n");
-  const test::CsvTable with(write_temp("pitch_with.csv", test::run_volcomp("error " + folder + "/mc300.toml --poses " +
-                                                                           poses + " --only EXX").out));
+  const test::CsvTable with(write_temp(
+      "pitch_with.csv", test::run_volcomp("error " + folder + "/mc300.toml --poses " + poses + " --only EXX").out));
   const test::CsvTable without(
-      write_temp("pitch_without.csv", test::run_volcomp("error " + test::machine_path("mc300") + " --poses " + poses +
-                                                        " --only EXX").out));
+      write_temp("pitch_without.csv",
+                 test::run_volcomp("error " + test::machine_path("mc300") + " --poses " + poses + " --only EXX").out));
   EXPECT_NEAR((with.at(0, "ex") - without.at(0, "ex")) * 1e3, 1.5, 1e-9);  // halfway from 6 to -3 um
   r = test::run_volcomp("perturb " + test::machine_path("mc300") + " -o " + folder + " --add-table " +
                         test::source_path("tables/data/mc300/x.csv"));
@@ -398,7 +412,8 @@ TEST(VolcompCli, PerturbLocationChangesOnlyTheNamedLocationErrors) {
 
 // probe-plan's touch: a back-off that leaves no room before the surface, or no feed, is refused.
 TEST(VolcompCli, ProbePlanRefusesATouchThatCannotWork) {
-  const std::string plan = "probe-plan " + test::machine_path("mc300") + " --centre -300,-160,-200 --grid B=0,-90 --grid C=0,180";
+  const std::string plan =
+      "probe-plan " + test::machine_path("mc300") + " --centre -300,-160,-200 --grid B=0,-90 --grid C=0,180";
   auto r = test::run_volcomp(plan);
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("G38.2 Z-0.6000 F10.0000"), std::string::npos) << "the measuring touch";
@@ -406,12 +421,14 @@ TEST(VolcompCli, ProbePlanRefusesATouchThatCannotWork) {
     r = test::run_volcomp(plan + bad);
     EXPECT_NE(r.exit_code, 0) << bad;
     EXPECT_NE(r.out.find("the feeds must be positive and the back-off between 0 and the clearance"), std::string::npos)
-        << bad << "\n" << r.out;
+        << bad << "\n"
+        << r.out;
   }
 }
 
 TEST(VolcompCli, HelpIsEverywhere) {
-  for (const char* sub : {"", "check ", "error ", "correct ", "balance ", "identify laser ", "identify circle ", "identify sphere ", "probe-plan ", "perturb ", "fit-tables "}) {
+  for (const char* sub : {"", "check ", "error ", "correct ", "balance ", "identify laser ", "identify circle ",
+                          "identify sphere ", "probe-plan ", "perturb ", "fit-tables "}) {
     const auto r = test::run_volcomp(std::string(sub) + "--help");
     EXPECT_EQ(r.exit_code, 0) << sub;
     EXPECT_NE(r.out.find("Usage"), std::string::npos) << sub;

@@ -90,13 +90,15 @@ std::string after(const std::string& text, const std::string& label) {
 // 7 targets, 3 runs each way: up reads +0.6 um, down -0.6 um about 2 sin(x / 100) um, the
 // runs off by +0.2, -0.1, -0.1 um and up's run 2 by 0.3 um more at x = -300.
 std::string laser_runs(std::map<std::pair<double, std::string>, double>& readings) {
-  std::string runs = "# instrument: XL-80\n# temperature_degC: 20.3\ntarget[mm],1+[um],1-[um],2+[um],2-[um],3+[um],3-[um]\n";
+  std::string runs =
+      "# instrument: XL-80\n# temperature_degC: 20.3\ntarget[mm],1+[um],1-[um],2+[um],2-[um],3+[um],3-[um]\n";
   for (int k = 0; k <= 6; ++k) {
     const double x = -100.0 * k + 0.0, v = 2 * std::sin(x / 100);  // + 0.0: no -0
     runs += std::to_string(x);
     for (int run = 1; run <= 3; ++run)
       for (const char* d : {"+", "-"}) {
-        const double r = v + (d[0] == '+' ? 0.6 : -0.6) + (run == 1 ? 0.2 : -0.1) + (run == 2 && k == 3 && d[0] == '+' ? 0.3 : 0);
+        const double r =
+            v + (d[0] == '+' ? 0.6 : -0.6) + (run == 1 ? 0.2 : -0.1) + (run == 2 && k == 3 && d[0] == '+' ? 0.3 : 0);
         readings[{x, std::to_string(run) + d}] = std::round(r * 1e4) / 1e4;
         std::ostringstream cell;
         cell << "," << std::round(r * 1e4) / 1e4;
@@ -117,9 +119,12 @@ TEST(VolcompPlot, LaserGraphDrawsThePrintedEvaluation) {
   expect_png(dir / "exx.png", 1400, 820);
   const std::string data = test::file_text(dir / "exx.csv");
   // The figures on the graph are the printed ones, text for text.
-  for (const auto& [printed, symbol] : std::vector<std::pair<std::string, std::string>>{
-           {"reversal value B", "B"}, {"repeatability R", "R"}, {"systematic deviation E", "E"},
-           {"mean bidirectional range M", "M"}, {"accuracy A", "A"}}) {
+  for (const auto& [printed, symbol] :
+       std::vector<std::pair<std::string, std::string>>{{"reversal value B", "B"},
+                                                        {"repeatability R", "R"},
+                                                        {"systematic deviation E", "E"},
+                                                        {"mean bidirectional range M", "M"},
+                                                        {"accuracy A", "A"}}) {
     const std::string text = test::trimmed(after(r.out, printed));
     ASSERT_FALSE(text.empty()) << printed << "\n" << r.out;
     EXPECT_EQ(after(data, "# " + symbol + " = "), text) << symbol;
@@ -135,7 +140,8 @@ TEST(VolcompPlot, LaserGraphDrawsThePrintedEvaluation) {
     // Each run drawn is the file's run.
     for (int run = 1; run <= 3; ++run) {
       EXPECT_NEAR(b.at(i, "run" + std::to_string(run) + "_up[um]"), readings.at({x, std::to_string(run) + "+"}), 1e-9);
-      EXPECT_NEAR(b.at(i, "run" + std::to_string(run) + "_down[um]"), readings.at({x, std::to_string(run) + "-"}), 1e-9);
+      EXPECT_NEAR(b.at(i, "run" + std::to_string(run) + "_down[um]"), readings.at({x, std::to_string(run) + "-"}),
+                  1e-9);
     }
     // The means drawn are the printed per-target table's (3 decimals).
     std::ostringstream target;
@@ -162,13 +168,14 @@ TEST(VolcompPlot, LaserGraphDrawsThePrintedEvaluation) {
                              (dir / "exx.svg").string());
   ASSERT_EQ(s.exit_code, 0) << s.out;
   EXPECT_NE(test::file_text(dir / "exx.svg").find("<svg"), std::string::npos);
-  s = test::run_volcomp("identify laser " + (dir / "runs.csv").string() + " --error EXX --plot " + (dir / "exx.pdf").string());
+  s = test::run_volcomp("identify laser " + (dir / "runs.csv").string() + " --error EXX --plot " +
+                        (dir / "exx.pdf").string());
   EXPECT_EQ(s.exit_code, 2);
   EXPECT_NE(s.out.find("the picture is a .png or an .svg file"), std::string::npos) << s.out;
   EXPECT_FALSE(fs::exists(dir / "exx.pdf"));
   // The plot's data would overwrite the table: refused.
-  s = test::run_volcomp("identify laser " + (dir / "runs.csv").string() + " --error EXX -o " + (dir / "same.csv").string() +
-                        " --plot " + (dir / "same.png").string());
+  s = test::run_volcomp("identify laser " + (dir / "runs.csv").string() + " --error EXX -o " +
+                        (dir / "same.csv").string() + " --plot " + (dir / "same.png").string());
   EXPECT_EQ(s.exit_code, 2);
   EXPECT_NE(s.out.find("give the plot another name"), std::string::npos) << s.out;
   EXPECT_FALSE(fs::exists(dir / "same.csv"));
@@ -193,14 +200,15 @@ TEST(VolcompPlot, BallbarPolarPlotDrawsTheRunAtItsStatedScale) {
     run << deg << ',' << ccw << ',' << cw << '\n';
   }
   std::ofstream(dir / "run.csv") << run.str();
-  const auto r = test::run_volcomp("identify circle " + (dir / "run.csv").string() + " --plot " +
-                                   (dir / "ballbar.png").string());
+  const auto r =
+      test::run_volcomp("identify circle " + (dir / "run.csv").string() + " --plot " + (dir / "ballbar.png").string());
   ASSERT_EQ(r.exit_code, 0) << r.out;
   expect_png(dir / "ballbar.png", 1400, 900);
   const std::string data = test::file_text(dir / "ballbar.csv");
   // The printed figures are written on the plot as printed.
   for (const std::string label : {"bidirectional circular deviation G(b) ", "circular hysteresis H "}) {
-    const std::string printed = label + test::trimmed(after(r.out, label)).substr(0, after(r.out, label).find(" um") + 3);
+    const std::string printed =
+        label + test::trimmed(after(r.out, label)).substr(0, after(r.out, label).find(" um") + 3);
     EXPECT_NE(data.find("# " + printed), std::string::npos) << printed << "\n" << data.substr(0, 2000);
   }
   for (const std::string label : {"squareness ", "centre offset X ", "theta = "}) {
@@ -230,7 +238,8 @@ TEST(VolcompPlot, BallbarPolarPlotDrawsTheRunAtItsStatedScale) {
   EXPECT_GT(largest / scale, 3.5 / 2.5);
 
   // run.png's data would be run.csv, the run itself: refused, the run untouched.
-  const auto same = test::run_volcomp("identify circle " + (dir / "run.csv").string() + " --plot " + (dir / "run.png").string());
+  const auto same =
+      test::run_volcomp("identify circle " + (dir / "run.csv").string() + " --plot " + (dir / "run.png").string());
   EXPECT_EQ(same.exit_code, 2);
   EXPECT_NE(same.out.find("a file of this command: give the plot another name"), std::string::npos) << same.out;
   EXPECT_EQ(test::file_text(dir / "run.csv"), run.str());
@@ -242,7 +251,8 @@ std::map<std::string, std::vector<double>> table_columns(const std::string& path
   const std::vector<Block> blocks = read_blocks(path);
   std::map<std::string, std::vector<double>> columns;
   for (std::size_t c = 0; c < blocks.at(0).names.size(); ++c)
-    for (std::size_t i = 0; i < blocks[0].rows.size(); ++i) columns[blocks[0].names[c]].push_back(blocks[0].at(i, blocks[0].names[c]));
+    for (std::size_t i = 0; i < blocks[0].rows.size(); ++i)
+      columns[blocks[0].names[c]].push_back(blocks[0].at(i, blocks[0].names[c]));
   return columns;
 }
 
@@ -254,7 +264,8 @@ TEST(VolcompPlot, MachinePlotDrawsTheFilesTablesAtTheirNodes) {
 
   // Each drawn row is the file's row at the same position (the files list their nodes descending,
   // the plots draw them ascending).
-  const auto file_row = [](const std::map<std::string, std::vector<double>>& file, const std::string& position, double at) {
+  const auto file_row = [](const std::map<std::string, std::vector<double>>& file, const std::string& position,
+                           double at) {
     const std::vector<double>& p = file.at(position);
     const auto row = std::find(p.begin(), p.end(), at);
     if (row == p.end()) throw std::out_of_range(position + " has no node at " + std::to_string(at));
@@ -319,8 +330,8 @@ TEST(VolcompPlot, WithoutGnuplotNothingIsWritten) {
   const fs::path runs = folder("no_gnuplot_input") / "runs.csv";
   std::ofstream(runs) << laser_runs(readings);
   const std::string no_gnuplot = "PATH=/nonexistent " + std::string(VC_VOLCOMP) + " ";
-  auto r = test::run_command(no_gnuplot + "identify laser " + runs.string() + " --error EXX -o " + (dir / "t.csv").string() +
-                             " --plot " + (dir / "exx.png").string() + " 2>&1");
+  auto r = test::run_command(no_gnuplot + "identify laser " + runs.string() + " --error EXX -o " +
+                             (dir / "t.csv").string() + " --plot " + (dir / "exx.png").string() + " 2>&1");
   EXPECT_EQ(r.exit_code, 2) << r.out;
   EXPECT_NE(r.out.find("gnuplot was not found (is it installed and on PATH?): the plot " + (dir / "exx.png").string() +
                        " was not written"),

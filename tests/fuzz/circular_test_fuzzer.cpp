@@ -19,7 +19,8 @@ void check(const vc::identify::CircularTest& t) {
   if (t.runs.empty() || t.runs.size() > 2) vc::fuzz::finding("accepted " + std::to_string(t.runs.size()) + " runs");
   for (const auto& run : t.runs)
     for (std::size_t i = 0; i < run.points.size(); ++i) {
-      if (!std::isfinite(run.points[i].first) || !std::isfinite(run.points[i].second)) vc::fuzz::finding("a non-finite point");
+      if (!std::isfinite(run.points[i].first) || !std::isfinite(run.points[i].second))
+        vc::fuzz::finding("a non-finite point");
       if (i > 0 && run.points[i - 1].first > run.points[i].first) vc::fuzz::finding("points not ordered by angle");
     }
 }

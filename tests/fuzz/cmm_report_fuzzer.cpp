@@ -23,7 +23,8 @@ void check(const std::vector<vc::shop::CmmPoint>& points, bool report) {
   for (const auto& p : points) {
     const std::string at = "point " + p.id + " (line " + std::to_string(p.line) + "): ";
     if (!p.nominal.allFinite()) vc::fuzz::finding(at + "nominal not finite");
-    if (!p.normal.allFinite() || std::abs(p.normal.norm() - 1.0) > 1e-9) vc::fuzz::finding(at + "normal not a unit vector");
+    if (!p.normal.allFinite() || std::abs(p.normal.norm() - 1.0) > 1e-9)
+      vc::fuzz::finding(at + "normal not a unit vector");
     if (report && !p.deviation_mm) vc::fuzz::finding(at + "a report's point without a deviation");
     if (p.deviation_mm && !std::isfinite(*p.deviation_mm)) vc::fuzz::finding(at + "deviation not finite");
   }

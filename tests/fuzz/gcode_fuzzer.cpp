@@ -12,7 +12,8 @@
 #include "vc/tables/source_error.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const vc::interpreter::ToolTable tools{{1, vc::interpreter::mill_tool(1, 100.0, 10.0)}, {2, vc::interpreter::mill_tool(2, 85.5, 6.0)}};
+  static const vc::interpreter::ToolTable tools{{1, vc::interpreter::mill_tool(1, 100.0, 10.0)},
+                                                {2, vc::interpreter::mill_tool(2, 85.5, 6.0)}};
   static const vc::gcode::Parameters var = [] {
     vc::gcode::Parameters p;
     p[5221] = 250;

@@ -23,9 +23,11 @@ constexpr std::string_view kHalSeparator = "\n#FUZZ-HAL\n";
 fs::path config_folder() {
   const fs::path folder = vc::fuzz::scratch() / "config";
   fs::create_directories(folder);
-  for (const fs::path dir : {vc::fuzz::source_path("tests/golden/bad_inis"), vc::fuzz::source_path("tests/golden/bad_inis/good")})
+  for (const fs::path dir :
+       {vc::fuzz::source_path("tests/golden/bad_inis"), vc::fuzz::source_path("tests/golden/bad_inis/good")})
     for (const auto& entry : fs::directory_iterator(dir))
-      if (entry.path().extension() == ".hal") fs::copy_file(entry.path(), folder / entry.path().filename(), fs::copy_options::overwrite_existing);
+      if (entry.path().extension() == ".hal")
+        fs::copy_file(entry.path(), folder / entry.path().filename(), fs::copy_options::overwrite_existing);
   return folder;
 }
 
@@ -35,9 +37,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static const fs::path folder = config_folder();
   const std::string_view text = vc::fuzz::text_of(data, size);
   const std::size_t split = text.find(kHalSeparator);
-  vc::fuzz::write_file(folder / "fuzz.hal", split == std::string_view::npos ? "" : text.substr(split + kHalSeparator.size()));
+  vc::fuzz::write_file(folder / "fuzz.hal",
+                       split == std::string_view::npos ? "" : text.substr(split + kHalSeparator.size()));
   vc::init::InitRequest request;
-  request.ini = vc::fuzz::write_file(folder / "fuzz.ini", text.substr(0, split == std::string_view::npos ? text.size() : split + 1));
+  request.ini = vc::fuzz::write_file(folder / "fuzz.ini",
+                                     text.substr(0, split == std::string_view::npos ? text.size() : split + 1));
   // Outside the configuration folder: an #INCLUDE cannot read a previous input's output.
   request.machine_file = (vc::fuzz::scratch() / "init-machine.toml").string();
   request.date = "2026-11-28";
@@ -53,7 +57,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     (void)vc::machine::load_machine(request.machine_file);
   } catch (const std::exception& e) {
-    vc::fuzz::finding(std::string("init wrote a machine file volcomp refuses: ") + e.what() + "\n" + result.machine_text);
+    vc::fuzz::finding(std::string("init wrote a machine file volcomp refuses: ") + e.what() + "\n" +
+                      result.machine_text);
   }
   return 0;
 }

@@ -18,7 +18,8 @@ namespace {
 
 void check(const vc::identify::LaserRuns& runs) {
   for (const auto& r : runs.readings)
-    if (!std::isfinite(r.target) || !std::isfinite(r.deviation)) vc::fuzz::finding("line " + std::to_string(r.line) + ": a non-finite reading");
+    if (!std::isfinite(r.target) || !std::isfinite(r.deviation))
+      vc::fuzz::finding("line " + std::to_string(r.line) + ": a non-finite reading");
 }
 
 void check(const vc::identify::Iso230_2& e) {

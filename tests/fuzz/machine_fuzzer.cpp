@@ -41,12 +41,15 @@ void check(const vc::machine::Model& m) {
     vc::fuzz::finding("accepted a machine of " + std::to_string(m.joint_count()) + " joints");
   for (const vc::machine::Axis& a : m.axes) {
     const std::string name = std::string("axis ") + a.letter;
-    if (!finite(a.direction) || std::abs(a.direction.norm() - 1.0) > 1e-9) vc::fuzz::finding(name + ": direction not a unit vector");
-    if (!finite(a.pole_mm) || !finite(a.location_mm) || !finite(a.location_rad)) vc::fuzz::finding(name + ": a non-finite pole or location");
+    if (!finite(a.direction) || std::abs(a.direction.norm() - 1.0) > 1e-9)
+      vc::fuzz::finding(name + ": direction not a unit vector");
+    if (!finite(a.pole_mm) || !finite(a.location_mm) || !finite(a.location_rad))
+      vc::fuzz::finding(name + ": a non-finite pole or location");
     if (!std::isfinite(a.travel_min) || !std::isfinite(a.travel_max) || !(a.travel_min < a.travel_max))
       vc::fuzz::finding(name + ": travel not finite with min < max");
   }
-  if (!finite(m.spindle.gauge_point_mm) || !std::isfinite(m.tool_length_mm)) vc::fuzz::finding("spindle or tool length not finite");
+  if (!finite(m.spindle.gauge_point_mm) || !std::isfinite(m.tool_length_mm))
+    vc::fuzz::finding("spindle or tool length not finite");
 }
 
 }  // namespace

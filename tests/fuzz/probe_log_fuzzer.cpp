@@ -16,7 +16,8 @@ namespace {
 
 void check(const vc::identify::ProbeLog& log, const vc::machine::Model& model) {
   if (log.centres.empty()) vc::fuzz::finding("accepted a log without poses");
-  if (!(log.sphere_diameter_mm > 0) || !(log.ball_diameter_mm >= 0)) vc::fuzz::finding("accepted without the diameters");
+  if (!(log.sphere_diameter_mm > 0) || !(log.ball_diameter_mm >= 0))
+    vc::fuzz::finding("accepted without the diameters");
   for (const auto& pose : log.centres)
     if (pose.joints.size() != model.joint_count() || !pose.joints.allFinite())
       vc::fuzz::finding("line " + std::to_string(pose.line) + ": the centre's joints are not the machine's, finite");
@@ -25,7 +26,8 @@ void check(const vc::identify::ProbeLog& log, const vc::machine::Model& model) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const vc::machine::Model model = vc::machine::load_machine(vc::fuzz::source_path("machines/data/mc300.toml").string());
+  static const vc::machine::Model model =
+      vc::machine::load_machine(vc::fuzz::source_path("machines/data/mc300.toml").string());
   static const std::string path = (vc::fuzz::scratch() / "input.log").string();
   vc::fuzz::write_file(path, vc::fuzz::text_of(data, size));
   try {

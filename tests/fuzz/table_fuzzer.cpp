@@ -17,16 +17,20 @@ using vc::tables::ErrorTable;
 
 void check(const ErrorTable& t) {
   const auto& grid = t.grid();
-  if (grid.empty() || grid.size() > ErrorTable::kMaxVariables) vc::fuzz::finding("accepted a grid of " + std::to_string(grid.size()) + " variables");
-  if (t.columns().empty() || t.columns().size() > ErrorTable::kMaxColumns) vc::fuzz::finding("accepted " + std::to_string(t.columns().size()) + " columns");
+  if (grid.empty() || grid.size() > ErrorTable::kMaxVariables)
+    vc::fuzz::finding("accepted a grid of " + std::to_string(grid.size()) + " variables");
+  if (t.columns().empty() || t.columns().size() > ErrorTable::kMaxColumns)
+    vc::fuzz::finding("accepted " + std::to_string(t.columns().size()) + " columns");
   std::size_t nodes = 1;
   for (const auto& v : grid) {
     if (v.nodes.size() < 2) vc::fuzz::finding("a grid variable of fewer than 2 nodes");
     for (std::size_t i = 0; i < v.nodes.size(); ++i)
-      if (!std::isfinite(v.nodes[i]) || (i > 0 && !(v.nodes[i - 1] < v.nodes[i]))) vc::fuzz::finding("grid nodes not finite and strictly increasing");
+      if (!std::isfinite(v.nodes[i]) || (i > 0 && !(v.nodes[i - 1] < v.nodes[i])))
+        vc::fuzz::finding("grid nodes not finite and strictly increasing");
     nodes *= v.nodes.size();
   }
-  if (static_cast<std::size_t>(t.node_count()) != nodes) vc::fuzz::finding("sample count differs from the grid's nodes");
+  if (static_cast<std::size_t>(t.node_count()) != nodes)
+    vc::fuzz::finding("sample count differs from the grid's nodes");
   const int columns = static_cast<int>(t.columns().size());
   double largest = 0.0;
   for (int n = 0; n < t.node_count(); ++n)
@@ -46,7 +50,8 @@ void check(const ErrorTable& t) {
     t.evaluate(at, sample);
     for (int c = 0; c < columns; ++c)
       if (!(std::abs(sample.value[static_cast<std::size_t>(c)] - t.value(n, c)) <= 1e-9 * largest + 1e-12))
-        vc::fuzz::finding("the lookup at node " + std::to_string(n) + " is not its sample (column " + std::to_string(c) + ")");
+        vc::fuzz::finding("the lookup at node " + std::to_string(n) + " is not its sample (column " +
+                          std::to_string(c) + ")");
   }
 }
 

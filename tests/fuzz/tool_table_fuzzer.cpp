@@ -14,7 +14,8 @@ namespace {
 
 void check(const vc::interpreter::ToolTable& table) {
   for (const auto& [number, tool] : table) {
-    if (number != tool.number || number < 0) vc::fuzz::finding("tool " + std::to_string(tool.number) + " filed as " + std::to_string(number));
+    if (number != tool.number || number < 0)
+      vc::fuzz::finding("tool " + std::to_string(tool.number) + " filed as " + std::to_string(number));
     for (const double v : tool.offset)
       if (!std::isfinite(v)) vc::fuzz::finding("a non-finite offset");
     if (!std::isfinite(tool.diameter) || !std::isfinite(tool.front_angle) || !std::isfinite(tool.back_angle))

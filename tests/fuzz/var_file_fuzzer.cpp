@@ -18,7 +18,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     const int count = vc::interpreter::read_var_file(path, parameters);
     const auto lines = std::count(text.begin(), text.end(), '\n') + 1;
-    if (count < 0 || count > lines) vc::fuzz::finding(std::to_string(count) + " parameters read from " + std::to_string(lines) + " lines");
+    if (count < 0 || count > lines)
+      vc::fuzz::finding(std::to_string(count) + " parameters read from " + std::to_string(lines) + " lines");
     for (int i = 1; i < vc::gcode::Parameters::kCount; ++i)
       if (!std::isfinite(parameters[i])) vc::fuzz::finding("parameter " + std::to_string(i) + " is not finite");
   } catch (const vc::LoadError&) {

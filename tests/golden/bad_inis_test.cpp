@@ -35,7 +35,6 @@ fs::path scratch(const std::string& name) {
   return dir;
 }
 
-
 TEST(BadInis, EveryBadConfigurationIsRefusedWithItsMessage) {
   const fs::path dir = test::source_path("tests/golden/bad_inis");
   const std::vector<fs::path> inis = test::files_with_extension(dir, ".ini");
@@ -70,9 +69,10 @@ TEST(BadInis, TheGoodBaseIsAcceptedAndWritesBothOutputs) {
   const fs::path summary = dir.parent_path() / "summary.txt";
 
   // --patch FILE: both outputs in files, nothing on stdout.
-  const auto to_file = test::run_volcomp_stdout("init " + (dir / "xyzbc.ini").string() + " -o " + (dir / "xyzbc.toml").string() +
-                                      " --patch " + (dir.parent_path() / "config.diff").string(),
-                                  summary);
+  const auto to_file =
+      test::run_volcomp_stdout("init " + (dir / "xyzbc.ini").string() + " -o " + (dir / "xyzbc.toml").string() +
+                                   " --patch " + (dir.parent_path() / "config.diff").string(),
+                               summary);
   ASSERT_EQ(to_file.exit_code, 0) << test::file_text(summary);
   EXPECT_EQ(to_file.out, "");
   EXPECT_NE(test::file_text(summary).find("volcomp init: golden xyzbc"), std::string::npos) << test::file_text(summary);
@@ -87,7 +87,8 @@ TEST(BadInis, TheGoodBaseIsAcceptedAndWritesBothOutputs) {
   EXPECT_EQ(check.exit_code, 0) << check.out;
 
   // No --patch: stdout is the patch alone (the summary on stderr).
-  const auto to_stdout = test::run_volcomp_stdout("init " + (dir / "xyzbc.ini").string() + " -o " + (dir / "again.toml").string(), summary);
+  const auto to_stdout = test::run_volcomp_stdout(
+      "init " + (dir / "xyzbc.ini").string() + " -o " + (dir / "again.toml").string(), summary);
   ASSERT_EQ(to_stdout.exit_code, 0) << test::file_text(summary);
   EXPECT_EQ(to_stdout.out, std::string(diff).replace(diff.find("xyzbc.toml"), 10, "again.toml"));
   EXPECT_EQ(test::file_text(dir / "again.toml").substr(test::file_text(dir / "again.toml").find("[machine]")),

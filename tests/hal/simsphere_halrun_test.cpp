@@ -48,8 +48,7 @@ TEST(Simsphere, TripsWhereTheBallTouchesTheSphere) {
 }
 
 TEST(Simsphere, BadParametersAreRefusedWithTheReason) {
-  for (const auto& [parameters, message] :
-       std::vector<std::pair<std::string, std::string>>{
+  for (const auto& [parameters, message] : std::vector<std::pair<std::string, std::string>>{
            {"centre=-300,-160", "simsphere: centre=X,Y,Z (mm)"},
            {"centre=-300,-160,-200 sphere_diameter=big", "simsphere: sphere_diameter=big is not a number"},
            {"centre=-300,-160,-200 noise_um=-1", "simsphere: the diameters must be positive and noise_um not negative"},

@@ -45,13 +45,12 @@ TEST_P(ShippedMachine, LoadsAndExposesItsPins) {
   const test::CommandResult r =
       test::halrun("load_" + GetParam(), loadrt(shipped(GetParam())) + "show pin volkins\nshow param volkins\n");
   ASSERT_EQ(r.exit_code, 0) << r.out;
-  for (const char* pin : {"volkins.enable", "volkins.tool-offset", "volkins.tool-offset-slew-time", "volkins.gain",
-                          "volkins.active",
-                          "volkins.update-missing", "volkins.iterations",
-                          "volkins.forward-iterations", "volkins.out-of-table", "volkins.limit-exceeded",
-                          "volkins.failures", "volkins.ramp-time", "volkins.max-correction-mm",
-                          "volkins.max-correction-deg", "volkins.pole-fade-start-deg",
-                          "volkins.pole-fade-full-deg", "volkins.update.time"})
+  for (const char* pin :
+       {"volkins.enable", "volkins.tool-offset", "volkins.tool-offset-slew-time", "volkins.gain", "volkins.active",
+        "volkins.update-missing", "volkins.iterations", "volkins.forward-iterations", "volkins.out-of-table",
+        "volkins.limit-exceeded", "volkins.failures", "volkins.ramp-time", "volkins.max-correction-mm",
+        "volkins.max-correction-deg", "volkins.pole-fade-start-deg", "volkins.pole-fade-full-deg",
+        "volkins.update.time"})
     EXPECT_NE(r.out.find(pin), std::string::npos) << pin << " missing:\n" << r.out;
   for (int j = 0; j < 6; ++j) {
     const std::string pin = "volkins.joint." + std::to_string(j) + ".correction";
@@ -80,8 +79,11 @@ TEST(Volkins, StartsInKinematicsTypeZeroOfTheWorldItWasGiven) {
     ASSERT_EQ(r.exit_code, 0) << r.out;
     auto bit = [&](const std::string& pin) {
       std::smatch m;
-      EXPECT_TRUE(std::regex_search(r.out, m, std::regex(R"(bit\s+OUT\s+(TRUE|FALSE)\s+)" + std::regex_replace(pin, std::regex(R"(\.)"), R"(\.)") + R"(\s)")))
-          << pin << " missing:\n" << r.out;
+      EXPECT_TRUE(std::regex_search(r.out, m,
+                                    std::regex(R"(bit\s+OUT\s+(TRUE|FALSE)\s+)" +
+                                               std::regex_replace(pin, std::regex(R"(\.)"), R"(\.)") + R"(\s)")))
+          << pin << " missing:\n"
+          << r.out;
       return m.size() > 1 && m[1] == "TRUE";
     };
     EXPECT_TRUE(bit("kinstype.is-0")) << c.parameters;
@@ -139,10 +141,10 @@ TEST(Volkins, TemperaturesAreLowPassedAndAFaultyReadingIsHeld) {
                              "setp volkins.temperature.x_screw 30\n"
                              "start\n"
                              "loadusr -w sleep 0.05\n"
-                             "show pin volkins.temperature.x_screw.filtered\n"   // on its way
+                             "show pin volkins.temperature.x_screw.filtered\n"  // on its way
                              "loadusr -w sleep 1.5\n"
-                             "show pin volkins.temperature.x_screw.filtered\n"   // there (7 time constants)
-                             "setp volkins.temperature.x_screw 90\n"             // beyond max_degC 45: a fault
+                             "show pin volkins.temperature.x_screw.filtered\n"  // there (7 time constants)
+                             "setp volkins.temperature.x_screw 90\n"            // beyond max_degC 45: a fault
                              "loadusr -w sleep 0.3\n"
                              "show pin volkins.temperature.x_screw.filtered\n"
                              "show pin volkins.temperature-fault\n"
@@ -211,13 +213,13 @@ TEST(Volkins, BadMachineFilesFailLoadrtWithTheirMessage) {
     std::string message = expected.str();
     message.erase(message.find_last_not_of(" \n\r") + 1);
     EXPECT_NE(r.out.find("volkins: " + message + "\n"), std::string::npos)
-        << f.filename() << ": expected\n  " << message << "\nin\n" << r.out;
+        << f.filename() << ": expected\n  " << message << "\nin\n"
+        << r.out;
   }
   EXPECT_FALSE(volkins_listed(r.out)) << "a refused load left a component:\n" << r.out;
 
   // The same HAL session then loads a good machine (nothing of the failures is in the way).
-  const test::CommandResult good =
-      test::halrun("bad_then_good", script + loadrt(shipped("mill3")) + "show comp\n");
+  const test::CommandResult good = test::halrun("bad_then_good", script + loadrt(shipped("mill3")) + "show comp\n");
   EXPECT_TRUE(volkins_listed(good.out)) << good.out;
 }
 

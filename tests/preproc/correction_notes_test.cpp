@@ -37,15 +37,15 @@ std::string write_program(const std::string& name, const std::string& text) {
 
 test::CommandResult predistort(const std::string& program, const std::string& options = "") {
   const std::string out = (std::filesystem::temp_directory_path() / "correction_notes_out.ngc").string();
-  return test::run_volcomp("predistort " + kMc300 + " " + program + " -o " + out + " --tool-table " + kTools +
-                           kStart + options);
+  return test::run_volcomp("predistort " + kMc300 + " " + program + " -o " + out + " --tool-table " + kTools + kStart +
+                           options);
 }
 
 // Poses (X Y Z B C, mm and deg: world = program with G54 at zero and no G43) the program
 // below visits with rapids (the pre-distorter corrects rapids at their ends only).
-const std::vector<std::array<double, 5>> kPoses = {
-    {-300, -160, -200, 0, 0}, {-150, -80, -180, -60, 135}, {-450, -240, -300, -90, 10},
-    {-420, -100, -150, 0, 270}, {-200, -280, -250, -110, 45}, {-300, -160, -200, -45, 180}};
+const std::vector<std::array<double, 5>> kPoses = {{-300, -160, -200, 0, 0},     {-150, -80, -180, -60, 135},
+                                                   {-450, -240, -300, -90, 10},  {-420, -100, -150, 0, 270},
+                                                   {-200, -280, -250, -110, 45}, {-300, -160, -200, -45, 180}};
 
 std::string move_line(const std::array<double, 5>& p, double z_offset = 0.0) {
   char text[128];
@@ -115,7 +115,8 @@ TEST(CorrectionNotes, WarnsOfMovesWithoutG43WithTheErrorTheToolKeeps) {
                        "would leave up to "),
             std::string::npos)
       << r.out;
-  EXPECT_NE(r.out.find("Add G43 H1 after the tool change, or set tool_length_reference_mm."), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Add G43 H1 after the tool change, or set tool_length_reference_mm."), std::string::npos)
+      << r.out;
   const double printed = number_after(r.out, "would leave up to ([0-9.]+) um at the tip");
   std::vector<int> pole_lines;
   const double expected = expected_error_um(&pole_lines);
@@ -155,13 +156,13 @@ TEST(CorrectionNotes, PointsOutsideAGridNameTheAxisThePositionAndTheGridsEnd) {
   for (const machine::BoundTable& t : model.tables)
     if (std::filesystem::path(t.table.path()).filename() == "z.csv" && t.joint[0] == z) z_end = t.table.grid()[0].first;
   ASSERT_FALSE(std::isnan(z_end));
-  ASSERT_EQ(z_end, std::round(z_end));  // printed as a whole number below
+  ASSERT_EQ(z_end, std::round(z_end));           // printed as a whole number below
   const double commanded = z_end - 4.0 - 100.0;  // G43 H1 adds 100 mm: the joint 4 mm below the grid, once
   char dip[96];
   std::snprintf(dip, sizeof dip, "G0 Z%g\nG0 Z-200\n", commanded);
   const std::string text =
-      "G21 G90 G17 G40 G49 G94\nG10 L2 P1 X0 Y0 Z0 B0 C0\nT1 M6 G54 G43 H1\nG0 X-300 Y-160 Z-300\n" +
-      std::string(dip) + "M2\n";
+      "G21 G90 G17 G40 G49 G94\nG10 L2 P1 X0 Y0 Z0 B0 C0\nT1 M6 G54 G43 H1\nG0 X-300 Y-160 Z-300\n" + std::string(dip) +
+      "M2\n";
   const auto r = predistort(write_program("outside.ngc", text));
   ASSERT_EQ(r.exit_code, 0) << r.out;
   // The joint goes to commanded + 100 (plus its correction, a few um).
@@ -186,18 +187,21 @@ TEST(CorrectionNotes, SelftuneRefusalNamesTheToolLengthUsed) {
   // The part as cut (with G43), measured by the virtual shop.
   const std::string files = " --tool-table " + tools + " --var " + test::source_path("tests/programs/mill3.var");
   ASSERT_EQ(test::run_volcomp("simulate " + mill3 + " " + with_g43 + " -o " + tmp + "path.csv" + files).exit_code, 0);
-  ASSERT_EQ(test::run_volcomp("measure " + tmp + "path.csv " + test::source_path("tests/programs/selftune/part_a_points.csv") +
-                              " -o " + tmp + "report.csv")
-                .exit_code,
-            0);
+  ASSERT_EQ(
+      test::run_volcomp("measure " + tmp + "path.csv " +
+                        test::source_path("tests/programs/selftune/part_a_points.csv") + " -o " + tmp + "report.csv")
+          .exit_code,
+      0);
   // The same program without G43, and G54 Z raised by the tool's length (a touch-off).
   std::ifstream in(with_g43);
   std::string text, line, tool_length;
   int first_move = 0, number = 0;
   while (std::getline(in, line)) {
     ++number;
-    if (line == "G0 G43 H1 Z50.") line = "G0 Z50.";
-    else if (!first_move && line.rfind("G0 X", 0) == 0) first_move = number;
+    if (line == "G0 G43 H1 Z50.")
+      line = "G0 Z50.";
+    else if (!first_move && line.rfind("G0 X", 0) == 0)
+      first_move = number;
     text += line + "\n";
   }
   ASSERT_GT(first_move, 0);

@@ -137,8 +137,9 @@ struct Case {
 class Predistorted : public ::testing::Test {
  protected:
   static std::string run(const Case& c, const std::string& out, const std::string& extra = "") {
-    const auto r = test::run_volcomp("predistort " + test::machine_path(c.machine) + " " + program(c.program) + " -o " + out +
-                           " --tool-table " + program(c.tools) + " --var " + program(c.var) + " " + extra);
+    const auto r =
+        test::run_volcomp("predistort " + test::machine_path(c.machine) + " " + program(c.program) + " -o " + out +
+                          " --tool-table " + program(c.tools) + " --var " + program(c.var) + " " + extra);
     EXPECT_EQ(r.exit_code, 0) << r.out;
     return r.out;
   }
@@ -161,7 +162,7 @@ std::vector<test::CanonMove> read_output(const machine::Model& model, const Case
   std::vector<test::CanonMove> moves;
   for (const interpreter::Move& m : test::read_moves(path, setup)) {
     test::CanonMove cm;
-    cm.kind = m.kind == interpreter::MoveKind::Rapid ? test::CanonMove::Traverse
+    cm.kind = m.kind == interpreter::MoveKind::Rapid  ? test::CanonMove::Traverse
               : m.kind == interpreter::MoveKind::Line ? test::CanonMove::Feed
                                                       : test::CanonMove::Arc;
     cm.end = m.frame.world(m.end);
@@ -218,8 +219,8 @@ TEST_F(Predistorted, PocketFollowsTheNominalPathWithinTheTolerance) {
   const std::string out = (dir / "pocket_predistorted.ngc").string();
   std::cout << run(kPocket, out);
   const machine::Model model = machine::load_machine(test::machine_path("mill3"));
-  const auto input = test::rs274_moves("rs274_pocket_in", program(kPocket.program), program(kPocket.tools),
-                                       program(kPocket.var));
+  const auto input =
+      test::rs274_moves("rs274_pocket_in", program(kPocket.program), program(kPocket.tools), program(kPocket.var));
   const auto output = test::rs274_moves("rs274_pocket_out", out, program(kPocket.tools), program(kPocket.var));
   const auto nominal = tip_paths(model, machine::Machine::Ideal, input, 0.05);
   const double raw = raw_error(tip_paths(model, machine::Machine::Real, input, 0.05), nominal);
@@ -229,7 +230,7 @@ TEST_F(Predistorted, PocketFollowsTheNominalPathWithinTheTolerance) {
   EXPECT_GT(samples, 20000u);
   std::cout << "mill3 pocket: " << samples << " samples; raw error max " << raw * 1e3
             << " um; pre-distorted max deviation " << deviation * 1e3 << " um\n";
-  EXPECT_GT(raw, 0.010);               // the unmodified program shows the machine's error
+  EXPECT_GT(raw, 0.010);                // the unmodified program shows the machine's error
   EXPECT_LT(deviation, 0.0005 + 1e-4);  // tolerance + rs274's rounding of the output
 }
 
@@ -241,8 +242,8 @@ TEST_F(Predistorted, SwarfFollowsTheNominalPathWithinTheTolerance) {
   const std::string out = (dir / "swarf_predistorted.ngc").string();
   std::cout << run(kSwarf, out);
   const machine::Model model = machine::load_machine(test::machine_path("mc300"));
-  const auto input = test::rs274_moves("rs274_swarf_in", program(kSwarf.program), program(kSwarf.tools),
-                                       program(kSwarf.var));
+  const auto input =
+      test::rs274_moves("rs274_swarf_in", program(kSwarf.program), program(kSwarf.tools), program(kSwarf.var));
   const std::vector<test::CanonMove> output = read_output(model, kSwarf, out);
   for (const auto& m : output) ASSERT_NE(m.kind, test::CanonMove::Arc);
   expect_same_moves(test::rs274_moves("rs274_swarf_out", out, program(kSwarf.tools), program(kSwarf.var)), output,
@@ -254,8 +255,8 @@ TEST_F(Predistorted, SwarfFollowsTheNominalPathWithinTheTolerance) {
   const double deviation = largest_deviation(tip_paths(model, machine::Machine::Real, output, 0.05),
                                              owners(input, ends_of(output), 0.1), nominal, samples);
   EXPECT_GT(samples, 10000u);
-  std::cout << "MC-300 swarf: " << samples << " samples; raw error max " << raw * 1e3 << " um; pre-distorted max deviation "
-            << deviation * 1e3 << " um\n";
+  std::cout << "MC-300 swarf: " << samples << " samples; raw error max " << raw * 1e3
+            << " um; pre-distorted max deviation " << deviation * 1e3 << " um\n";
   EXPECT_GT(raw, 0.020);
   EXPECT_LT(deviation, 0.0005);
 }
@@ -270,8 +271,8 @@ TEST_F(Predistorted, ProgramPointsAgreeWithTheModuleCorrection) {
     const std::string out = (dir / "out.ngc").string();
     run(c, out);
     const machine::Model model = machine::load_machine(test::machine_path(c.machine));
-    const auto input = test::rs274_moves("rs274_points_in_" + name, program(c.program), program(c.tools),
-                                         program(c.var));
+    const auto input =
+        test::rs274_moves("rs274_points_in_" + name, program(c.program), program(c.tools), program(c.var));
     const double resolution = 6e-5 * (c.program.find("inch") != std::string::npos ? 25.4 : 1.0);
     expect_same_moves(test::rs274_moves("rs274_points_out_" + name, out, program(c.tools), program(c.var)),
                       read_output(model, c, out), resolution);
@@ -370,8 +371,8 @@ TEST_F(Predistorted, CuttingForceDeflectionIsTakenOff) {
   setup.machine_axes = predistort::program_axes(model);
   setup.tools = &tools;
   setup.var_file = &parameters;
-  const auto input = test::rs274_moves("rs274_force_in", program(kPocket.program), program(kPocket.tools),
-                                       program(kPocket.var));
+  const auto input =
+      test::rs274_moves("rs274_force_in", program(kPocket.program), program(kPocket.tools), program(kPocket.var));
   const auto nominal = tip_paths(model, machine::Machine::Ideal, input, 0.05);
 
   // The tool tip under load: real machine plus compliance x force.
@@ -394,7 +395,8 @@ TEST_F(Predistorted, CuttingForceDeflectionIsTakenOff) {
       const double length = (tip.back() - tip.front()).norm();
       for (int k = 0; k <= n; ++k) {
         Eigen::Vector3d deflection = Eigen::Vector3d::Zero();
-        const Eigen::Vector3d step = tip[static_cast<std::size_t>(std::min(k + 1, n))] - tip[static_cast<std::size_t>(std::max(k - 1, 0))];
+        const Eigen::Vector3d step =
+            tip[static_cast<std::size_t>(std::min(k + 1, n))] - tip[static_cast<std::size_t>(std::max(k - 1, 0))];
         if (cutting && length > 0.1 && std::hypot(step.x(), step.y()) > 1e-9) {
           const predistort::ToolProcess& p = process.tools.at(m.tool);
           const Eigen::Vector3d t = Eigen::Vector3d(step.x(), step.y(), 0).normalized();
@@ -450,9 +452,9 @@ TEST(PredistortCli, BadInputNamesLineAndColumnAndLeavesTheOutputAlone) {
   };
   for (const auto& [text, expected] : cases) {
     std::ofstream(dir / "bad.ngc") << text;
-    const auto r = test::run_volcomp("predistort " + test::machine_path("mill3") + " " + (dir / "bad.ngc").string() +
-                           " -o " + out.string() + " --var " + program("mill3.var") + " --tool-table " +
-                           program("mill3.tbl"));
+    const auto r =
+        test::run_volcomp("predistort " + test::machine_path("mill3") + " " + (dir / "bad.ngc").string() + " -o " +
+                          out.string() + " --var " + program("mill3.var") + " --tool-table " + program("mill3.tbl"));
     EXPECT_NE(r.exit_code, 0) << text;
     EXPECT_NE(r.out.find(expected), std::string::npos) << r.out;
     std::ifstream kept(out);
@@ -487,9 +489,11 @@ TEST(PredistortCli, CannedCyclesAreWrittenOutOrRefusedWithTheReason) {
   EXPECT_TRUE(in != std::string::npos && reverse > in && forward != std::string::npos && forward > reverse) << tap.out;
   const auto stopped = run("G21 G90 G54\nG0 X0 Y0 Z50\nG84 X10 Y10 Z-5 R2 F600\nM2\n");
   EXPECT_NE(stopped.out.find("tap.ngc:3:1: error: G84: LinuxCNC refuses a tapping cycle with the spindle not turning"),
-            std::string::npos) << stopped.out;
+            std::string::npos)
+      << stopped.out;
   const auto back_bore = run("G21 G90 G54\nG0 X0 Y0 Z50\nS500 M3\nG87 X10 Y10 Z-5 R2 I1 J1 K-2 F600\nM2\n");
-  EXPECT_NE(back_bore.out.find("tap.ngc:4:1: error: G87: the back boring cycle G87 is not translated"), std::string::npos)
+  EXPECT_NE(back_bore.out.find("tap.ngc:4:1: error: G87: the back boring cycle G87 is not translated"),
+            std::string::npos)
       << back_bore.out;
 }
 
@@ -552,9 +556,9 @@ TEST(PredistortCli, AMachineSetUpInInchesReadsItsFilesInInches) {
   const std::string common = "predistort " + test::machine_path("mill3") + " " + program(kPocket.program) + " -q";
   const auto mm = test::run_volcomp(common + " -o " + (dir / "mm.ngc").string() + " --var " + program("mill3.var") +
                                     " --tool-table " + program("mill3.tbl"));
-  const auto inch = test::run_volcomp(common + " -o " + (dir / "inch.ngc").string() + " --var " +
-                                      (dir / "mill3_inch.var").string() + " --tool-table " +
-                                      (dir / "mill3_inch.tbl").string() + " --machine-units inch");
+  const auto inch =
+      test::run_volcomp(common + " -o " + (dir / "inch.ngc").string() + " --var " + (dir / "mill3_inch.var").string() +
+                        " --tool-table " + (dir / "mill3_inch.tbl").string() + " --machine-units inch");
   ASSERT_EQ(mm.exit_code, 0) << mm.out;
   ASSERT_EQ(inch.exit_code, 0) << inch.out;
   const auto body = [](const fs::path& path) {  // the program after its header comments
@@ -569,9 +573,9 @@ TEST(PredistortCli, AMachineSetUpInInchesReadsItsFilesInInches) {
   EXPECT_GT(in_mm.size(), 1000u);
   EXPECT_EQ(body(dir / "inch.ngc"), in_mm);
   // Read as millimetres, the same files are another machine: the output differs.
-  const auto wrong = test::run_volcomp(common + " -o " + (dir / "wrong.ngc").string() + " --var " +
-                                       (dir / "mill3_inch.var").string() + " --tool-table " +
-                                       (dir / "mill3_inch.tbl").string());
+  const auto wrong =
+      test::run_volcomp(common + " -o " + (dir / "wrong.ngc").string() + " --var " + (dir / "mill3_inch.var").string() +
+                        " --tool-table " + (dir / "mill3_inch.tbl").string());
   EXPECT_NE(body(dir / "wrong.ngc"), in_mm);
 
   std::ofstream(dir / "inch.ini") << "[TRAJ]\nCOORDINATES = X Y Z\nLINEAR_UNITS = inch\n[JOINT_0]\nHOME = 1\n";
@@ -589,11 +593,11 @@ TEST(PredistortCli, AMachineSetUpInInchesReadsItsFilesInInches) {
 TEST(PredistortCli, WorksAsAnAxisFilter) {
   // AXIS runs `filter PROGRAM`, reads the program from stdout and FILTER_PROGRESS=n from stderr.
   const std::string command = "AXIS_PROGRESS_BAR=1 " + std::string(VC_VOLCOMP) + " predistort " +
-                              test::machine_path("mill3") + " -o - --var " + program("mill3.var") +
-                              " --tool-table " + program("mill3.tbl") + " -q " + program(kPocket.program);
+                              test::machine_path("mill3") + " -o - --var " + program("mill3.var") + " --tool-table " +
+                              program("mill3.tbl") + " -q " + program(kPocket.program);
   const fs::path dir = test::run_folder("predistort_filter");
-  const int status = std::system((command + " > " + (dir / "out.ngc").string() + " 2> " +
-                                  (dir / "err.txt").string()).c_str());
+  const int status =
+      std::system((command + " > " + (dir / "out.ngc").string() + " 2> " + (dir / "err.txt").string()).c_str());
   EXPECT_EQ(WEXITSTATUS(status), 0);
   std::ifstream err(dir / "err.txt"), out(dir / "out.ngc");
   const std::string errors((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
@@ -612,10 +616,10 @@ TEST(PredistortCli, FlattensSubroutinesAndMapsOutputLinesToTheirSource) {
   fs::create_directories(dir / "subs");
   std::ofstream(dir / "subs" / "slot.ngc") << "o<slot> sub\nG1 X#1 F300\nG1 X0\no<slot> endsub\n";
   std::ofstream(dir / "p.ngc") << "G21 G90 G54\nG0 X0 Y0 Z5\no1 repeat [2]\no<slot> call [20]\no1 endrepeat\nM2\n";
-  const auto r = test::run_volcomp("predistort " + test::machine_path("mill3") + " " + (dir / "p.ngc").string() +
-                                   " -o " + (dir / "out.ngc").string() + " --var " + program("mill3.var") +
-                                   " --subroutine-path " + (dir / "subs").string() + " --line-map " +
-                                   (dir / "map.csv").string() + " -q");
+  const auto r =
+      test::run_volcomp("predistort " + test::machine_path("mill3") + " " + (dir / "p.ngc").string() + " -o " +
+                        (dir / "out.ngc").string() + " --var " + program("mill3.var") + " --subroutine-path " +
+                        (dir / "subs").string() + " --line-map " + (dir / "map.csv").string() + " -q");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   std::ifstream out(dir / "out.ngc"), map(dir / "map.csv");
   std::vector<std::string> lines, rows;

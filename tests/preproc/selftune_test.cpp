@@ -101,7 +101,8 @@ TEST_F(VirtualShop, LocalStrategyTakesThePartsFormErrorToTheNoise) {
                        path("local_p" + std::to_string(i + 1) + ".ngc") + files());
   }
   EXPECT_GT(form[0], 5.0) << "the true machine should differ enough from the model to need tuning";
-  for (int i = 1; i < 3; ++i) EXPECT_LE(form[static_cast<std::size_t>(i)], std::max(0.1 * form[0], 2 * kNoiseUm)) << "part " << i + 1;
+  for (int i = 1; i < 3; ++i)
+    EXPECT_LE(form[static_cast<std::size_t>(i)], std::max(0.1 * form[0], 2 * kNoiseUm)) << "part " << i + 1;
 }
 
 TEST_F(VirtualShop, ModelStrategyTunesTablesThatCarryOverToADifferentPart) {
@@ -124,7 +125,8 @@ TEST_F(VirtualShop, ModelStrategyTunesTablesThatCarryOverToADifferentPart) {
     }
   }
   EXPECT_GT(form[0], 5.0);
-  for (int i = 1; i < 3; ++i) EXPECT_LE(form[static_cast<std::size_t>(i)], std::max(0.1 * form[0], 2 * kNoiseUm)) << "part " << i + 1;
+  for (int i = 1; i < 3; ++i)
+    EXPECT_LE(form[static_cast<std::size_t>(i)], std::max(0.1 * form[0], 2 * kNoiseUm)) << "part " << i + 1;
 
   // A different part, pre-distorted with the measured tables and with the tuned ones.
   const std::string plan_b = part("part_b_points.csv");
@@ -170,7 +172,8 @@ TEST_F(VirtualShop, DwellMarksAndVibrationWavesAreFlaggedOrFilteredNotTuned) {
       path("dwell_clean_p2.ngc") + files());
   const double with = machine_and_measure(path("dwell_p2.ngc"), plan, path("dwell_r2.csv"), 32);
   const double without = machine_and_measure(path("dwell_clean_p2.ngc"), plan, path("dwell_clean_r2.csv"), 32);
-  std::cout << "part 2 form error: " << with << " um from the disturbed report, " << without << " um from the clean one\n";
+  std::cout << "part 2 form error: " << with << " um from the disturbed report, " << without
+            << " um from the clean one\n";
   EXPECT_LE(with, without + 1.0);
 }
 
@@ -245,8 +248,8 @@ TEST_F(VirtualShop, ReportsThatDoNotFitTheProgramAreRefused) {
   const std::size_t m3 = program.find("S8000 M3");
   ASSERT_NE(m3, std::string::npos);
   std::ofstream(path("fit_no_spindle.ngc")) << program.replace(m3, 8, "S8000");
-  r = test::run_volcomp("selftune " + test::machine_path("mill3") + " " + path("fit_no_spindle.ngc") + " " +
-                        report_a + " -o " + next + files());
+  r = test::run_volcomp("selftune " + test::machine_path("mill3") + " " + path("fit_no_spindle.ngc") + " " + report_a +
+                        " -o " + next + files());
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.out.find("the program cuts nothing: no feed move runs with the spindle on"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(next));
@@ -296,7 +299,8 @@ std::vector<double> numbers_of(const std::string& program) {
 
 TEST_F(VirtualShop, ACmmExportInInchesGivesTheSamePartAsOurCsv) {
   const std::string plan = part("part_a_points.csv");
-  run("predistort " + test::machine_path("mill3") + " " + part("part_a.ngc") + " -o " + path("export_p1.ngc") + files());
+  run("predistort " + test::machine_path("mill3") + " " + part("part_a.ngc") + " -o " + path("export_p1.ngc") +
+      files());
   const std::string ours = path("export_r1.csv");
   const double part1 = machine_and_measure(path("export_p1.ngc"), plan, ours, 51);
   const std::string exported = as_cmm_export(shop::read_cmm_points(ours, true), path("export_r1.txt"));
@@ -348,14 +352,17 @@ TEST_F(VirtualShop, PointsOnNoCutSurfaceAreLeftOutWithTheReason) {
   text += "EXTRA_FAR,900,0,-5,1,0,0,0.0\nEXTRA_AIR,0,0,5,0,0,1,0.0\n";
   const std::string extended = path("extra_r1_more.csv");
   std::ofstream(extended) << text;
-  const test::CommandResult r = test::run_volcomp("selftune " + test::machine_path("mill3") + " " +
-                                                  path("extra_p1.ngc") + " " + extended + " -o " + path("extra_p2.ngc") + files());
+  const test::CommandResult r =
+      test::run_volcomp("selftune " + test::machine_path("mill3") + " " + path("extra_p1.ngc") + " " + extended +
+                        " -o " + path("extra_p2.ngc") + files());
   EXPECT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("2 points left out, on no surface the program cuts"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("left out EXTRA_FAR (report line " + std::to_string(lines + 1) + "): outside the region"),
-            std::string::npos) << r.out;
+            std::string::npos)
+      << r.out;
   EXPECT_NE(r.out.find("left out EXTRA_AIR (report line " + std::to_string(lines + 2) + "): no cut reaches it"),
-            std::string::npos) << r.out;
+            std::string::npos)
+      << r.out;
   EXPECT_TRUE(fs::exists(path("extra_p2.ngc")));
 }
 
@@ -429,9 +436,9 @@ TEST_F(VirtualShop5Axis, SwarfPartTunesTablesThatCarryOverToOtherParts) {
   const Form part1 = measured(path("cone_p1.ngc"), plan, path("cone_r1.csv"), 11);
   std::cout << "swarf cone, part 1 (pre-distorted with the model): PV " << part1.pv_um << " um, RMS " << part1.rms_um
             << " um\n";
-  std::cout << run_ok("selftune " + test::machine_path("mc300") + " " + path("cone_p1.ngc") + " " + path("cone_r1.csv") +
-                      " -o " + path("cone_model_p2.ngc") + " --strategy model --nominal " + p0 + " --tables-out " +
-                      path("cone_tuned") + files());
+  std::cout << run_ok("selftune " + test::machine_path("mc300") + " " + path("cone_p1.ngc") + " " +
+                      path("cone_r1.csv") + " -o " + path("cone_model_p2.ngc") + " --strategy model --nominal " + p0 +
+                      " --tables-out " + path("cone_tuned") + files());
   const Form model = measured(path("cone_model_p2.ngc"), plan, path("cone_model_r2.csv"), 12);
   std::cout << "model strategy, part 2: PV " << model.pv_um << " um, RMS " << model.rms_um << " um\n";
   EXPECT_LE(model.rms_um, 0.7);
@@ -441,8 +448,8 @@ TEST_F(VirtualShop5Axis, SwarfPartTunesTablesThatCarryOverToOtherParts) {
   // frames turn): the window's angle keeps to the cuts of nearby C. Its tilt here (some 30
   // urad, 0.3 um over the wall's height) is within the noise of the few points near each
   // piece: the printout says where it was turned.
-  std::cout << run_ok("selftune " + test::machine_path("mc300") + " " + path("cone_p1.ngc") + " " + path("cone_r1.csv") +
-                      " -o " + path("cone_local_p2.ngc") + files());
+  std::cout << run_ok("selftune " + test::machine_path("mc300") + " " + path("cone_p1.ngc") + " " +
+                      path("cone_r1.csv") + " -o " + path("cone_local_p2.ngc") + files());
   const Form local = measured(path("cone_local_p2.ngc"), plan, path("cone_local_r2.csv"), 13);
   std::cout << "local strategy, part 2: PV " << local.pv_um << " um, RMS " << local.rms_um << " um\n";
   EXPECT_LE(local.rms_um, 0.7);
@@ -456,8 +463,9 @@ TEST_F(VirtualShop5Axis, SwarfPartTunesTablesThatCarryOverToOtherParts) {
     const Form shipped = measured(path(other + "_model.ngc"), plan_b, path(other + "_model.csv"), 15);
     const Form tuned = measured(path(other + "_tuned.ngc"), plan_b, path(other + "_tuned.csv"), 16);
     std::cout << other << ": PV raw " << raw.pv_um << " um, with the shipped model " << shipped.pv_um
-              << " um, with the tables tuned on the cone " << tuned.pv_um << " um (" << 100 * (1 - tuned.pv_um / raw.pv_um)
-              << " % below raw, " << 100 * (1 - tuned.pv_um / shipped.pv_um) << " % below the shipped model)\n";
+              << " um, with the tables tuned on the cone " << tuned.pv_um << " um ("
+              << 100 * (1 - tuned.pv_um / raw.pv_um) << " % below raw, " << 100 * (1 - tuned.pv_um / shipped.pv_um)
+              << " % below the shipped model)\n";
     // Issue 22's targets (the cone of another angle meets them by a small margin: with
     // another noise draw it ended at 89.8 % below raw).
     EXPECT_LE(tuned.pv_um, 0.3 * shipped.pv_um) << other;
@@ -499,7 +507,8 @@ TEST_F(VirtualShop5Axis, LocalStrategyTurnsTheToolOnASwarfWall) {
   const auto measured_on_tilted = [&](const std::string& program, const std::string& report, unsigned seed) {
     return test_part(path("tilted/mc300.toml"), files(), program, part("cone_a_points.csv"), report, seed);
   };
-  run_ok("predistort " + test::machine_path("mc300") + " " + part("cone_a.ngc") + " -o " + path("lean_p1.ngc") + files());
+  run_ok("predistort " + test::machine_path("mc300") + " " + part("cone_a.ngc") + " -o " + path("lean_p1.ngc") +
+         files());
   const Form part1 = measured_on_tilted(path("lean_p1.ngc"), path("lean_r1.csv"), 21);
   const double lean1 = wall_lean_um(path("lean_r1.csv.exact.csv"));
   std::cout << "tilted spindle, part 1: PV " << part1.pv_um << " um, RMS " << part1.rms_um << " um, wall lean " << lean1
@@ -564,7 +573,8 @@ TEST_F(VirtualShopHeadTable, BothStrategiesTakeA32PocketToTheNoise) {
   run_ok("predistort " + machine() + " " + p0 + " -o " + path("p1.ngc") + files());
   const Form part1 = measured(path("p1.ngc"), plan, path("r1.csv"), 1);
   std::cout << "bc_head 3+2 pocket: raw PV " << raw.pv_um << " um, RMS " << raw.rms_um
-            << " um; part 1 (pre-distorted with the model): PV " << part1.pv_um << " um, RMS " << part1.rms_um << " um\n";
+            << " um; part 1 (pre-distorted with the model): PV " << part1.pv_um << " um, RMS " << part1.rms_um
+            << " um\n";
   EXPECT_GT(part1.pv_um, 5.0) << "the true machine should differ enough from the model to need tuning";
 
   std::cout << run_ok("selftune " + machine() + " " + path("p1.ngc") + " " + path("r1.csv") + " -o " +
@@ -574,9 +584,9 @@ TEST_F(VirtualShopHeadTable, BothStrategiesTakeA32PocketToTheNoise) {
   EXPECT_LE(local.rms_um, 0.7);
   EXPECT_LE(local.pv_um, 3.0);
 
-  const std::string summary = run_ok("selftune " + machine() + " " + path("p1.ngc") + " " + path("r1.csv") + " -o " +
-                                     path("model_p2.ngc") + " --strategy model --nominal " + p0 + " --tables-out " +
-                                     path("tuned") + files());
+  const std::string summary =
+      run_ok("selftune " + machine() + " " + path("p1.ngc") + " " + path("r1.csv") + " -o " + path("model_p2.ngc") +
+             " --strategy model --nominal " + p0 + " --tables-out " + path("tuned") + files());
   std::cout << summary;
   EXPECT_NE(summary.find("EX0B = "), std::string::npos) << "the head's location errors are among the unknowns";
   const Form model = measured(path("model_p2.ngc"), plan, path("model_r2.csv"), 3);
@@ -597,7 +607,6 @@ TEST_F(VirtualShopHeadTable, BothStrategiesTakeA32PocketToTheNoise) {
             << " um, with the tables tuned on pocket A " << b_tuned.pv_um << " um\n";
   EXPECT_LT(b_tuned.pv_um, b_shipped.pv_um);  // one pose's part says little about another pose (see the README)
 }
-
 
 // The 5-axis side contour on the head-table machine (issue 22): a 70 x 50 pocket with R15
 // corners whose walls are drafted 35 deg, cut by the tool's side lying on them, the head
@@ -639,8 +648,8 @@ TEST_F(VirtualShopHeadTable, SwarfContourTunesTablesThatCarryOverToOtherParts) {
     const Eigen::Vector2d from_ring(s.tip.x() + 50, s.tip.y() + 25);
     if (from_ring.norm() < 20) {
       const Eigen::Vector2d n = from_ring.normalized();
-      worst = std::max(worst, (s.axis - Eigen::Vector3d(std::sin(ring) * n.x(), std::sin(ring) * n.y(), std::cos(ring)))
-                                  .norm());
+      worst = std::max(
+          worst, (s.axis - Eigen::Vector3d(std::sin(ring) * n.x(), std::sin(ring) * n.y(), std::cos(ring))).norm());
       ++on_ring;
       continue;
     }

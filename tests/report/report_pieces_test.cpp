@@ -49,7 +49,8 @@ TEST(ReportBase64, Rfc4648Examples) {
   EXPECT_EQ(report::base64("foob"), "Zm9vYg==");
   EXPECT_EQ(report::base64("fooba"), "Zm9vYmE=");
   EXPECT_EQ(report::base64("foobar"), "Zm9vYmFy");
-  EXPECT_EQ(report::base64(std::string("\x89PNG\r\n\x1a\n", 8)), "iVBORw0KGgo=");  // what every embedded picture starts with
+  EXPECT_EQ(report::base64(std::string("\x89PNG\r\n\x1a\n", 8)),
+            "iVBORw0KGgo=");  // what every embedded picture starts with
   EXPECT_EQ(report::base64(std::string("\xff\xfe\x00", 3)), "//4A");
 }
 

@@ -119,7 +119,8 @@ TEST_F(VolcompReport, PageHoldsEveryPartAndNeedsNothingElse) {
     const std::size_t begin = at + prefix.size(), end = html.find('"', begin);
     ASSERT_NE(end, std::string::npos);
     const std::string data = html.substr(begin, end - begin);
-    EXPECT_EQ(data.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/="), std::string::npos)
+    EXPECT_EQ(data.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/="),
+              std::string::npos)
         << "picture " << images << ": not base64";
     EXPECT_EQ(data.rfind("iVBORw0KGgo", 0), 0u) << "picture " << images << " is not a PNG";
     EXPECT_GT(data.size(), 20000u) << "picture " << images << " is nearly empty";
@@ -142,9 +143,9 @@ TEST_F(VolcompReport, ChecksumsAreTheFilesOwn) {
   ASSERT_EQ(output_->exit_code, 0) << output_->out;
   const std::string html = test::file_text(*page_);
   for (const std::string& file :
-       {test::machine_path("mc300"), test::source_path("tables/data/mc300/x.csv"), test::source_path("tables/data/mc300/y.csv"),
-        test::source_path("tables/data/mc300/z.csv"), test::source_path("tables/data/mc300/b.csv"),
-        test::source_path("tables/data/mc300/c.csv")}) {
+       {test::machine_path("mc300"), test::source_path("tables/data/mc300/x.csv"),
+        test::source_path("tables/data/mc300/y.csv"), test::source_path("tables/data/mc300/z.csv"),
+        test::source_path("tables/data/mc300/b.csv"), test::source_path("tables/data/mc300/c.csv")}) {
     const test::CommandResult sum = test::run_command("sha256sum '" + file + "'");
     ASSERT_EQ(sum.exit_code, 0);
     const std::string row = "<td>" + fs::absolute(file).lexically_normal().string() + "</td>";
@@ -158,9 +159,9 @@ TEST_F(VolcompReport, ChecksumsAreTheFilesOwn) {
 
 bool have_chromium() { return test::run_command("command -v chromium >/dev/null 2>&1").exit_code == 0; }
 
-#define SKIP_WITHOUT_CHROMIUM()                                                                                 \
-  if (!have_chromium())                                                                                        \
-  GTEST_SKIP() << "chromium is not installed (apt-get install --no-install-recommends chromium; .ci/setup "    \
+#define SKIP_WITHOUT_CHROMIUM()                                                                             \
+  if (!have_chromium())                                                                                     \
+  GTEST_SKIP() << "chromium is not installed (apt-get install --no-install-recommends chromium; .ci/setup " \
                   "installs it): the report is not checked in a browser"
 
 // Headless chromium on `page` with `options`; its messages (stderr) go to `log`. As root it
@@ -235,7 +236,8 @@ TEST(VolcompReportBrowser, ProbeSeesBrokenPicturesRequestsAndConsoleErrors) {
   write(folder / "bad.html",
         "<!DOCTYPE html><html><body><img src=\"missing.png\"><img src=\"http://192.0.2.1/x.png\">"
         "<script>console.error('boom'); not_defined();</script></body></html>\n");
-  const test::CommandResult dom = chromium("--dump-dom", probed_copy(folder / "bad.html", folder), folder / "chromium.log");
+  const test::CommandResult dom =
+      chromium("--dump-dom", probed_copy(folder / "bad.html", folder), folder / "chromium.log");
   ASSERT_EQ(dom.exit_code, 0);
   EXPECT_NE(dom.out.find("images=2 decoded=0 fetched=1 [http://192.0.2.1/x.png]"), std::string::npos) << dom.out;
   EXPECT_EQ(page_messages(folder / "chromium.log").size(), 2u) << test::file_text(folder / "chromium.log");
@@ -258,7 +260,8 @@ TEST_F(VolcompReport, PrintsToFifteenA4Pages) {
   const std::string bytes = test::file_text(pdf);
   ASSERT_EQ(bytes.rfind("%PDF-", 0), 0u) << "not a PDF";
   const std::regex page_object("/Type\\s*/Page[^s]");
-  const auto pages = std::distance(std::sregex_iterator(bytes.begin(), bytes.end(), page_object), std::sregex_iterator());
+  const auto pages =
+      std::distance(std::sregex_iterator(bytes.begin(), bytes.end(), page_object), std::sregex_iterator());
   EXPECT_EQ(pages, 15);
   // A4 is 595.28 x 841.89 pt; chromium writes its page size in its own rounding.
   const std::regex media_box("/MediaBox \\[0 0 (59[45]\\.[0-9]+) (84[12]\\.[0-9]+)\\]");
@@ -271,8 +274,8 @@ TEST_F(VolcompReport, ScreenshotShowsThePage) {
   ASSERT_EQ(output_->exit_code, 0) << output_->out;
   const fs::path folder = scratch("screenshot");
   const fs::path png = folder / "report.png";
-  const test::CommandResult r = chromium("--hide-scrollbars --window-size=1280,1600 --screenshot='" + png.string() + "'",
-                                         *page_, folder / "chromium.log");
+  const test::CommandResult r = chromium(
+      "--hide-scrollbars --window-size=1280,1600 --screenshot='" + png.string() + "'", *page_, folder / "chromium.log");
   ASSERT_EQ(r.exit_code, 0) << test::file_text(folder / "chromium.log");
   const std::string bytes = test::file_text(png);
   ASSERT_GT(bytes.size(), 50000u) << "an empty page";
@@ -314,8 +317,8 @@ std::vector<std::vector<std::array<double, 3>>> map_blocks(const fs::path& path)
 // method's tables leave less than the usual practice's on every sheet (the MC-300's known gain).
 TEST(VolcompPlotVolume, MapAgreesWithTheModelAndIsQuick) {
   const fs::path folder = scratch("volume");
-  const test::CommandResult r =
-      test::run_volcomp("plot " + test::machine_path("mc300") + " -o " + folder.string() + " --volume --tool-lengths 100");
+  const test::CommandResult r = test::run_volcomp("plot " + test::machine_path("mc300") + " -o " + folder.string() +
+                                                  " --volume --tool-lengths 100");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("volkins: 0 on the model; what remains is measurement uncertainty"), std::string::npos);
   const std::regex seconds("volume map: 2646 poses \\(21 x 21 x 3 levels per sheet\\), ([0-9.]+) s");
@@ -332,7 +335,8 @@ TEST(VolcompPlotVolume, MapAgreesWithTheModelAndIsQuick) {
     const std::size_t at = r.out.find(std::string(sheet) + ".png");
     const std::string line = r.out.substr(r.out.rfind("\n", at) + 1, at - r.out.rfind("\n", at));
     std::smatch f;
-    ASSERT_TRUE(std::regex_search(line, f, std::regex("none ([0-9.]+), usual practice ([0-9.]+), modified method ([0-9.]+)")))
+    ASSERT_TRUE(
+        std::regex_search(line, f, std::regex("none ([0-9.]+), usual practice ([0-9.]+), modified method ([0-9.]+)")))
         << line;
     for (int c = 0; c < 3; ++c) {
       double largest = 0;
@@ -345,10 +349,10 @@ TEST(VolcompPlotVolume, MapAgreesWithTheModelAndIsQuick) {
       // A corner and an inner point of the lowest level, uncompensated, against `volcomp error`.
       const fs::path poses = folder / "poses.csv";
       const auto& low = blocks[0];
-      write(poses, "x,y,z,b,c\n" + std::to_string(low[0][0]) + "," + std::to_string(low[0][1]) +
-                       ",-310,0,0\n" + std::to_string(low[200][0]) + "," + std::to_string(low[200][1]) + ",-310,0,0\n");
-      const test::CommandResult e =
-          test::run_volcomp("error " + test::machine_path("mc300") + " --poses " + poses.string() + " --tool-length 100");
+      write(poses, "x,y,z,b,c\n" + std::to_string(low[0][0]) + "," + std::to_string(low[0][1]) + ",-310,0,0\n" +
+                       std::to_string(low[200][0]) + "," + std::to_string(low[200][1]) + ",-310,0,0\n");
+      const test::CommandResult e = test::run_volcomp("error " + test::machine_path("mc300") + " --poses " +
+                                                      poses.string() + " --tool-length 100");
       ASSERT_EQ(e.exit_code, 0) << e.out;
       const std::string errors_csv = (folder / "errors.csv").string();
       write(errors_csv, e.out);
@@ -396,7 +400,8 @@ TEST(VolcompPlotVolume, BadToolLengthsAreRefusedWithoutFiles) {
   const test::CommandResult r =
       test::run_volcomp("plot " + test::machine_path("mc300") + " -o " + folder.string() + " --tool-lengths 0,100");
   EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.out.find("--tool-lengths, --plane and --controller are for the volume map: add --volume"), std::string::npos)
+  EXPECT_NE(r.out.find("--tool-lengths, --plane and --controller are for the volume map: add --volume"),
+            std::string::npos)
       << r.out;
   // A negative tool length is refused before any picture is drawn: the folder stays empty.
   const test::CommandResult negative = test::run_volcomp("plot " + test::machine_path("mc300") + " -o " +
@@ -416,7 +421,8 @@ void expect_refused(const std::string& arguments, const std::string& message, co
   const test::CommandResult r = test::run_volcomp("report " + arguments + " -o " + page.string());
   EXPECT_NE(r.exit_code, 0) << arguments;
   EXPECT_NE(r.out.find(message), std::string::npos) << "expected \"" << message << "\" in: " << r.out;
-  EXPECT_EQ(fs::exists(page) ? test::file_text(page) : std::string("(none)"), before) << "the page was written or changed";
+  EXPECT_EQ(fs::exists(page) ? test::file_text(page) : std::string("(none)"), before)
+      << "the page was written or changed";
   // No temporary left beside it either.
   for (const auto& entry : fs::directory_iterator(page.parent_path()))
     EXPECT_NE(entry.path().filename().string().rfind("." + page.filename().string(), 0), 0u) << entry.path();

@@ -77,7 +77,8 @@ TEST_P(NoAllocation, RealTimeFunctionsNeverCallMalloc) {
       sink += static_cast<double>(world_from_joints(model, w, joints, L, forward, world));
       // With the full corrections volkins keeps (the fade band's seeds).
       const Joints full = (c.full_joints.size() ? c.full_joints : c.joints) - q;
-      Applied kept_inverse{1.0, &joints, &correction, &bound, &full}, kept_forward{1.0, &world, &correction, nullptr, &full};
+      Applied kept_inverse{1.0, &joints, &correction, &bound, &full},
+          kept_forward{1.0, &world, &correction, nullptr, &full};
       kept_inverse.conditions = kept_forward.conditions = &at;
       sink += static_cast<double>(joints_from_world(model, w, q, L, kept_inverse, joints));
       sink += static_cast<double>(world_from_joints(model, w, joints, L, kept_forward, world));

@@ -85,17 +85,32 @@ struct Sample {
   std::string headless_options;  // headless_sample.py's: the TCP kinematics type, values of GUI pins
   std::size_t min_switches;      // kinematics switches the demo makes
 };
-const Sample kXyzbc{kSamples / "table-rotary-tilting", "xyzbc-trt.ini", "demos/xyzbc_switchkins.ngc",
-                    "xyzbc-trt.toml", xyzbc_inverse, "", 8};
-const Sample kXyzac{kSamples / "table-rotary-tilting", "xyzac-trt.ini", "demos/xyzac_switchkins.ngc",
-                    "xyzac-trt.toml", xyzac_inverse, "", 8};
+const Sample kXyzbc{kSamples / "table-rotary-tilting",
+                    "xyzbc-trt.ini",
+                    "demos/xyzbc_switchkins.ngc",
+                    "xyzbc-trt.toml",
+                    xyzbc_inverse,
+                    "",
+                    8};
+const Sample kXyzac{kSamples / "table-rotary-tilting",
+                    "xyzac-trt.ini",
+                    "demos/xyzac_switchkins.ngc",
+                    "xyzac-trt.toml",
+                    xyzac_inverse,
+                    "",
+                    8};
 // Its kinematics type 0 is 5axiskins (no sparm=identityfirst); the vismach model 5axisgui, which
 // needs X, gave the pivot's mechanical length (its default pivot_len): the headless copy sets it.
-const Sample kBridgemill{kSamples / "bridgemill", "5axis.ini", "5axisgui.ngc", "5axis.toml", bridgemill_inverse,
-                         " --tcp-type 0 --sets :gui-pivot-len=250", 0};
+const Sample kBridgemill{kSamples / "bridgemill",
+                         "5axis.ini",
+                         "5axisgui.ngc",
+                         "5axis.toml",
+                         bridgemill_inverse,
+                         " --tcp-type 0 --sets :gui-pivot-len=250",
+                         0};
 
 struct StockComparison {
-  double largest = 0;      // joints against the stock kinematics (mm or deg)
+  double largest = 0;  // joints against the stock kinematics (mm or deg)
   std::size_t tcp = 0, switches = 0;
 };
 
@@ -142,9 +157,9 @@ class SampleConfig : public ::testing::Test {
   }
 
   static void retrofit(const Sample& sample, const fs::path& dir, const fs::path& user) {
-    const test::CommandResult init = test::run_in(
-        dir, std::string(VC_VOLCOMP) + " init " + (user / sample.ini).string() + " -o " +
-                 (user / sample.machine).string() + " --patch " + (dir / "volkins.patch").string());
+    const test::CommandResult init =
+        test::run_in(dir, std::string(VC_VOLCOMP) + " init " + (user / sample.ini).string() + " -o " +
+                              (user / sample.machine).string() + " --patch " + (dir / "volkins.patch").string());
     ASSERT_EQ(init.exit_code, 0) << init.out;
     const test::CommandResult patch =
         test::run_in(dir, "patch -p1 -d " + user.string() + " -i " + (dir / "volkins.patch").string());
@@ -157,10 +172,9 @@ class SampleConfig : public ::testing::Test {
   static trace::SessionTrace run(const Sample& sample, const fs::path& dir, const fs::path& config,
                                  const machine::Model& model, const std::vector<fs::path>& extra = {}) {
     const fs::path run_dir = dir / "run";
-    const test::CommandResult h =
-        test::run_in(dir, "python3 " + test::source_path("tests/session/headless_sample.py") + " " + config.string() +
-                              " " + sample.ini + " " + run_dir.string() + " --program " + sample.program +
-                              sample.headless_options);
+    const test::CommandResult h = test::run_in(
+        dir, "python3 " + test::source_path("tests/session/headless_sample.py") + " " + config.string() + " " +
+                 sample.ini + " " + run_dir.string() + " --program " + sample.program + sample.headless_options);
     EXPECT_EQ(h.exit_code, 0) << h.out;
     for (const fs::path& f : extra) {
       fs::copy_file(f, run_dir / f.filename(), fs::copy_options::overwrite_existing);
@@ -214,13 +228,13 @@ class SampleConfig : public ::testing::Test {
                                               const std::string& locations) {
     const auto [dir, user] = retrofitted(sample, name);
     std::ofstream table(dir / "x_errors.csv");
-    table << "x[mm],EXX[um],EYX[um],EZX[um],EAX[arcsec],EBX[arcsec],ECX[arcsec]\n"
-             "-200,-6,2,-1,1.5,-2,1\n-100,-2,3,0,2,-1,0.5\n0,0,2,1,1,0,0\n100,3,0,1,-0.5,1.5,-0.5\n200,8,-2,0,-2,2.5,-1\n";
+    table
+        << "x[mm],EXX[um],EYX[um],EZX[um],EAX[arcsec],EBX[arcsec],ECX[arcsec]\n"
+           "-200,-6,2,-1,1.5,-2,1\n-100,-2,3,0,2,-1,0.5\n0,0,2,1,1,0,0\n100,3,0,1,-0.5,1.5,-0.5\n200,8,-2,0,-2,2.5,-1\n";
     table.close();
-    const test::CommandResult perturb =
-        test::run_in(dir, std::string(VC_VOLCOMP) + " perturb " + (user / sample.machine).string() + " -o " +
-                              (dir / "measured").string() + " " + locations + " --add-table " +
-                              (dir / "x_errors.csv").string());
+    const test::CommandResult perturb = test::run_in(
+        dir, std::string(VC_VOLCOMP) + " perturb " + (user / sample.machine).string() + " -o " +
+                 (dir / "measured").string() + " " + locations + " --add-table " + (dir / "x_errors.csv").string());
     EXPECT_EQ(perturb.exit_code, 0) << perturb.out;
     const fs::path measured = dir / "measured" / sample.machine;
     const machine::Model model = machine::load_machine(measured.string());
@@ -264,13 +278,17 @@ class SampleConfig : public ::testing::Test {
   }
 };
 
-TEST_F(SampleConfig, XyzbcStockKinematicsAreTheTranscribedOnes) { expect_stock_transcribed(kXyzbc, "sample_xyzbc_stock"); }
+TEST_F(SampleConfig, XyzbcStockKinematicsAreTheTranscribedOnes) {
+  expect_stock_transcribed(kXyzbc, "sample_xyzbc_stock");
+}
 
 TEST_F(SampleConfig, XyzbcRetrofittedWithZeroErrorsVolkinsGivesTheStockJoints) {
   expect_stock_joints(kXyzbc, "sample_xyzbc_volkins");
 }
 
-TEST_F(SampleConfig, XyzacStockKinematicsAreTheTranscribedOnes) { expect_stock_transcribed(kXyzac, "sample_xyzac_stock"); }
+TEST_F(SampleConfig, XyzacStockKinematicsAreTheTranscribedOnes) {
+  expect_stock_transcribed(kXyzac, "sample_xyzac_stock");
+}
 
 TEST_F(SampleConfig, XyzacRetrofittedWithZeroErrorsVolkinsGivesTheStockJoints) {
   expect_stock_joints(kXyzac, "sample_xyzac_volkins");

@@ -52,9 +52,8 @@ inline void expect_compensated(const trace::TraceSummary& s, int model_rotaries,
   EXPECT_LT(direction_where_full, 1e-6) << what << ": the tool direction where it is corrected";
   // What remains at the tool is LinuxCNC's joint smoothing of a corrected path (~1e-5 mm).
   EXPECT_LT(e.tip_mm, 1e-4) << what;
-  std::cout << what << ": module-core max " << e.mismatch << ", commanded pose residual max " << e.pose_mm
-            << " mm / " << e.pose_rad << " rad, tool tip after LinuxCNC's interpolation max " << e.tip_mm * 1e3
-            << " um\n";
+  std::cout << what << ": module-core max " << e.mismatch << ", commanded pose residual max " << e.pose_mm << " mm / "
+            << e.pose_rad << " rad, tool tip after LinuxCNC's interpolation max " << e.tip_mm * 1e3 << " um\n";
 }
 
 }  // namespace vc::test

@@ -53,12 +53,13 @@ void probing_loop(const std::string& name, double noise_um) {
     const machine::Axis& a = m.axes[static_cast<std::size_t>(joint)];
     return component < 3 ? a.location_mm[component] : a.location_rad[component - 3];
   };
-  const std::vector<shop::LocationValue> changes = {
-      {c, 0, 0.015}, {c, 1, -0.010}, {c, 3, -3 * kArcsec}, {b, 0, -0.012}, {b, 2, 0.008}, {b, 5, 6 * kArcsec}};
+  const std::vector<shop::LocationValue> changes = {{c, 0, 0.015},  {c, 1, -0.010}, {c, 3, -3 * kArcsec},
+                                                    {b, 0, -0.012}, {b, 2, 0.008},  {b, 5, 6 * kArcsec}};
   std::vector<shop::LocationValue> truth_values;
-  for (const shop::LocationValue& v : changes) truth_values.push_back({v.joint, v.component, location(model, v.joint, v.component) + v.value});
-  const std::string truth_file =
-      shop::write_machine_with_tables(model, (dir / "true").string(), {}, "session test: B and C lines off", truth_values);
+  for (const shop::LocationValue& v : changes)
+    truth_values.push_back({v.joint, v.component, location(model, v.joint, v.component) + v.value});
+  const std::string truth_file = shop::write_machine_with_tables(model, (dir / "true").string(), {},
+                                                                 "session test: B and C lines off", truth_values);
   const machine::Model truth = machine::load_machine(truth_file);
   for (const shop::LocationValue& v : changes)
     ASSERT_NEAR(location(truth, v.joint, v.component) - location(model, v.joint, v.component), v.value, 1e-12);
@@ -85,10 +86,11 @@ void probing_loop(const std::string& name, double noise_um) {
       << "net probe simsphere.probe => motion.probe-input\n";
 
   // The session: a G38.2 that ends without contact, or any other error, fails it.
-  r = test::run_in(dir, "bash " + test::source_path("kins/configs/run_headless.sh") + " " +
-                            test::source_path("kins/configs/mc300/mc300.ini") + " " + (dir / "run").string() +
-                            " --compensation off --program " + (dir / "plan.ngc").string() + " --halfile " +
-                            (dir / "simsphere.hal").string() + " --set DRIVER.TRACE=none",
+  r = test::run_in(dir,
+                   "bash " + test::source_path("kins/configs/run_headless.sh") + " " +
+                       test::source_path("kins/configs/mc300/mc300.ini") + " " + (dir / "run").string() +
+                       " --compensation off --program " + (dir / "plan.ngc").string() + " --halfile " +
+                       (dir / "simsphere.hal").string() + " --set DRIVER.TRACE=none",
                    900);
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const fs::path log = dir / "run/kins/configs/mc300/probe.txt";
@@ -110,7 +112,8 @@ void probing_loop(const std::string& name, double noise_um) {
     ASSERT_TRUE(words >> point >> pose >> v[0] >> v[1] >> v[2] >> v[3] >> v[4] >> v[5] >> v[6] >> v[7]) << line;
     machine::Joints q(5);
     q << v[2] + v[5], v[3] + v[6], v[4] + v[7], v[0], v[1];  // #5061.. + G54, then B C
-    gaps_um.push_back(((machine::tool_pose(truth, machine::Machine::Real, q, length).tip_mm - sphere).norm() - reach) * 1e3);
+    gaps_um.push_back(((machine::tool_pose(truth, machine::Machine::Real, q, length).tip_mm - sphere).norm() - reach) *
+                      1e3);
     ++per_pose[pose];
   }
   ASSERT_EQ(per_pose.size(), 9u);
@@ -129,8 +132,8 @@ void probing_loop(const std::string& name, double noise_um) {
   } else {
     EXPECT_LT(sd, latch_um) << "a perfect probe's trips scatter by the latch's delay only";
   }
-  std::cout << gaps_um.size() << " trips: true gap ball-sphere mean " << mean << " um, sd " << sd
-            << " um (probe noise " << noise_um << " um, latch delay up to " << latch_um << " um)\n";
+  std::cout << gaps_um.size() << " trips: true gap ball-sphere mean " << mean << " um, sd " << sd << " um (probe noise "
+            << noise_um << " um, latch delay up to " << latch_um << " um)\n";
 
   // Identification on the nominal file: the truth within 3 standard uncertainties.
   r = test::run_volcomp("identify sphere " + nominal_file + " " + log.string() +
@@ -163,8 +166,8 @@ void probing_loop(const std::string& name, double noise_um) {
     // uncertainty does not hold: allowed on top, the delay itself for lengths and the delay
     // over a 50 mm lever for angles (0.17 um -> 0.7 arcsec).
     const double bias = noise_um > 0 ? 0.0 : component < 3 ? latch_um : latch_um * 1e-3 / 50.0 / kArcsec;
-    EXPECT_LE(std::abs(e.value - t), 3 * e.uncertainty + bias) << symbol << " " << e.value << " +- " << e.uncertainty
-                                                                 << ", truth " << t;
+    EXPECT_LE(std::abs(e.value - t), 3 * e.uncertainty + bias)
+        << symbol << " " << e.value << " +- " << e.uncertainty << ", truth " << t;
     EXPECT_NEAR(location(written, joint, component) * scale, e.value, 0.01) << symbol << " in the written file";
     std::cout << symbol << ": identified " << e.value << " +- " << e.uncertainty << ", truth " << t << ", nominal file "
               << location(model, joint, component) * scale << (component < 3 ? " um" : " arcsec") << "\n";

@@ -43,8 +43,8 @@ class StockTablesSession : public ::testing::Test {
     model_ = new machine::Model(machine::load_machine(test::machine_path("mc300")));
     fit_tables::StudyOptions o;
     o.tool_lengths_mm = {0, 100, 200};
-    study_ = new fit_tables::Study(fit_tables::run_study(
-        *model_, fit_tables::load_controller(fit_tables::controller_file("linuxcnc")), o));
+    study_ = new fit_tables::Study(
+        fit_tables::run_study(*model_, fit_tables::load_controller(fit_tables::controller_file("linuxcnc")), o));
   }
   static void TearDownTestSuite() {
     delete study_;
@@ -54,10 +54,11 @@ class StockTablesSession : public ::testing::Test {
   // One headless session of the stock configuration; its trace checked against the model.
   static trace::TraceSummary run(const std::string& name, const std::string& options, trace::SessionTrace& t) {
     const fs::path dir = test::run_folder(name);
-    const test::CommandResult r = test::run_in(
-        dir, "bash " + test::source_path("kins/configs/run_headless.sh") + " " + test::source_path(kStockIni) + " " +
-                 (dir / "run").string() + " " + options,
-        900);
+    const test::CommandResult r =
+        test::run_in(dir,
+                     "bash " + test::source_path("kins/configs/run_headless.sh") + " " + test::source_path(kStockIni) +
+                         " " + (dir / "run").string() + " " + options,
+                     900);
     EXPECT_EQ(r.exit_code, 0) << r.out;
     if (r.exit_code != 0) throw std::runtime_error("session failed: " + r.out);
     t = trace::read_session_trace((dir / "run/kins/configs/mc300/trace.csv").string(), *model_);
@@ -74,12 +75,16 @@ class StockTablesSession : public ::testing::Test {
     std::vector<fit_tables::LinuxcncComp> comps;
     std::vector<fit_tables::JointLimits> limits;
     for (int j = 0; j < 5; ++j) {
-      comps.push_back(folder.empty() ? fit_tables::LinuxcncComp{}
-                                     : fit_tables::read_linuxcnc_comp(test::file_text(fs::path(folder) / comp_file_name(j)), 1));
+      comps.push_back(folder.empty()
+                          ? fit_tables::LinuxcncComp{}
+                          : fit_tables::read_linuxcnc_comp(test::file_text(fs::path(folder) / comp_file_name(j)), 1));
       const std::string section = "JOINT_" + std::to_string(j);
       const double home = test::ini_value(kStockIni, section, "HOME");  // HOME_OFFSET: not set, 0
       limits.push_back({test::ini_value(kStockIni, section, "MAX_VELOCITY"),
-                        test::ini_value(kStockIni, section, "MAX_ACCELERATION"), home > 0 ? 1 : home < 0 ? -1 : 0});
+                        test::ini_value(kStockIni, section, "MAX_ACCELERATION"),
+                        home > 0   ? 1
+                        : home < 0 ? -1
+                                   : 0});
     }
     fit_tables::CompReplay replay = fit_tables::replay_comp_files(*model_, t, s, comps, limits, 1e-3);
     settled = std::move(replay.settled);
@@ -91,7 +96,8 @@ class StockTablesSession : public ::testing::Test {
                                        const Eigen::VectorXd& x) {
     std::vector<fit_tables::Pose> poses;
     for (const trace::SampleCheck& c : s.samples)
-      poses.push_back({trace::interpolated(t.world, c.sample), model_->correction_length(t.tool_offset_mm[c.sample - 1])});
+      poses.push_back(
+          {trace::interpolated(t.world, c.sample), model_->correction_length(t.tool_offset_mm[c.sample - 1])});
     return fit_tables::table_errors(*model_, study_->set, x, poses);
   }
 
@@ -150,18 +156,22 @@ TEST_F(StockTablesSession, SamplePartRunsAsTheFitPredictsAndBeatsTheUsualPractic
       unsettled += !settled[i];
       shifted = std::max(shifted, s.samples[i].module_mismatch);
     }
-    EXPECT_LT(worst_simulated, 0.1) << what << ": the session's tool-tip error differs from the simulated controller's (um)";
+    EXPECT_LT(worst_simulated, 0.1) << what
+                                    << ": the session's tool-tip error differs from the simulated controller's (um)";
     EXPECT_LT(worst_fitted, 0.1) << what << ": the session's tool-tip error differs from the fit's prediction (um)";
     EXPECT_LT(unsettled, s.samples.size() / 2) << what;
-    std::cout << what << ": tool tip max " << max_um(s) << " um; the session against the simulated controller max "
-              << worst_simulated << " um, against the fit's prediction max " << worst_fitted << " um (the "
-              << s.samples.size() - unsettled << " samples where every joint has its table's value; " << unsettled
-              << " not: a joint that has not moved since LinuxCNC started has no correction yet); joints moved by the tables max " << shifted << " (mm or deg)\n";
+    std::cout
+        << what << ": tool tip max " << max_um(s) << " um; the session against the simulated controller max "
+        << worst_simulated << " um, against the fit's prediction max " << worst_fitted << " um (the "
+        << s.samples.size() - unsettled << " samples where every joint has its table's value; " << unsettled
+        << " not: a joint that has not moved since LinuxCNC started has no correction yet); joints moved by the tables max "
+        << shifted << " (mm or deg)\n";
     return shifted;
   };
   // Without tables the joints are the nominal ones; with them LinuxCNC moved them.
   const std::string tables = test::source_path(kTables);
-  EXPECT_EQ(expect_as_predicted(none_trace, none, "", Eigen::VectorXd::Zero(study_->modified.size()), "no tables"), 0.0);
+  EXPECT_EQ(expect_as_predicted(none_trace, none, "", Eigen::VectorXd::Zero(study_->modified.size()), "no tables"),
+            0.0);
   EXPECT_GT(expect_as_predicted(usual_trace, usual, tables + "/usual_practice", study_->usual, "usual practice"), 1e-3);
   EXPECT_GT(expect_as_predicted(modified_trace, modified, tables, study_->modified, "modified method"), 1e-3);
 
@@ -171,12 +181,14 @@ TEST_F(StockTablesSession, SamplePartRunsAsTheFitPredictsAndBeatsTheUsualPractic
   // What the main job shows: volcomp trace --comp-files replays each table set on the session
   // without tables; its largest error is the session's with those tables.
   for (const auto& [folder, session] : {std::pair{tables, &modified}, std::pair{tables + "/usual_practice", &usual}}) {
-    const test::CommandResult r = test::run_volcomp(
-        "trace " + test::machine_path("mc300") + " " + (test::run_folder_path("stock_none") / "run/kins/configs/mc300/trace.csv").string() +
-        " --comp-files " + folder + " --ini " + test::source_path(kStockIni));
+    const test::CommandResult r =
+        test::run_volcomp("trace " + test::machine_path("mc300") + " " +
+                          (test::run_folder_path("stock_none") / "run/kins/configs/mc300/trace.csv").string() +
+                          " --comp-files " + folder + " --ini " + test::source_path(kStockIni));
     ASSERT_EQ(r.exit_code, 0) << r.out;
     std::smatch m;
-    ASSERT_TRUE(std::regex_search(r.out, m, std::regex("replayed as LinuxCNC applies them .*: tool tip error: max ([0-9.]+) um")))
+    ASSERT_TRUE(std::regex_search(r.out, m,
+                                  std::regex("replayed as LinuxCNC applies them .*: tool tip error: max ([0-9.]+) um")))
         << r.out;
     EXPECT_NEAR(std::stod(m[1]), max_um(*session), 0.01) << folder;
   }

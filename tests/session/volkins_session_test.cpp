@@ -22,8 +22,8 @@
 namespace vc {
 namespace {
 
-using test::Extremes;
 using test::expect_compensated;
+using test::Extremes;
 using test::extremes;
 namespace fs = std::filesystem;
 using machine::Joints;
@@ -35,10 +35,10 @@ const std::string kMc300Ini = "kins/configs/mc300/mc300.ini";
 trace::SessionTrace run_session(const std::string& name, const std::string& ini, const machine::Model& model,
                                 const std::string& options) {
   const fs::path dir = test::run_folder(name);
-  const test::CommandResult r = test::run_in(
-      dir, "bash " + test::source_path("kins/configs/run_headless.sh") + " " + test::source_path(ini) + " " +
-               (dir / "run").string() + " " + options,
-      900);
+  const test::CommandResult r = test::run_in(dir,
+                                             "bash " + test::source_path("kins/configs/run_headless.sh") + " " +
+                                                 test::source_path(ini) + " " + (dir / "run").string() + " " + options,
+                                             900);
   EXPECT_EQ(r.exit_code, 0) << r.out;
   if (r.exit_code != 0) throw std::runtime_error("session failed: " + r.out);
   const fs::path config = fs::path(ini).parent_path().filename();
@@ -121,7 +121,8 @@ TEST_F(Mc300Session, TogglingWhileMovingStaysWithinJointLimits) {
   ASSERT_EQ(t.correction_length_mm.size(), t.size()) << "the trace records the L applied";
   const double dt = 1e-3;
   std::vector<Joints> correction(t.size());
-  for (std::size_t k = 0; k < t.size(); ++k) correction[k] = full_correction(*model_, t.world[k], t.correction_length_mm[k]);
+  for (std::size_t k = 0; k < t.size(); ++k)
+    correction[k] = full_correction(*model_, t.world[k], t.correction_length_mm[k]);
   auto ramp_peaks = [&](int j) {
     double v = 0, a = 0;
     for (std::size_t k = 1; k + 1 < t.size(); ++k) {
@@ -192,7 +193,8 @@ TEST_F(Mc300Session, ToolLengthChangesInQuickSuccessionKeepTheJointsSmooth) {
   std::vector<std::array<Joints, 3>> by_length(t.size());
   for (std::size_t k = 9; k + 1 < t.size(); ++k)
     if (t.gain[k - 1] == 1.0 && t.gain[k + 1] == 1.0)
-      for (std::size_t i = 0; i < 3; ++i) by_length[k][i] = full_correction(*model_, t.world[k], t.correction_length_mm[k + i - 1]);
+      for (std::size_t i = 0; i < 3; ++i)
+        by_length[k][i] = full_correction(*model_, t.world[k], t.correction_length_mm[k + i - 1]);
   for (int j = 0; j < model_->joint_count(); ++j) {
     const std::string section = "JOINT_" + std::to_string(j);
     const double a_max = test::ini_value(kMc300Ini, section, "MAX_ACCELERATION");
@@ -211,8 +213,7 @@ TEST_F(Mc300Session, ToolLengthChangesInQuickSuccessionKeepTheJointsSmooth) {
     // (1e-10 mm) in a second difference at 1 ms, where the change with L is nil (Z, B, C).
     EXPECT_LE(a_slew, bound * 1.05 + 1e-3) << section;
     std::cout << section << ": peak acceleration " << a << " mm/s^2 (limit " << a_max << "), the slew of L's share "
-              << a_slew << " (bound " << bound << ", correction's change with L up to " << per_mm * 1e3
-              << " um/mm)\n";
+              << a_slew << " (bound " << bound << ", correction's change with L up to " << per_mm * 1e3 << " um/mm)\n";
   }
   std::cout << changes << " tool length changes, " << during_slew << " of them while L slewed\n";
 }
@@ -242,8 +243,10 @@ TEST_F(Mc300Session, TcpConventionPutsTheRealToolOnTheCommandedPose) {
     q << -360 + 60 * std::cos(2 * pi * t), -160 + 60 * std::sin(2 * pi * t), -100 - 40 * std::sin(pi * t),
         -60 * std::sin(pi * t), 360 * t;
     const Joints w = machine::nominal_forward(*model_, WorldConvention::Tcp, q, L);
-    ngc << (i == 0 ? "G0 " : i == 1 ? "G1 F4000 " : "") << "X" << w[0] << " Y" << w[1] << " Z" << w[2] << " B"
-        << w[3] << " C" << w[4] << "\n";
+    ngc << (i == 0   ? "G0 "
+            : i == 1 ? "G1 F4000 "
+                     : "")
+        << "X" << w[0] << " Y" << w[1] << " Z" << w[2] << " B" << w[3] << " C" << w[4] << "\n";
   }
   ngc << "M2\n";
   ngc.close();
@@ -311,11 +314,11 @@ TEST_F(Mc300Session, SwitchedKinematicsKeepTheJointsStillAndCorrectBothWorlds) {
 // and run them through the new kinematics. volkins stays in type 0, motion aborts the program
 // and stops within the joints' acceleration limits, and the operator is told why.
 TEST_F(Mc300Session, ASwitchWhileMovingIsRefusedAndMotionStopsWithinTheJointLimits) {
-  const trace::SessionTrace t = run_session(
-      "mc300_switch_while_moving", kMc300Ini, *model_,
-      "--compensation on --add DRIVER.SCHEDULE=2.0:motion.switchkins-type=1"
-      " --expect-message 'switch to kinematics type 1 refused while the commanded position moves'"
-      " --allow-message 'kinematicsSwitch() FAIL'");  // motion's own report of the refusal
+  const trace::SessionTrace t =
+      run_session("mc300_switch_while_moving", kMc300Ini, *model_,
+                  "--compensation on --add DRIVER.SCHEDULE=2.0:motion.switchkins-type=1"
+                  " --expect-message 'switch to kinematics type 1 refused while the commanded position moves'"
+                  " --allow-message 'kinematicsSwitch() FAIL'");  // motion's own report of the refusal
   ASSERT_EQ(t.convention.size(), t.size());
   for (std::size_t n = 0; n < t.size(); ++n) ASSERT_EQ(t.convention[n], WorldConvention::Axes) << "sample " << n;
   // It moved when the switch came and has stopped since: the program was aborted (its first
@@ -344,8 +347,8 @@ TEST_F(Mc300Session, AJointLimitWithoutRoomForTheCorrectionIsRefusedByTheCheckAn
                              (test::run_folder_path(name) / "run/kins/configs/mc300/mc300.ini").string());
   };
 
-  const trace::SessionTrace room = run_session("mc300_joint_room_ok", kMc300Ini, *model_,
-                                               "--compensation on --program " + program.string());
+  const trace::SessionTrace room =
+      run_session("mc300_joint_room_ok", kMc300Ini, *model_, "--compensation on --program " + program.string());
   const test::CommandResult usable = check("mc300_joint_room_ok");
   EXPECT_EQ(usable.exit_code, 0) << usable.out;
   double highest = -1e9;
@@ -361,8 +364,9 @@ TEST_F(Mc300Session, AJointLimitWithoutRoomForTheCorrectionIsRefusedByTheCheckAn
   EXPECT_EQ(refused.exit_code, 1) << refused.out;
   EXPECT_NE(refused.out.find("error: joint 1 (Y): the correction takes it to"), std::string::npos) << refused.out;
   EXPECT_LT(stopped.size(), room.size()) << "LinuxCNC ran the program to its end";
-  std::cout << "Y joint at the end of the travel: " << highest << " mm (axis limit 0); without room, LinuxCNC stopped after "
-            << stopped.size() << " of " << room.size() << " samples\n";
+  std::cout << "Y joint at the end of the travel: " << highest
+            << " mm (axis limit 0); without room, LinuxCNC stopped after " << stopped.size() << " of " << room.size()
+            << " samples\n";
 }
 
 // Column `name` of a trace CSV (std::stod: a sensor's "nan" included).
@@ -458,16 +462,20 @@ TEST(Mc300ThermalSession, JointsFollowTheRampedTemperaturesAndAFaultySensorIsHel
   for (std::size_t n = 3; n < count; ++n) {
     thermal[n] = t.joints[n] - trace::interpolated(cold, n);
     const double x = t.joints[n][0], y = t.joints[n][1], tc = coolant_filtered[n - 2], ts = spindle_filtered[n - 2];
-    const double per_coolant = tc <= 19 ? (0.4167 / 1) * (19 - tc) : tc <= 25 ? -2.5 * (tc - 19) / 6 : -2.5 - 0.4167 * (tc - 25);
-    const double per_y_coolant = tc <= 19 ? 0.35 * (19 - tc) : tc <= 25 ? -2.1 * (tc - 19) / 6 : -2.1 - 0.35 * (tc - 25);
+    const double per_coolant = tc <= 19   ? (0.4167 / 1) * (19 - tc)
+                               : tc <= 25 ? -2.5 * (tc - 19) / 6
+                                          : -2.5 - 0.4167 * (tc - 25);
+    const double per_y_coolant = tc <= 19   ? 0.35 * (19 - tc)
+                                 : tc <= 25 ? -2.1 * (tc - 19) / 6
+                                            : -2.1 - 0.35 * (tc - 25);
     const double ezz = ts <= 19 ? 6.7 * (19 - ts) : -60.3 * (ts - 19) / 9;  // um
     const Eigen::Vector3d hand(1e-3 * per_coolant * x / -600, 1e-3 * per_y_coolant * y / -320, -1e-3 * ezz);
     hand_worst = std::max(hand_worst, (thermal[n].head<3>() - hand).cwiseAbs().maxCoeff());
     z_top = std::max(z_top, thermal[n][2]);
     if (n >= 5) {
       step_worst = std::max(step_worst, (thermal[n] - thermal[n - 1]).cwiseAbs().maxCoeff());
-      acceleration_worst =
-          std::max(acceleration_worst, (thermal[n] - 2 * thermal[n - 1] + thermal[n - 2]).cwiseAbs().maxCoeff() / (dt * dt));
+      acceleration_worst = std::max(
+          acceleration_worst, (thermal[n] - 2 * thermal[n - 1] + thermal[n - 2]).cwiseAbs().maxCoeff() / (dt * dt));
     }
   }
   EXPECT_GT(z_top, 0.050) << "the spindle's growth reached the Z joint";

@@ -42,7 +42,7 @@ using machine::Joints;
 using machine::WorldConvention;
 
 const std::string kIni = "kins/configs/mc300/mc300_thermal.ini";  // soak.ini's limits are these
-constexpr double kDt = 1e-3;                                        // servo period, s
+constexpr double kDt = 1e-3;                                      // servo period, s
 constexpr int kJoints = 5;
 
 double env_number(const char* name, double fallback) {
@@ -94,11 +94,11 @@ TEST_F(Soak, ASessionUnderRandomFaultsStaysWithinItsBounds) {
     out = fs::path(earlier) / "kins/configs/mc300";
   } else {
     const fs::path dir = test::run_folder("soak");
-    const test::CommandResult r = test::run_in(
-        dir,
-        "bash " + test::source_path("tests/soak/run_soak.sh") + " " + std::to_string(static_cast<long>(seconds)) + " " +
-            (dir / "run").string() + " " + std::to_string(seed),
-        static_cast<int>(seconds) + 1200);
+    const test::CommandResult r = test::run_in(dir,
+                                               "bash " + test::source_path("tests/soak/run_soak.sh") + " " +
+                                                   std::to_string(static_cast<long>(seconds)) + " " +
+                                                   (dir / "run").string() + " " + std::to_string(seed),
+                                               static_cast<int>(seconds) + 1200);
     ASSERT_EQ(r.exit_code, 0) << r.out;
     std::cout << r.out;
     out = dir / "run/kins/configs/mc300";
@@ -203,7 +203,8 @@ TEST_F(Soak, ASessionUnderRandomFaultsStaysWithinItsBounds) {
   const std::size_t width = names.size();
   std::deque<std::vector<double>> last;  // newest at the back
   std::size_t samples = 0, nan_values = 0, sensor_nan = 0, excluded = 0, event_mismatch = 0, tool_changes = 0;
-  std::size_t eoffset_limited = 0, faulty_samples = 0, filter_mismatch = 0, fault_pin_mismatch = 0, ramping = 0, failures = 0;
+  std::size_t eoffset_limited = 0, faulty_samples = 0, filter_mismatch = 0, fault_pin_mismatch = 0, ramping = 0,
+              failures = 0;
   std::array<double, kJoints> a_peak{}, a_ramp{};
   std::array<std::size_t, kJoints> a_at{};
   std::vector<std::int32_t> inverse_ns, controller_ticks;
@@ -298,9 +299,9 @@ TEST_F(Soak, ASessionUnderRandomFaultsStaysWithinItsBounds) {
       ++ramping;
       const Joints d_next = full_correction(now), d_prev = full_correction(first);
       for (int j = 0; j < kJoints; ++j)
-        a_ramp[j] = std::max(a_ramp[j], std::abs((now[c_gain] - mid[c_gain]) * d_next[j] +
-                                                 (first[c_gain] - mid[c_gain]) * d_prev[j]) /
-                                            (kDt * kDt));
+        a_ramp[j] = std::max(
+            a_ramp[j], std::abs((now[c_gain] - mid[c_gain]) * d_next[j] + (first[c_gain] - mid[c_gain]) * d_prev[j]) /
+                           (kDt * kDt));
     }
   }
   ASSERT_EQ(samples, reported_samples) << "the trace is not what the driver wrote";
@@ -381,9 +382,9 @@ TEST_F(Soak, ASessionUnderRandomFaultsStaysWithinItsBounds) {
               << "), the enable ramp's share " << a_ramp[j] << " (bound " << 0.05 * a_max[j] << ")\n";
   std::cout << "  rest windows after homing: " << rest_windows << " (" << rest_samples
             << " samples), joints against the core max " << rest_worst << "\n  rtapi_app VmRSS: start "
-            << memory.front().second << " kB, after warm-up " << warm << " kB, peak after warm-up " << peak << " kB, end "
-            << final_kb << " kB (tolerance " << memory_tolerance_kb << " kB)\n  volkins.inverse-time: median "
-            << inv_median << " ns, p99 " << inv_p99 << " ns, max " << inv_max
+            << memory.front().second << " kB, after warm-up " << warm << " kB, peak after warm-up " << peak
+            << " kB, end " << final_kb << " kB (tolerance " << memory_tolerance_kb
+            << " kB)\n  volkins.inverse-time: median " << inv_median << " ns, p99 " << inv_p99 << " ns, max " << inv_max
             << " ns; motion-controller.time (ticks): median " << percentile(controller_ticks, 0.5) << ", p99 "
             << percentile(controller_ticks, 0.99) << ", max " << percentile(controller_ticks, 1.0) << "\n";
 }

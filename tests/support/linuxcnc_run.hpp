@@ -54,8 +54,8 @@ inline std::filesystem::path stage_sources(const std::filesystem::path& dir) {
 inline CommandResult run_in(const std::filesystem::path& dir, const std::string& command, int timeout_s = 300) {
   std::string env = "HOME='" + dir.string() + "' RTAPI_FIFO_PATH=\"$(mktemp -u /tmp/vc-rtapi.XXXXXX)\"";
   if (geteuid() == 0) env += " RTAPI_UID=65534";
-  const std::string full = "cd '" + dir.string() + "' && env " + env + " timeout " + std::to_string(timeout_s) +
-                           " " + command + " 2>&1 </dev/null";
+  const std::string full = "cd '" + dir.string() + "' && env " + env + " timeout " + std::to_string(timeout_s) + " " +
+                           command + " 2>&1 </dev/null";
   FILE* pipe = popen(full.c_str(), "r");
   if (!pipe) throw std::runtime_error("cannot run " + command);
   CommandResult result{"", 0};
@@ -87,8 +87,7 @@ inline double ini_value(const std::string& ini, const std::string& section, cons
   while (std::getline(in, line)) {
     if (!line.empty() && line[0] == '[') current = line.substr(1, line.find(']') - 1);
     std::smatch m;
-    if (current == section && std::regex_match(line, m, std::regex(key + R"(\s*=\s*(\S+)\s*)")))
-      return std::stod(m[1]);
+    if (current == section && std::regex_match(line, m, std::regex(key + R"(\s*=\s*(\S+)\s*)"))) return std::stod(m[1]);
   }
   throw std::runtime_error("no [" + section + "] " + key + " in " + ini);
 }

@@ -142,9 +142,19 @@ inline std::vector<CanonMove> rs274_moves(const std::string& name, const std::fi
       // ARC_FEED(first_end, second_end, first_center, second_center, rotation, axis_end, a, b, c)
       CanonMove m;
       m.kind = CanonMove::Arc;
-      if (plane == 17) { m.first = 0; m.second = 1; m.normal = 2; }
-      else if (plane == 18) { m.first = 2; m.second = 0; m.normal = 1; }
-      else { m.first = 1; m.second = 2; m.normal = 0; }
+      if (plane == 17) {
+        m.first = 0;
+        m.second = 1;
+        m.normal = 2;
+      } else if (plane == 18) {
+        m.first = 2;
+        m.second = 0;
+        m.normal = 1;
+      } else {
+        m.first = 1;
+        m.second = 2;
+        m.normal = 0;
+      }
       std::array<double, 6> p{}, c{};
       p[m.first] = length(v[0]);
       p[m.second] = length(v[1]);
@@ -185,8 +195,8 @@ inline std::vector<std::array<double, 6>> sample(const CanonMove& m, const std::
     while (sweep > 2 * M_PI) sweep -= 2 * M_PI;
     sweep += 2 * M_PI * (std::abs(m.rotation) - 1);
     if (!ccw) sweep = -sweep;
-    length = std::abs(sweep) * std::max(r0, r1) + std::abs(m.end[static_cast<std::size_t>(m.normal)] -
-                                                           start[static_cast<std::size_t>(m.normal)]);
+    length = std::abs(sweep) * std::max(r0, r1) +
+             std::abs(m.end[static_cast<std::size_t>(m.normal)] - start[static_cast<std::size_t>(m.normal)]);
   }
   double rotary = 0;
   for (int i = 3; i < 6; ++i) rotary = std::max(rotary, std::abs(m.end[i] - start[i]));

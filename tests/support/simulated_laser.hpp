@@ -20,8 +20,8 @@ namespace vc::test {
 struct LaserLine {
   int joint;
   tables::ErrorSymbol error;
-  machine::Joints at;      // where every joint stands (the moving one's value unused)
-  Eigen::Vector3d point;   // the tool-side optic in the spindle frame, from the gauge point
+  machine::Joints at;     // where every joint stands (the moving one's value unused)
+  Eigen::Vector3d point;  // the tool-side optic in the spindle frame, from the gauge point
 };
 
 // The small rotation of `a` against `b`: the skew part of a b^T (first order, exact to 1e-10
@@ -43,14 +43,15 @@ inline double simulated_reading(const machine::Model& model, const LaserLine& li
   };
   const Eigen::Isometry3d real = at(machine::Machine::Real, 0), ideal = at(machine::Machine::Ideal, 0);
   const bool translation = line.error.component < 3;
-  const Eigen::Vector3d e = translation ? Eigen::Vector3d(real * line.point - ideal * line.point)
-                                        : small_turn(real.linear(), ideal.linear());
+  const Eigen::Vector3d e =
+      translation ? Eigen::Vector3d(real * line.point - ideal * line.point) : small_turn(real.linear(), ideal.linear());
   Eigen::Vector3d along = Eigen::Vector3d::Unit(line.error.component % 3);
   const char own = model.axes[static_cast<std::size_t>(line.joint)].letter;
   if (std::string("XYZABC")[static_cast<std::size_t>(line.error.component)] == own) {
     const Eigen::Isometry3d before = at(machine::Machine::Ideal, -0.01), after = at(machine::Machine::Ideal, 0.01);
     along = (translation ? Eigen::Vector3d(after * line.point - before * line.point)
-                         : small_turn(after.linear(), before.linear())).normalized();
+                         : small_turn(after.linear(), before.linear()))
+                .normalized();
   }
   return along.dot(e);
 }
@@ -62,7 +63,8 @@ inline void write_laser_runs(const std::string& path, const machine::Model& mode
   std::ofstream out(path);
   out << "# instrument: simulated (tests/support/simulated_laser.hpp)\n# at: ";
   for (int j = 0; j < model.joint_count(); ++j)
-    out << (j ? ", " : "") << static_cast<char>(std::tolower(model.axes[static_cast<std::size_t>(j)].letter)) << "=" << line.at[j];
+    out << (j ? ", " : "") << static_cast<char>(std::tolower(model.axes[static_cast<std::size_t>(j)].letter)) << "="
+        << line.at[j];
   out << "\n# tool_point_mm: " << line.point.x() << ", " << line.point.y() << ", " << line.point.z() << "\n";
   const bool rotary = model.axes[static_cast<std::size_t>(line.joint)].type == machine::AxisType::Rotary;
   const bool length = line.error.component < 3;
@@ -72,7 +74,8 @@ inline void write_laser_runs(const std::string& path, const machine::Model& mode
     for (const char* direction : {"+", "-"})
       for (std::size_t k = 0; k < targets.size(); ++k) {
         const double t = targets[direction[0] == '+' ? k : targets.size() - 1 - k];
-        out << t << "," << r << "," << direction << "," << simulated_reading(model, line, t) * (length ? 1e3 : 1e6) << "\n";
+        out << t << "," << r << "," << direction << "," << simulated_reading(model, line, t) * (length ? 1e3 : 1e6)
+            << "\n";
       }
 }
 

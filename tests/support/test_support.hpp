@@ -19,13 +19,9 @@
 
 namespace vc::test {
 
-inline std::string source_path(const std::string& relative) {
-  return std::string(VC_SOURCE_DIR) + "/" + relative;
-}
+inline std::string source_path(const std::string& relative) { return std::string(VC_SOURCE_DIR) + "/" + relative; }
 
-inline std::string machine_path(const std::string& name) {
-  return source_path("machines/data/" + name + ".toml");
-}
+inline std::string machine_path(const std::string& name) { return source_path("machines/data/" + name + ".toml"); }
 
 // The machines shipped in machines/data.
 inline const std::vector<std::string>& shipped_machines() {
@@ -85,7 +81,9 @@ inline CommandResult run_command(const std::string& command) {
 }
 
 // Runs the volcomp just built with `args`; stdout and stderr together.
-inline CommandResult run_volcomp(const std::string& args) { return run_command(std::string(VC_VOLCOMP) + " " + args + " 2>&1"); }
+inline CommandResult run_volcomp(const std::string& args) {
+  return run_command(std::string(VC_VOLCOMP) + " " + args + " 2>&1");
+}
 
 // The same with stdout alone (stderr to `stderr_file`).
 inline CommandResult run_volcomp_stdout(const std::string& args, const std::string& stderr_file) {

@@ -19,8 +19,8 @@ double reversal_at(const JointReversal& r, double position) {
   if (r.target.empty()) return 0.0;
   if (position <= r.target.front()) return r.reversal.front();
   if (position >= r.target.back()) return r.reversal.back();
-  const std::size_t k = static_cast<std::size_t>(
-      std::upper_bound(r.target.begin(), r.target.end(), position) - r.target.begin());  // 1 .. size - 1
+  const std::size_t k = static_cast<std::size_t>(std::upper_bound(r.target.begin(), r.target.end(), position) -
+                                                 r.target.begin());  // 1 .. size - 1
   const double f = (position - r.target[k - 1]) / (r.target[k] - r.target[k - 1]);
   return r.reversal[k - 1] + f * (r.reversal[k] - r.reversal[k - 1]);
 }
@@ -40,7 +40,8 @@ std::vector<LinuxcncCompFile> linuxcnc_comp_files(const machine::Model& model, c
     f.joint = t.input;
     f.axis = model.axes[static_cast<std::size_t>(t.input)].letter;
     f.file_name = linuxcnc_comp_file_name(model, f.joint);
-    const auto r = std::find_if(reversals.begin(), reversals.end(), [&](const JointReversal& j) { return j.joint == f.joint; });
+    const auto r =
+        std::find_if(reversals.begin(), reversals.end(), [&](const JointReversal& j) { return j.joint == f.joint; });
     // No comment or header line: LinuxCNC stops reading at the first line that is not three numbers.
     for (std::size_t k = 0; k < t.nodes.size(); ++k) {
       const double value = x[t.unknown_of_node(static_cast<int>(k))];
@@ -70,7 +71,8 @@ std::string linuxcnc_ini_lines(const std::vector<LinuxcncCompFile>& files) {
 
 std::string linuxcnc_comp_file_name(const machine::Model& model, int joint) {
   return "joint_" + std::to_string(joint) + "_" +
-         static_cast<char>(std::tolower(static_cast<unsigned char>(model.axes[static_cast<std::size_t>(joint)].letter))) +
+         static_cast<char>(
+             std::tolower(static_cast<unsigned char>(model.axes[static_cast<std::size_t>(joint)].letter))) +
          ".comp";
 }
 

@@ -46,9 +46,10 @@ class ControllerReader : machine::TomlFile {
     if (c.name.empty()) throw LoadError(where(*head->get("name")), "the controller's name must not be empty");
     c.format = text(*head, "format", false);
     if (!c.format.empty() && c.format != "linuxcnc-comp-file" && c.format != "sinumerik-lec-cec")
-      throw LoadError(where(*head->get("format")), "unknown format '" + c.format +
-                                                       "' (the writers there are: linuxcnc-comp-file, sinumerik-lec-cec; "
-                                                       "leave it out for the generic CSV only)");
+      throw LoadError(where(*head->get("format")),
+                      "unknown format '" + c.format +
+                          "' (the writers there are: linuxcnc-comp-file, sinumerik-lec-cec; "
+                          "leave it out for the generic CSV only)");
 
     TableSpec defaults;
     defaults.max_nodes = 256;
@@ -152,7 +153,6 @@ class ControllerReader : machine::TomlFile {
                                    std::to_string(s.max_nodes) + ")");
     return s;
   }
-
 };
 
 fs::path controllers_folder() { return fs::path(VC_FIT_TABLES_CONTROLLERS_DIR); }

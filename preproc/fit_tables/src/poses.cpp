@@ -8,9 +8,7 @@
 #include "vc/tables/number_text.hpp"
 
 namespace vc::fit_tables {
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 std::vector<Pose> grid_poses(const machine::Model& model, const GridSpec& spec) {
   if (spec.levels < 2) throw std::invalid_argument("--levels must be at least 2");

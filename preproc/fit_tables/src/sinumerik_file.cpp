@@ -87,7 +87,8 @@ std::string file_comment(const machine::Model& model, const std::string& what) {
   std::string s = "; volcomp fit-tables: " + what + " for " + model.info.name + " (" + model.path + ")\n";
   s += "; machine axes:";
   for (std::size_t j = 0; j < model.axes.size(); ++j)
-    s += " " + ax(static_cast<int>(j)) + "=" + model.axes[j].letter + (rotary(model, static_cast<int>(j)) ? "(deg)" : "(mm)");
+    s += " " + ax(static_cast<int>(j)) + "=" + model.axes[j].letter +
+         (rotary(model, static_cast<int>(j)) ? "(deg)" : "(mm)");
   return s + "\n";
 }
 
@@ -107,8 +108,8 @@ std::vector<SinumerikFile> sinumerik_files(const machine::Model& model, const Ta
   std::vector<Written> lec, cec;
   for (const Table& t : set.tables) {
     if (t.direction_dependent)
-      throw std::invalid_argument("the Sinumerik files here hold tables for both directions only; " + set.name(model, t) +
-                                  " is direction dependent");
+      throw std::invalid_argument("the Sinumerik files here hold tables for both directions only; " +
+                                  set.name(model, t) + " is direction dependent");
     (t.kind == TableKind::Positioning ? lec : cec).push_back(written(model, set, t, x, res));
   }
   std::vector<SinumerikFile> files;
@@ -121,8 +122,8 @@ std::vector<SinumerikFile> sinumerik_files(const machine::Model& model, const Ta
       const std::string axis = ax(w.input);
       s += "; " + w.what + "\n";
       for (std::size_t n = 0; n < w.values.size(); ++n)
-        s += "$AA_ENC_COMP[0," + std::to_string(n) + "," + axis + "]=" +
-             value_text(w.values[n], rotary(model, w.output) ? res.deg : res.mm) + "\n";
+        s += "$AA_ENC_COMP[0," + std::to_string(n) + "," + axis +
+             "]=" + value_text(w.values[n], rotary(model, w.output) ? res.deg : res.mm) + "\n";
       s += "$AA_ENC_COMP_STEP[0," + axis + "]=" + position_text((w.max - w.min) / (w.values.size() - 1)) + "\n";
       s += "$AA_ENC_COMP_MIN[0," + axis + "]=" + position_text(w.min) + "\n";
       s += "$AA_ENC_COMP_MAX[0," + axis + "]=" + position_text(w.max) + "\n";
@@ -139,8 +140,8 @@ std::vector<SinumerikFile> sinumerik_files(const machine::Model& model, const Ta
       const std::string i = "[" + std::to_string(t) + "]";
       s += "; table " + std::to_string(t) + ": " + w.what + "\n";
       for (std::size_t n = 0; n < w.values.size(); ++n)
-        s += "$AN_CEC[" + std::to_string(t) + "," + std::to_string(n) + "]=" +
-             value_text(w.values[n], rotary(model, w.output) ? res.deg : res.mm) + "\n";
+        s += "$AN_CEC[" + std::to_string(t) + "," + std::to_string(n) +
+             "]=" + value_text(w.values[n], rotary(model, w.output) ? res.deg : res.mm) + "\n";
       s += "$AN_CEC_INPUT_AXIS" + i + "=(" + ax(w.input) + ")\n";
       s += "$AN_CEC_OUTPUT_AXIS" + i + "=(" + ax(w.output) + ")\n";
       s += "$AN_CEC_STEP" + i + "=" + position_text((w.max - w.min) / (w.values.size() - 1)) + "\n";
@@ -338,8 +339,8 @@ class SinumerikReader {
     if (suffix.empty()) {
       const int n = integer(args[1].first, line, args[1].second, "the node N");
       if (t.values.count(n))
-        fail(line, args[1].second, "node " + std::to_string(n) + " is set twice (first at " +
-                                       t.values.at(n).where.to_string() + ")");
+        fail(line, args[1].second,
+             "node " + std::to_string(n) + " is set twice (first at " + t.values.at(n).where.to_string() + ")");
       t.values[n] = Field{v, {path_, line, args[1].second}};
       return true;
     }
@@ -359,11 +360,13 @@ class SinumerikReader {
     const std::vector<std::string> known{"AA_ENC_COMP", "AA_ENC_COMP_STEP", "AA_ENC_COMP_MIN", "AA_ENC_COMP_MAX",
                                          "AA_ENC_COMP_IS_MODULO"};
     if (std::find(known.begin(), known.end(), name) == known.end())
-      fail(line, name_col, "unknown variable $" + name + " in an EEC file (expected $AA_ENC_COMP, _STEP, _MIN, _MAX, _IS_MODULO)");
+      fail(line, name_col,
+           "unknown variable $" + name + " in an EEC file (expected $AA_ENC_COMP, _STEP, _MIN, _MAX, _IS_MODULO)");
     const std::size_t want = values ? 3 : 2;
     if (args.size() != want)
-      fail(line, name_col, "$" + name + " takes " + std::to_string(want) + " indices (" +
-                               (values ? "[e,N,AXi]" : "[e,AXi]") + "), not " + std::to_string(args.size()));
+      fail(line, name_col,
+           "$" + name + " takes " + std::to_string(want) + " indices (" + (values ? "[e,N,AXi]" : "[e,AXi]") +
+               "), not " + std::to_string(args.size()));
     if (integer(args[0].first, line, args[0].second, "the measuring system e") != 0)
       fail(line, args[0].second, "only measuring system 1 (e = 0) is read here");
     const auto& axis_arg = args.back();
@@ -375,17 +378,20 @@ class SinumerikReader {
 
   void cec(const std::string& name, const std::vector<std::pair<std::string, int>>& args, const std::string& value,
            int line, int col, int name_col, int value_col) {
-    const std::vector<std::string> known{"AN_CEC",     "AN_CEC_INPUT_AXIS", "AN_CEC_OUTPUT_AXIS",   "AN_CEC_STEP",
-                                         "AN_CEC_MIN", "AN_CEC_MAX",        "AN_CEC_DIRECTION",     "AN_CEC_MULT_BY_TABLE",
-                                         "AN_CEC_IS_MODULO"};
+    const std::vector<std::string> known{"AN_CEC",           "AN_CEC_INPUT_AXIS",    "AN_CEC_OUTPUT_AXIS",
+                                         "AN_CEC_STEP",      "AN_CEC_MIN",           "AN_CEC_MAX",
+                                         "AN_CEC_DIRECTION", "AN_CEC_MULT_BY_TABLE", "AN_CEC_IS_MODULO"};
     if (std::find(known.begin(), known.end(), name) == known.end())
-      fail(line, name_col, "unknown variable $" + name + " in a CEC file (expected $AN_CEC, _INPUT_AXIS, _OUTPUT_AXIS, "
-                                                         "_STEP, _MIN, _MAX, _DIRECTION, _MULT_BY_TABLE, _IS_MODULO)");
+      fail(line, name_col,
+           "unknown variable $" + name +
+               " in a CEC file (expected $AN_CEC, _INPUT_AXIS, _OUTPUT_AXIS, "
+               "_STEP, _MIN, _MAX, _DIRECTION, _MULT_BY_TABLE, _IS_MODULO)");
     const bool values = name == "AN_CEC";
     const std::size_t want = values ? 2 : 1;
     if (args.size() != want)
-      fail(line, name_col, "$" + name + " takes " + std::to_string(want) + " ind" + (values ? "ices ([t,N])" : "ex ([t])") +
-                               ", not " + std::to_string(args.size()));
+      fail(line, name_col,
+           "$" + name + " takes " + std::to_string(want) + " ind" + (values ? "ices ([t,N])" : "ex ([t])") + ", not " +
+               std::to_string(args.size()));
     const int index = integer(args[0].first, line, args[0].second, "the table index t");
     PendingTable& t = table(index, line, col);
     if (name == "AN_CEC_INPUT_AXIS" || name == "AN_CEC_OUTPUT_AXIS") {
@@ -398,8 +404,10 @@ class SinumerikReader {
     const double v = number(value, line, value_col);
     if (set_shared(t, name, name.substr(std::string("AN_CEC").size()), args, v, line, value_col)) return;
     if (v != 0.0) {  // DIRECTION, MULT_BY_TABLE
-      fail(line, value_col, "$" + name + " other than 0 is not read here (the writer writes 0: both directions, "
-                                         "no table multiplication)");
+      fail(line, value_col,
+           "$" + name +
+               " other than 0 is not read here (the writer writes 0: both directions, "
+               "no table multiplication)");
     }
   }
 
@@ -407,8 +415,8 @@ class SinumerikReader {
     const std::string what = p.kind == SinumerikTable::Kind::Lec ? "the EEC table of AX" + std::to_string(p.index + 1)
                                                                  : "CEC table " + std::to_string(p.index);
     const std::string prefix = p.kind == SinumerikTable::Kind::Lec ? "$AA_ENC_COMP" : "$AN_CEC";
-    for (const auto& [field, suffix] : {std::pair{&p.step, "_STEP"}, {&p.min, "_MIN"}, {&p.max, "_MAX"},
-                                        {&p.modulo, "_IS_MODULO"}})
+    for (const auto& [field, suffix] :
+         {std::pair{&p.step, "_STEP"}, {&p.min, "_MIN"}, {&p.max, "_MAX"}, {&p.modulo, "_IS_MODULO"}})
       if (!*field) fail(p.first, what + " has no " + prefix + suffix);
     if (p.kind == SinumerikTable::Kind::Cec) {
       if (!p.input) fail(p.first, what + " has no $AN_CEC_INPUT_AXIS");
@@ -423,8 +431,7 @@ class SinumerikReader {
     t.min = p.min->value;
     t.max = p.max->value;
     t.step = p.step->value;
-    if (p.modulo->value != 0.0 && p.modulo->value != 1.0)
-      fail(p.modulo->where, prefix + "_IS_MODULO must be 0 or 1");
+    if (p.modulo->value != 0.0 && p.modulo->value != 1.0) fail(p.modulo->where, prefix + "_IS_MODULO must be 0 or 1");
     t.modulo = p.modulo->value == 1.0;
     if (!(t.max > t.min)) fail(p.max->where, prefix + "_MAX must be above " + prefix + "_MIN");
     if (!(t.step > 0)) fail(p.step->where, prefix + "_STEP must be above 0");
@@ -477,7 +484,8 @@ machine::Joints sinumerik_commanded(const std::vector<SinumerikTable>& tables, c
   machine::Joints out = q;
   for (const SinumerikTable& t : tables) {
     if (t.input_axis >= q.size() || t.output_axis >= q.size())
-      throw std::invalid_argument(t.where.to_string() + ": AX" + std::to_string(std::max(t.input_axis, t.output_axis) + 1) +
+      throw std::invalid_argument(t.where.to_string() + ": AX" +
+                                  std::to_string(std::max(t.input_axis, t.output_axis) + 1) +
                                   " is beyond the machine's " + std::to_string(q.size()) + " axes");
     const double v = sinumerik_table_value(t, q[t.input_axis]);
     out[t.output_axis] += t.kind == SinumerikTable::Kind::Lec ? -v : v;

@@ -24,28 +24,48 @@ class Evaluator {
   double operator()(const ast::Unary& u) const {
     using F = ast::Function;
     if (u.function == F::Exists) {  // a numbered parameter exists if its number is in range (LinuxCNC)
-      if (const auto* named = boost::get<ast::NamedParameter>(&u.operand)) return parameters_.exists(named->name) ? 1 : 0;
+      if (const auto* named = boost::get<ast::NamedParameter>(&u.operand))
+        return parameters_.exists(named->name) ? 1 : 0;
       const auto& numbered = boost::get<boost::spirit::x3::forward_ast<ast::NumberedParameter>>(u.operand).get();
       const double n = boost::apply_visitor(*this, numbered.index);
       return std::round(n) >= 1 && std::round(n) < Parameters::kCount ? 1 : 0;
     }
     const double v = boost::apply_visitor(*this, u.operand);
     switch (u.function) {
-      case F::Minus: return -v;
-      case F::Plus: return v;
-      case F::Abs: return std::abs(v);
-      case F::Acos: check(v >= -1 && v <= 1, "ACOS of a value outside [-1, 1]"); return std::acos(v) / kDegree;
-      case F::Asin: check(v >= -1 && v <= 1, "ASIN of a value outside [-1, 1]"); return std::asin(v) / kDegree;
-      case F::Cos: return std::cos(v * kDegree);
-      case F::Exp: return std::exp(v);
-      case F::Fix: return std::floor(v);
-      case F::Fup: return std::ceil(v);
-      case F::Round: return std::round(v);
-      case F::Ln: check(v > 0, "LN of a value that is not positive"); return std::log(v);
-      case F::Sin: return std::sin(v * kDegree);
-      case F::Sqrt: check(v >= 0, "SQRT of a negative value"); return std::sqrt(v);
-      case F::Tan: return std::tan(v * kDegree);
-      case F::Exists: break;
+      case F::Minus:
+        return -v;
+      case F::Plus:
+        return v;
+      case F::Abs:
+        return std::abs(v);
+      case F::Acos:
+        check(v >= -1 && v <= 1, "ACOS of a value outside [-1, 1]");
+        return std::acos(v) / kDegree;
+      case F::Asin:
+        check(v >= -1 && v <= 1, "ASIN of a value outside [-1, 1]");
+        return std::asin(v) / kDegree;
+      case F::Cos:
+        return std::cos(v * kDegree);
+      case F::Exp:
+        return std::exp(v);
+      case F::Fix:
+        return std::floor(v);
+      case F::Fup:
+        return std::ceil(v);
+      case F::Round:
+        return std::round(v);
+      case F::Ln:
+        check(v > 0, "LN of a value that is not positive");
+        return std::log(v);
+      case F::Sin:
+        return std::sin(v * kDegree);
+      case F::Sqrt:
+        check(v >= 0, "SQRT of a negative value");
+        return std::sqrt(v);
+      case F::Tan:
+        return std::tan(v * kDegree);
+      case F::Exists:
+        break;
     }
     return v;
   }
@@ -66,24 +86,38 @@ class Evaluator {
       case O::Power:
         check(a >= 0 || b == std::floor(b), "a negative number raised to a non-integer power");
         return std::pow(a, b);
-      case O::Times: return a * b;
-      case O::Divide: check(b != 0, "division by zero"); return a / b;
+      case O::Times:
+        return a * b;
+      case O::Divide:
+        check(b != 0, "division by zero");
+        return a / b;
       case O::Modulo: {
         check(b != 0, "MOD by zero");
         const double r = std::fmod(a, b);
         return r < 0 ? r + std::abs(b) : r;  // as LinuxCNC: never negative
       }
-      case O::Plus: return a + b;
-      case O::Minus: return a - b;
-      case O::Eq: return std::abs(a - b) < kEqualTolerance ? 1 : 0;
-      case O::Ne: return std::abs(a - b) < kEqualTolerance ? 0 : 1;
-      case O::Gt: return a > b ? 1 : 0;
-      case O::Ge: return a >= b ? 1 : 0;
-      case O::Lt: return a < b ? 1 : 0;
-      case O::Le: return a <= b ? 1 : 0;
-      case O::And: return (a != 0 && b != 0) ? 1 : 0;
-      case O::Or: return (a != 0 || b != 0) ? 1 : 0;
-      case O::Xor: return ((a != 0) != (b != 0)) ? 1 : 0;
+      case O::Plus:
+        return a + b;
+      case O::Minus:
+        return a - b;
+      case O::Eq:
+        return std::abs(a - b) < kEqualTolerance ? 1 : 0;
+      case O::Ne:
+        return std::abs(a - b) < kEqualTolerance ? 0 : 1;
+      case O::Gt:
+        return a > b ? 1 : 0;
+      case O::Ge:
+        return a >= b ? 1 : 0;
+      case O::Lt:
+        return a < b ? 1 : 0;
+      case O::Le:
+        return a <= b ? 1 : 0;
+      case O::And:
+        return (a != 0 && b != 0) ? 1 : 0;
+      case O::Or:
+        return (a != 0 || b != 0) ? 1 : 0;
+      case O::Xor:
+        return ((a != 0) != (b != 0)) ? 1 : 0;
     }
     return 0;
   }

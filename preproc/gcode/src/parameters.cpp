@@ -12,8 +12,7 @@ namespace {
 
 std::size_t index_of(double n, int offset) {
   const double rounded = std::round(n);
-  if (std::abs(n - rounded) > 1e-4)
-    throw SyntaxError(offset, "a parameter number must be a whole number");
+  if (std::abs(n - rounded) > 1e-4) throw SyntaxError(offset, "a parameter number must be a whole number");
   if (rounded < 1 || rounded >= Parameters::kCount)
     throw SyntaxError(offset, "parameter number out of range (1 to 5601)");
   return static_cast<std::size_t>(rounded);

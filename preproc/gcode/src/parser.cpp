@@ -132,11 +132,11 @@ void parse_o_word(const Normalized& n, std::size_t pos, Block& block) {
   std::size_t letters = pos;
   while (letters < text.size() && std::isalpha(static_cast<unsigned char>(text[letters]))) ++letters;
   static constexpr std::pair<std::string_view, Kind> kKeywords[] = {
-      {"sub", Kind::Sub},         {"endsub", Kind::EndSub},     {"call", Kind::Call},
-      {"do", Kind::Do},           {"while", Kind::While},       {"endwhile", Kind::EndWhile},
-      {"if", Kind::If},           {"elseif", Kind::ElseIf},     {"else", Kind::Else},
-      {"endif", Kind::EndIf},     {"break", Kind::Break},       {"continue", Kind::Continue},
-      {"return", Kind::Return},   {"repeat", Kind::Repeat},     {"endrepeat", Kind::EndRepeat}};
+      {"sub", Kind::Sub},       {"endsub", Kind::EndSub}, {"call", Kind::Call},
+      {"do", Kind::Do},         {"while", Kind::While},   {"endwhile", Kind::EndWhile},
+      {"if", Kind::If},         {"elseif", Kind::ElseIf}, {"else", Kind::Else},
+      {"endif", Kind::EndIf},   {"break", Kind::Break},   {"continue", Kind::Continue},
+      {"return", Kind::Return}, {"repeat", Kind::Repeat}, {"endrepeat", Kind::EndRepeat}};
   const std::string_view keyword = std::string_view(text).substr(pos, letters - pos);
   o.kind = Kind::None;
   if (!keyword.empty()) {

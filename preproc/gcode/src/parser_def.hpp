@@ -29,9 +29,8 @@ namespace x3 = boost::spirit::x3;
 // std::from_chars' time); anything longer goes to std::from_chars.
 // Returns the end of the number, or `first` if there is none.
 inline const char* scan_number(const char* first, const char* last, double& value) {
-  static constexpr double kPowersOfTen[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
-                                            1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
-                                            1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  static constexpr double kPowersOfTen[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                            1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
   constexpr std::uint64_t kExactInteger = std::uint64_t{1} << 53;
   const char* it = first;
   const bool negative = it != last && *it == '-';
@@ -84,10 +83,9 @@ const NgcNumber number{};
 
 struct FunctionSymbols : x3::symbols<ast::Function> {
   FunctionSymbols() {
-    add("abs", ast::Function::Abs)("acos", ast::Function::Acos)("asin", ast::Function::Asin)(
-        "cos", ast::Function::Cos)("exp", ast::Function::Exp)("fix", ast::Function::Fix)(
-        "fup", ast::Function::Fup)("round", ast::Function::Round)("ln", ast::Function::Ln)(
-        "sin", ast::Function::Sin)("sqrt", ast::Function::Sqrt)("tan", ast::Function::Tan);
+    add("abs", ast::Function::Abs)("acos", ast::Function::Acos)("asin", ast::Function::Asin)("cos", ast::Function::Cos)(
+        "exp", ast::Function::Exp)("fix", ast::Function::Fix)("fup", ast::Function::Fup)("round", ast::Function::Round)(
+        "ln", ast::Function::Ln)("sin", ast::Function::Sin)("sqrt", ast::Function::Sqrt)("tan", ast::Function::Tan);
   }
 };
 struct SignSymbols : x3::symbols<ast::Function> {
@@ -170,7 +168,7 @@ const auto atan2_def = x3::lit("atan") > '[' > expression > ']' > '/' > '[' > ex
 const auto exists_def = x3::lit("exists") > x3::attr(ast::Function::Exists) > '[' > parameter > ']';
 const auto signed_value_def = signs > value;
 
-BOOST_SPIRIT_DEFINE(value, expression, compare, sum, product, power, bracketed, parameter, numbered, named,
-                    function, atan2, exists, signed_value)
+BOOST_SPIRIT_DEFINE(value, expression, compare, sum, product, power, bracketed, parameter, numbered, named, function,
+                    atan2, exists, signed_value)
 
 }  // namespace vc::gcode::parser

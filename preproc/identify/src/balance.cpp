@@ -19,14 +19,16 @@ std::vector<machine::Joints> pose_grid(const machine::Model& model, int levels) 
     const machine::Axis& a = model.axes[static_cast<std::size_t>(j)];
     const bool full_turn = a.type == machine::AxisType::Rotary && std::abs(a.travel_max - a.travel_min - 360.0) < 1e-9;
     for (int k = 0; k < levels; ++k)
-      positions[static_cast<std::size_t>(j)].push_back(
-          full_turn ? a.travel_min + 360.0 * k / levels : a.travel_min + (a.travel_max - a.travel_min) * k / (levels - 1));
+      positions[static_cast<std::size_t>(j)].push_back(full_turn ? a.travel_min + 360.0 * k / levels
+                                                                 : a.travel_min + (a.travel_max - a.travel_min) * k /
+                                                                                      (levels - 1));
   }
   std::vector<machine::Joints> poses;
   std::vector<int> index(static_cast<std::size_t>(n), 0);
   while (true) {
     machine::Joints q(n);
-    for (int j = 0; j < n; ++j) q[j] = positions[static_cast<std::size_t>(j)][static_cast<std::size_t>(index[static_cast<std::size_t>(j)])];
+    for (int j = 0; j < n; ++j)
+      q[j] = positions[static_cast<std::size_t>(j)][static_cast<std::size_t>(index[static_cast<std::size_t>(j)])];
     poses.push_back(q);
     int j = 0;
     while (j < n && ++index[static_cast<std::size_t>(j)] == levels) index[static_cast<std::size_t>(j++)] = 0;
@@ -35,8 +37,9 @@ std::vector<machine::Joints> pose_grid(const machine::Model& model, int levels) 
   return poses;
 }
 
-DeviationEffect effect_of(const std::string& symbol, const machine::Model& with, const std::vector<machine::Joints>& poses,
-                          const std::vector<machine::ToolPose>& ideal, double tool_length_mm) {
+DeviationEffect effect_of(const std::string& symbol, const machine::Model& with,
+                          const std::vector<machine::Joints>& poses, const std::vector<machine::ToolPose>& ideal,
+                          double tool_length_mm) {
   DeviationEffect e;
   e.symbol = symbol;
   double least = INFINITY, sum = 0.0;
@@ -46,7 +49,8 @@ DeviationEffect effect_of(const std::string& symbol, const machine::Model& with,
     e.max_um = std::max(e.max_um, error);
     least = std::min(least, error);
     sum += error * error;
-    const double turn = std::atan2(real.direction.cross(ideal[k].direction).norm(), real.direction.dot(ideal[k].direction));
+    const double turn =
+        std::atan2(real.direction.cross(ideal[k].direction).norm(), real.direction.dot(ideal[k].direction));
     e.max_urad = std::max(e.max_urad, turn * 1e6);
   }
   e.delta_um = e.max_um - least;
@@ -64,13 +68,15 @@ Balance accuracy_balance(const machine::Model& model, const BalanceOptions& opti
   b.poses = static_cast<int>(poses.size());
   std::vector<machine::ToolPose> ideal;
   ideal.reserve(poses.size());
-  for (const machine::Joints& q : poses) ideal.push_back(machine::tool_pose(model, machine::Machine::Ideal, q, b.tool_length_mm));
+  for (const machine::Joints& q : poses)
+    ideal.push_back(machine::tool_pose(model, machine::Machine::Ideal, q, b.tool_length_mm));
 
   b.total = effect_of("all", model, poses, ideal, b.tool_length_mm);
   double sum = 0.0;
   std::vector<std::string> symbols = machine::deviation_symbols(model);  // (a symbol in two tables: once)
   for (std::size_t k = 0; k < symbols.size(); ++k)
-    if (std::find(symbols.begin(), symbols.begin() + static_cast<long>(k), symbols[k]) != symbols.begin() + static_cast<long>(k))
+    if (std::find(symbols.begin(), symbols.begin() + static_cast<long>(k), symbols[k]) !=
+        symbols.begin() + static_cast<long>(k))
       symbols.erase(symbols.begin() + static_cast<long>(k--));
   for (const std::string& symbol : symbols) {
     b.effects.push_back(effect_of(symbol, machine::keep_only(model, {symbol}), poses, ideal, b.tool_length_mm));

@@ -19,14 +19,16 @@ HeaderCell header_cell(const std::string& path, int line, const tables::CsvCell&
     h.name = lower(cell.text);
     return h;
   }
-  if (cell.text.back() != ']') throw LoadError({path, line, cell.column}, "a unit is written name[unit], e.g. target[mm]");
+  if (cell.text.back() != ']')
+    throw LoadError({path, line, cell.column}, "a unit is written name[unit], e.g. target[mm]");
   h.bracket = true;
   h.name = lower(cell.text.substr(0, open));
   h.unit_name = cell.text.substr(open + 1, cell.text.size() - open - 2);
   h.unit = tables::find_unit(h.unit_name);
   if (!h.unit)
     throw LoadError({path, line, cell.column + static_cast<int>(open) + 1},
-                    "unknown unit '" + h.unit_name + "' (lengths: " + std::string(tables::unit_names(tables::Quantity::Length)) +
+                    "unknown unit '" + h.unit_name +
+                        "' (lengths: " + std::string(tables::unit_names(tables::Quantity::Length)) +
                         "; angles: " + std::string(tables::unit_names(tables::Quantity::Angle)) + ")");
   return h;
 }

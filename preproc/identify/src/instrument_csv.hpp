@@ -33,6 +33,7 @@ Header read_header(const std::string& path, const tables::CsvRow& row);
 
 // The "# key: value" lines before the first line that is not a comment.
 // `lines`, if given, gets the line of each.
-std::vector<std::pair<std::string, std::string>> read_metadata(const std::string& path, std::vector<int>* lines = nullptr);
+std::vector<std::pair<std::string, std::string>> read_metadata(const std::string& path,
+                                                               std::vector<int>* lines = nullptr);
 
 }  // namespace vc::identify

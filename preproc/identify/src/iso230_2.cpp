@@ -13,7 +13,6 @@ namespace {
 
 const char* name(Direction d) { return d == Direction::Up ? "+" : "-"; }
 
-
 // Readings by run and direction, each a map target -> deviation (a target read twice: refused).
 std::map<RunKey, std::map<double, double>> by_run(const LaserRuns& runs, const std::set<RunKey>& left_out) {
   std::map<RunKey, std::map<double, double>> out;
@@ -23,7 +22,8 @@ std::map<RunKey, std::map<double, double>> by_run(const LaserRuns& runs, const s
     if (left_out.count(key)) continue;
     if (const auto [it, fresh] = lines[key].emplace(r.target, r.line); !fresh)
       throw LoadError({runs.path, r.line}, "run " + std::to_string(r.run) + name(r.direction) + " reads target " +
-                                               significant_text(r.target, 6) + " again (first on line " + std::to_string(it->second) + ")");
+                                               significant_text(r.target, 6) + " again (first on line " +
+                                               std::to_string(it->second) + ")");
     out[key][r.target] = r.deviation;
   }
   return out;
@@ -80,14 +80,14 @@ std::vector<SuspiciousRun> suspicious_runs(const LaserRuns& runs) {
     if (signal > std::max(4 * s_others, floor)) {  // the others show a shape this run can be compared with
       const double k = xm / mm;
       if (std::abs(k + 1) < 0.25) {
-        out.push_back({key, run + " reads the others' deviations with the sign reversed (scale " +
-                                std::to_string(k) + "): the optics or the direction turned round?"});
+        out.push_back({key, run + " reads the others' deviations with the sign reversed (scale " + std::to_string(k) +
+                                "): the optics or the direction turned round?"});
         continue;
       }
-      for (const auto& [factor, what] : {std::pair{1000.0, "1000 (um read as nm, or mm as um)"},
-                                         std::pair{1e-3, "1/1000 (nm read as um, or um as mm)"},
-                                         std::pair{25.4, "25.4 (inches read as mm)"},
-                                         std::pair{1 / 25.4, "1/25.4 (mm read as inches)"}})
+      for (const auto& [factor, what] :
+           {std::pair{1000.0, "1000 (um read as nm, or mm as um)"},
+            std::pair{1e-3, "1/1000 (nm read as um, or um as mm)"}, std::pair{25.4, "25.4 (inches read as mm)"},
+            std::pair{1 / 25.4, "1/25.4 (mm read as inches)"}})
         if (std::abs(k / factor - 1) < 0.2) {
           out.push_back({key, run + " reads the others' deviations times " + std::string(what) + ": another unit?"});
           break;
@@ -112,21 +112,22 @@ Iso230_2 evaluate_iso230_2(const LaserRuns& runs, const std::set<RunKey>& left_o
     for (double t : targets)
       if (!readings.count(t))
         throw LoadError({runs.path}, "run " + std::to_string(key.first) + name(key.second) +
-                                         " has no reading at target " + significant_text(t, 6) + " (every run reads every target)");
+                                         " has no reading at target " + significant_text(t, 6) +
+                                         " (every run reads every target)");
     if (readings.size() != targets.size())
       for (const auto& [t, x] : readings)
         if (!std::binary_search(targets.begin(), targets.end(), t))
-          throw LoadError({runs.path}, "run " + std::to_string(key.first) + name(key.second) +
-                                           " reads target " + significant_text(t, 6) + ", which run " +
-                                   std::to_string(all.begin()->first.first) + name(all.begin()->first.second) +
-                                   " does not");
+          throw LoadError({runs.path}, "run " + std::to_string(key.first) + name(key.second) + " reads target " +
+                                           significant_text(t, 6) + ", which run " +
+                                           std::to_string(all.begin()->first.first) + name(all.begin()->first.second) +
+                                           " does not");
   }
   Iso230_2 e;
   for (const auto& [key, r] : all) (key.second == Direction::Up ? e.runs_up : e.runs_down)++;
   if (e.runs_up < 2 || e.runs_down < 2)
     throw LoadError({runs.path}, "ISO 230-2 needs at least 2 runs in each direction (it asks for 5); " +
-                             std::to_string(e.runs_up) + " up and " + std::to_string(e.runs_down) +
-                             " down remain: the repeatability and accuracy would be unsupported");
+                                     std::to_string(e.runs_up) + " up and " + std::to_string(e.runs_down) +
+                                     " down remain: the repeatability and accuracy would be unsupported");
 
   double lo_up = INFINITY, hi_up = -INFINITY, lo_down = INFINITY, hi_down = -INFINITY;
   double lo_mean = INFINITY, hi_mean = -INFINITY;

@@ -44,7 +44,8 @@ CircleFit fit(const CircleRun& run, double radius) {
   }
   if (largest_gap > 30 * kDeg)
     throw std::runtime_error("the " + std::string(run.ccw ? "ccw" : "cw") + " run leaves a gap of " +
-                             std::to_string(largest_gap / kDeg) + " deg: the squareness needs the whole turn (a gap under 30 deg)");
+                             std::to_string(largest_gap / kDeg) +
+                             " deg: the squareness needs the whole turn (a gap under 30 deg)");
   // dR = a0 + a1 cos + b1 sin + a2 cos 2phi + b2 sin 2phi, then the model's parameters.
   Eigen::MatrixXd a(n, 5);
   Eigen::VectorXd b(n);
@@ -83,8 +84,10 @@ CircleFit fit(const CircleRun& run, double radius) {
     for (std::size_t k = 0; k < residual.size(); ++k) {
       double d = std::abs(run.points[k].first / kDeg - q);
       d = std::min(d, 360 - d);
-      if (d <= 6) peak = std::max(peak, residual[k]);
-      else if (d <= 20) around.push_back(residual[k]);
+      if (d <= 6)
+        peak = std::max(peak, residual[k]);
+      else if (d <= 20)
+        around.push_back(residual[k]);
     }
     if (!std::isfinite(peak) || around.empty()) continue;
     std::nth_element(around.begin(), around.begin() + static_cast<long>(around.size() / 2), around.end());
@@ -99,7 +102,8 @@ CircularTest read_circular_test(const std::string& path) {
   CircularTest t;
   t.path = path;
   const std::vector<tables::CsvRow> rows = tables::read_csv_rows(path, "circular test");
-  if (rows.empty()) throw LoadError({path}, "no header: angle[deg],direction,deviation[um] (or angle[deg],ccw[um],cw[um])");
+  if (rows.empty())
+    throw LoadError({path}, "no header: angle[deg],direction,deviation[um] (or angle[deg],ccw[um],cw[um])");
   std::vector<int> metadata_lines;
   t.metadata = read_metadata(path, &metadata_lines);
   for (std::size_t i = 0; i < t.metadata.size(); ++i) {
@@ -114,7 +118,8 @@ CircularTest read_circular_test(const std::string& path) {
       char* end = nullptr;
       t.radius_mm = std::strtod(value.c_str(), &end);
       if (value.empty() || *end != '\0' || !(t.radius_mm > 0) || !std::isfinite(t.radius_mm))
-        throw LoadError({path, metadata_lines[i]}, "radius_mm '" + value + "': the ballbar's nominal radius, a positive number of mm");
+        throw LoadError({path, metadata_lines[i]},
+                        "radius_mm '" + value + "': the ballbar's nominal radius, a positive number of mm");
     }
   }
   const tables::CsvRow& header = rows.front();
@@ -127,29 +132,36 @@ CircularTest read_circular_test(const std::string& path) {
   auto length_unit = [&](int i) {
     const HeaderCell& h = cells[static_cast<std::size_t>(i)];
     if (!h.unit || h.unit->quantity != tables::Quantity::Length)
-      throw LoadError({path, header.line, header.cells[static_cast<std::size_t>(i)].column}, "a radius deviation in mm, um or nm, e.g. deviation[um]");
+      throw LoadError({path, header.line, header.cells[static_cast<std::size_t>(i)].column},
+                      "a radius deviation in mm, um or nm, e.g. deviation[um]");
     return h.unit->to_core;
   };
   CircleRun ccw{true, {}}, cw{false, {}};
   const int deviation = find("deviation"), direction = find("direction"), ccw_col = find("ccw"), cw_col = find("cw");
-  if (deviation >= 0 && direction < 0) throw LoadError({path, header.line}, "the long layout needs a direction column (ccw or cw)");
+  if (deviation >= 0 && direction < 0)
+    throw LoadError({path, header.line}, "the long layout needs a direction column (ccw or cw)");
   if (deviation < 0 && ccw_col < 0 && cw_col < 0)
     throw LoadError({path, header.line}, "no deviations: deviation[um] with direction, or ccw[um] and cw[um]");
   for (std::size_t r = 1; r < rows.size(); ++r) {
     const tables::CsvRow& row = rows[r];
     if (row.cells.size() != header.cells.size())
-      throw LoadError({path, row.line}, std::to_string(row.cells.size()) + " cells, the header has " + std::to_string(header.cells.size()));
+      throw LoadError({path, row.line}, std::to_string(row.cells.size()) + " cells, the header has " +
+                                            std::to_string(header.cells.size()));
     const double phi = wrapped(tables::csv_number(path, row.line, row.cells[static_cast<std::size_t>(angle)]) * kDeg);
     auto add = [&](CircleRun& run, int column) {
       const tables::CsvCell& cell = row.cells[static_cast<std::size_t>(column)];
-      if (!cell.text.empty()) run.points.emplace_back(phi, tables::csv_number(path, row.line, cell) * length_unit(column));
+      if (!cell.text.empty())
+        run.points.emplace_back(phi, tables::csv_number(path, row.line, cell) * length_unit(column));
     };
     if (deviation >= 0) {
       const tables::CsvCell& way = row.cells[static_cast<std::size_t>(direction)];
       const std::string w = lower(way.text);
-      if (w == "ccw" || w == "+") add(ccw, deviation);
-      else if (w == "cw" || w == "-") add(cw, deviation);
-      else throw LoadError({path, row.line, way.column}, "direction '" + way.text + "': ccw or cw (+ or -)");
+      if (w == "ccw" || w == "+")
+        add(ccw, deviation);
+      else if (w == "cw" || w == "-")
+        add(cw, deviation);
+      else
+        throw LoadError({path, row.line, way.column}, "direction '" + way.text + "': ccw or cw (+ or -)");
     } else {
       if (ccw_col >= 0) add(ccw, ccw_col);
       if (cw_col >= 0) add(cw, cw_col);
@@ -212,10 +224,13 @@ std::vector<SquarenessTerm> squareness_terms(const machine::Model& model, const 
     const machine::Axis& a = model.axes[static_cast<std::size_t>(j)];
     centre[j] = a.type == machine::AxisType::Rotary ? 0.0 : (a.travel_min + a.travel_max) / 2;
   }
-  const double r = std::min({radius_mm, (model.axes[static_cast<std::size_t>(first)].travel_max -
-                                         model.axes[static_cast<std::size_t>(first)].travel_min) / 2,
+  const double r = std::min({radius_mm,
+                             (model.axes[static_cast<std::size_t>(first)].travel_max -
+                              model.axes[static_cast<std::size_t>(first)].travel_min) /
+                                 2,
                              (model.axes[static_cast<std::size_t>(second)].travel_max -
-                              model.axes[static_cast<std::size_t>(second)].travel_min) / 2});
+                              model.axes[static_cast<std::size_t>(second)].travel_min) /
+                                 2});
   const auto index = [](char axis) { return axis == 'X' ? 0 : axis == 'Y' ? 1 : 2; };
   // The squareness a model shows on the simulated circle, 72 points: dR = the radial part of the
   // tip error, its sin 2phi term (the first-order fit's squareness).
@@ -244,7 +259,7 @@ std::vector<SquarenessTerm> squareness_terms(const machine::Model& model, const 
     a.location_rad[component - 3] = kProbe;
     a.real_base = machine::line_placement(a.pole_mm, a.location_mm, a.location_rad);
     const double per_rad = squareness_of(tilted) / kProbe;  // squareness made by one rad of this error
-    if (std::abs(per_rad) < 0.1) continue;                 // it does not tilt this plane's axes
+    if (std::abs(per_rad) < 0.1) continue;                  // it does not tilt this plane's axes
     const double in_file = model.axes[static_cast<std::size_t>(j)].location_rad[component - 3];
     out.push_back({tables::ErrorSymbol{component, line, true}.name(), in_file + (squareness_rad - in_model) / per_rad,
                    in_file, in_model});

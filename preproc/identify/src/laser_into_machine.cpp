@@ -79,10 +79,13 @@ std::vector<shop::ExtraTable> replacing_tables(const machine::Model& model, cons
   }
   if (holder && fs::path(holder->path()).filename().string() != identified.file_name) {
     result.zeroed_copy = fs::path(holder->path()).filename().string();
-    extras.push_back({setup.joint, result.zeroed_copy, *holder, {},
-                      zeroed_copy(*holder, column, "a copy of " + holder->path() + " with " + symbol.name() +
-                                                       " zero: " + identified.file_name +
-                                                       " holds it (volcomp identify laser)")});
+    extras.push_back({setup.joint,
+                      result.zeroed_copy,
+                      *holder,
+                      {},
+                      zeroed_copy(*holder, column,
+                                  "a copy of " + holder->path() + " with " + symbol.name() +
+                                      " zero: " + identified.file_name + " holds it (volcomp identify laser)")});
   }
   extras.push_back(std::move(identified));
   return extras;
@@ -149,13 +152,16 @@ LaserIntoMachine laser_into_machine(const machine::Model& model, const LaserLine
   const LaserSetup& setup = runs.setup;
   const tables::ErrorSymbol& symbol = setup.error;
   const machine::Axis& axis = model.axes[static_cast<std::size_t>(setup.joint)];
-  if (axis.type == machine::AxisType::Rotary && std::string("XYZABC")[static_cast<std::size_t>(symbol.component)] != axis.letter)
-    throw std::runtime_error(symbol.name() + ": of a rotary axis a laser or an angular reference measures its positioning (" +
-                             std::string("E") + axis.letter + axis.letter + ") only; its run-outs and tilts come from a "
+  if (axis.type == machine::AxisType::Rotary &&
+      std::string("XYZABC")[static_cast<std::size_t>(symbol.component)] != axis.letter)
+    throw std::runtime_error(symbol.name() +
+                             ": of a rotary axis a laser or an angular reference measures its positioning (" +
+                             std::string("E") + axis.letter + axis.letter +
+                             ") only; its run-outs and tilts come from a "
                              "sphere or an R-test (identify sphere)");
 
-  const bool straightness = axis.type == machine::AxisType::Linear && symbol.component < 3 &&
-                            "XYZ"[symbol.component] != axis.letter;
+  const bool straightness =
+      axis.type == machine::AxisType::Linear && symbol.component < 3 && "XYZ"[symbol.component] != axis.letter;
   const bool referenced = runs.reference == Reference::LeastSquares || runs.reference == Reference::EndPoints;
   if (referenced && !straightness)
     throw std::runtime_error(std::string("--reference ") + reference_name(runs.reference) + " is for a straightness; " +
@@ -182,7 +188,8 @@ LaserIntoMachine laser_into_machine(const machine::Model& model, const LaserLine
     result.squareness = term->name();
     unknowns.squareness_joint = model.joint_of(term->axis);
     unknowns.squareness_component = term->component;
-    result.squareness_before_rad = model.axes[static_cast<std::size_t>(unknowns.squareness_joint)].location_rad[term->component - 3];
+    result.squareness_before_rad =
+        model.axes[static_cast<std::size_t>(unknowns.squareness_joint)].location_rad[term->component - 3];
   }
   const bool full_turn = axis.type == machine::AxisType::Rotary && runs.targets.size() > 2 &&
                          std::abs(runs.targets.back() - runs.targets.front() - 360.0) < 1e-9;
@@ -194,10 +201,11 @@ LaserIntoMachine laser_into_machine(const machine::Model& model, const LaserLine
   grid.periodic = full_turn;
   grid.nodes = runs.targets;
   result.table_file = std::string(1, static_cast<char>(std::tolower(symbol.axis))) + "_" + symbol.name() + "_laser.csv";
-  shop::ExtraTable identified{setup.joint, result.table_file,
-                              tables::ErrorTable(result.table_file, {grid}, {{symbol, {result.table_file}}},
-                                                 std::vector<double>(runs.targets.size(), 0.0), tables::Interpolation::Linear),
-                              runs.comments};
+  shop::ExtraTable identified{
+      setup.joint, result.table_file,
+      tables::ErrorTable(result.table_file, {grid}, {{symbol, {result.table_file}}},
+                         std::vector<double>(runs.targets.size(), 0.0), tables::Interpolation::Linear),
+      runs.comments};
   std::vector<shop::ExtraTable> extras = replacing_tables(model, setup, identified, result);
 
   const fs::path out = fs::absolute(folder).lexically_normal();
@@ -215,7 +223,10 @@ LaserIntoMachine laser_into_machine(const machine::Model& model, const LaserLine
   fs::remove_all(staging);
   struct Cleanup {
     fs::path path;
-    ~Cleanup() { std::error_code ignored; fs::remove_all(path, ignored); }
+    ~Cleanup() {
+      std::error_code ignored;
+      fs::remove_all(path, ignored);
+    }
   } cleanup{staging};
   std::vector<shop::LocationValue> locations;
   const auto write = [&](const fs::path& where) {
@@ -225,7 +236,8 @@ LaserIntoMachine laser_into_machine(const machine::Model& model, const LaserLine
   unknowns.table = table_index(staged, setup.joint, result.table_file);
   const LineSolution solution = solve_line(staged, unknowns, setup, runs.targets, result.aimed);
   result.table = solution.values;
-  for (std::size_t i = 0; i < solution.values.size(); ++i) extras.back().table.set_value(static_cast<int>(i), 0, solution.values[i]);
+  for (std::size_t i = 0; i < solution.values.size(); ++i)
+    extras.back().table.set_value(static_cast<int>(i), 0, solution.values[i]);
   if (term) {
     result.squareness_rad = solution.squareness_rad;
     locations.push_back({unknowns.squareness_joint, unknowns.squareness_component, solution.squareness_rad});

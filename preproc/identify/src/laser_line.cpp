@@ -40,8 +40,8 @@ Eigen::Vector3d reading_direction(const machine::Model& model, const LaserSetup&
   constexpr double kStep = 1e-3;  // mm or deg: the ideal machine is smooth
   const Eigen::Isometry3d a = pose(model, Machine::Ideal, setup, target),
                           b = pose(model, Machine::Ideal, setup, target + kStep);
-  const Eigen::Vector3d d = c < 3 ? Eigen::Vector3d(b * setup.tool_point_mm - a * setup.tool_point_mm)
-                                  : turn(b.linear(), a.linear());
+  const Eigen::Vector3d d =
+      c < 3 ? Eigen::Vector3d(b * setup.tool_point_mm - a * setup.tool_point_mm) : turn(b.linear(), a.linear());
   return d.normalized();
 }
 
@@ -54,7 +54,8 @@ machine::Joints parse_axis_positions(const machine::Model& model, int moving_joi
   const auto take = [&] {
     if (item.empty()) return;
     const std::size_t eq = item.find('=');
-    const int joint = eq == 1 ? model.joint_of(static_cast<char>(std::toupper(static_cast<unsigned char>(item[0])))) : -1;
+    const int joint =
+        eq == 1 ? model.joint_of(static_cast<char>(std::toupper(static_cast<unsigned char>(item[0])))) : -1;
     if (joint < 0)
       throw std::runtime_error("'" + item + "': an axis of " + model.info.name + " (" + model.coordinates() +
                                ") and its position, e.g. x=0");
@@ -70,13 +71,16 @@ machine::Joints parse_axis_positions(const machine::Model& model, int moving_joi
     item.clear();
   };
   for (const char c : text + ",") {
-    if (c == ',' || c == ' ' || c == '\t') take();
-    else item += c;
+    if (c == ',' || c == ' ' || c == '\t')
+      take();
+    else
+      item += c;
   }
   std::string missing;
   for (int j = 0; j < model.joint_count(); ++j)
     if (j != moving_joint && !given[static_cast<std::size_t>(j)])
-      missing += std::string(missing.empty() ? "" : ", ") + static_cast<char>(std::tolower(model.axes[static_cast<std::size_t>(j)].letter));
+      missing += std::string(missing.empty() ? "" : ", ") +
+                 static_cast<char>(std::tolower(model.axes[static_cast<std::size_t>(j)].letter));
   if (!missing.empty())
     throw std::runtime_error("where did " + missing + " stand during the runs? Every axis's position is needed ('" +
                              text + "' lacks it): the laser reads the machine's errors there too");
@@ -86,8 +90,9 @@ machine::Joints parse_axis_positions(const machine::Model& model, int moving_joi
 double laser_reading(const machine::Model& model, const LaserSetup& setup, double target) {
   const Eigen::Isometry3d real = pose(model, Machine::Real, setup, target),
                           ideal = pose(model, Machine::Ideal, setup, target);
-  const Eigen::Vector3d e = setup.error.component < 3 ? Eigen::Vector3d(real * setup.tool_point_mm - ideal * setup.tool_point_mm)
-                                                      : turn(real.linear(), ideal.linear());
+  const Eigen::Vector3d e = setup.error.component < 3
+                                ? Eigen::Vector3d(real * setup.tool_point_mm - ideal * setup.tool_point_mm)
+                                : turn(real.linear(), ideal.linear());
   return reading_direction(model, setup, target).dot(e);
 }
 
@@ -98,10 +103,14 @@ Reference default_reference(const tables::ErrorSymbol& error, bool rotary_axis) 
 
 const char* reference_name(Reference r) {
   switch (r) {
-    case Reference::None: return "none";
-    case Reference::Datum: return "datum";
-    case Reference::LeastSquares: return "least-squares";
-    case Reference::EndPoints: return "end-points";
+    case Reference::None:
+      return "none";
+    case Reference::Datum:
+      return "datum";
+    case Reference::LeastSquares:
+      return "least-squares";
+    case Reference::EndPoints:
+      return "end-points";
   }
   return "";
 }
@@ -112,8 +121,11 @@ ReferenceLine reference_line(const std::vector<double>& targets, const std::vect
   if (n == 0) return line;
   const double t0 = targets.front();
   switch (r) {
-    case Reference::None: break;
-    case Reference::Datum: line.offset = values.front(); break;
+    case Reference::None:
+      break;
+    case Reference::Datum:
+      line.offset = values.front();
+      break;
     case Reference::EndPoints:
       line.offset = values.front();
       line.slope = n > 1 ? (values.back() - values.front()) / (targets.back() - t0) : 0.0;
@@ -169,7 +181,8 @@ LineSolution solve_line(machine::Model& model, const LineUnknowns& u, const Lase
   const auto equations = [&](const Eigen::VectorXd& v) {
     set(v);
     Eigen::VectorXd p(rows);
-    for (std::size_t k = 0; k < targets.size(); ++k) p[static_cast<Eigen::Index>(k)] = laser_reading(model, setup, targets[k]);
+    for (std::size_t k = 0; k < targets.size(); ++k)
+      p[static_cast<Eigen::Index>(k)] = laser_reading(model, setup, targets[k]);
     if (squareness) p[rows - 1] = slope_rule.dot(v);
     return p;
   };
@@ -182,7 +195,8 @@ LineSolution solve_line(machine::Model& model, const LineUnknowns& u, const Lase
   const double tolerance = length ? 1e-10 : 1e-13;  // mm or rad
   Eigen::VectorXd v = Eigen::VectorXd::Zero(unknowns);
   for (int i = 0; i < columns; ++i) v[i] = t.value(i, u.column);
-  if (squareness) v[columns] = model.axes[static_cast<std::size_t>(u.squareness_joint)].location_rad[u.squareness_component - 3];
+  if (squareness)
+    v[columns] = model.axes[static_cast<std::size_t>(u.squareness_joint)].location_rad[u.squareness_component - 3];
   LineSolution solution;
   for (int iteration = 1; iteration <= 10; ++iteration) {
     const Eigen::VectorXd p = equations(v);
@@ -201,16 +215,20 @@ LineSolution solve_line(machine::Model& model, const LineUnknowns& u, const Lase
       set(v);
       throw std::runtime_error(
           "the readings along this line do not see " + setup.error.name() +
-          (squareness ? " and " + tables::ErrorSymbol{u.squareness_component, model.axes[static_cast<std::size_t>(u.squareness_joint)].letter, true}.name()
-                      : std::string()) +
+          (squareness
+               ? " and " + tables::ErrorSymbol{u.squareness_component,
+                                               model.axes[static_cast<std::size_t>(u.squareness_joint)].letter, true}
+                               .name()
+               : std::string()) +
           " apart (the model's reading does not change with them): the line or the optics cannot measure it");
     }
     v += qr.solve(m - p);
   }
   set(v);
   if (solution.largest_residual >= tolerance * 1e3)
-    throw std::runtime_error("the model's readings do not converge on the runs (" + number_text(solution.largest_residual) +
-                             " left after " + std::to_string(solution.iterations) + " steps)");
+    throw std::runtime_error("the model's readings do not converge on the runs (" +
+                             number_text(solution.largest_residual) + " left after " +
+                             std::to_string(solution.iterations) + " steps)");
   solution.values.assign(v.data(), v.data() + columns);
   if (periodic) solution.values.push_back(v[0]);
   if (squareness) solution.squareness_rad = v[columns];

@@ -25,7 +25,8 @@ LaserRuns read_laser_runs(const std::string& path) {
   LaserRuns runs;
   runs.path = path;
   const std::vector<tables::CsvRow> rows = tables::read_csv_rows(path, "laser runs");
-  if (rows.empty()) throw LoadError({path}, "no header: target[mm],run,direction,deviation[um] (or target[mm],1+[um],1-[um],...)");
+  if (rows.empty())
+    throw LoadError({path}, "no header: target[mm],run,direction,deviation[um] (or target[mm],1+[um],1-[um],...)");
   runs.metadata = read_metadata(path);
   const tables::CsvRow& header = rows.front();
   const Header columns_read = read_header(path, header);
@@ -35,15 +36,18 @@ LaserRuns read_laser_runs(const std::string& path) {
   const int target = find("target");
   if (target < 0) throw LoadError({path, header.line}, "missing column target[mm] (or target[deg] for a rotary axis)");
   const HeaderCell& t = cells[static_cast<std::size_t>(target)];
-  if (!t.bracket) throw LoadError({path, header.line, header.cells[static_cast<std::size_t>(target)].column}, "the target needs its unit: target[mm] or target[deg]");
+  if (!t.bracket)
+    throw LoadError({path, header.line, header.cells[static_cast<std::size_t>(target)].column},
+                    "the target needs its unit: target[mm] or target[deg]");
   runs.rotary = t.unit_name == "deg";
   if (t.unit_name != "deg" && t.unit_name != "mm")
-    throw LoadError({path, header.line, header.cells[static_cast<std::size_t>(target)].column}, "targets are in mm (a linear axis) or deg (a rotary one)");
+    throw LoadError({path, header.line, header.cells[static_cast<std::size_t>(target)].column},
+                    "targets are in mm (a linear axis) or deg (a rotary one)");
 
   // The deviation columns: one (long layout) or one per run and direction (wide layout).
   struct Column {
     int index;
-    int run;                          // wide: its run; long: 0
+    int run;                             // wide: its run; long: 0
     std::optional<Direction> direction;  // wide: its direction
     double to_core;
   };
@@ -52,7 +56,8 @@ LaserRuns read_laser_runs(const std::string& path) {
   std::optional<tables::Quantity> quantity;
   auto take_unit = [&](std::size_t i) {
     const HeaderCell& h = cells[i];
-    if (!h.unit) throw LoadError({path, header.line, header.cells[i].column}, "a deviation needs its unit, e.g. deviation[um]");
+    if (!h.unit)
+      throw LoadError({path, header.line, header.cells[i].column}, "a deviation needs its unit, e.g. deviation[um]");
     if (quantity && *quantity != h.unit->quantity)
       throw LoadError({path, header.line, header.cells[i].column}, "the deviations mix lengths and angles");
     quantity = h.unit->quantity;
@@ -62,7 +67,8 @@ LaserRuns read_laser_runs(const std::string& path) {
     run_column = find("run");
     direction_column = find("direction");
     if (run_column < 0 || direction_column < 0)
-      throw LoadError({path, header.line}, "the long layout needs the columns run and direction (with target and deviation)");
+      throw LoadError({path, header.line},
+                      "the long layout needs the columns run and direction (with target and deviation)");
     columns.push_back({d, 0, std::nullopt, take_unit(static_cast<std::size_t>(d))});
   } else {
     for (std::size_t i = 0; i < cells.size(); ++i) {
@@ -73,13 +79,17 @@ LaserRuns read_laser_runs(const std::string& path) {
       const std::string number = name.substr(0, name.empty() ? 0 : name.size() - 1);
       // At most 6 digits: a run's number is a count of runs, and std::stoi must not overflow.
       if ((sign != '+' && sign != '-') || number.empty() || number.size() > 6 ||
-          !std::all_of(number.begin(), number.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); }))
-        throw LoadError({path, header.line, header.cells[i].column},
-                        "'" + header.cells[i].text + "' is neither a run column (1+[um], 1-[um], run2+[um], ...) nor target");
-      columns.push_back({static_cast<int>(i), std::stoi(number), sign == '+' ? Direction::Up : Direction::Down,
-                         take_unit(i)});
+          !std::all_of(number.begin(), number.end(),
+                       [](char c) { return std::isdigit(static_cast<unsigned char>(c)); }))
+        throw LoadError(
+            {path, header.line, header.cells[i].column},
+            "'" + header.cells[i].text + "' is neither a run column (1+[um], 1-[um], run2+[um], ...) nor target");
+      columns.push_back(
+          {static_cast<int>(i), std::stoi(number), sign == '+' ? Direction::Up : Direction::Down, take_unit(i)});
     }
-    if (columns.empty()) throw LoadError({path, header.line}, "no deviation columns: deviation[um] with run and direction, or 1+[um],1-[um],...");
+    if (columns.empty())
+      throw LoadError({path, header.line},
+                      "no deviation columns: deviation[um] with run and direction, or 1+[um],1-[um],...");
   }
   runs.quantity = *quantity;
 
@@ -108,7 +118,9 @@ LaserRuns read_laser_runs(const std::string& path) {
         reading.run = static_cast<int>(number);
         const tables::CsvCell& way = row.cells[static_cast<std::size_t>(direction_column)];
         const auto d = direction_of(way.text);
-        if (!d) throw LoadError({path, row.line, way.column}, "direction '" + way.text + "': +, -, up, down, forward or backward");
+        if (!d)
+          throw LoadError({path, row.line, way.column},
+                          "direction '" + way.text + "': +, -, up, down, forward or backward");
         reading.direction = *d;
       }
       runs.readings.push_back(reading);

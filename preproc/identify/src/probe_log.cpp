@@ -33,10 +33,14 @@ ProbeLog read_probe_log(const std::string& path, const machine::Model& model, do
     if (first == "#") {
       std::string key, axes;
       while (words >> key) {
-        if (key == "sphere_diameter_mm") words >> log.sphere_diameter_mm;
-        else if (key == "ball_diameter_mm") words >> log.ball_diameter_mm;
-        else if (key == "probe_length_mm") words >> log.probe_length_mm;
-        else if (key == "axes") words >> axes;
+        if (key == "sphere_diameter_mm")
+          words >> log.sphere_diameter_mm;
+        else if (key == "ball_diameter_mm")
+          words >> log.ball_diameter_mm;
+        else if (key == "probe_length_mm")
+          words >> log.probe_length_mm;
+        else if (key == "axes")
+          words >> axes;
       }
       if (!axes.empty() && axes != model.coordinates())
         throw LoadError({path, number}, "the log is of a machine with axes " + axes + ", " + model.info.name + " has " +
@@ -44,8 +48,10 @@ ProbeLog read_probe_log(const std::string& path, const machine::Model& model, do
       header = true;
       continue;
     }
-    if (first != "POINT") throw LoadError({path, number}, "expected a POINT line (or the '# volcomp probe log' header)");
-    if (!header) throw LoadError({path, number}, "no '# volcomp probe log' header before the points (not a probe-plan log?)");
+    if (first != "POINT")
+      throw LoadError({path, number}, "expected a POINT line (or the '# volcomp probe log' header)");
+    if (!header)
+      throw LoadError({path, number}, "no '# volcomp probe log' header before the points (not a probe-plan log?)");
     int pose = 0;
     std::vector<double> values;
     double v;
@@ -81,7 +87,8 @@ ProbeLog read_probe_log(const std::string& path, const machine::Model& model, do
     q[x] = xyz.x(), q[y] = xyz.y(), q[z] = xyz.z();
     int r_index = 0;
     for (int j = 0; j < model.joint_count(); ++j)
-      if (model.axes[static_cast<std::size_t>(j)].type == machine::AxisType::Rotary) q[j] = p.rotary[static_cast<std::size_t>(r_index++)];
+      if (model.axes[static_cast<std::size_t>(j)].type == machine::AxisType::Rotary)
+        q[j] = p.rotary[static_cast<std::size_t>(r_index++)];
     return q;
   };
   const auto tip = [&](const Pose& p, const Eigen::Vector3d& xyz) {
@@ -125,9 +132,10 @@ ProbeLog read_probe_log(const std::string& path, const machine::Model& model, do
       const double off = std::abs((at[i] - c).norm() - radius);
       log.largest_residual_um = std::max(log.largest_residual_um, off * 1e3);
       if (off > tolerance_mm)
-        throw LoadError({path, p.line}, "pose " + std::to_string(index) + ": a point lies " + std::to_string(off * 1e3) +
-                                            " um off the sphere of diameter " + std::to_string(log.sphere_diameter_mm) +
-                                            " (+ the ball) through the others: a wrong diameter, another sphere or a bad trip?");
+        throw LoadError({path, p.line},
+                        "pose " + std::to_string(index) + ": a point lies " + std::to_string(off * 1e3) +
+                            " um off the sphere of diameter " + std::to_string(log.sphere_diameter_mm) +
+                            " (+ the ball) through the others: a wrong diameter, another sphere or a bad trip?");
     }
     // The joints X Y Z that put the model's real tip on the centre (Newton on the linear axes).
     Eigen::Vector3d xyz = joint_mean;

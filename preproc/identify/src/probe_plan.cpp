@@ -37,7 +37,8 @@ std::string probe_plan(const machine::Model& model, const ProbePlanOptions& o) {
                                " is outside the travel " + number(a.travel_min) + " .. " + number(a.travel_max));
     return number(v);
   };
-  if (!(o.back_off_mm > 0) || !(o.back_off_mm < o.clearance_mm) || !(o.probe_feed_mm_min > 0) || !(o.touch_feed_mm_min > 0))
+  if (!(o.back_off_mm > 0) || !(o.back_off_mm < o.clearance_mm) || !(o.probe_feed_mm_min > 0) ||
+      !(o.touch_feed_mm_min > 0))
     throw std::runtime_error("the feeds must be positive and the back-off between 0 and the clearance");
   // One probed point: a search at the probe feed from `clearance` off the surface, a back-off,
   // and the measuring touch at the touch feed (its trip is the one logged). LinuxCNC latches
@@ -49,17 +50,21 @@ std::string probe_plan(const machine::Model& model, const ProbePlanOptions& o) {
       return dz != 0 ? " Z" + number(dz * distance) : " X" + number(dx * distance) + " Y" + number(dy * distance);
     };
     return "G91 G38.2" + move(2 * o.clearance_mm) + " F" + number(o.probe_feed_mm_min) + "\n" + "G0" +
-           move(-o.back_off_mm) + "\n" + "G38.2" + move(2 * o.back_off_mm) + " F" + number(o.touch_feed_mm_min) + "\nG90\n";
+           move(-o.back_off_mm) + "\n" + "G38.2" + move(2 * o.back_off_mm) + " F" + number(o.touch_feed_mm_min) +
+           "\nG90\n";
   };
   std::string out;
-  out += "(volcomp probe-plan: " + model.info.name + ", a sphere of " + number(o.sphere_diameter_mm) + " mm probed with a " +
-         number(o.ball_diameter_mm) + " mm ball at " + std::to_string(o.rotary_positions.size()) + " rotary positions)\n";
-  out += "(run with the compensation OFF, G54 active, no G92, the probe in the spindle; the log goes to " + o.log_file + ")\n";
+  out += "(volcomp probe-plan: " + model.info.name + ", a sphere of " + number(o.sphere_diameter_mm) +
+         " mm probed with a " + number(o.ball_diameter_mm) + " mm ball at " +
+         std::to_string(o.rotary_positions.size()) + " rotary positions)\n";
+  out += "(run with the compensation OFF, G54 active, no G92, the probe in the spindle; the log goes to " + o.log_file +
+         ")\n";
   out += "(then: volcomp identify sphere MACHINE " + o.log_file + ")\n";
   out += "G21 G90 G94 G17 G40 G49 G80 G92.1 G54\n";
   out += "(LOGOPEN," + o.log_file + ")\n";
   std::string axes;
-  for (int j = 0; j < model.joint_count(); ++j) axes += static_cast<char>(std::tolower(model.axes[static_cast<std::size_t>(j)].letter));
+  for (int j = 0; j < model.joint_count(); ++j)
+    axes += static_cast<char>(std::tolower(model.axes[static_cast<std::size_t>(j)].letter));
   out += "(LOG,# volcomp probe log: sphere_diameter_mm " + number(o.sphere_diameter_mm) + " ball_diameter_mm " +
          number(o.ball_diameter_mm) + " probe_length_mm " + number(length) + " axes " + axes + ")\n";
   out += "G53 G0 Z" + number(safe) + "\n";
@@ -67,12 +72,14 @@ std::string probe_plan(const machine::Model& model, const ProbePlanOptions& o) {
   for (const std::vector<double>& position : o.rotary_positions) {
     ++pose;
     if (position.size() != rotary.size())
-      throw std::runtime_error("pose " + std::to_string(pose) + ": " + std::to_string(rotary.size()) + " rotary positions expected");
+      throw std::runtime_error("pose " + std::to_string(pose) + ": " + std::to_string(rotary.size()) +
+                               " rotary positions expected");
     machine::Joints q = q0;
     std::string rotary_words, rotary_log;
     for (std::size_t r = 0; r < rotary.size(); ++r) {
       q[rotary[r]] = position[r];
-      rotary_words += " " + std::string(1, model.axes[static_cast<std::size_t>(rotary[r])].letter) + within(rotary[r], position[r], pose);
+      rotary_words += " " + std::string(1, model.axes[static_cast<std::size_t>(rotary[r])].letter) +
+                      within(rotary[r], position[r], pose);
       rotary_log += " " + number(position[r]);
     }
     // X Y Z that put the ideal tip on the centre with the table turned (Newton, the linear axes).
@@ -90,7 +97,8 @@ std::string probe_plan(const machine::Model& model, const ProbePlanOptions& o) {
       for (int i = 0; i < 3; ++i) q[lin[i]] += dq[i];
     }
     const double cx = q[x], cy = q[y], cz = q[z], above = cz + reach + o.clearance_mm;
-    const std::string log = "(LOG,POINT " + std::to_string(pose) + rotary_log + " #5061 #5062 #5063 #5221 #5222 #5223)\n";
+    const std::string log =
+        "(LOG,POINT " + std::to_string(pose) + rotary_log + " #5061 #5062 #5063 #5221 #5222 #5223)\n";
     out += "(pose " + std::to_string(pose) + ":" + rotary_words + ")\n";
     out += "G53 G0 Z" + within(z, safe, pose) + "\n";
     out += "G53 G0" + rotary_words + "\n";

@@ -42,8 +42,8 @@ std::vector<SpherePose> read_sphere_centres(const std::string& path, const machi
     const HeaderCell h = header_cell(path, header.line, header.cells[i]);
     const auto at = letters.find(h.name);
     if (h.name.size() != 1 || at == std::string::npos)
-      throw LoadError({path, header.line, header.cells[i].column}, "'" + header.cells[i].text + "' is not an axis of " +
-                                                                        model.info.name + " (" + letters + ")");
+      throw LoadError({path, header.line, header.cells[i].column},
+                      "'" + header.cells[i].text + "' is not an axis of " + model.info.name + " (" + letters + ")");
     column[at] = static_cast<int>(i);
   }
   for (std::size_t j = 0; j < letters.size(); ++j)
@@ -55,7 +55,7 @@ std::vector<SpherePose> read_sphere_centres(const std::string& path, const machi
     p.joints = machine::Joints(model.joint_count());
     if (rows[r].cells.size() != header.cells.size())
       throw LoadError({path, rows[r].line}, std::to_string(rows[r].cells.size()) + " cells, the header has " +
-                                               std::to_string(header.cells.size()));
+                                                std::to_string(header.cells.size()));
     for (std::size_t j = 0; j < letters.size(); ++j)
       p.joints[static_cast<Eigen::Index>(j)] =
           tables::csv_number(path, rows[r].line, rows[r].cells[static_cast<std::size_t>(column[j])]);
@@ -83,7 +83,8 @@ SphereFit identify_from_sphere(const machine::Model& model, const std::vector<Sp
     e.before = e.value = location(axis, e.component);
     all.push_back(e);
   }
-  if (poses.size() < 3) throw std::runtime_error("at least 3 probed poses are needed, " + std::to_string(poses.size()) + " given");
+  if (poses.size() < 3)
+    throw std::runtime_error("at least 3 probed poses are needed, " + std::to_string(poses.size()) + " given");
 
   const auto residuals = [&](const machine::Model& m, const Eigen::Vector3d& p0) {
     Eigen::VectorXd r(3 * static_cast<Eigen::Index>(poses.size()));
@@ -94,12 +95,14 @@ SphereFit identify_from_sphere(const machine::Model& model, const std::vector<Sp
   };
   const auto centre_of = [&](const machine::Model& m) {  // the mean tip: p0's least-squares value
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for (const SpherePose& p : poses) sum += machine::tool_pose(m, machine::Machine::Real, p.joints, tool_length_mm).tip_mm;
+    for (const SpherePose& p : poses)
+      sum += machine::tool_pose(m, machine::Machine::Real, p.joints, tool_length_mm).tip_mm;
     return Eigen::Vector3d(sum / static_cast<double>(poses.size()));
   };
   const auto per_pose_um = [&](const Eigen::VectorXd& r) {
     std::vector<double> out;
-    for (std::size_t k = 0; k < poses.size(); ++k) out.push_back(r.segment<3>(3 * static_cast<Eigen::Index>(k)).norm() * 1e3);
+    for (std::size_t k = 0; k < poses.size(); ++k)
+      out.push_back(r.segment<3>(3 * static_cast<Eigen::Index>(k)).norm() * 1e3);
     return out;
   };
 
@@ -121,7 +124,8 @@ SphereFit identify_from_sphere(const machine::Model& model, const std::vector<Sp
       machine::Model plus = m, minus = m;
       set_location(plus, e.joint, e.component, v + h);
       set_location(minus, e.joint, e.component, v - h);
-      j.col(3 + static_cast<Eigen::Index>(u)) = (residuals(plus, p0) - residuals(minus, p0)) / (2 * h) * scale_of(e.component);
+      j.col(3 + static_cast<Eigen::Index>(u)) =
+          (residuals(plus, p0) - residuals(minus, p0)) / (2 * h) * scale_of(e.component);
     }
     return j;
   };
@@ -151,9 +155,9 @@ SphereFit identify_from_sphere(const machine::Model& model, const std::vector<Sp
                              std::to_string(poses.size()) + " poses): probe at several positions of each rotary axis");
   const auto dof = 3 * static_cast<Eigen::Index>(poses.size()) - 3 - static_cast<Eigen::Index>(unknown.size());
   if (dof < 1)
-    throw std::runtime_error("too few poses for " + std::to_string(unknown.size()) + " location errors and the centre: " +
-                             std::to_string(poses.size()) + " poses give " + std::to_string(3 * poses.size()) +
-                             " equations; probe more positions");
+    throw std::runtime_error("too few poses for " + std::to_string(unknown.size()) +
+                             " location errors and the centre: " + std::to_string(poses.size()) + " poses give " +
+                             std::to_string(3 * poses.size()) + " equations; probe more positions");
 
   // Gauss-Newton (the model is nearly linear in the location errors: a few steps).
   Eigen::MatrixXd j;

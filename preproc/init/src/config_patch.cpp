@@ -52,8 +52,7 @@ class Edits {
 
 // One command's line with tokens replaced ("" text) or removed (nullopt), right to left; a
 // removed token takes the blanks before it along.
-std::string rewritten(const HalCommand& c, const std::string& line,
-                      std::map<int, std::optional<std::string>> tokens) {
+std::string rewritten(const HalCommand& c, const std::string& line, std::map<int, std::optional<std::string>> tokens) {
   std::string text = line;
   for (auto it = tokens.rbegin(); it != tokens.rend(); ++it) {
     const HalToken& t = c.tokens[static_cast<std::size_t>(it->first)];
@@ -103,7 +102,8 @@ class Patcher {
   void replace_kinematics(const std::string& value) {
     const IniEntry& e = *k_.entry;
     if (e.line != e.last_line)
-      throw LoadError(e.where(), "KINEMATICS continues on the next line ('\\'): write it on one line for init to replace it");
+      throw LoadError(e.where(),
+                      "KINEMATICS continues on the next line ('\\'): write it on one line for init to replace it");
     FileEdits& f = edits_.of(e.path, e.where(), "[KINS]KINEMATICS");
     f.replace(e.line, f.file().line(e.line).text.substr(0, e.value_offset) + value);
   }
@@ -113,8 +113,9 @@ class Patcher {
   FileEdits& edits_for(const HalCommand& c, const std::string& what) {
     FileEdits& f = edits_.of(c.path, c.where(), "`" + c.text + "` " + what);
     if (c.line != c.last_line)
-      throw LoadError(c.where(), "`" + c.text + "` " + what + " and continues on the next line ('\\'): write it on one "
-                                                              "line for init to rewrite it");
+      throw LoadError(c.where(), "`" + c.text + "` " + what +
+                                     " and continues on the next line ('\\'): write it on one "
+                                     "line for init to rewrite it");
     return f;
   }
 
@@ -172,8 +173,9 @@ class Patcher {
     }
     for (std::size_t w = 0; w < c.words.size(); ++w)
       if (is_stock_pin(c.words[w]))
-        throw LoadError(c.where(), "`" + c.text + "` names " + c.words[w] + ": init rewrites the setp and net lines of " +
-                                       k_.module + " pins only; change this one by hand (volkins has no such pin)");
+        throw LoadError(c.where(), "`" + c.text + "` names " + c.words[w] +
+                                       ": init rewrites the setp and net lines of " + k_.module +
+                                       " pins only; change this one by hand (volkins has no such pin)");
   }
 
   // An arrow left before another arrow or at the end of a net whose pins were removed goes too
@@ -206,8 +208,9 @@ class Patcher {
     std::istringstream words(k_.entry->value);
     for (std::string w; words >> w;) ini.insert(w);
     if (here != ini)
-      throw LoadError(c.where(), "`" + c.text + "` loads " + k_.module + " with other parameters than [KINS]KINEMATICS (" +
-                                     ini_.cite(*k_.entry) + "): make them the same (`loadrt [KINS]KINEMATICS`)");
+      throw LoadError(c.where(), "`" + c.text + "` loads " + k_.module +
+                                     " with other parameters than [KINS]KINEMATICS (" + ini_.cite(*k_.entry) +
+                                     "): make them the same (`loadrt [KINS]KINEMATICS`)");
     FileEdits& f = edits_for(c, "loads " + k_.module);
     const std::string& line = f.file().line(c.line).text;
     const HalToken& first = c.tokens[1];
@@ -229,7 +232,8 @@ class Patcher {
 
   void append_to_hal_section() {
     const IniSection* hal = ini_.section("HAL");
-    if (!hal) throw LoadError({ini_.path()}, "no [HAL] section: LinuxCNC needs one, and init adds volkins' lines to it");
+    if (!hal)
+      throw LoadError({ini_.path()}, "no [HAL] section: LinuxCNC needs one, and init adds volkins' lines to it");
     std::string path = hal->path;
     int after = hal->line;
     if (!hal->entries.empty()) {

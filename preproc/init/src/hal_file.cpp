@@ -66,7 +66,8 @@ std::string replace_references(const std::string& token, const LinuxcncIni& ini,
     std::size_t key_start = close + 1, key_end;
     if (key_start < token.size() && token[key_start] == '(') {
       key_end = token.find(')', ++key_start);
-      if (key_end == std::string::npos) throw LoadError(where, "'(' without ')' in `" + token + "` (halcmd stops here)");
+      if (key_end == std::string::npos)
+        throw LoadError(where, "'(' without ')' in `" + token + "` (halcmd stops here)");
       i = key_end + 1;
     } else {
       key_end = key_start;

@@ -38,7 +38,8 @@ HomeCheck check_home_position(const LinuxcncIni& ini, const machine::Model& mode
   const machine::Status status =
       machine::world_from_joints(model, volkins.world, home, model.correction_length(0.0), world);
   if (status != machine::Status::Ok) {
-    check.problems.push_back(std::string("at the joints' HOME the forward kinematics fails: ") + machine::describe(status));
+    check.problems.push_back(std::string("at the joints' HOME the forward kinematics fails: ") +
+                             machine::describe(status));
     return check;
   }
 
@@ -60,8 +61,8 @@ HomeCheck check_home_position(const LinuxcncIni& ini, const machine::Model& mode
           std::string(1, a.letter) + " homes " + um_or_mdeg(beyond, rotary) + " beyond its " +
           (above ? "MAX_LIMIT" : "MIN_LIMIT") + " (" + ini.cite(*limit_entry) + "): " + a.home_from +
           " puts the corrected world " + a.letter + " at " + format_number(std::round(a.world * 1e6) / 1e6) +
-          ". LinuxCNC then refuses every move that leaves " + a.letter + " there (\"would exceed " + a.letter +
-          "'s " + (above ? "positive" : "negative") + " limit\") and notes a soft limit at each machine-on. Home " +
+          ". LinuxCNC then refuses every move that leaves " + a.letter + " there (\"would exceed " + a.letter + "'s " +
+          (above ? "positive" : "negative") + " limit\") and notes a soft limit at each machine-on. Home " +
           "inside: [JOINT_" + std::to_string(a.joint) + "]HOME = " + format_number(std::round(suggested * 1e6) / 1e6));
     }
   }

@@ -21,7 +21,8 @@ JointRoomCheck check_joint_room(const LinuxcncIni& ini, const machine::Model& mo
   std::vector<std::array<double, kLevels>> levels(static_cast<std::size_t>(n));
   for (int j = 0; j < n; ++j) {
     const machine::Axis& a = model.axes[static_cast<std::size_t>(j)];
-    const std::string section = std::string("AXIS_") + static_cast<char>(std::toupper(static_cast<unsigned char>(a.letter)));
+    const std::string section =
+        std::string("AXIS_") + static_cast<char>(std::toupper(static_cast<unsigned char>(a.letter)));
     const double lo = ini_number(ini, section, "MIN_LIMIT", a.travel_min);
     const double hi = ini_number(ini, section, "MAX_LIMIT", a.travel_max);
     for (int k = 0; k < kLevels; ++k) levels[static_cast<std::size_t>(j)][k] = lo + (hi - lo) * k / (kLevels - 1);
@@ -74,14 +75,16 @@ JointRoomCheck check_joint_room(const LinuxcncIni& ini, const machine::Model& mo
       if (beyond <= kLimitNoise) continue;
       const IniEntry* limit = ini.find(section, above ? "MAX_LIMIT" : "MIN_LIMIT");
       const double reached = above ? room.highest : room.lowest;
-      const double suggested = kLimitStep * (above ? std::ceil(reached / kLimitStep + 1e-9) : std::floor(reached / kLimitStep - 1e-9));
+      const double suggested =
+          kLimitStep * (above ? std::ceil(reached / kLimitStep + 1e-9) : std::floor(reached / kLimitStep - 1e-9));
       check.problems.push_back(
           "joint " + std::to_string(room.joint) + " (" + room.letter + "): the correction takes it to " +
           format_number(std::round(reached * 1e6) / 1e6) + " at the " + (above ? "upper" : "lower") + " end of " +
-          room.letter + "'s travel, " + um_or_mdeg(beyond, rotary) + " beyond its " + (above ? "MAX_LIMIT" : "MIN_LIMIT") +
-          (limit ? " (" + ini.cite(*limit) + ")" : "") + ": LinuxCNC refuses a move that ends there (\"would exceed joint " + std::to_string(room.joint) + "'s " +
-          (above ? "positive" : "negative") + " limit\"). Room for the correction: [" + section + "]" + (above ? "MAX_LIMIT" : "MIN_LIMIT") + " = " +
-          format_number(std::round(suggested * 1e6) / 1e6));
+          room.letter + "'s travel, " + um_or_mdeg(beyond, rotary) + " beyond its " +
+          (above ? "MAX_LIMIT" : "MIN_LIMIT") + (limit ? " (" + ini.cite(*limit) + ")" : "") +
+          ": LinuxCNC refuses a move that ends there (\"would exceed joint " + std::to_string(room.joint) + "'s " +
+          (above ? "positive" : "negative") + " limit\"). Room for the correction: [" + section + "]" +
+          (above ? "MAX_LIMIT" : "MIN_LIMIT") + " = " + format_number(std::round(suggested * 1e6) / 1e6));
     }
   }
   return check;

@@ -47,11 +47,16 @@ KinematicsLine read_kinematics_line(const LinuxcncIni& ini) {
                     "module it is");
   std::istringstream words(k.entry->value);
   words >> k.module;
-  if (k.module == "trivkins") k.kind = StockModule::Trivkins;
-  else if (k.module == "xyzbc-trt-kins") k.kind = StockModule::XyzbcTrt;
-  else if (k.module == "xyzac-trt-kins") k.kind = StockModule::XyzacTrt;
-  else if (k.module == "5axiskins") k.kind = StockModule::FiveAxis;
-  else throw LoadError(k.entry->where(), kKnown + why_not(k.module));
+  if (k.module == "trivkins")
+    k.kind = StockModule::Trivkins;
+  else if (k.module == "xyzbc-trt-kins")
+    k.kind = StockModule::XyzbcTrt;
+  else if (k.module == "xyzac-trt-kins")
+    k.kind = StockModule::XyzacTrt;
+  else if (k.module == "5axiskins")
+    k.kind = StockModule::FiveAxis;
+  else
+    throw LoadError(k.entry->where(), kKnown + why_not(k.module));
 
   // trivkins: coordinates, kinstype; the trt modules and 5axiskins (switchkins): coordinates, sparm.
   const std::string second = k.kind == StockModule::Trivkins ? "kinstype" : "sparm";
@@ -59,8 +64,9 @@ KinematicsLine read_kinematics_line(const LinuxcncIni& ini) {
     const std::size_t equals = word.find('=');
     const std::string name = word.substr(0, equals);
     if (equals == std::string::npos || (name != "coordinates" && name != second))
-      throw LoadError(k.entry->where(), "`" + word + "` is not a parameter of " + k.module + " (it has coordinates= and " +
-                                            second + "=): rtapi_app would refuse to load it");
+      throw LoadError(k.entry->where(), "`" + word + "` is not a parameter of " + k.module +
+                                            " (it has coordinates= and " + second +
+                                            "=): rtapi_app would refuse to load it");
     k.parameters.emplace_back(name, word.substr(equals + 1));
   }
   return k;

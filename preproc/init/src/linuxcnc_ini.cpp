@@ -80,8 +80,11 @@ LinuxcncIni LinuxcncIni::read(const std::string& path) {
     if (start == std::string::npos || text[start] == '#' || text[start] == ';') continue;
     if (text[start] == '[') {
       const std::size_t close = text.find(']', start);
-      ini.sections_.push_back({text.substr(start + 1, close == std::string::npos ? std::string::npos : close - start - 1),
-                               first.file->path, first.number, {}});
+      ini.sections_.push_back(
+          {text.substr(start + 1, close == std::string::npos ? std::string::npos : close - start - 1),
+           first.file->path,
+           first.number,
+           {}});
       section = &ini.sections_.back();
       continue;
     }

@@ -52,10 +52,13 @@ std::string toml_string(const std::string& s) {
     if (c == '"' || c == '\\') escaped += '\\';
     escaped += c;
   }
-  return "\"" + toml_text(escaped, [](unsigned char c) {
-           const char* hex = "0123456789ABCDEF";
-           return std::string("\\u00") + hex[c >> 4] + hex[c & 0xF];
-         }) + "\"";
+  return "\"" +
+         toml_text(escaped,
+                   [](unsigned char c) {
+                     const char* hex = "0123456789ABCDEF";
+                     return std::string("\\u00") + hex[c >> 4] + hex[c & 0xF];
+                   }) +
+         "\"";
 }
 
 // A comment's text: TOML forbids control characters other than tab in comments.

@@ -33,10 +33,11 @@ void check_units(const LinuxcncIni& ini, MachineLayout& layout) {
   double per_mm = 0.0;
   const bool number = parse_number(u, per_mm);
   if (u == "in" || u == "inch" || u == "imperial" || (number && std::abs(per_mm * 25.4 - 1.0) < 1e-6))
-    throw LoadError(linear->where(),
-                    "LINEAR_UNITS = " + linear->value +
-                        ": this LinuxCNC is set up in inches, and volkins works in mm (its machine file, tables, joints "
-                        "and the tool length offset it takes from motion): set the configuration up in mm first");
+    throw LoadError(
+        linear->where(),
+        "LINEAR_UNITS = " + linear->value +
+            ": this LinuxCNC is set up in inches, and volkins works in mm (its machine file, tables, joints "
+            "and the tool length offset it takes from motion): set the configuration up in mm first");
   if (!(u == "mm" || u == "metric" || (number && per_mm == 1.0)))
     throw LoadError(linear->where(), "LINEAR_UNITS = " + linear->value + " is not mm: volkins works in mm");
   layout.units_from = ini.cite(*linear);
@@ -74,7 +75,8 @@ int whole_number(const IniEntry& entry, int low, int high) {
 
 double limit(const IniEntry& entry) {
   double v = 0.0;
-  if (!parse_number(entry.value, v)) throw LoadError(entry.where(), entry.key + " = " + entry.value + " is not a number");
+  if (!parse_number(entry.value, v))
+    throw LoadError(entry.where(), entry.key + " = " + entry.value + " is not a number");
   return v;
 }
 
@@ -82,10 +84,14 @@ double limit(const IniEntry& entry) {
 // the parameter); "" for trivkins.
 std::string required_coordinates(StockModule kind) {
   switch (kind) {
-    case StockModule::XyzbcTrt: return "xyzbc";
-    case StockModule::XyzacTrt: return "xyzac";
-    case StockModule::FiveAxis: return "xyzbcw";
-    case StockModule::Trivkins: break;
+    case StockModule::XyzbcTrt:
+      return "xyzbc";
+    case StockModule::XyzacTrt:
+      return "xyzac";
+    case StockModule::FiveAxis:
+      return "xyzbcw";
+    case StockModule::Trivkins:
+      break;
   }
   return "";
 }
@@ -101,8 +107,10 @@ void read_coordinates(const KinematicsLine& k, const LinuxcncIni& ini, int kinem
     layout.coordinates_from = k.module + " coordinates=" + *given + " (" + line + ")";
   } else if (k.kind == StockModule::Trivkins) {
     if (kinematics_joints > 9)
-      throw LoadError(k.entry->where(), "trivkins without coordinates= maps at most 9 joints (XYZABCUVW), but [KINS]JOINTS "
-                                        "asks for " + std::to_string(kinematics_joints));
+      throw LoadError(k.entry->where(),
+                      "trivkins without coordinates= maps at most 9 joints (XYZABCUVW), but [KINS]JOINTS "
+                      "asks for " +
+                          std::to_string(kinematics_joints));
     layout.coordinates = lower(std::string(kLetters).substr(0, static_cast<std::size_t>(kinematics_joints)));
     layout.coordinates_from = "trivkins with its default coordinates=" + layout.coordinates +
                               " (XYZABCUVW, as many as [KINS]JOINTS has joints) (" + line + ")";
@@ -116,7 +124,8 @@ void read_coordinates(const KinematicsLine& k, const LinuxcncIni& ini, int kinem
                                             "' is not an axis letter (XYZABCUVW)");
   if (layout.coordinates.empty()) throw LoadError(k.entry->where(), "coordinates= names no axis");
   for (char r : required)
-    if (std::none_of(layout.coordinates.begin(), layout.coordinates.end(), [&](char c) { return upper(c) == upper(r); }))
+    if (std::none_of(layout.coordinates.begin(), layout.coordinates.end(),
+                     [&](char c) { return upper(c) == upper(r); }))
       throw LoadError(k.entry->where(), "coordinates=" + layout.coordinates + " lacks " + std::string(1, upper(r)) +
                                             ", which " + k.module + " requires (it needs " + required + ")");
   if (k.kind != StockModule::FiveAxis) return;
@@ -125,7 +134,8 @@ void read_coordinates(const KinematicsLine& k, const LinuxcncIni& ini, int kinem
   for (char c : layout.coordinates)
     if (std::strchr("AUV", upper(c)))
       throw LoadError(k.entry->where(),
-                      layout.coordinates_from + " has " + std::string(1, upper(c)) + ", which 5axiskins passes through " +
+                      layout.coordinates_from + " has " + std::string(1, upper(c)) +
+                          ", which 5axiskins passes through " +
                           "to its joint one-to-one: volkins does not pass it through (its joints are the machine "
                           "file's axes X Y Z B C and the tool-axis coordinate W); remove the joint");
   layout.tool_axis = 'W';
@@ -145,12 +155,14 @@ void check_traj_coordinates(const LinuxcncIni& ini, const MachineLayout& layout)
   const std::string planner = traj ? letter_set(traj->value) : "XYZ";  // LinuxCNC's default: XYZ
   const std::string kinematics = letter_set(layout.coordinates);
   if (planner == kinematics) return;
-  const std::string traj_text = traj ? "[TRAJ]COORDINATES = " + traj->value : "[TRAJ] without COORDINATES (LinuxCNC takes XYZ)";
+  const std::string traj_text =
+      traj ? "[TRAJ]COORDINATES = " + traj->value : "[TRAJ] without COORDINATES (LinuxCNC takes XYZ)";
   std::string why;
   for (char l : kinematics)
     if (planner.find(l) == std::string::npos) {
-      const std::size_t joint = std::find_if(layout.coordinates.begin(), layout.coordinates.end(),
-                                             [&](char c) { return upper(c) == l; }) - layout.coordinates.begin();
+      const std::size_t joint =
+          std::find_if(layout.coordinates.begin(), layout.coordinates.end(), [&](char c) { return upper(c) == l; }) -
+          layout.coordinates.begin();
       why = "the kinematics makes joint " + std::to_string(joint) + " the axis " + std::string(1, l) +
             ", which the trajectory planner does not have";
       break;
@@ -174,13 +186,14 @@ void check_model_axes(const KinematicsLine& k, const MachineLayout& layout) {
   const std::string& named = layout.coordinates_from;
   for (char l : std::string("UVW"))
     if (axes.find(l) != std::string::npos)
-      throw LoadError(k.entry->where(), named + " has " + std::string(1, l) +
-                                            ": the model has exactly three linear axes X Y Z (U, V, W are further linear "
-                                            "axes)");
+      throw LoadError(k.entry->where(),
+                      named + " has " + std::string(1, l) +
+                          ": the model has exactly three linear axes X Y Z (U, V, W are further linear "
+                          "axes)");
   for (char l : std::string("XYZ"))
     if (axes.find(l) == std::string::npos)
-      throw LoadError(k.entry->where(), named + " has no " + std::string(1, l) +
-                                            ": the model has exactly three linear axes X Y Z");
+      throw LoadError(k.entry->where(),
+                      named + " has no " + std::string(1, l) + ": the model has exactly three linear axes X Y Z");
   if (axes.size() > 5)
     throw LoadError(k.entry->where(), named + " has three rotary axes A, B, C: the model has at most two");
 }
@@ -194,7 +207,8 @@ LayoutAxis read_axis(const LinuxcncIni& ini, const IniEntry& joints_entry, char 
   const IniSection* section = ini.section(name);
   if (!section)
     throw LoadError(joints_entry.where(), "joint " + std::to_string(joint) + " (" + std::string(1, letter) +
-                                              ") has no [" + name + "] section: its MIN_LIMIT and MAX_LIMIT are the axis's travel");
+                                              ") has no [" + name +
+                                              "] section: its MIN_LIMIT and MAX_LIMIT are the axis's travel");
   if (const IniEntry* type = ini.find(name, "TYPE")) {
     const std::string t = lower(type->value);
     if (t != "linear" && t != "angular")
@@ -239,16 +253,18 @@ MachineLayout read_layout(const LinuxcncIni& ini, const KinematicsLine& k) {
   check_units(ini, layout);
   const IniEntry* joints = ini.find("KINS", "JOINTS");
   if (!joints)
-    throw LoadError(ini.where_missing("KINS"), "no [KINS]JOINTS: LinuxCNC needs the number of joints, init the joint of each axis");
+    throw LoadError(ini.where_missing("KINS"),
+                    "no [KINS]JOINTS: LinuxCNC needs the number of joints, init the joint of each axis");
   const int joint_count = whole_number(*joints, 1, kMaxJoints);
   const int extra = extra_joints(ini);
   read_coordinates(k, ini, joint_count - extra, layout);
   const int mapped = static_cast<int>(layout.coordinates.size());
   if (mapped + extra != joint_count)
-    throw LoadError(joints->where(), "JOINTS = " + joints->value + ", but " + layout.coordinates_from +
-                                         " maps " + std::to_string(mapped) + " joints" +
-                                         (extra ? " and [EMCMOT]EMCMOT adds " + std::to_string(extra) + " extra joints" : "") +
-                                         ": they must agree");
+    throw LoadError(joints->where(),
+                    "JOINTS = " + joints->value + ", but " + layout.coordinates_from + " maps " +
+                        std::to_string(mapped) + " joints" +
+                        (extra ? " and [EMCMOT]EMCMOT adds " + std::to_string(extra) + " extra joints" : "") +
+                        ": they must agree");
   check_traj_coordinates(ini, layout);
   check_model_axes(k, layout);
   for (const char* l = kLetters; *l; ++l) {

@@ -61,11 +61,12 @@ class Resolver {
   PivotLength run() {
     const PinValue pivot = pin_value(hal_, kPin, kModuleDefault);
     if (pivot.source == PinValue::Source::Default)
-      throw LoadError(pivot.net ? pivot.net->where() : k_.entry->where(),
-                      kPin +
-                          (pivot.net ? " is on signal " + pivot.signal + ", which no pin drives and no sets gives a value"
-                                     : std::string(" is netted nowhere in the HAL files read")) +
-                          ": it keeps 5axiskins' default 250, a constant: " + kWhy);
+      throw LoadError(
+          pivot.net ? pivot.net->where() : k_.entry->where(),
+          kPin +
+              (pivot.net ? " is on signal " + pivot.signal + ", which no pin drives and no sets gives a value"
+                         : std::string(" is netted nowhere in the HAL files read")) +
+              ": it keeps 5axiskins' default 250, a constant: " + kWhy);
     if (pivot.source != PinValue::Source::Live)
       throw LoadError(pivot.command->where(),
                       kPin + " is the constant " + format_number(pivot.value) +
@@ -84,7 +85,8 @@ class Resolver {
       throw LoadError(pivot.net->where(), kPin + " follows " + pivot.driver + " at run time (signal " + pivot.signal +
                                               "), which is not the out of a sum2 loaded in the HAL files read: init "
                                               "follows the pivot length through a sum2 of the tool offset and a "
-                                              "constant only; " + kWhy);
+                                              "constant only; " +
+                                              kWhy);
     const std::string& s = sum->name;
     PivotLength p;
     p.sum2 = s;
@@ -97,21 +99,22 @@ class Resolver {
     for (int i = 0; i < 2; ++i)
       on_tool[i] = in[i].source == PinValue::Source::Live && !tool_signal.empty() && in[i].signal == tool_signal;
     if (on_tool[0] == on_tool[1])
-      throw LoadError(pivot.net->where(),
-                      kPin + " follows " + s + ".out, but " +
-                          (on_tool[0] ? "both " + s + ".in0 and " + s + ".in1 are on " + tool_signal +
-                                            ": the pivot length would grow by twice the tool offset"
-                                      : "neither " + s + ".in0 nor " + s + ".in1 is on the signal " + kToolOffset +
-                                            " drives (" + (tool_signal.empty() ? "it is netted nowhere" : tool_signal) +
-                                            ")") +
-                          "; " + kWhy);
+      throw LoadError(
+          pivot.net->where(),
+          kPin + " follows " + s + ".out, but " +
+              (on_tool[0] ? "both " + s + ".in0 and " + s + ".in1 are on " + tool_signal +
+                                ": the pivot length would grow by twice the tool offset"
+                          : "neither " + s + ".in0 nor " + s + ".in1 is on the signal " + kToolOffset + " drives (" +
+                                (tool_signal.empty() ? "it is netted nowhere" : tool_signal) + ")") +
+              "; " + kWhy);
     const int t = on_tool[0] ? 0 : 1, c = 1 - t;
     const std::string tool_in = s + ".in" + std::to_string(t), constant_in = s + ".in" + std::to_string(c);
 
     const Value gain_t = constant(s + ".gain" + std::to_string(t), 1.0);
     if (gain_t.value != 1.0)
       throw LoadError(gain_t.where, s + ".gain" + std::to_string(t) + " = " + format_number(gain_t.value) + ": " +
-                                        tool_in + " (the tool offset) must enter the pivot length with gain 1; " + kWhy);
+                                        tool_in + " (the tool offset) must enter the pivot length with gain 1; " +
+                                        kWhy);
     const Value value_c = constant_input(in[c], constant_in);
     const Value gain_c = constant(s + ".gain" + std::to_string(c), 1.0);
     const Value offset = constant(s + ".offset", 0.0);
@@ -120,8 +123,8 @@ class Resolver {
     const std::string nets = at(*pivot.net) + (out_net == pivot.net ? "" : ", " + at(*out_net));
     p.from = {"Pm = " + format_number(p.mechanical_mm) + ", the mechanical pivot length: " + kPin + " follows " + s +
                   ".out (" + nets + "), a sum2 (" + at(*sum->loaded) + "):",
-              "out = in0 * gain0 + in1 * gain1 + offset = the G43 offset + Pm, Pm = in" + std::to_string(c) + " * gain" +
-                  std::to_string(c) + " + offset, with",
+              "out = in0 * gain0 + in1 * gain1 + offset = the G43 offset + Pm, Pm = in" + std::to_string(c) +
+                  " * gain" + std::to_string(c) + " + offset, with",
               "  in" + std::to_string(t) + ": " + kToolOffset + ", the G43 offset (" + at(*in[t].net) + "), gain" +
                   std::to_string(t) + " = 1: " + gain_t.from,
               "  in" + std::to_string(c) + " = " + format_number(value_c.value) + ": " + value_c.from,
@@ -162,19 +165,23 @@ class Resolver {
     if (in.source != PinValue::Source::Live) return constant(name, 0.0);
     std::string gui_signal;
     if (!net_of_pin(hal_, kGuiPin, &gui_signal) || gui_signal != in.signal)
-      throw LoadError(in.net->where(), name + " follows " + in.driver + " at run time (both are on signal " + in.signal +
+      throw LoadError(in.net->where(), name + " follows " + in.driver + " at run time (both are on signal " +
+                                           in.signal +
                                            ", which no sets gives a value): the pivot length's other part must be a "
                                            "constant; volkins takes the geometry from the machine file: set it with "
-                                           "setp (or take it from " + kGuiPin + ", as the bridgemill sample does)");
+                                           "setp (or take it from " +
+                                           kGuiPin + ", as the bridgemill sample does)");
     const HalCommand* gui = nullptr;
     std::vector<std::string> arguments;
     for (const HalCommand& c : hal_.commands)
-      if (const auto load = loadusr_of(c); load && !gui && std::filesystem::path(load->module).filename() == "5axisgui") {
+      if (const auto load = loadusr_of(c);
+          load && !gui && std::filesystem::path(load->module).filename() == "5axisgui") {
         gui = &c;
         arguments = load->arguments;
       }
     if (!gui)
-      throw LoadError(in.net->where(), name + " follows " + kGuiPin + ", but no `loadusr 5axisgui` is in the HAL "
+      throw LoadError(in.net->where(), name + " follows " + kGuiPin +
+                                           ", but no `loadusr 5axisgui` is in the HAL "
                                            "files read: init takes the pivot length from its pivot_len= argument");
     // 5axisgui runs each argument as Python (`pivot_len=300`): the last one wins.
     Value v{kGuiDefault, "", gui->where()};
@@ -182,8 +189,9 @@ class Resolver {
     for (const std::string& a : arguments)
       if (a.rfind("pivot_len=", 0) == 0) {
         if (!parse_number(a.substr(10), v.value))
-          throw LoadError(gui->where(), "`" + a + "`: 5axisgui's pivot_len is not a number (init takes the pivot "
-                                                  "length from it)");
+          throw LoadError(gui->where(), "`" + a +
+                                            "`: 5axisgui's pivot_len is not a number (init takes the pivot "
+                                            "length from it)");
         given = true;
       }
     v.from = kGuiPin + " (" + at(*in.net) + "), 5axisgui's pivot_len: " + at(*gui) +

@@ -40,9 +40,9 @@ NominalAxis axis_from(const LayoutAxis& a, const MachineLayout& layout, const st
 // X, Y, Z carry the tool: +X moves it along +x relative to the part (both modules' world).
 void linear_axes(const MachineLayout& layout, const std::string& module, const std::string& world, NominalMachine& m) {
   for (char l : std::string("XYZ")) {
-    NominalAxis axis = axis_from(*layout.axis(l), layout, module + world + ": the joint moves the tool along +" +
-                                                              std::string(1, static_cast<char>(std::tolower(l))) +
-                                                              " relative to the part");
+    NominalAxis axis = axis_from(*layout.axis(l), layout,
+                                 module + world + ": the joint moves the tool along +" +
+                                     std::string(1, static_cast<char>(std::tolower(l))) + " relative to the part");
     axis.direction_from = "the tool's motion relative to the part (machines/README.md section 1)";
     axis.pole_from = {"the bed frame's origin (" + module + " places X, Y, Z nowhere in particular)"};
     m.tool_chain.push_back(axis);
@@ -87,8 +87,10 @@ Pin geometry_pin(const HalConfig& hal, const LinuxcncIni& ini, const std::string
                                         ", which no sets gives a value); volkins takes the geometry from the machine "
                                         "file: set it with setp");
   Pin p{name, v.value, name + " = " + format_number(v.value) + ": "};
-  if (v.source == PinValue::Source::Default) p.from += "not set in the HAL files read (the module's default)";
-  else p.from += at(*v.command);
+  if (v.source == PinValue::Source::Default)
+    p.from += "not set in the HAL files read (the module's default)";
+  else
+    p.from += at(*v.command);
   if (v.source == PinValue::Source::Sets) p.from += " (its signal, " + at(*v.net) + ")";
   return p;
 }
@@ -126,7 +128,8 @@ void trt(const LinuxcncIni& ini, const HalConfig& hal, const KinematicsLine& k, 
     t.pole_from = {"[x-rot-point, y-rot-point + y-offset, z-rot-point + z-offset]: A's line is the rotation point's",
                    "moved by the y and z offsets (trtfuncs.c), with"};
   }
-  for (const Pin* p : bc ? std::vector<const Pin*>{&xr, &yr, &zr, &dx, &dz} : std::vector<const Pin*>{&xr, &yr, &zr, &dy, &dz})
+  for (const Pin* p :
+       bc ? std::vector<const Pin*>{&xr, &yr, &zr, &dx, &dz} : std::vector<const Pin*>{&xr, &yr, &zr, &dy, &dz})
     t.pole_from.push_back("  " + p->from);
   m.workpiece_chain.push_back(t);
 
@@ -139,9 +142,11 @@ void trt(const LinuxcncIni& ini, const HalConfig& hal, const KinematicsLine& k, 
 
   m.fixture_origin_mm = {-xr.value, -yr.value, -zr.value};
   m.fixture_from = {"[-x-rot-point, -y-rot-point, -z-rot-point] in C's frame: the part frame is the bed frame at " +
-                    std::string(1, tilt) + " = C = 0, as the world of " + mod + " (the tool tip relative to the table)"};
+                    std::string(1, tilt) + " = C = 0, as the world of " + mod +
+                    " (the tool tip relative to the table)"};
   m.gauge_point_from = "the tool tip of " + mod + " is tool-offset below the spindle point, the Z frame's origin";
-  m.tool_length_reference_from = "L = the active G43 offset (motion.tooloffset.z), exactly as the tool-offset pin of " + mod;
+  m.tool_length_reference_from =
+      "L = the active G43 offset (motion.tooloffset.z), exactly as the tool-offset pin of " + mod;
 
   switchkins_types(k, m);
 }
@@ -176,15 +181,21 @@ void five_axis(const LinuxcncIni& ini, const HalConfig& hal, const KinematicsLin
   m.tool_chain.push_back(b);
 
   m.gauge_point_mm = {0.0, 0.0, -pm};
-  m.gauge_point_from = "[0, 0, -Pm]: the spindle point is Pm below the pivot along the tool (5axiskins.c: s2r(pivot-length "
-                       "+ w, C, 180 - B)); Pm " + format_number(pm) + ", C's pole below";
-  m.tool_length_reference_from = "L = the active G43 offset (motion.tooloffset.z), which 5axiskins' pivot-length adds "
-                                 "through " + pivot.sum2;
+  m.gauge_point_from =
+      "[0, 0, -Pm]: the spindle point is Pm below the pivot along the tool (5axiskins.c: s2r(pivot-length "
+      "+ w, C, 180 - B)); Pm " +
+      format_number(pm) + ", C's pole below";
+  m.tool_length_reference_from =
+      "L = the active G43 offset (motion.tooloffset.z), which 5axiskins' pivot-length adds "
+      "through " +
+      pivot.sum2;
   m.tool_axis_coordinate = layout.tool_axis;
-  m.tool_axis_from = "joint " + std::to_string(layout.tool_axis_joint) + " of " + layout.coordinates_from +
-                     ": 5axiskins' W moves the tool along its own axis by the X, Y, Z joints (s2r(pivot-length + w, ...))";
+  m.tool_axis_from =
+      "joint " + std::to_string(layout.tool_axis_joint) + " of " + layout.coordinates_from +
+      ": 5axiskins' W moves the tool along its own axis by the X, Y, Z joints (s2r(pivot-length + w, ...))";
   m.fixture_from = {mod + ": the part frame is the bed frame"};
-  m.remarks.push_back(mod + ".pivot-length follows " + pivot.sum2 + ".out, the mechanical pivot length " + format_number(pm) +
+  m.remarks.push_back(mod + ".pivot-length follows " + pivot.sum2 + ".out, the mechanical pivot length " +
+                      format_number(pm) +
                       " plus the tool offset: the pivot is C's pole and the gauge point below. The patch takes " + mod +
                       ".pivot-length off its net; " + pivot.sum2 + " stays, driving nothing.");
   switchkins_types(k, m);
@@ -209,9 +220,12 @@ NominalMachine nominal_machine(const LinuxcncIni& ini, const HalConfig& hal, con
   m.tool_length_from = tool.from;
   if (tool.unreadable) m.remarks.push_back("tool_length_mm is 0: " + tool.from);
   m.tool_length_reference_from = "L = the active G43 offset (motion.tooloffset.z): the tool table holds gauge lengths";
-  if (k.kind == StockModule::Trivkins) trivkins(layout, m);
-  else if (k.kind == StockModule::FiveAxis) five_axis(ini, hal, k, layout, m);
-  else trt(ini, hal, k, layout, m);
+  if (k.kind == StockModule::Trivkins)
+    trivkins(layout, m);
+  else if (k.kind == StockModule::FiveAxis)
+    five_axis(ini, hal, k, layout, m);
+  else
+    trt(ini, hal, k, layout, m);
   return m;
 }
 

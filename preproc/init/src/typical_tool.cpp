@@ -35,7 +35,7 @@ TypicalTool longest_tool(const LinuxcncIni& ini) {
   interpreter::ToolTable tools;
   try {
     tools = interpreter::read_tool_table(path, 1.0);  // mm: inches are refused before
-  } catch (const LoadError& e) {  // the typical tool is not worth a refusal
+  } catch (const LoadError& e) {                      // the typical tool is not worth a refusal
     return {0.0, "no typical tool: the tool table cannot be read: " + std::string(e.what()), true};
   }
   const interpreter::Tool* longest = nullptr;

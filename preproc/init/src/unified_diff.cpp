@@ -26,7 +26,8 @@ std::vector<FileEdits::Op> FileEdits::operations() const {
   const std::vector<TextLine>& old = file_->lines;
   const int n = static_cast<int>(old.size());
   auto end_after = [&](int line) {  // the line end of inserted lines
-    if (line >= 1 && !old[static_cast<std::size_t>(line - 1)].end.empty()) return old[static_cast<std::size_t>(line - 1)].end;
+    if (line >= 1 && !old[static_cast<std::size_t>(line - 1)].end.empty())
+      return old[static_cast<std::size_t>(line - 1)].end;
     return old.empty() || old.front().end.empty() ? std::string("\n") : old.front().end;
   };
   std::vector<Op> ops;
@@ -45,8 +46,10 @@ std::vector<FileEdits::Op> FileEdits::operations() const {
     }
     // A last line without a newline gets one when lines follow it.
     if (i == n && now.end.empty() && inserted_.count(n)) now.end = end_after(0);
-    if (!keep) ops.push_back({'-', line});
-    else if (now.text == line.text && now.end == line.end) ops.push_back({' ', line});
+    if (!keep)
+      ops.push_back({'-', line});
+    else if (now.text == line.text && now.end == line.end)
+      ops.push_back({' ', line});
     else {
       ops.push_back({'-', line});
       ops.push_back({'+', now});

@@ -26,8 +26,9 @@ VolkinsParameters read_volkins_parameters(const LinuxcncIni& ini) {
 
 int linuxcnc_joint(const VolkinsParameters& volkins, const machine::Model& model, int j) {
   const char letter = model.axes[static_cast<std::size_t>(j)].letter;
-  const std::size_t at = std::min(volkins.coordinates.find(static_cast<char>(std::tolower(static_cast<unsigned char>(letter)))),
-                                  volkins.coordinates.find(static_cast<char>(std::toupper(static_cast<unsigned char>(letter)))));
+  const std::size_t at =
+      std::min(volkins.coordinates.find(static_cast<char>(std::tolower(static_cast<unsigned char>(letter)))),
+               volkins.coordinates.find(static_cast<char>(std::toupper(static_cast<unsigned char>(letter)))));
   return at == std::string::npos ? j : static_cast<int>(at);
 }
 

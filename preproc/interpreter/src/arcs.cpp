@@ -25,9 +25,25 @@ void Interpreter::arc_geometry(const Words& w, const Position& end, int line, Mo
   arc.clockwise = motion_ == G_2;
   const int offset = w.find_g({G_2, G_3}) ? w.find_g({G_2, G_3})->offset : w[w.has('X') ? 'X' : 'Y'].offset;
   char first_letter, second_letter;  // center words of the plane
-  if (plane_ == G_17) { arc.first = 0; arc.second = 1; arc.normal = 2; first_letter = 'I'; second_letter = 'J'; }
-  else if (plane_ == G_18) { arc.first = 2; arc.second = 0; arc.normal = 1; first_letter = 'K'; second_letter = 'I'; }
-  else { arc.first = 1; arc.second = 2; arc.normal = 0; first_letter = 'J'; second_letter = 'K'; }
+  if (plane_ == G_17) {
+    arc.first = 0;
+    arc.second = 1;
+    arc.normal = 2;
+    first_letter = 'I';
+    second_letter = 'J';
+  } else if (plane_ == G_18) {
+    arc.first = 2;
+    arc.second = 0;
+    arc.normal = 1;
+    first_letter = 'K';
+    second_letter = 'I';
+  } else {
+    arc.first = 1;
+    arc.second = 2;
+    arc.normal = 0;
+    first_letter = 'J';
+    second_letter = 'K';
+  }
   if (w.has('P')) {
     const double p = w.get('P');
     if (w.whole('P') < 1 || p > 1000) refuse(line, w['P'].offset, "P (turns) of an arc must be a whole number 1..1000");
@@ -54,8 +70,8 @@ void Interpreter::arc_geometry(const Words& w, const Position& end, int line, Mo
     arc.center_second = (b0 + b1) / 2 + sign * h * ua;
   } else {
     if (!w.has(first_letter) && !w.has(second_letter))
-      refuse(line, offset, std::string("G2/G3 in this plane needs ") + first_letter + " or " + second_letter +
-                               " (center), or R");
+      refuse(line, offset,
+             std::string("G2/G3 in this plane needs ") + first_letter + " or " + second_letter + " (center), or R");
     for (char c : {'I', 'J', 'K'})
       if (w.has(c) && c != first_letter && c != second_letter)
         refuse(line, w[c].offset, std::string(1, c) + " is not a center word in the active plane");
@@ -68,8 +84,9 @@ void Interpreter::arc_geometry(const Words& w, const Position& end, int line, Mo
     const double difference = std::abs(r1 - r0);
     if (difference > 100 * spiral_tolerance ||
         (difference / std::max(r0, r1) > kSpiralRelativeTolerance && difference > spiral_tolerance))
-      refuse(line, offset, "radius to end of arc differs from radius to start by " + std::to_string(difference) +
-                               " mm (LinuxCNC allows " + std::to_string(spiral_tolerance) + " mm or 0.1 %)");
+      refuse(line, offset,
+             "radius to end of arc differs from radius to start by " + std::to_string(difference) +
+                 " mm (LinuxCNC allows " + std::to_string(spiral_tolerance) + " mm or 0.1 %)");
   }
   const double t0 = std::atan2(b0 - arc.center_second, a0 - arc.center_first);
   const double t1 = std::atan2(b1 - arc.center_second, a1 - arc.center_first);
@@ -118,8 +135,6 @@ double feed_length(const Move& m) {
   return linear > 0.0 ? linear : distance(3);
 }
 
-double inverse_time_feed(const Move& m) {
-  return m.compensated_rate_mm_per_min / std::max(feed_length(m), 1e-9);
-}
+double inverse_time_feed(const Move& m) { return m.compensated_rate_mm_per_min / std::max(feed_length(m), 1e-9); }
 
 }  // namespace vc::interpreter

@@ -66,7 +66,7 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
   sticky(ln, cycle_z_, ln == 'Z' ? "Z (the bottom)" : ln == 'Y' ? "Y (the bottom)" : "X (the bottom)");
   if (code == G_82 || code == G_89 || code == G_86 || code == G_88) sticky('P', cycle_p_, "P (the dwell)");
   if ((code == G_74 || code == G_84) && w.has('P')) cycle_p_ = w.get('P');  // optional, sticky
-  if (code == G_74 || code == G_84) {  // LinuxCNC's check_g74_g84_spindle
+  if (code == G_74 || code == G_84) {                                       // LinuxCNC's check_g74_g84_spindle
     if (!spindle_on_) fail("LinuxCNC refuses a tapping cycle with the spindle not turning");
     if (spindle_clockwise_ != (code == G_84))
       fail(code == G_84 ? "spindle turning counterclockwise in G84" : "spindle turning clockwise in G74");
@@ -150,8 +150,8 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
   const double moves = repeats * (4.0 + (pecking ? 3.0 * std::ceil((r - bottom) / cycle_q_) : 0.0));
   if (!(moves <= kMostCycleMoves))
     fail("this block would make " + gcode_number_text(moves) + " moves (" +
-         (pecking ? "(R - bottom) / Q pecks of 3 moves" : std::string("4 moves")) + " x L " +
-         std::to_string(repeats) + "); more than " + gcode_number_text(kMostCycleMoves) + " are refused");
+         (pecking ? "(R - bottom) / Q pecks of 3 moves" : std::string("4 moves")) + " x L " + std::to_string(repeats) +
+         "); more than " + gcode_number_text(kMostCycleMoves) + " are refused");
   for (int k = repeats; k > 0; --k) {
     x += dx;
     y += dy;
@@ -206,7 +206,8 @@ void Interpreter::cycle(const Words& w, int previous_motion, bool code_on_line, 
         then(std::string("M5\n") + spindle_reversed);
         dwell(cycle_p_);
         add(MoveKind::Line, x, y, clear, true);
-        then(std::string("M5\n") + spindle_on + (feed_override_ ? "M50 P1\n" : "") + (spindle_override_ ? "M51 P1\n" : ""));
+        then(std::string("M5\n") + spindle_on + (feed_override_ ? "M50 P1\n" : "") +
+             (spindle_override_ ? "M51 P1\n" : ""));
         break;
       case G_86:  // boring: in, dwell, spindle stop, rapid out, spindle on
         add(MoveKind::Line, x, y, bottom);

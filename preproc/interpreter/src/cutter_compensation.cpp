@@ -41,9 +41,13 @@ void CutterCompensation::start(Side side, double radius_mm, int plane, int orien
   orientation_ = orientation;
   xz_ = plane == G_18;
   if (xz_) {
-    a_ = 2; b_ = 0; n_ = 1;
+    a_ = 2;
+    b_ = 0;
+    n_ = 1;
   } else {
-    a_ = 0; b_ = 1; n_ = 2;
+    a_ = 0;
+    b_ = 1;
+    n_ = 2;
   }
   unit_ = inches ? 25.4 : 1.0;
 }
@@ -70,8 +74,8 @@ void CutterCompensation::lathe_origin(Position& p) const {
   if (o == 1 || o == 5 || o == 4) p[2] += r;
 }
 
-void CutterCompensation::enqueue_straight(const Move& line, long sequence, double d1, double d2, double x,
-                                          double y, const Position& rest) {
+void CutterCompensation::enqueue_straight(const Move& line, long sequence, double d1, double d2, double x, double y,
+                                          const Position& rest) {
   Queued q{sequence, line};
   q.move.end = rest;
   q.move.end[a_] = x;
@@ -236,7 +240,8 @@ void CutterCompensation::straight(const Move& move, const Position& from, const 
         const double d = oldrad_uncomp * std::cos(th - phi);  // to the old centre, across the new line
         const double l = (inside ? d - radius : d + radius) / oldrad;
         if (l > 1.0 || l < -1.0)
-          throw CompensationError("arc to straight motion makes a corner the compensated tool can't fit in without gouging");
+          throw CompensationError(
+              "arc to straight motion makes a corner the compensated tool can't fit in without gouging");
         const double angle = (inside == (prev->turn > 0) ? -std::acos(l) : std::acos(l)) + th + kPi;
         mid_x = pc1 + oldrad * std::cos(angle);
         mid_y = pc2 + oldrad * std::sin(angle);
@@ -314,7 +319,8 @@ void CutterCompensation::arc(const Move& move, const Position& from, const Posit
   double gamma;
   if (tool_inside_arc(turn)) {
     gamma = std::atan2(centery - end_y, centerx - end_x);
-    if (arc_radius <= tool_radius) throw CompensationError("tool radius not less than arc radius with cutter compensation");
+    if (arc_radius <= tool_radius)
+      throw CompensationError("tool radius not less than arc radius with cutter compensation");
   } else {
     gamma = std::atan2(end_y - centery, end_x - centerx);
     delta += kPi;

@@ -35,11 +35,16 @@ void Interpreter::compensation_rules(const gcode::Block& block, const Words& w, 
   for (const Words::Code& c : w.g) {
     const int g = c.code;
     std::string what;
-    if (g == G_41 || g == G_41_1 || g == G_42 || g == G_42_1) what = "turn cutter radius compensation on when it is on";
-    else if (is_frame_or_cycle(g)) what = "use " + g_name(g);
-    else if ((g == G_17 || g == G_18 || g == G_19) && g != plane_) what = "change the plane";
-    else if ((g == G_20 && !inches_) || (g == G_21 && inches_)) what = "change units";
-    if (!what.empty()) refuse(line, c.offset, "cannot " + what + " with cutter radius compensation on (turn it off with G40)");
+    if (g == G_41 || g == G_41_1 || g == G_42 || g == G_42_1)
+      what = "turn cutter radius compensation on when it is on";
+    else if (is_frame_or_cycle(g))
+      what = "use " + g_name(g);
+    else if ((g == G_17 || g == G_18 || g == G_19) && g != plane_)
+      what = "change the plane";
+    else if ((g == G_20 && !inches_) || (g == G_21 && inches_))
+      what = "change units";
+    if (!what.empty())
+      refuse(line, c.offset, "cannot " + what + " with cutter radius compensation on (turn it off with G40)");
   }
   if (const auto* m = w.find_m({M_6, M_61}))
     refuse(line, m->offset, "cannot change tools with cutter radius compensation on (turn it off with G40)");
@@ -49,12 +54,14 @@ void Interpreter::compensation_rules(const gcode::Block& block, const Words& w, 
   // LinuxCNC runs a T word and shows a message before the move it holds back: written after
   // that move, they would come later.
   if (w.has('T'))
-    refuse(line, w['T'].offset, "a T word while cutter compensation holds a move back: LinuxCNC selects the tool "
-                                "before that move; select it before G41/G42 or after G40");
+    refuse(line, w['T'].offset,
+           "a T word while cutter compensation holds a move back: LinuxCNC selects the tool "
+           "before that move; select it before G41/G42 or after G40");
   for (const gcode::Comment& c : block.comments)
     if (is_message(c.text))
-      refuse(line, c.begin, "a message while cutter compensation holds a move back: LinuxCNC shows it before that "
-                            "move; show it before G41/G42 or after G40");
+      refuse(line, c.begin,
+             "a message while cutter compensation holds a move back: LinuxCNC shows it before that "
+             "move; show it before G41/G42 or after G40");
 }
 
 Position Interpreter::take_move_start(const Frame& in, const Position& otherwise) {
@@ -68,8 +75,10 @@ void Interpreter::take_released(std::vector<ReleasedMove>& out, Effect& effect) 
   for (ReleasedMove& r : out) {
     if (r.move.compensated_rate_mm_per_min > 0.0)  // G93: the move's own inverse time
       r.move.feed = inverse_time_feed(r.move);
-    if (r.sequence == sequence_) effect.moves.push_back(r.move);
-    else released_.push_back(r);
+    if (r.sequence == sequence_)
+      effect.moves.push_back(r.move);
+    else
+      released_.push_back(r);
   }
   out.clear();
 }
@@ -112,20 +121,25 @@ void Interpreter::set_compensation(const Words& w, int line, Effect& effect) {
     if (w.has('D')) {
       const double d = w.get('D');
       const double nearest = std::floor(d + 0.5);  // LinuxCNC's is_near_int, without its int overflow
-      if (std::abs(nearest - d) >= 0.0001) refuse(line, w['D'].offset, g_name(c->code) + " requires D word to be a whole number");
+      if (std::abs(nearest - d) >= 0.0001)
+        refuse(line, w['D'].offset, g_name(c->code) + " requires D word to be a whole number");
       if (nearest < 0) refuse(line, w['D'].offset, "negative D word (tool) with " + g_name(c->code));
       if (nearest > 1e6) refuse(line, w['D'].offset, "D word (tool number) with " + g_name(c->code) + " out of range");
       tool = static_cast<int>(nearest);
     } else if (tool < 0) {
-      refuse(line, c->offset, g_name(c->code) + " without D takes the radius of the tool in the spindle, and the program "
-                                               "has not loaded one (M6 or M61): give D (the tool number)");
+      refuse(line, c->offset,
+             g_name(c->code) +
+                 " without D takes the radius of the tool in the spindle, and the program "
+                 "has not loaded one (M6 or M61): give D (the tool number)");
     }
     if (tool > 0) {
       if (!tools_)
-        refuse(line, c->offset, g_name(c->code) + " takes the tool's diameter from the tool table: pass --tool-table FILE");
+        refuse(line, c->offset,
+               g_name(c->code) + " takes the tool's diameter from the tool table: pass --tool-table FILE");
       const auto entry = tools_->find(tool);
       if (entry == tools_->end())
-        refuse(line, w.has('D') ? w['D'].offset : c->offset, "tool " + std::to_string(tool) + " is not in the tool table");
+        refuse(line, w.has('D') ? w['D'].offset : c->offset,
+               "tool " + std::to_string(tool) + " is not in the tool table");
       radius = entry->second.diameter / 2;  // machine units: mm
     }
   }
@@ -153,8 +167,10 @@ void Interpreter::compensated_move(const Words& w, Move& m, int line, Effect& ef
     m.compensated_rate_mm_per_min = inverse_time_rate(programmed);
   }
   compensating(line, w.first_motion_offset(), effect, [&] {
-    if (m.kind == MoveKind::Arc) compensation_.arc(m, m.start, tool_at, sequence_, own_);
-    else compensation_.straight(m, m.start, tool_at, sequence_, own_);
+    if (m.kind == MoveKind::Arc)
+      compensation_.arc(m, m.start, tool_at, sequence_, own_);
+    else
+      compensation_.straight(m, m.start, tool_at, sequence_, own_);
   });
 }
 

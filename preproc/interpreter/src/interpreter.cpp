@@ -138,29 +138,30 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     if (g == G_76)
       reason = "G76 is spindle-synchronised threading: it cannot be pre-distorted honestly";
     else if (g == G_87)
-      reason = "the back boring cycle G87 is not translated (the other canned cycles are): expand it into G0/G1 "
-               "moves in the post-processor";
+      reason =
+          "the back boring cycle G87 is not translated (the other canned cycles are): expand it into G0/G1 "
+          "moves in the post-processor";
     else if (g == G_33 || g == G_33_1)
-      reason = "spindle-synchronised motion (threading, rigid tapping) cannot be pre-distorted honestly: the pieces "
-               "of a corrected move would each wait for the spindle";
+      reason =
+          "spindle-synchronised motion (threading, rigid tapping) cannot be pre-distorted honestly: the pieces "
+          "of a corrected move would each wait for the spindle";
     else if (g >= G_38_2 && g <= G_38_5)
-      reason = "probing: where the probe stops is known only when the program runs, so the moves after it cannot be "
-               "corrected offline";
+      reason =
+          "probing: where the probe stops is known only when the program runs, so the moves after it cannot be "
+          "corrected offline";
     else if (g == G_7)
       reason = "lathe diameter mode (G7) is not translated: program radii (G8)";
     else if (g == G_43_2 || g == G_17_1 || g == G_18_1 || g == G_19_1)
       reason = "not supported by the pre-distorter (G43.2, G17.1-G19.1)";
     if (reason) refuse(line, c.offset, g_name(g) + ": " + reason);
-    static constexpr int kKnown[] = {G_0,    G_1,    G_2,    G_3,    G_4,    G_10,   G_17,   G_18,   G_19,   G_20,
-                                     G_21,   G_28,   G_28_1, G_30,   G_30_1, G_40,   G_43,   G_43_1, G_49,   G_53,
-                                     G_54,   G_55,   G_56,   G_57,   G_58,   G_59,   G_59_1, G_59_2, G_59_3, G_61,
-                                     G_61_1, G_64,   G_80,   G_90,   G_90_1, G_91,   G_41,   G_41_1, G_42,   G_42_1,
-                                     G_91_1, G_92,   G_92_1, G_92_2, G_92_3, G_52,   G_93,   G_94,   G_95,   G_96,
-                                     G_97,   G_98,   G_99,
-                                     G_73,   G_74,   G_81,   G_82,   G_83,   G_84,   G_85,   G_86,   G_88,   G_89,
-                                     G_70,   G_71,   G_71_1, G_71_2, G_72,   G_72_1, G_72_2,
-                                     G_5,    G_5_1,  G_5_2,  G_5_3,  // splines and NURBS (splines.cpp)
-                                     G_8};  // G8: lathe radius mode, LinuxCNC's default (G7 is refused)
+    static constexpr int kKnown[] = {
+        G_0,    G_1,    G_2,    G_3,    G_4,    G_10,   G_17,  G_18,  G_19,   G_20, G_21, G_28,   G_28_1,
+        G_30,   G_30_1, G_40,   G_43,   G_43_1, G_49,   G_53,  G_54,  G_55,   G_56, G_57, G_58,   G_59,
+        G_59_1, G_59_2, G_59_3, G_61,   G_61_1, G_64,   G_80,  G_90,  G_90_1, G_91, G_41, G_41_1, G_42,
+        G_42_1, G_91_1, G_92,   G_92_1, G_92_2, G_92_3, G_52,  G_93,  G_94,   G_95, G_96, G_97,   G_98,
+        G_99,   G_73,   G_74,   G_81,   G_82,   G_83,   G_84,  G_85,  G_86,   G_88, G_89, G_70,   G_71,
+        G_71_1, G_71_2, G_72,   G_72_1, G_72_2, G_5,    G_5_1, G_5_2, G_5_3,  // splines and NURBS (splines.cpp)
+        G_8};  // G8: lathe radius mode, LinuxCNC's default (G7 is refused)
     if (std::find(std::begin(kKnown), std::end(kKnown), g) == std::end(kKnown))
       refuse(line, c.offset, "unknown G code " + g_name(g));
   }
@@ -169,12 +170,14 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     if (c.code % 10 != 0) refuse(line, c.offset, "unknown M code");
     if (m == 98 || m == 99)
       refuse(line, c.offset, "M98/M99 subprograms are not translated: expand them in the post-processor");
-    const bool known = m <= 9 || m == 19 || m == 30 || (m >= 70 && m <= 73) || (m >= 48 && m <= 53) || (m >= 60 && m <= 68) || (m >= 100 && m <= 199);
+    const bool known = m <= 9 || m == 19 || m == 30 || (m >= 70 && m <= 73) || (m >= 48 && m <= 53) ||
+                       (m >= 60 && m <= 68) || (m >= 100 && m <= 199);
     if (!known) refuse(line, c.offset, "unknown M code M" + std::to_string(m));
   }
   if (w.has('E') && !w.find_g({G_70})) refuse(line, w['E'].offset, "E word without G70 or G76");
   for (char c : {'U', 'V', 'W'})
-    if (w.has(c)) refuse(line, w[c].offset, std::string("the ") + c + " axis is not supported (machines have X Y Z A B C)");
+    if (w.has(c))
+      refuse(line, w[c].offset, std::string("the ") + c + " axis is not supported (machines have X Y Z A B C)");
   if (block.block_delete) {
     // Whether LinuxCNC runs this line depends on the block-delete switch: the path after it
     // would be unknown if the line moved or changed the modal state.
@@ -209,19 +212,45 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
   }
   const bool p_on = !w.has('P') || w.get('P') != 0;  // M50-M53 P0 switches off, P1 or none on
   for (const Words::Code& c : w.m) switch (c.code) {
-      case M_3: spindle_on_ = spindle_clockwise_ = true; break;
-      case M_4: spindle_on_ = true; spindle_clockwise_ = false; break;
-      case M_5: spindle_on_ = false; break;
-      case M_7: mist_ = true; break;
-      case M_8: flood_ = true; break;
-      case M_9: mist_ = flood_ = false; break;
-      case M_48: feed_override_ = spindle_override_ = true; break;
-      case M_49: feed_override_ = spindle_override_ = false; break;
-      case M_50: feed_override_ = p_on; break;
-      case M_51: spindle_override_ = p_on; break;
-      case M_52: adaptive_feed_ = p_on; break;
-      case M_53: feed_hold_ = p_on; break;
-      default: break;
+      case M_3:
+        spindle_on_ = spindle_clockwise_ = true;
+        break;
+      case M_4:
+        spindle_on_ = true;
+        spindle_clockwise_ = false;
+        break;
+      case M_5:
+        spindle_on_ = false;
+        break;
+      case M_7:
+        mist_ = true;
+        break;
+      case M_8:
+        flood_ = true;
+        break;
+      case M_9:
+        mist_ = flood_ = false;
+        break;
+      case M_48:
+        feed_override_ = spindle_override_ = true;
+        break;
+      case M_49:
+        feed_override_ = spindle_override_ = false;
+        break;
+      case M_50:
+        feed_override_ = p_on;
+        break;
+      case M_51:
+        spindle_override_ = p_on;
+        break;
+      case M_52:
+        adaptive_feed_ = p_on;
+        break;
+      case M_53:
+        feed_hold_ = p_on;
+        break;
+      default:
+        break;
     }
   if (w.find_g({G_96})) constant_surface_speed_ = true;
   if (w.find_g({G_97})) constant_surface_speed_ = false;
@@ -241,8 +270,8 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
   if (w.find_g({G_43, G_43_1, G_49})) set_tool_length(w, line);
   if (const auto* c = w.find_g({G_54, G_55, G_56, G_57, G_58, G_59, G_59_1, G_59_2, G_59_3})) {
     static constexpr int kSystems[] = {G_54, G_55, G_56, G_57, G_58, G_59, G_59_1, G_59_2, G_59_3};
-    const int index = static_cast<int>(std::find(std::begin(kSystems), std::end(kSystems), c->code) -
-                                       std::begin(kSystems)) + 1;
+    const int index =
+        static_cast<int>(std::find(std::begin(kSystems), std::end(kSystems), c->code) - std::begin(kSystems)) + 1;
     set_coordinate_system(index);
   }
   if (const auto* mode = w.find_g({G_61, G_61_1, G_64})) {
@@ -291,8 +320,10 @@ void Interpreter::execute(const gcode::Block& block, int line, Effect& effect) {
     }
   if (!effect.stop_words.empty()) {  // LinuxCNC's convert_stop: the held moves end where they are
     compensating(line, 0, effect, [&] {
-      if (effect.program_end) compensation_.stop(own_);
-      else compensation_.flush(own_);
+      if (effect.program_end)
+        compensation_.stop(own_);
+      else
+        compensation_.flush(own_);
     });
   }
   if (const auto* code = w.find_g({G_0, G_1, G_2, G_3})) effect.motion_code_word = code->index;
@@ -350,7 +381,8 @@ std::array<double, 2> Interpreter::program_xy() const {
   const ProgramXY& p = program_xy_;
   // (Within 1e-9 mm: a frame change that keeps the point, such as a tool length, may move
   // position_ in its last bits where LinuxCNC's current X Y stay as they were.)
-  if (p.known && p.inches == inches_ && std::abs(p.mm_x - position_[0]) <= 1e-9 && std::abs(p.mm_y - position_[1]) <= 1e-9)
+  if (p.known && p.inches == inches_ && std::abs(p.mm_x - position_[0]) <= 1e-9 &&
+      std::abs(p.mm_y - position_[1]) <= 1e-9)
     return {p.x, p.y};
   const double scale = inches_ ? kInch : 1.0;
   return {position_[0] / scale, position_[1] / scale};
@@ -388,7 +420,8 @@ void Interpreter::move(const Words& w, int line, Effect& effect) {
   if (w.polar()) named |= 0b11u;
   const auto* g53 = w.find_g({G_53});
   if (g53 && w.polar()) refuse(line, g53->offset, "LinuxCNC refuses polar coordinates with G53");
-  const bool arc_words = w.has('I') || w.has('J') || w.has('K') || (w.has('R') && !w.find_m({M_19}));  // M19 R: an angle
+  const bool arc_words =
+      w.has('I') || w.has('J') || w.has('K') || (w.has('R') && !w.find_m({M_19}));  // M19 R: an angle
   if (!named && !arc_words) {
     if (g53) refuse(line, g53->offset, "G53 without axis words");
     return;
@@ -424,10 +457,17 @@ void Interpreter::move(const Words& w, int line, Effect& effect) {
     const std::array<double, 2> xy = program_xy();
     m.end = end_point(w, line);
     if (m.kind == MoveKind::Arc && arc_not_allowed_)
-      refuse(line, w.first_motion_offset(), "the move just after exiting cutter compensation mode must be straight, not an arc");
-    if (m.kind == MoveKind::Arc) arc_geometry(w, m.end, line, m);
+      refuse(line, w.first_motion_offset(),
+             "the move just after exiting cutter compensation mode must be straight, not an arc");
+    if (m.kind == MoveKind::Arc)
+      arc_geometry(w, m.end, line, m);
     else if (arc_words)
-      refuse(line, w[w.has('I') ? 'I' : w.has('J') ? 'J' : w.has('K') ? 'K' : 'R'].offset,
+      refuse(line,
+             w[w.has('I')   ? 'I'
+               : w.has('J') ? 'J'
+               : w.has('K') ? 'K'
+                            : 'R']
+                 .offset,
              "I, J, K or R words without G2/G3");
     position_ = m.end;
     if (!w.polar())
@@ -478,8 +518,9 @@ void Interpreter::move(const Words& w, int line, Effect& effect) {
 void Interpreter::require_known_offsets(int line, int offset) const {
   if (!offsets_known_ && !(offsets_set_ >> coordinate_system_ & 1u))
     refuse(line, offset,
-           "work offset " + g_name(std::array{540, 550, 560, 570, 580, 590, 591, 592, 593}
-                                       [static_cast<std::size_t>(coordinate_system_ - 1)]) +
+           "work offset " +
+               g_name(std::array{540, 550, 560, 570, 580, 590, 591, 592,
+                                 593}[static_cast<std::size_t>(coordinate_system_ - 1)]) +
                " is not known: pass --var FILE (LinuxCNC's parameter file) or set it with G10 L2");
 }
 

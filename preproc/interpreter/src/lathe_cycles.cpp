@@ -33,8 +33,9 @@ class MovesOfTheCycle final : public lathe::PassWriter {
  private:
   void add(int code, Point end, Point center) {
     if (++count_ > kMoveLimit)
-      throw lathe::CycleError("more than " + std::to_string(kMoveLimit) +
-                              " moves: the depth of cut (I) is too small for the profile, or LinuxCNC loops forever on it");
+      throw lathe::CycleError(
+          "more than " + std::to_string(kMoveLimit) +
+          " moves: the depth of cut (I) is too small for the profile, or LinuxCNC loops forever on it");
     add_(code, end, center);
   }
   std::function<void(int, Point, Point)> add_;
@@ -52,13 +53,14 @@ void Interpreter::lathe_cycle(const Words& w, int line, Effect& effect) {
   if (!w.has('Q')) fail("G7x.x requires a Q word (the subroutine that draws the profile)");
   if (compensation_.on())
     fail(code == G_70 ? "G70 with cutter compensation on is not translated: this LinuxCNC (Debian 12's 2.9.0~pre1) "
-                       "compensates the approach rapids too and makes a stray rapid move (fixed in LinuxCNC 2.9.3); "
-                       "cut the finishing pass with G40, or write it out with G41/G42"
-                     : "LinuxCNC refuses this cycle with cutter compensation on");
+                        "compensates the approach rapids too and makes a stray rapid move (fixed in LinuxCNC 2.9.3); "
+                        "cut the finishing pass with G40, or write it out with G41/G42"
+                      : "LinuxCNC refuses this cycle with cutter compensation on");
   if (plane_ != G_18) fail("LinuxCNC runs the lathe cycles in the XZ plane (G18) only");
   if (incremental_)
-    fail("in incremental mode (G91) LinuxCNC's rapid to the cycle's start reads X Z as absolute: not translated; "
-         "program the cycle in G90");
+    fail(
+        "in incremental mode (G91) LinuxCNC's rapid to the cycle's start reads X Z as absolute: not translated; "
+        "program the cycle in G90");
   for (char c : {'Y', 'A', 'B', 'C', 'J', 'K', 'L', '@', '^'})
     if (w.has(c)) refuse(line, w[c].offset, std::string("the lathe cycles take no ") + c + " word here");
   if ((known_ & setup_.machine_axes) != setup_.machine_axes)
@@ -76,8 +78,8 @@ void Interpreter::lathe_cycle(const Words& w, int line, Effect& effect) {
   const double x = w.has('X') ? w.get('X') : position_[0] / scale;
   const double z = w.has('Z') ? w.get('Z') : position_[2] / scale;
   c->from = Point(z, x);
-  for (auto [letter, value] : {std::pair{'D', &c->d}, {'E', &c->e}, {'I', &c->i}, {'P', &c->p}, {'R', &c->r},
-                               {'U', &c->u}, {'W', &c->w}})
+  for (auto [letter, value] :
+       {std::pair{'D', &c->d}, {'E', &c->e}, {'I', &c->i}, {'P', &c->p}, {'R', &c->r}, {'U', &c->u}, {'W', &c->w}})
     if (w.has(letter)) *value = w.get(letter);
   if (c->i <= 0) refuse(line, w['I'].offset, "G7X error: I must be greater than zero");
   if (code == G_70 && (c->p < 1 || c->p > 1000)) refuse(line, w['P'].offset, "G70: P (passes) must be 1..1000");
@@ -99,9 +101,9 @@ void Interpreter::profile_block(const gcode::Block& block, int line) {
   auto fail = [&](char letter, const std::string& why) {
     refuse(line, w.has(letter) ? w[letter].offset : 0, "G7X error: " + why);
   };
-  if (const auto* g = w.find_g({G_0, G_1, G_2, G_3, G_33, G_33_1, G_38_2, G_38_3, G_38_4, G_38_5, G_5, G_5_1, G_5_2,
-                                G_73, G_74, G_76, G_80, G_81, G_82, G_83, G_84, G_85, G_86, G_87, G_88, G_89, G_70,
-                                G_71, G_71_1, G_71_2, G_72, G_72_1, G_72_2}))
+  if (const auto* g = w.find_g({G_0,   G_1,   G_2,  G_3,  G_33, G_33_1, G_38_2, G_38_3, G_38_4, G_38_5, G_5,
+                                G_5_1, G_5_2, G_73, G_74, G_76, G_80,   G_81,   G_82,   G_83,   G_84,   G_85,
+                                G_86,  G_87,  G_88, G_89, G_70, G_71,   G_71_1, G_71_2, G_72,   G_72_1, G_72_2}))
     motion_ = g->code;
   Point end = c.at;
   if (w.has('U')) {
@@ -138,8 +140,8 @@ void Interpreter::profile_block(const gcode::Block& block, int line) {
     if (w.has('A') && w.has('C')) fail('A', "Both A and C parameters on a corner");
     for (char letter : {'A', 'C'})
       if (w.has(letter)) {
-        Segment corner{letter == 'A' ? Segment::Kind::Fillet : Segment::Kind::Chamfer, end, end, end, false,
-                       w.get(letter)};
+        Segment corner{
+            letter == 'A' ? Segment::Kind::Fillet : Segment::Kind::Chamfer, end, end, end, false, w.get(letter)};
         c.profile.push_back(corner);
       }
   }

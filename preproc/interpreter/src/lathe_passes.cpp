@@ -22,8 +22,8 @@
 namespace vc::interpreter::lathe {
 namespace {
 
-constexpr double kTolerance = 1e-6;        // interp_g7x.cc's tolerance
-constexpr long kStepLimit = 2'000'000;     // cuts and offset steps: beyond, LinuxCNC's endless loop
+constexpr double kTolerance = 1e-6;     // interp_g7x.cc's tolerance
+constexpr long kStepLimit = 2'000'000;  // cuts and offset steps: beyond, LinuxCNC's endless loop
 const Point kI{0.0, 1.0};
 
 double cross(Point a, Point b) { return std::imag(std::conj(a) * b); }
@@ -76,7 +76,8 @@ std::vector<double> crossings(const Segment& s, double x) {
     if (const Point p(s.center.real() - q, x); on_arc(s, p)) z.push_back(p.real());
     return z;
   }
-  if (std::min(s.start.imag(), s.end.imag()) > x + kTolerance || std::max(s.start.imag(), s.end.imag()) < x - kTolerance)
+  if (std::min(s.start.imag(), s.end.imag()) > x + kTolerance ||
+      std::max(s.start.imag(), s.end.imag()) < x - kTolerance)
     return z;
   if (std::abs(std::imag(s.start - s.end)) < kTolerance) {
     z.push_back(s.start.real());
@@ -180,21 +181,31 @@ class Oriented {
     out_.arc(mirrored ? !ccw : ccw, unfold(center), unfold(end));
   }
   void draw(const Segment& s) {
-    if (s.round()) arc(s.ccw, s.center, s.end);
-    else line(s.end);
+    if (s.round())
+      arc(s.ccw, s.center, s.end);
+    else
+      line(s.end);
   }
 
  private:
   Point unfold(Point p) const {
     switch (o_) {
-      case 1: return -std::conj(p);
-      case 2: return std::conj(p);
-      case 3: return -p;
-      case 4: return kI * p;
-      case 5: return std::conj(kI * p);
-      case 6: return -std::conj(kI * p);
-      case 7: return -kI * p;
-      default: return p;
+      case 1:
+        return -std::conj(p);
+      case 2:
+        return std::conj(p);
+      case 3:
+        return -p;
+      case 4:
+        return kI * p;
+      case 5:
+        return std::conj(kI * p);
+      case 6:
+        return -std::conj(kI * p);
+      case 7:
+        return -kI * p;
+      default:
+        return p;
     }
   }
   PassWriter& out_;
@@ -263,8 +274,10 @@ bool dive(const Segment& s, Point& at, double x, Oriented& out, bool fast) {
       if (z.empty()) throw CycleError("x too large in straight dive");
       to = Point(z.front(), x);
     }
-    if (fast) out.rapid(to);
-    else out.line(to);
+    if (fast)
+      out.rapid(to);
+    else
+      out.line(to);
     at = to;
     return false;
   }
@@ -281,7 +294,7 @@ bool dive(const Segment& s, Point& at, double x, Oriented& out, bool fast) {
     at = to;
     return false;
   }
-  if (at.real() <= s.center.real()) return true;  // climbing already
+  if (at.real() <= s.center.real()) return true;                // climbing already
   if (!z.empty() && z.front() < s.center.real()) return false;  // hit on the far side only: the next depth
   const Point to = z.empty() ? s.end : Point(z.front(), x);
   out.arc(s.ccw, s.center, to);
@@ -368,8 +381,10 @@ void Profile::add_allowance(double distance) {
     if (distance < 0) step = -step;
     for (std::size_t p = 0; p < s_.size();) {
       offset(s_[p], step);
-      if (radius(s_[p]) < 1e-3) s_.erase(s_.begin() + static_cast<long>(p));
-      else ++p;
+      if (radius(s_[p]) < 1e-3)
+        s_.erase(s_.begin() + static_cast<long>(p));
+      else
+        ++p;
     }
     for (std::size_t p = 0; p + 1 < s_.size(); ++p) {  // segments that part: joined by an arc
       if (std::real(s_[p].end - s_[p + 1].start) <= 1e-2) continue;
@@ -509,8 +524,10 @@ void Profile::pocket(int variant, Point at, std::size_t p, Oriented& out) {
       to += scale * escape_;
       out.rapid(to);
       out.rapid(at - std::conj(scale * escape_));
-      if (p == 0) out.rapid(at);
-      else out.line(at);
+      if (p == 0)
+        out.rapid(at);
+      else
+        out.line(at);
       x -= depth_;
       break;
     }
@@ -524,8 +541,8 @@ void finishing_passes(std::vector<Segment> profile, Point from, double allowance
   Profile(std::move(profile)).finishing(from, allowance_first, allowance_last, passes, out);
 }
 
-void roughing_passes(std::vector<Segment> profile, bool facing, int variant, Point from, Point shift,
-                     double allowance, double depth, double retract, PassWriter& out) {
+void roughing_passes(std::vector<Segment> profile, bool facing, int variant, Point from, Point shift, double allowance,
+                     double depth, double retract, PassWriter& out) {
   Profile(std::move(profile)).roughing(facing, variant, from, shift, allowance, depth, retract, out);
 }
 

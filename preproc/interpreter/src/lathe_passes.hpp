@@ -50,7 +50,7 @@ void finishing_passes(std::vector<Segment> profile, Point from, double allowance
 // G71 (turning) or G72 (`facing`: the profile turned by 90 degrees first); `variant` is the
 // subcode: 0 all, 1 no pockets (G7x.1), 2 the pockets only (G7x.2). `shift` = (W, U),
 // `allowance` D, `depth` I (> 0), `retract` R.
-void roughing_passes(std::vector<Segment> profile, bool facing, int variant, Point from, Point shift,
-                     double allowance, double depth, double retract, PassWriter& out);
+void roughing_passes(std::vector<Segment> profile, bool facing, int variant, Point from, Point shift, double allowance,
+                     double depth, double retract, PassWriter& out);
 
 }  // namespace vc::interpreter::lathe

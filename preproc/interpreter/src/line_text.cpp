@@ -17,7 +17,8 @@ namespace {
 std::string lower_without_blanks(std::string_view text) {
   std::string out;
   for (char c : text)
-    if (!std::isspace(static_cast<unsigned char>(c))) out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (!std::isspace(static_cast<unsigned char>(c)))
+      out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return out;
 }
 
@@ -90,15 +91,19 @@ std::string expand_message(std::string_view text, const gcode::Parameters& param
     std::optional<double> value;
     if (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) {
       long n = 0;
-      for (; i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])); ++i) n = std::min(n * 10 + (text[i] - '0'), 1000000L);
-      if (n >= 1 && n < gcode::Parameters::kCount) value = parameters.get(static_cast<double>(n), 0);  // run-time ones: refused
+      for (; i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])); ++i)
+        n = std::min(n * 10 + (text[i] - '0'), 1000000L);
+      if (n >= 1 && n < gcode::Parameters::kCount)
+        value = parameters.get(static_cast<double>(n), 0);  // run-time ones: refused
     } else if (i < text.size() && text[i] == '<') {
       const std::size_t close = text.find('>', i);
       if (close == std::string_view::npos) throw gcode::SyntaxError(0, "named parameter not terminated in the message");
       const std::string name = lower_without_blanks(text.substr(i + 1, close - i - 1));
       i = close + 1;
-      if (name == "_line") value = line;
-      else if (parameters.exists(name)) value = parameters.get(name, 0);
+      if (name == "_line")
+        value = line;
+      else if (parameters.exists(name))
+        value = parameters.get(name, 0);
     } else {
       out += '#';
       continue;
@@ -194,8 +199,9 @@ std::string evaluated_line(std::string_view raw, const gcode::Block& block, cons
     if (!start || c.text.find_first_of("#%", *start) == std::string::npos) continue;
     const std::string expanded = expand_message(std::string_view(c.text).substr(*start), parameters, line);
     if (expanded.find_first_of("#%()") != std::string::npos)
-      throw gcode::SyntaxError(c.begin, "this message, expanded, prints '#', '%' or '(': it cannot be written into "
-                                        "the flat program");
+      throw gcode::SyntaxError(c.begin,
+                               "this message, expanded, prints '#', '%' or '(': it cannot be written into "
+                               "the flat program");
     edits.push_back({c.begin, c.end, "(" + c.text.substr(0, *start) + expanded + ")"});
   }
   std::sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) { return a.begin < b.begin; });

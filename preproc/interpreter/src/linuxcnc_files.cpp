@@ -108,8 +108,7 @@ int read_var_file(const std::string& path, gcode::Parameters& parameters) {
     const int value_column = static_cast<int>(pos) + 1;
     if (!read_number(s, pos, value)) throw LoadError({path, line, value_column}, "expected a value");
     skip_spaces(s, pos);
-    if (pos != s.size())
-      throw LoadError({path, line, static_cast<int>(pos) + 1}, "unexpected text after the value");
+    if (pos != s.size()) throw LoadError({path, line, static_cast<int>(pos) + 1}, "unexpected text after the value");
     parameters[static_cast<int>(number)] = value;
     ++count;
   }

@@ -23,8 +23,9 @@ Interpreter::ModalState Interpreter::modal_state() const {
   ModalState s;
   s.inches = inches_;
   s.g[0] = plane_;
-  s.g[1] = compensation_.side() == CutterCompensation::kLeft ? G_41
-           : compensation_.side() == CutterCompensation::kRight ? G_42 : G_40;
+  s.g[1] = compensation_.side() == CutterCompensation::kLeft    ? G_41
+           : compensation_.side() == CutterCompensation::kRight ? G_42
+                                                                : G_40;
   s.g[2] = incremental_ ? G_91 : G_90;
   s.g[3] = inverse_time_ ? G_93 : G_94;
   s.g[4] = coordinate_system_ < 7 ? G_53 + 10 * coordinate_system_ : G_59_1 + coordinate_system_ - 7;  // G54 .. G59.3

@@ -18,14 +18,14 @@ void Interpreter::set_tool_length(const Words& w, int line) {
   } else {
     int tool = tool_in_spindle_;
     if (w.has('H')) tool = w.whole('H');
-    if (w.has('H') && tool < 0) refuse(line, w['H'].offset, "H must be a whole number >= 0");
+    if (w.has('H') && tool < 0)
+      refuse(line, w['H'].offset, "H must be a whole number >= 0");
     else if (tool < 0)
       refuse(line, g->offset, "G43 without H and no tool in the spindle yet (use G43 Hn, or M6 Tn first)");
     if (tool == 0 && !(tools_ && tools_->count(0))) {
       tool_offset_ = 0.0;  // tool 0: no tool, LinuxCNC's empty spindle with zero offsets
     } else {
-      if (!tools_)
-        refuse(line, g->offset, "G43 needs the tool table: pass --tool-table FILE (LinuxCNC's .tbl)");
+      if (!tools_) refuse(line, g->offset, "G43 needs the tool table: pass --tool-table FILE (LinuxCNC's .tbl)");
       const auto it = tools_->find(tool);
       if (it == tools_->end())
         refuse(line, w.has('H') ? w['H'].offset : g->offset,
@@ -121,7 +121,8 @@ void Interpreter::set_tool_entry(const Words& w, int l, int line) {
     if (compensation_.offsets()) refuse(line, g10->offset, name + " with cutter compensation on is not translated");
     for (int i = 0; i < kAxes; ++i)
       if (w.has(kAxisLetters[i]) && !(known_ >> i & 1u))
-        refuse(line, w[kAxisLetters[i]].offset, name + std::string(": the current ") + kAxisLetters[i] + " is not known yet");
+        refuse(line, w[kAxisLetters[i]].offset,
+               name + std::string(": the current ") + kAxisLetters[i] + " is not known yet");
     // LinuxCNC's find_current_in_system_without_tlo: where the controlled point is, with the
     // tool length offset, in the destination system's coordinates without it.
     const int system = l == 11 ? 9 : coordinate_system_;

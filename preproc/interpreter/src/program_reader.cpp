@@ -17,27 +17,43 @@ namespace {
 
 using Kind = gcode::OWord::Kind;
 
-constexpr int kCallLevels = 10;            // LinuxCNC's INTERP_SUB_ROUTINE_LEVELS
-constexpr long kLoopLimit = 100'000'000;   // jumps back to one loop: beyond, an endless loop
+constexpr int kCallLevels = 10;           // LinuxCNC's INTERP_SUB_ROUTINE_LEVELS
+constexpr long kLoopLimit = 100'000'000;  // jumps back to one loop: beyond, an endless loop
 
 const char* kind_name(Kind kind) {
   switch (kind) {
-    case Kind::None: return "O number";
-    case Kind::Sub: return "sub";
-    case Kind::EndSub: return "endsub";
-    case Kind::Call: return "call";
-    case Kind::Do: return "do";
-    case Kind::While: return "while";
-    case Kind::EndWhile: return "endwhile";
-    case Kind::If: return "if";
-    case Kind::ElseIf: return "elseif";
-    case Kind::Else: return "else";
-    case Kind::EndIf: return "endif";
-    case Kind::Break: return "break";
-    case Kind::Continue: return "continue";
-    case Kind::Return: return "return";
-    case Kind::Repeat: return "repeat";
-    case Kind::EndRepeat: return "endrepeat";
+    case Kind::None:
+      return "O number";
+    case Kind::Sub:
+      return "sub";
+    case Kind::EndSub:
+      return "endsub";
+    case Kind::Call:
+      return "call";
+    case Kind::Do:
+      return "do";
+    case Kind::While:
+      return "while";
+    case Kind::EndWhile:
+      return "endwhile";
+    case Kind::If:
+      return "if";
+    case Kind::ElseIf:
+      return "elseif";
+    case Kind::Else:
+      return "else";
+    case Kind::EndIf:
+      return "endif";
+    case Kind::Break:
+      return "break";
+    case Kind::Continue:
+      return "continue";
+    case Kind::Return:
+      return "return";
+    case Kind::Repeat:
+      return "repeat";
+    case Kind::EndRepeat:
+      return "endrepeat";
   }
   return "?";
 }
@@ -139,8 +155,8 @@ bool ProgramReader::execute_next(std::string& raw, Origin& origin, gcode::Block&
     if (!read_line(raw, origin)) {
       if (!skipping_to_.empty())
         refuse(origin, 0,
-               skipping_to_sub_ ? "the file ends before subroutine " + o_name(skipping_to_) +
-                                      " is defined (nor is " + skipping_to_ + ".ngc on the subroutine path)"
+               skipping_to_sub_ ? "the file ends before subroutine " + o_name(skipping_to_) + " is defined (nor is " +
+                                      skipping_to_ + ".ngc on the subroutine path)"
                                 : "the file ends before the " + o_name(skipping_to_) + " that ends this block");
       if (!frames_.empty()) refuse(origin, 0, "the file ends inside subroutine " + o_name(frames_.back().name));
       return false;
@@ -193,9 +209,10 @@ void ProgramReader::read_profile(Effect& effect, const Origin& cycle) {
   while (frames_.size() > level) {
     if (!read_line(raw, origin)) {
       if (!skipping_to_.empty())
-        refuse(cycle, 0, "the file ends before subroutine " + o_name(skipping_to_) +
-                             " (the profile of this lathe cycle) is defined (nor is " + skipping_to_ +
-                             ".ngc on the subroutine path)");
+        refuse(cycle, 0,
+               "the file ends before subroutine " + o_name(skipping_to_) +
+                   " (the profile of this lathe cycle) is defined (nor is " + skipping_to_ +
+                   ".ngc on the subroutine path)");
       refuse(origin, 0, "the file ends inside subroutine " + o_name(frames_.back().name));
     }
     try {
@@ -260,8 +277,7 @@ double ProgramReader::argument(const gcode::OWord& o, const Origin& origin) cons
   }
 }
 
-ProgramReader::Label& ProgramReader::open_label(const gcode::OWord& o, const std::string& name,
-                                                const Origin& origin) {
+ProgramReader::Label& ProgramReader::open_label(const gcode::OWord& o, const std::string& name, const Origin& origin) {
   const auto [it, added] = labels_.try_emplace(name, Label{o.kind, origin.file, line_start_, origin.line});
   if (!added && (it->second.line != origin.line || it->second.file != origin.file))
     refuse(origin, o.begin,
@@ -274,8 +290,9 @@ ProgramReader::Label& ProgramReader::label(const gcode::OWord& o, const std::str
                                            std::initializer_list<Kind> kinds) {
   const auto it = labels_.find(name);
   if (it == labels_.end())
-    refuse(origin, o.begin, std::string(kind_name(o.kind)) + " without its " + kind_name(*kinds.begin()) + ": " +
-                                o_name(name) + " is not open");
+    refuse(origin, o.begin,
+           std::string(kind_name(o.kind)) + " without its " + kind_name(*kinds.begin()) + ": " + o_name(name) +
+               " is not open");
   if (std::find(kinds.begin(), kinds.end(), it->second.kind) == kinds.end())
     refuse(origin, o.begin,
            std::string(kind_name(o.kind)) + " does not match " + o_name(name) + " " + kind_name(it->second.kind) +
@@ -320,8 +337,9 @@ void ProgramReader::call(const std::string& name, const std::array<double, gcode
 
   if (const auto it = labels_.find(name); it != labels_.end()) {
     if (it->second.kind != (m98 ? Kind::None : Kind::Sub))
-      refuse(origin, column, o_name(name) + " on line " + std::to_string(it->second.line) + " is not a " +
-                                 (m98 ? "subprogram (O number) for M98" : "subroutine (sub)"));
+      refuse(origin, column,
+             o_name(name) + " on line " + std::to_string(it->second.line) + " is not a " +
+                 (m98 ? "subprogram (O number) for M98" : "subroutine (sub)"));
     jump_to(it->second, origin);
     return;
   }
@@ -381,7 +399,8 @@ bool ProgramReader::control(const gcode::Block& block, const Origin& origin) {
   std::string o_number = o.name;
   if (o.computed_name) {  // o[expression], o#n: the integer value names it (skipped lines: unknown)
     try {
-      o_number = std::to_string(static_cast<long>(std::lround(gcode::evaluate(o.name_expression, interpreter_.parameters(), o.begin))));
+      o_number = std::to_string(
+          static_cast<long>(std::lround(gcode::evaluate(o.name_expression, interpreter_.parameters(), o.begin))));
     } catch (const gcode::SyntaxError& e) {
       if (!skipping_to_.empty()) return true;
       refuse(origin, e.offset, e.what());
@@ -389,11 +408,13 @@ bool ProgramReader::control(const gcode::Block& block, const Origin& origin) {
   }
   // LinuxCNC (interp_read.cc, read_o): sub, endsub, return and call name subroutines, global;
   // the other O words name labels local to the subroutine they are in ("sub#label").
-  const bool global = o.kind == Kind::Sub || o.kind == Kind::None || o.kind == Kind::EndSub ||
-                      o.kind == Kind::Call || o.kind == Kind::Return;
-  const std::string name =
-      m >= 0 || global ? o_number
-                       : (!frames_.empty() ? frames_.back().name : defining_sub_ ? defining_name_ : "") + "#" + o_number;
+  const bool global = o.kind == Kind::Sub || o.kind == Kind::None || o.kind == Kind::EndSub || o.kind == Kind::Call ||
+                      o.kind == Kind::Return;
+  const std::string name = m >= 0 || global ? o_number
+                                            : (!frames_.empty() ? frames_.back().name
+                                               : defining_sub_  ? defining_name_
+                                                                : "") +
+                                                  "#" + o_number;
   if (m < 0 && !skipping_to_.empty()) {
     if (name != skipping_to_) return true;
     if (skipping_to_sub_ && o.kind != Kind::Sub && o.kind != Kind::None) return true;
@@ -434,11 +455,9 @@ bool ProgramReader::control(const gcode::Block& block, const Origin& origin) {
     leave(origin);
     return true;
   }
-  for (const gcode::Word& w : block.words)
-    refuse(origin, w.begin, "an O-word line holds no other words");
+  for (const gcode::Word& w : block.words) refuse(origin, w.begin, "an O-word line holds no other words");
   // Inside a definition only its end matters; a call is never made while skipping.
-  if (defining_sub_ && o.kind != Kind::Sub && o.kind != Kind::None && o.kind != Kind::EndSub &&
-      o.kind != Kind::Return)
+  if (defining_sub_ && o.kind != Kind::Sub && o.kind != Kind::None && o.kind != Kind::EndSub && o.kind != Kind::Return)
     return true;
   if (o.kind == Kind::Call && !skipping_to_.empty()) return true;
 

@@ -60,7 +60,9 @@ class Nurbs {
   Nurbs(const std::vector<ControlPoint>& points, unsigned order) : points_(points), order_(order) {
     const unsigned n = static_cast<unsigned>(points.size()) - 1;
     for (unsigned i = 0; i <= n + order; ++i)
-      knots_.push_back(i < order ? 0.0 : i <= n ? static_cast<double>(i - order + 1) : static_cast<double>(n - order + 2));
+      knots_.push_back(i < order ? 0.0
+                       : i <= n  ? static_cast<double>(i - order + 1)
+                                 : static_cast<double>(n - order + 2));
     u_max_ = static_cast<double>(n - order + 2);
     basis_.resize(knots_.size());
   }
@@ -98,7 +100,8 @@ class Nurbs {
   void basis(double u, std::size_t& first, std::size_t& last) const {
     const std::size_t spans = knots_.size() - 1;
     // First order: the spans [t_i, t_i+1] holding u (consecutive, as the knots never decrease).
-    std::size_t low = static_cast<std::size_t>(std::lower_bound(knots_.begin() + 1, knots_.end(), u) - knots_.begin()) - 1;
+    std::size_t low =
+        static_cast<std::size_t>(std::lower_bound(knots_.begin() + 1, knots_.end(), u) - knots_.begin()) - 1;
     std::size_t high = static_cast<std::size_t>(std::upper_bound(knots_.begin(), knots_.end() - 1, u) - knots_.begin());
     if (high <= low) {  // u outside [0, u_max]: no function is not zero (LinuxCNC: 0/0)
       first = last = 0;
@@ -234,9 +237,10 @@ void Interpreter::spline_rules(const Words& w, int line) const {
     refuse(line, code->offset, "between G5.2 and G5.3 only more G5.2 codes are allowed (LinuxCNC)");
   if (const auto* other =
           w.find_g({G_4, G_10, G_28, G_28_1, G_30, G_30_1, G_43_1, G_52, G_53, G_92, G_92_1, G_92_2, G_92_3}))
-    refuse(line, other->offset, g_name(other->code) + " on a line with " + name +
-                                    (nurbs_end && other->code != G_43_1 ? " (the same modal group, LinuxCNC refuses it)"
-                                                                     : ": write it on a line of its own"));
+    refuse(line, other->offset,
+           g_name(other->code) + " on a line with " + name +
+               (nurbs_end && other->code != G_43_1 ? " (the same modal group, LinuxCNC refuses it)"
+                                                   : ": write it on a line of its own"));
   // Words the curve's moves, written on this line, would read as theirs: a P, Q or L of
   // another code (G64, M-codes) on a line whose moves may be G2/G3, a word only arcs take.
   const bool g5 = spline_code && code->code == G_5;
@@ -249,24 +253,28 @@ void Interpreter::spline_rules(const Words& w, int line) const {
     if (!w.has(letter) || (own && !other)) return;
     const std::string word(1, letter);
     if (own)
-      refuse(line, w[letter].offset, word + " on this line is both " + name + "'s and another code's (LinuxCNC reads one " +
-                                         word + " for both): write that code on a line of its own");
+      refuse(line, w[letter].offset,
+             word + " on this line is both " + name + "'s and another code's (LinuxCNC reads one " + word +
+                 " for both): write that code on a line of its own");
     if (other)
-      refuse(line, w[letter].offset, word + " on a line with " + name + ": the curve's moves, written on this line as " +
-                                         "G1/G2/G3, would read it as theirs; write the code that takes " + word +
-                                         " on a line of its own");
+      refuse(line, w[letter].offset,
+             word + " on a line with " + name + ": the curve's moves, written on this line as " +
+                 "G1/G2/G3, would read it as theirs; write the code that takes " + word + " on a line of its own");
     refuse(line, w[letter].offset, word + " word on a line with " + name + " (LinuxCNC refuses it: nothing uses it)");
   };
   shared('P', p_own, p_other);
   shared('Q', q_own, q_other);
   shared('L', l_own, l_other);
   for (char c : {'K', 'R'})
-    if (w.has(c)) refuse(line, w[c].offset, std::string(1, c) + " word on a line with " + name + " (LinuxCNC refuses it)");
+    if (w.has(c))
+      refuse(line, w[c].offset, std::string(1, c) + " word on a line with " + name + " (LinuxCNC refuses it)");
   if (!spline_code || code->code == G_5_2)
     for (char c : {'I', 'J'})
       if (w.has(c))
-        refuse(line, w[c].offset, std::string(1, c) + " word on a line with " + name + " (LinuxCNC refuses it: only G5 "
-                                                                                      "and G5.1 take I and J)");
+        refuse(line, w[c].offset,
+               std::string(1, c) + " word on a line with " + name +
+                   " (LinuxCNC refuses it: only G5 "
+                   "and G5.1 take I and J)");
 }
 
 void Interpreter::spline(const Words& w, int previous_motion, int line, Effect& effect) {
@@ -285,8 +293,10 @@ void Interpreter::spline(const Words& w, int previous_motion, int line, Effect& 
   if (!is_spline(motion)) return;
   cycle_start_z_known_ = false;  // LinuxCNC's cycle_il_flag: any motion that is not a cycle
   if (code) {
-    if (effect.motion_code_word < 0) effect.motion_code_word = code->index;
-    else effect.motion_words.push_back(code->index);  // (G5.3 G5.2: the G5.3 takes the moves' place)
+    if (effect.motion_code_word < 0)
+      effect.motion_code_word = code->index;
+    else
+      effect.motion_words.push_back(code->index);  // (G5.3 G5.2: the G5.3 takes the moves' place)
   }
   effect.translate = true;
   if (motion == G_5_2) {
@@ -305,29 +315,37 @@ void Interpreter::spline(const Words& w, int previous_motion, int line, Effect& 
 
 void Interpreter::spline_start_rules(int line, int offset, const std::string& what, bool nurbs) const {
   if (compensation_.on())
-    refuse(line, offset, what + (nurbs ? " with cutter radius compensation on is not translated: LinuxCNC 2.9 does not "
-                                         "offset it"
-                                       : " with cutter radius compensation on (LinuxCNC refuses it)") +
-                             "; turn compensation off with G40");
+    refuse(line, offset,
+           what +
+               (nurbs ? " with cutter radius compensation on is not translated: LinuxCNC 2.9 does not "
+                        "offset it"
+                      : " with cutter radius compensation on (LinuxCNC refuses it)") +
+               "; turn compensation off with G40");
   if (plane_ != G_17)
-    refuse(line, offset, what + (nurbs ? " outside the XY plane (G17) is not translated: LinuxCNC 2.9 draws its X Y "
-                                         "as arcs of the active plane"
-                                       : " outside the XY plane (LinuxCNC: splines must be in the XY plane, G17)"));
+    refuse(line, offset,
+           what + (nurbs ? " outside the XY plane (G17) is not translated: LinuxCNC 2.9 draws its X Y "
+                           "as arcs of the active plane"
+                         : " outside the XY plane (LinuxCNC: splines must be in the XY plane, G17)"));
   if (inverse_time_)
-    refuse(line, offset, what + " in inverse time feed (G93) is not translated: LinuxCNC 2.9 gives the curve's "
-                                "pieces no time of their own (they run at the last feed rate set)");
+    refuse(line, offset,
+           what +
+               " in inverse time feed (G93) is not translated: LinuxCNC 2.9 gives the curve's "
+               "pieces no time of their own (they run at the last feed rate set)");
   if (feed_ == 0.0) refuse(line, offset, what + " with zero feed rate" + (nurbs ? "" : " (LinuxCNC refuses it)"));
   if (tool_elsewhere_)
-    refuse(line, offset, what + " where the tool is not at the programmed point (just after G40, or a G74/G84 outside "
-                                "G17): LinuxCNC would start the curve off it; move with G1 first");
+    refuse(line, offset,
+           what +
+               " where the tool is not at the programmed point (just after G40, or a G74/G84 outside "
+               "G17): LinuxCNC would start the curve off it; move with G1 first");
   const unsigned needed = setup_.machine_axes;
   if ((known_ & needed) != needed) {
     std::string missing;
     for (int i = 0; i < kAxes; ++i)
       if ((needed >> i & 1u) && !(known_ >> i & 1u)) missing += kAxisLetters[i];
-    refuse(line, offset, "cannot correct a " + what + " from an unknown position (" + missing +
-                             " not set yet): begin the program with a G0 or G53 move to every axis, or give the start "
-                             "position (volcomp predistort --start)");
+    refuse(line, offset,
+           "cannot correct a " + what + " from an unknown position (" + missing +
+               " not set yet): begin the program with a G0 or G53 move to every axis, or give the start "
+               "position (volcomp predistort --start)");
   }
   require_known_offsets(line, offset);
 }
@@ -359,9 +377,12 @@ void Interpreter::cubic_or_quadratic_spline(const Words& w, int code, int line, 
     if (!w.has('I') || !w.has('J')) refuse(line, at, "G5.1 needs both I and J (LinuxCNC)");
     points.push_back({x0 + w.get('I'), y0 + w.get('J'), 1.0});
   } else {
-    if (w.has('I') != w.has('J')) refuse(line, w[w.has('I') ? 'I' : 'J'].offset, "G5 needs both I and J, or neither (LinuxCNC)");
-    if (w.has('I')) points.push_back({x0 + w.get('I'), y0 + w.get('J'), 1.0});
-    else points.push_back({x0 + spline_i_, y0 + spline_j_, 1.0});  // the last G5's P Q, mirrored
+    if (w.has('I') != w.has('J'))
+      refuse(line, w[w.has('I') ? 'I' : 'J'].offset, "G5 needs both I and J, or neither (LinuxCNC)");
+    if (w.has('I'))
+      points.push_back({x0 + w.get('I'), y0 + w.get('J'), 1.0});
+    else
+      points.push_back({x0 + spline_i_, y0 + spline_j_, 1.0});  // the last G5's P Q, mirrored
     if (!w.has('P') || !w.has('Q')) refuse(line, at, "G5 needs both P and Q (LinuxCNC)");
     points.push_back({x_end + w.get('P'), y_end + w.get('Q'), 1.0});
   }
@@ -389,12 +410,14 @@ void Interpreter::nurbs_point(const Words& w, int mode_before, int line) {
   if (p <= 0 && !nurbs_points_.empty())
     refuse(line, w.has('P') ? w['P'].offset : at, "every G5.2 control point needs a positive weight P (LinuxCNC)");
   if (w.polar())
-    refuse(line, w[w.has('@') ? '@' : '^'].offset, "polar coordinates with G5.2: LinuxCNC takes control points from X and Y only");
+    refuse(line, w[w.has('@') ? '@' : '^'].offset,
+           "polar coordinates with G5.2: LinuxCNC takes control points from X and Y only");
   if (compensation_.on())
     refuse(line, at, "G5.2 with cutter radius compensation on is not translated: LinuxCNC 2.9 does not offset a NURBS");
   if (inverse_time_)
-    refuse(line, at, "G5.2 in inverse time feed (G93) is not translated: LinuxCNC 2.9 gives the curve's pieces no time of "
-                     "their own (they run at the last feed rate set)");
+    refuse(line, at,
+           "G5.2 in inverse time feed (G93) is not translated: LinuxCNC 2.9 gives the curve's pieces no time of "
+           "their own (they run at the last feed rate set)");
   if (feed_ == 0.0) refuse(line, at, "a NURBS with zero feed rate (LinuxCNC refuses it)");
   int order = -1;
   if (w.has('L')) {
@@ -402,8 +425,9 @@ void Interpreter::nurbs_point(const Words& w, int mode_before, int line) {
     if (std::abs(l - nearest) > 0.0001 || nearest < 0)
       refuse(line, w['L'].offset, "L (the NURBS's order) must be a whole number >= 0 (LinuxCNC)");
     if (nearest > kLargestOrder)
-      refuse(line, w['L'].offset, "a NURBS of order L above " + std::to_string(kLargestOrder) +
-                                      " is not translated (LinuxCNC's own evaluation takes a time growing as 2^L)");
+      refuse(line, w['L'].offset,
+             "a NURBS of order L above " + std::to_string(kLargestOrder) +
+                 " is not translated (LinuxCNC's own evaluation takes a time growing as 2^L)");
     order = static_cast<int>(nearest);
   }
   for (char c : {'X', 'Y'})
@@ -429,9 +453,10 @@ void Interpreter::end_nurbs(const Words& w, int previous_motion, int line, Effec
   const int at = word.offset;
   if (previous_motion != G_5_2) refuse(line, at, "G5.3 without G5.2 first (LinuxCNC refuses it)");
   if (nurbs_points_.size() < nurbs_order_)
-    refuse(line, at, "a NURBS of order L = " + std::to_string(nurbs_order_) + " needs at least " +
-                         std::to_string(nurbs_order_) + " control points, the start included; this one has " +
-                         std::to_string(nurbs_points_.size()) + " (LinuxCNC refuses it)");
+    refuse(line, at,
+           "a NURBS of order L = " + std::to_string(nurbs_order_) + " needs at least " + std::to_string(nurbs_order_) +
+               " control points, the start included; this one has " + std::to_string(nurbs_points_.size()) +
+               " (LinuxCNC refuses it)");
   spline_start_rules(line, at, "NURBS", true);
   // LinuxCNC draws the curve from where the machine is, through the first point: the two
   // differ if the position, the coordinate system or the units changed since the first G5.2.
@@ -439,8 +464,9 @@ void Interpreter::end_nurbs(const Words& w, int previous_motion, int line, Effec
   const ControlPoint& first = nurbs_points_.front();
   const auto [x0, y0] = program_xy();
   if (std::abs(first.x - x0) > 1e-9 || std::abs(first.y - y0) > 1e-9)
-    refuse(line, at, "the NURBS's first point is no longer where the tool is (the position, coordinate system or "
-                     "units changed since the first G5.2): LinuxCNC 2.9 would draw the curve off it");
+    refuse(line, at,
+           "the NURBS's first point is no longer where the tool is (the position, coordinate system or "
+           "units changed since the first G5.2): LinuxCNC 2.9 would draw the curve off it");
   effect.translate = true;
   effect.motion_code_word = word.index;
   curve_moves(nurbs_points_, nurbs_order_, line, at, effect);
@@ -456,8 +482,9 @@ void Interpreter::curve_moves(const std::vector<ControlPoint>& points, unsigned 
   const std::vector<CurvePiece> pieces = nurbs_feed(points, order);
   for (const CurvePiece& p : pieces)
     if (!finite(p))
-      refuse(line, offset, "LinuxCNC 2.9's arcs for this curve are not finite numbers (a piece of it is straight, of "
-                           "zero length, or its weights cancel): write that part with G1");
+      refuse(line, offset,
+             "LinuxCNC 2.9's arcs for this curve are not finite numbers (a piece of it is straight, of "
+             "zero length, or its weights cancel): write that part with G1");
   if (pieces.empty()) refuse(line, offset, "LinuxCNC 2.9 makes no move for this curve");
   const double scale = inches_ ? kInch : 1.0;
   const Frame f = frame();
@@ -478,8 +505,9 @@ void Interpreter::curve_moves(const std::vector<ControlPoint>& points, unsigned 
       arc.center_second = p.center.y * scale;
       arc.clockwise = !p.counterclockwise;
       arc.turns = 1;
-      arc.sweep_rad = arc_sweep(std::atan2(m.start[1] - arc.center_second, m.start[0] - arc.center_first),
-                                std::atan2(m.end[1] - arc.center_second, m.end[0] - arc.center_first), arc.clockwise, 1);
+      arc.sweep_rad =
+          arc_sweep(std::atan2(m.start[1] - arc.center_second, m.start[0] - arc.center_first),
+                    std::atan2(m.end[1] - arc.center_second, m.end[0] - arc.center_first), arc.clockwise, 1);
       const double radius = std::min(std::hypot(m.start[0] - arc.center_first, m.start[1] - arc.center_second),
                                      std::hypot(m.end[0] - arc.center_first, m.end[1] - arc.center_second));
       if (radius < kSmallestArc_mm) {

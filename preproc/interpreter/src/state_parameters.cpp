@@ -49,8 +49,9 @@ std::optional<double> Interpreter::StateView::named(const std::string& name) con
   const std::string axis_name = absolute ? name.substr(5) : name.substr(1);
   if (axis_name.size() == 1) {
     const auto letter = std::string_view("xyzabc").find(axis_name[0]);
-    if (letter == std::string_view::npos) return std::string_view("uvw").find(axis_name[0]) != std::string_view::npos
-                                                      ? std::optional<double>(0.0) : std::nullopt;
+    if (letter == std::string_view::npos)
+      return std::string_view("uvw").find(axis_name[0]) != std::string_view::npos ? std::optional<double>(0.0)
+                                                                                  : std::nullopt;
     if (i.compensation_.offsets() && !i.compensation_.first_move()) return std::nullopt;
     const int axis = static_cast<int>(letter);
     if (!(i.known_ >> axis & 1u)) return std::nullopt;
@@ -66,7 +67,7 @@ std::optional<double> Interpreter::StateView::named(const std::string& name) con
   if (name == "_ccomp")
     return i.compensation_.side() == CutterCompensation::kLeft    ? G_41
            : i.compensation_.side() == CutterCompensation::kRight ? G_42
-                                                                   : G_40;
+                                                                  : G_40;
   if (name == "_metric") return flag(!i.inches_);
   if (name == "_imperial") return flag(i.inches_);
   if (name == "_absolute") return flag(!i.incremental_);

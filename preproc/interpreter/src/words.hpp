@@ -20,7 +20,7 @@ inline constexpr int kG28Home = 5161, kG30Home = 5181;
 inline constexpr int kCoordinateSystem = 5220;         // active system 1..9
 inline constexpr int kG92Applied = 5210, kG92 = 5211;  // G92 offsets on (1) and their values X..C
 inline int offset_parameter(int system, int axis) { return 5201 + 20 * system + axis; }  // 5221 = G54 X
-inline int rotation_parameter(int system) { return 5210 + 20 * system; }                  // 5230 = G54 R
+inline int rotation_parameter(int system) { return 5210 + 20 * system; }                 // 5230 = G54 R
 
 // "G59.1" for 591 (G codes are kept x10).
 inline std::string g_name(int code) {
@@ -34,11 +34,11 @@ struct Interpreter::Words {
   struct Value {
     bool has = false;
     double value = 0.0;
-    int index = -1;   // into block.words
+    int index = -1;  // into block.words
     int offset = 0;
   };
   struct Code {
-    int code;   // x10: G59.1 = 591
+    int code;  // x10: G59.1 = 591
     int index;
     int offset;
   };
@@ -69,8 +69,8 @@ struct Interpreter::Words {
   }
   // The line's motion code (group 1), if any: G80 only if there is no other.
   const Code* motion_code() const {
-    const Code* c = find_g({G_0, G_1, G_2, G_3, G_5, G_5_1, G_5_2, G_73, G_74, G_81, G_82, G_83, G_84, G_85, G_86,
-                            G_88, G_89,  // (G5.3: splines.cpp)
+    const Code* c = find_g({G_0,  G_1,  G_2,    G_3,    G_5,  G_5_1,  G_5_2, G_73, G_74,
+                            G_81, G_82, G_83,   G_84,   G_85, G_86,   G_88,  G_89,  // (G5.3: splines.cpp)
                             G_70, G_71, G_71_1, G_71_2, G_72, G_72_1, G_72_2});
     return c ? c : find_g({G_80});
   }

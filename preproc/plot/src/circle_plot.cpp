@@ -42,8 +42,8 @@ Figure circle_plot(const identify::CircularTest& test, const CirclePlotText& tex
     if (k > 0) csv << "\n\n";  // gnuplot's data blocks (index 0, 1)
     csv << "direction,angle[deg],deviation[um],plotted_radius[div]\n";
     auto row = [&](double angle_rad, double deviation_mm) {
-      csv << (run.ccw ? "ccw" : "cw") << "," << number(angle_rad * 180 / M_PI) << "," << number(deviation_mm * 1e3) << ","
-          << number(kNominalRing + deviation_mm * 1e3 / scale) << "\n";
+      csv << (run.ccw ? "ccw" : "cw") << "," << number(angle_rad * 180 / M_PI) << "," << number(deviation_mm * 1e3)
+          << "," << number(kNominalRing + deviation_mm * 1e3 / scale) << "\n";
     };
     for (const auto& [angle, deviation] : run.points) row(angle, deviation);
     // Closed where the readings cover the turn (a gap of at most 10 deg at the start).
@@ -73,9 +73,10 @@ Figure circle_plot(const identify::CircularTest& test, const CirclePlotText& tex
   gp << ") font 'sans,10'\n"
      << "set grid polar 30 r lt 1 lw 0.8 lc rgb '#d8d8d8'\n"
      << "set key at screen 0.62, screen 0.86 left top Left reverse samplen 3 spacing 1.2 box lc rgb '#bbbbbb'\n"
-     << "set label 1 " << text_literal("scale " + number(scale) + " um/div\nrings every " + number(scale) +
-                                       " um of radius deviation; the nominal circle\n(R " + number(test.radius_mm) +
-                                       " mm) lies 5 divisions out")
+     << "set label 1 "
+     << text_literal("scale " + number(scale) + " um/div\nrings every " + number(scale) +
+                     " um of radius deviation; the nominal circle\n(R " + number(test.radius_mm) +
+                     " mm) lies 5 divisions out")
      << " at screen 0.625, screen 0.725 left front font 'sans,11'\n"
      << "set label 2 " << text_literal(figures) << " at screen 0.625, screen 0.61 left front font 'sans,10'\n"
      << "plot " << number(kNominalRing) << " with lines lw 3 lc rgb '#9a9a9a' title "

@@ -12,9 +12,16 @@ char direction(int component) { return "xyzxyz"[component]; }
 // Which of X, Y, Z (0, 1, 2) an axis letter moves along or turns about; U V W are parallel to X Y Z.
 int own_direction(char axis) {
   switch (axis) {
-    case 'X': case 'A': case 'U': return 0;
-    case 'Y': case 'B': case 'V': return 1;
-    default: return 2;
+    case 'X':
+    case 'A':
+    case 'U':
+      return 0;
+    case 'Y':
+    case 'B':
+    case 'V':
+      return 1;
+    default:
+      return 2;
   }
 }
 
@@ -42,11 +49,13 @@ std::string location_meaning(const tables::ErrorSymbol& s, bool rotary_axis) {
   const int along = s.component % 3;
   if (translation) {
     if (s.axis != 'S' && along == own)
-      return rotary_axis ? "position of the " + line + " along its own line" : "zero offset of " + std::string(1, s.axis);
+      return rotary_axis ? "position of the " + line + " along its own line"
+                         : "zero offset of " + std::string(1, s.axis);
     return "position of the " + line + " along " + direction(s.component);
   }
   if (s.axis == 'S') return "tilt of the spindle line about " + std::string(1, direction(s.component));
-  if (along == own) return rotary_axis ? "angular zero offset of " + std::string(1, s.axis) : "turn of the " + line + " about itself";
+  if (along == own)
+    return rotary_axis ? "angular zero offset of " + std::string(1, s.axis) : "turn of the " + line + " about itself";
   return rotary_axis ? "tilt of the " + line + " about " + std::string(1, direction(s.component))
                      : "squareness: the " + line + " turned about " + std::string(1, direction(s.component));
 }

@@ -34,7 +34,8 @@ class TemporaryFile {
   const std::string& path() const { return path_; }
   // Renamed over `target` (same file system), readable by all like any file the user writes.
   void move_to(const std::string& target) {
-    fs::permissions(path_, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read | fs::perms::others_read);
+    fs::permissions(path_,
+                    fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read | fs::perms::others_read);
     fs::rename(path_, target);
     path_.clear();
   }
@@ -93,7 +94,8 @@ void draw(const Figure& figure) {
   else if (extension == ".svg")
     terminal = "set terminal svg" + size + " dynamic noenhanced font 'sans,11' background '#ffffff'";
   else
-    throw std::runtime_error("--plot " + figure.image + ": the picture is a .png or an .svg file (its extension chooses)");
+    throw std::runtime_error("--plot " + figure.image +
+                             ": the picture is a .png or an .svg file (its extension chooses)");
   const std::string data = data_path(figure.image);
 
   TemporaryFile image_part(beside(figure.image), figure.image), data_part(beside(data), data);
@@ -106,8 +108,8 @@ void draw(const Figure& figure) {
   }
   {
     std::ofstream gp(script.path(), std::ios::trunc);
-    gp << terminal << "\nset output " << text_literal(image_part.path()) << "\nset encoding utf8\nDATA = "
-       << text_literal(data_part.path()) << "\n"
+    gp << terminal << "\nset output " << text_literal(image_part.path())
+       << "\nset encoding utf8\nDATA = " << text_literal(data_part.path()) << "\n"
        << figure.script << "\nunset output\n";
     if (!gp.flush()) throw std::runtime_error("cannot write the gnuplot script " + script.path());
   }
@@ -121,8 +123,9 @@ void draw(const Figure& figure) {
     throw std::runtime_error("gnuplot failed (exit " + std::to_string(code) + "): the plot " + figure.image +
                              " was not written; gnuplot said: " + tail(read_text(messages.path()), 4));
   const std::string image = read_text(image_part.path());
-  const bool valid = extension == ".png" ? image.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0
-                                         : image.find("<svg") != std::string::npos && image.find("</svg>") != std::string::npos;
+  const bool valid = extension == ".png"
+                         ? image.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0
+                         : image.find("<svg") != std::string::npos && image.find("</svg>") != std::string::npos;
   if (!valid)
     throw std::runtime_error("gnuplot wrote no valid " + extension.substr(1) + " image: the plot " + figure.image +
                              " was not written");

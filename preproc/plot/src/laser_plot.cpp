@@ -30,8 +30,8 @@ Figure laser_plot(const identify::LaserRuns& runs, const std::set<identify::RunK
   csv << "target[" << p << "]";
   for (const auto& [run, direction] : up) csv << ",run" << run << "_up[" << u << "]";
   for (const auto& [run, direction] : down) csv << ",run" << run << "_down[" << u << "]";
-  for (const char* column : {"mean_up", "mean_down", "mean_bidirectional", "mean_up+2s", "mean_up-2s", "mean_down+2s",
-                             "mean_down-2s"})
+  for (const char* column :
+       {"mean_up", "mean_down", "mean_bidirectional", "mean_up+2s", "mean_up-2s", "mean_down+2s", "mean_down-2s"})
     csv << "," << column << "[" << u << "]";
   csv << "\n";
   for (const identify::TargetStatistics& t : e.targets) {
@@ -54,7 +54,8 @@ Figure laser_plot(const identify::LaserRuns& runs, const std::set<identify::RunK
   const std::size_t first_statistic = 2 + up.size() + down.size();
   const auto column = [&](std::size_t offset) { return std::to_string(first_statistic + offset); };
   // The side column: the figures, then the notes (metadata, runs left out) wrapped to its width.
-  std::string figures = "ISO 230-2 (" + std::to_string(e.runs_up) + " runs up, " + std::to_string(e.runs_down) + " down)";
+  std::string figures =
+      "ISO 230-2 (" + std::to_string(e.runs_up) + " runs up, " + std::to_string(e.runs_down) + " down)";
   for (const auto& [symbol, value] : text.figures)  // an angle's figure is long: wrapped, indented
     for (const std::string& line : wrapped(symbol + " = " + value, 46, 4)) figures += "\n" + line;
   if (!text.notes.empty()) figures += "\n";
@@ -76,20 +77,24 @@ Figure laser_plot(const identify::LaserRuns& runs, const std::set<identify::RunK
      << "set xrange [" << number(first - pad) << ":" << number(last + pad) << "]\n"
      << "set autoscale yfix\nset offsets 0, 0, graph 0.06, graph 0.06\n"
      << "set style fill transparent solid 0.14 noborder\n"
-     << "plot DATA using 1:" << column(3) << ":" << column(4) << " with filledcurves lc rgb '#1f5fbf' title 'mean up ± 2s (band)', \\\n"
-     << "     DATA using 1:" << column(5) << ":" << column(6) << " with filledcurves lc rgb '#c0392b' title 'mean down ± 2s (band)'";
+     << "plot DATA using 1:" << column(3) << ":" << column(4)
+     << " with filledcurves lc rgb '#1f5fbf' title 'mean up ± 2s (band)', \\\n"
+     << "     DATA using 1:" << column(5) << ":" << column(6)
+     << " with filledcurves lc rgb '#c0392b' title 'mean down ± 2s (band)'";
   for (std::size_t k = 0; k < up.size(); ++k)
     gp << ", \\\n     DATA using 1:" << 2 + k << " with linespoints lw 1 pt 8 ps 0.9 lc rgb '#6f9fdf' "
        << (k == 0 ? "title " + text_literal("runs up (↑), " + std::to_string(up.size())) : std::string("notitle"));
   for (std::size_t k = 0; k < down.size(); ++k)
-    gp << ", \\\n     DATA using 1:" << 2 + up.size() + k << " with linespoints lw 1 dt 2 pt 10 ps 0.9 lc rgb '#e58a7f' "
+    gp << ", \\\n     DATA using 1:" << 2 + up.size() + k
+       << " with linespoints lw 1 dt 2 pt 10 ps 0.9 lc rgb '#e58a7f' "
        << (k == 0 ? "title " + text_literal("runs down (↓), " + std::to_string(down.size())) : std::string("notitle"));
   for (const auto& [offset, colour] : {std::pair{3, "#1f5fbf"}, {4, "#1f5fbf"}, {5, "#c0392b"}, {6, "#c0392b"}})
-    gp << ", \\\n     DATA using 1:" << column(static_cast<std::size_t>(offset)) << " with lines lw 1 dt 3 lc rgb '" << colour
-       << "' notitle";
+    gp << ", \\\n     DATA using 1:" << column(static_cast<std::size_t>(offset)) << " with lines lw 1 dt 3 lc rgb '"
+       << colour << "' notitle";
   gp << ", \\\n     DATA using 1:" << column(0) << " with lines lw 2.5 lc rgb '#1f5fbf' title 'mean up'"
      << ", \\\n     DATA using 1:" << column(1) << " with lines lw 2.5 dt 2 lc rgb '#c0392b' title 'mean down'"
-     << ", \\\n     DATA using 1:" << column(2) << " with linespoints lw 3 pt 7 ps 0.7 lc rgb 'black' title 'mean bidirectional'\n";
+     << ", \\\n     DATA using 1:" << column(2)
+     << " with linespoints lw 3 pt 7 ps 0.7 lc rgb 'black' title 'mean bidirectional'\n";
   return {image, csv.str(), gp.str(), 1400, 820};
 }
 

@@ -76,7 +76,8 @@ AxisPlot axis_plot(const machine::Model& model, int joint, const std::string& im
   std::ostringstream csv;
   csv << "# volcomp plot: the component errors of axis " << axis.letter << " of " << where << ", drawn in " << image
       << "\n# error = actual - nominal; translations in um, rotations in " << angle_unit << ", " << lower << " in "
-      << position_unit << "; the values the model uses at the table's nodes (the table file's units converted, the "
+      << position_unit
+      << "; the values the model uses at the table's nodes (the table file's units converted, the "
          "machine file's scale and measured_at_mm applied)\n";
   double low = axis.travel_min, high = axis.travel_max;
   for (std::size_t k = 0; k < drawn.size(); ++k) {
@@ -86,7 +87,8 @@ AxisPlot axis_plot(const machine::Model& model, int joint, const std::string& im
         << (table.interpolation() == tables::Interpolation::Cubic ? "cubic" : "linear") << " interpolation)\n"
         << lower << "[" << position_unit << "]";
     for (const tables::Column& c : table.columns())
-      csv << "," << c.symbol.name() << "[" << (c.symbol.quantity() == tables::Quantity::Length ? "um" : angle_unit) << "]";
+      csv << "," << c.symbol.name() << "[" << (c.symbol.quantity() == tables::Quantity::Length ? "um" : angle_unit)
+          << "]";
     csv << "\n";
     const std::vector<double>& nodes = table.grid()[0].nodes;
     low = std::min(low, nodes.front());
@@ -129,25 +131,27 @@ AxisPlot axis_plot(const machine::Model& model, int joint, const std::string& im
           }
         const int order = static_cast<int>(earlier.size());
         earlier.emplace_back(&table, static_cast<int>(c));
-        plot += std::string(plot.empty() ? "plot " : ", \\\n     ") + "DATA index " + std::to_string(k) + " using 1:" +
-                std::to_string(c + 2) + " with linespoints lw " + number(std::max(1.0, 3.6 - 1.1 * order)) + " pt " +
+        plot += std::string(plot.empty() ? "plot " : ", \\\n     ") + "DATA index " + std::to_string(k) +
+                " using 1:" + std::to_string(c + 2) + " with linespoints lw " +
+                number(std::max(1.0, 3.6 - 1.1 * order)) + " pt " +
                 std::to_string(std::array{7, 5, 9, 11, 13, 15}[static_cast<std::size_t>(order % 6)]) + " ps " +
                 number(std::max(0.5, 1.0 - 0.2 * order)) + " " + (k > 0 ? "dt 2 " : "") + "lc rgb '" +
                 kColour[s.component] + "' title " + text_literal(title);
       }
     }
     return plot + ", \\\n     keyentry with lines dt 2 lw 1.5 lc rgb '#777777' title " +
-           text_literal("travel " + number(axis.travel_min) + " .. " + number(axis.travel_max) + " " + position_unit) + "\n";
+           text_literal("travel " + number(axis.travel_min) + " .. " + number(axis.travel_max) + " " + position_unit) +
+           "\n";
   };
   const double pad = (high - low) * 0.02;
   std::ostringstream gp;
   gp << "set datafile separator ','\n";
   std::string files;
   for (const tables::ErrorTable* table : drawn) files += (files.empty() ? "" : ", ") + table->path();
-  gp << "set multiplot title " << text_literal(where + ": axis " + std::string(1, axis.letter) + " (" +
-                                         (rotary ? "rotary" : "linear") + "), component errors, error = actual - nominal\n" +
-                                         "the model's values at the nodes of " + files +
-                                         " (units converted, the machine file's scale and measured_at_mm applied)")
+  gp << "set multiplot title "
+     << text_literal(where + ": axis " + std::string(1, axis.letter) + " (" + (rotary ? "rotary" : "linear") +
+                     "), component errors, error = actual - nominal\n" + "the model's values at the nodes of " + files +
+                     " (units converted, the machine file's scale and measured_at_mm applied)")
      << " font 'sans,12'\n"
      << "set lmargin at screen 0.08\nset rmargin at screen 0.72\n"
      << "set grid xtics ytics mxtics mytics lw 1 lc rgb '#d0d0d0', lw 0.5 lc rgb '#ececec'\nset mxtics 2\nset mytics 2\n"
@@ -156,9 +160,14 @@ AxisPlot axis_plot(const machine::Model& model, int joint, const std::string& im
      << "set offsets 0, 0, graph 0.08, graph 0.08\n";
   if (rotary && high - low >= 180) gp << "set xtics 30\n";
   for (const double at : {axis.travel_min, axis.travel_max})
-    gp << "set arrow from " << number(at) << ", graph 0 to " << number(at) << ", graph 1 nohead dt 2 lw 1.5 lc rgb '#777777'\n";
-  const std::string xlabel = "set xlabel " + text_literal(std::string(1, axis.letter) + " position (" + position_unit + ")") + "\n";
-  struct Panel { tables::Quantity quantity; std::string title, ylabel; };
+    gp << "set arrow from " << number(at) << ", graph 0 to " << number(at)
+       << ", graph 1 nohead dt 2 lw 1.5 lc rgb '#777777'\n";
+  const std::string xlabel =
+      "set xlabel " + text_literal(std::string(1, axis.letter) + " position (" + position_unit + ")") + "\n";
+  struct Panel {
+    tables::Quantity quantity;
+    std::string title, ylabel;
+  };
   std::vector<Panel> panels;
   if (any_length)
     panels.push_back({tables::Quantity::Length,
@@ -167,18 +176,21 @@ AxisPlot axis_plot(const machine::Model& model, int joint, const std::string& im
   if (any_angle)
     panels.push_back({tables::Quantity::Angle,
                       rotary ? "rotations: angular positioning and tilts"
-                      : axis.letter == 'Z' || axis.letter == 'W' ? "rotations: roll and tilts"  // vertical: no pitch, yaw
-                                                                 : "rotations: roll, pitch and yaw",
+                      : axis.letter == 'Z' || axis.letter == 'W'
+                          ? "rotations: roll and tilts"  // vertical: no pitch, yaw
+                          : "rotations: roll, pitch and yaw",
                       "rotation error (" + angle_unit + ")"});
   const double top = 0.87, bottom = 0.08, gap = 0.08;
-  const double height = (top - bottom - gap * static_cast<double>(panels.size() - 1)) / static_cast<double>(panels.size());
+  const double height =
+      (top - bottom - gap * static_cast<double>(panels.size() - 1)) / static_cast<double>(panels.size());
   for (std::size_t p = 0; p < panels.size(); ++p) {
     const double panel_top = top - static_cast<double>(p) * (height + gap);
-    gp << "set tmargin at screen " << number(panel_top) << "\nset bmargin at screen " << number(panel_top - height) << "\n"
+    gp << "set tmargin at screen " << number(panel_top) << "\nset bmargin at screen " << number(panel_top - height)
+       << "\n"
        << "set title " << text_literal(panels[p].title) << " font 'sans,11'\n"
        << "set ylabel " << text_literal(panels[p].ylabel) << "\n"
-       << (p + 1 == panels.size() ? xlabel : "unset xlabel\n")
-       << "set key at screen 0.735, screen " << number(panel_top) << " left top Left reverse samplen 3 spacing 1.15 box lc rgb '#bbbbbb'\n"
+       << (p + 1 == panels.size() ? xlabel : "unset xlabel\n") << "set key at screen 0.735, screen "
+       << number(panel_top) << " left top Left reverse samplen 3 spacing 1.15 box lc rgb '#bbbbbb'\n"
        << curves(panels[p].quantity);
   }
   gp << "unset multiplot\n";

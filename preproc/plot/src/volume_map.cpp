@@ -54,8 +54,8 @@ double tip_error_um(const machine::Model& model, const machine::Joints& q, doubl
 
 // The rotary setting whose largest uncompensated |e| over the linear travel's corners and
 // middles (3 positions per linear joint) is largest, at tool length L.
-machine::Joints worst_rotary(const machine::Model& model, const std::vector<int>& linear, const std::vector<int>& rotary,
-                             double tool_length_mm) {
+machine::Joints worst_rotary(const machine::Model& model, const std::vector<int>& linear,
+                             const std::vector<int>& rotary, double tool_length_mm) {
   std::vector<std::vector<double>> candidates;
   for (const int j : rotary) candidates.push_back(rotary_candidates(model.axes[static_cast<std::size_t>(j)]));
   machine::Joints q = machine::Joints::Zero(model.joint_count()), worst = q;
@@ -73,8 +73,10 @@ machine::Joints worst_rotary(const machine::Model& model, const std::vector<int>
       largest = std::max(largest, tip_error_um(model, q, tool_length_mm));
       more_linear = false;
       for (std::size_t k = 0; k < linear.size() && !more_linear; ++k) {
-        if (++l[k] < 3) more_linear = true;
-        else l[k] = 0;
+        if (++l[k] < 3)
+          more_linear = true;
+        else
+          l[k] = 0;
       }
     }
     if (largest > worst_um) {
@@ -83,8 +85,10 @@ machine::Joints worst_rotary(const machine::Model& model, const std::vector<int>
     }
     more = false;
     for (std::size_t k = 0; k < rotary.size() && !more; ++k) {
-      if (++r[k] < candidates[k].size()) more = true;
-      else r[k] = 0;
+      if (++r[k] < candidates[k].size())
+        more = true;
+      else
+        r[k] = 0;
     }
   }
   return worst;
@@ -118,7 +122,9 @@ VolumeMap volume_map(const machine::Model& model, const VolumeMapOptions& option
   map.level_joint = linear[2];
   if (!options.plane.empty()) {
     std::string names;
-    for (const int j : linear) names += static_cast<char>(std::tolower(static_cast<unsigned char>(model.axes[static_cast<std::size_t>(j)].letter)));
+    for (const int j : linear)
+      names +=
+          static_cast<char>(std::tolower(static_cast<unsigned char>(model.axes[static_cast<std::size_t>(j)].letter)));
     const auto joint_of = [&](char letter) {
       const std::size_t at = names.find(static_cast<char>(std::tolower(static_cast<unsigned char>(letter))));
       return at == std::string::npos ? -1 : linear[at];
@@ -147,7 +153,8 @@ VolumeMap volume_map(const machine::Model& model, const VolumeMapOptions& option
   // which tool is in the spindle): judged on the map's poses below, never fitted on them.
   std::optional<fit_tables::Study> study;
   if (!options.controller.empty()) {
-    const fit_tables::Controller controller = fit_tables::load_controller(fit_tables::controller_file(options.controller));
+    const fit_tables::Controller controller =
+        fit_tables::load_controller(fit_tables::controller_file(options.controller));
     fit_tables::StudyOptions o;
     o.tool_lengths_mm = lengths;
     o.check_tool_lengths_mm = std::vector<double>{};  // only the map's tool lengths are judged, here
@@ -169,8 +176,10 @@ VolumeMap volume_map(const machine::Model& model, const VolumeMapOptions& option
       for (const int j : linear) worst.q[j] = 0.0;
       worst.label = rotary_label(model, worst.q);
       // At 0 already the worst: one sheet says it all.
-      if ((worst.q - zero.q).norm() > 0) settings.push_back(worst);
-      else settings.front().label += " (also the worst position)";
+      if ((worst.q - zero.q).norm() > 0)
+        settings.push_back(worst);
+      else
+        settings.front().label += " (also the worst position)";
     }
     for (const RotarySetting& setting : settings) {
       MapSheet sheet;

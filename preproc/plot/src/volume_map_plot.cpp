@@ -19,7 +19,8 @@ std::string volume_map_name(const MapSheet& sheet) {
   return "volume_L" + number(sheet.tool_length_mm) + (sheet.rotary.worst ? "_worst" : "_rotary0");
 }
 
-Figure volume_map_plot(const VolumeMap& map, std::size_t sheet_index, const machine::Model& model, const std::string& image) {
+Figure volume_map_plot(const VolumeMap& map, std::size_t sheet_index, const machine::Model& model,
+                       const std::string& image) {
   const MapSheet& sheet = map.sheets.at(sheet_index);
   const std::string x = letter(model, map.first_joint), y = letter(model, map.second_joint),
                     z = letter(model, map.level_joint);
@@ -29,8 +30,8 @@ Figure volume_map_plot(const VolumeMap& map, std::size_t sheet_index, const mach
   const double top = std::max(1.0, sheet.max_um.front());
 
   std::ostringstream data;
-  data << "# volume map of " << map.machine_name << " (" << map.machine_path << "): tool-tip error |e|, L = "
-       << number(sheet.tool_length_mm) << " mm, " << sheet.rotary.label << "\n"
+  data << "# volume map of " << map.machine_name << " (" << map.machine_path
+       << "): tool-tip error |e|, L = " << number(sheet.tool_length_mm) << " mm, " << sheet.rotary.label << "\n"
        << "# columns: " << x << "[mm]," << y << "[mm],e[um] (joint positions; |real tip - ideal tip|)\n"
        << "# blocks (gnuplot index) compensation-major: ";
   for (std::size_t c = 0; c < rows; ++c)
@@ -50,13 +51,14 @@ Figure volume_map_plot(const VolumeMap& map, std::size_t sheet_index, const mach
     }
 
   std::ostringstream gp;
-  const std::string title = map.machine_name + ": tool-tip error |e| (um) over " + x + "-" + y + ", L = " +
-                            number(sheet.tool_length_mm) + " mm, " + sheet.rotary.label +
+  const std::string title = map.machine_name + ": tool-tip error |e| (um) over " + x + "-" + y +
+                            ", L = " + number(sheet.tool_length_mm) + " mm, " + sheet.rotary.label +
                             (sheet.rotary.worst ? " (the worst rotary position)" : "") +
                             (map.controller_title.empty()
                                  ? ""
                                  : "\nrows: no compensation; the tables by the usual practice; by the modified method"
-                                   "\ntables: " + map.controller_title) +
+                                   "\ntables: " +
+                                       map.controller_title) +
                             "\n" + full_correction_statement(map);
   gp << "set datafile separator ','\n"
      << "set multiplot layout " << rows << "," << columns << " title " << text_literal(title) << " font 'sans,12'\n"
@@ -70,8 +72,9 @@ Figure volume_map_plot(const VolumeMap& map, std::size_t sheet_index, const mach
     for (std::size_t l = 0; l < columns; ++l) {
       const std::vector<double>& e = sheet.error_um[c][l];
       const double largest = *std::max_element(e.begin(), e.end());
-      gp << "set title " << text_literal(map.compensations[c] + ", " + z + " " + number(map.levels_mm[l]) +
-                                         " mm: max " + fixed_text(largest, 1) + " um")
+      gp << "set title "
+         << text_literal(map.compensations[c] + ", " + z + " " + number(map.levels_mm[l]) + " mm: max " +
+                         fixed_text(largest, 1) + " um")
          << "\nplot DATA index " << c * columns + l << " using 1:2:3 with image\n";
     }
   gp << "unset multiplot\n";

@@ -23,9 +23,9 @@ class BatchQueue {
     Header header;            // what stage 0 tells the later stages about the batch (set by it)
     std::vector<Item> items;  // the first `count` are valid
     std::size_t count = 0;
-    bool last = false;        // nothing follows this batch
-    std::exception_ptr error; // a stage failed after `count` items (with last); later
-                              // stages handle those items, then the last one rethrows
+    bool last = false;         // nothing follows this batch
+    std::exception_ptr error;  // a stage failed after `count` items (with last); later
+                               // stages handle those items, then the last one rethrows
    private:
     friend class BatchQueue;
     std::size_t sequence = 0;  // which batch of the stream this is

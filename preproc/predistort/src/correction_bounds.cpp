@@ -12,10 +12,10 @@ namespace {
 
 using machine::Joints;
 
-constexpr int kSamples = 150;       // over the travel, and as many again in the pole fade band
-constexpr int kBandDraws = 40000;   // tries to find those
-constexpr double kStep = 0.25;             // finite differences, mm or deg
-constexpr double kMargin = 2.0;  // on the largest slope and curvature sampled
+constexpr int kSamples = 150;            // over the travel, and as many again in the pole fade band
+constexpr int kBandDraws = 40000;        // tries to find those
+constexpr double kStep = 0.25;           // finite differences, mm or deg
+constexpr double kMargin = 2.0;          // on the largest slope and curvature sampled
 constexpr double kKinkMargin = 1e-3;     // mm or deg, around a piece's corrected joints
 constexpr double kStencilMargin = 1e-2;  // around a stencil (the correction moves as it does)
 

@@ -20,8 +20,8 @@ class ProcessReader : machine::TomlFile {
     if (!n) return *fallback;
     const auto v = n->value<double>();
     if (!v || !std::isfinite(*v) || (positive ? *v <= 0 : *v < 0))
-      throw LoadError(where(*n), std::string("'") + key + "' must be a " + (positive ? "positive" : "non-negative") +
-                                     " number");
+      throw LoadError(where(*n),
+                      std::string("'") + key + "' must be a " + (positive ? "positive" : "non-negative") + " number");
     return *v;
   }
 
@@ -30,14 +30,15 @@ class ProcessReader : machine::TomlFile {
     CuttingProcess process;
     process.path = path();
     for (const auto& [key, node] : root)
-      if (key.str() != "tool") throw LoadError(where(node), "unknown key '" + std::string(key.str()) + "' (only [[tool]] tables)");
+      if (key.str() != "tool")
+        throw LoadError(where(node), "unknown key '" + std::string(key.str()) + "' (only [[tool]] tables)");
     const toml::array* tools = root["tool"].as_array();
     if (!tools) throw LoadError({path(), 1, 1}, "no [[tool]] tables");
     for (const toml::node& node : *tools) {
       const toml::table* t = node.as_table();
       if (!t) throw LoadError(where(node), "[[tool]] must be a table");
-      static const char* kKeys[] = {"number",          "diameter_mm",      "teeth",        "specific_force_N_per_mm2",
-                                    "chip_exponent",   "depth_of_cut_mm",  "width_of_cut_mm", "radial_ratio",
+      static const char* kKeys[] = {"number",        "diameter_mm",     "teeth",           "specific_force_N_per_mm2",
+                                    "chip_exponent", "depth_of_cut_mm", "width_of_cut_mm", "radial_ratio",
                                     "material_side"};
       for (const auto& [key, value] : *t)
         if (std::find_if(std::begin(kKeys), std::end(kKeys), [&](const char* k) { return key.str() == k; }) ==
@@ -45,7 +46,8 @@ class ProcessReader : machine::TomlFile {
           throw LoadError(where(value), "unknown key '" + std::string(key.str()) + "' in [[tool]]");
       ToolProcess p;
       const double number_value = number(*t, "number", std::nullopt, false);
-      if (number_value != std::floor(number_value)) throw LoadError(where(*t->get("number")), "'number' must be a whole number");
+      if (number_value != std::floor(number_value))
+        throw LoadError(where(*t->get("number")), "'number' must be a whole number");
       p.tool = static_cast<int>(number_value);
       std::optional<double> table_diameter;
       if (tool_table)
@@ -94,8 +96,7 @@ Eigen::Vector3d Deflection::force(const interpreter::Move& move, const Eigen::Ve
   // Feed across the tool axis (a plunge along the axis has no radial engagement here).
   const Eigen::Vector3d across = feed - feed.dot(tool_axis) * tool_axis;
   if (across.norm() < 1e-9) return Eigen::Vector3d::Zero();
-  const double feed_mm_per_min =
-      (move.inverse_time ? move.feed * path_length_mm : move.feed) * across.norm();
+  const double feed_mm_per_min = (move.inverse_time ? move.feed * path_length_mm : move.feed) * across.norm();
   const double n = move.spindle_rpm;
   const double fz = feed_mm_per_min / (p.teeth * n);
   const double hm = fz * std::sqrt(p.width_of_cut_mm / p.diameter_mm);

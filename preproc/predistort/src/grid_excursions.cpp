@@ -53,7 +53,7 @@ std::vector<std::string> GridExcursions::warnings(const machine::Model& model) c
     const bool rotary = axis.type == machine::AxisType::Rotary;
     const std::string unit = rotary ? " deg" : " mm";
     // Linear excursions below 0.1 mm in um (a few um past the end is common and harmless to read).
-    const std::string beyond = rotary ? fixed_text(w.beyond, 4) + " deg"
+    const std::string beyond = rotary           ? fixed_text(w.beyond, 4) + " deg"
                                : w.beyond < 0.1 ? fixed_text(w.beyond * 1e3, 1) + " um"
                                                 : fixed_text(w.beyond, 3) + " mm";
     const std::string table =

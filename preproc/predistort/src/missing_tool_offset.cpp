@@ -21,9 +21,10 @@ void MissingOffsetCheck::at(const interpreter::Move& move, const machine::Joints
                             const machine::Joints& corrected, MissingOffsetError& worst) const {
   const std::optional<LikelyTool> tool = likely_tool(model_, tools_, move.tool);
   if (!tool || tool->length_mm == model_.correction_length(0.0)) return;  // corrected for that tool
-  const double error_mm = (machine::tool_pose(model_, conditions_, machine::Machine::Real, corrected, tool->length_mm).tip_mm -
-                           machine::tool_pose(model_, machine::Machine::Ideal, target, tool->length_mm).tip_mm)
-                              .norm();
+  const double error_mm =
+      (machine::tool_pose(model_, conditions_, machine::Machine::Real, corrected, tool->length_mm).tip_mm -
+       machine::tool_pose(model_, machine::Machine::Ideal, target, tool->length_mm).tip_mm)
+          .norm();
   if (error_mm > worst.error_mm) worst = {error_mm, move.line, *tool};
 }
 
@@ -34,11 +35,10 @@ std::string missing_offset_warning(const MissingOffsetError& error, const ToolLe
   if (!first || !(error.error_mm > tolerance_mm)) return {};
   const double reference = model.tool_length_reference_mm;
   const std::string length = number_text(error.tool.length_mm) + " mm";
-  std::string text = "warning: line " + std::to_string(first->line) +
-                     (first->file != program ? " of " + first->file : std::string()) +
-                     " moves without G43 (no tool length offset in force): corrected for L = " +
-                     number_text(reference) + " mm (" +
-                     (reference == 0.0 ? "the spindle gauge point" : "tool_length_reference_mm alone") + "); with ";
+  std::string text =
+      "warning: line " + std::to_string(first->line) + (first->file != program ? " of " + first->file : std::string()) +
+      " moves without G43 (no tool length offset in force): corrected for L = " + number_text(reference) + " mm (" +
+      (reference == 0.0 ? "the spindle gauge point" : "tool_length_reference_mm alone") + "); with ";
   if (error.tool.tool >= 0)
     text += "tool " + std::to_string(error.tool.tool) + " (" + length + ", " +
             std::filesystem::path(tool_table).filename().string() + ")";

@@ -36,7 +36,8 @@ bool OneStepCorrection::equations_at(const PerTool& tool, const Joints& target, 
                                      machine::PoseDerivatives& d, int& band) const {
   band = 0;
   if (affine_) {
-    equations = machine::position_target({tool.jacobian * target.head<3>() + tool.tip_at_zero, Eigen::Vector3d::UnitZ()});
+    equations =
+        machine::position_target({tool.jacobian * target.head<3>() + tool.tip_at_zero, Eigen::Vector3d::UnitZ()});
     return true;
   }
   const machine::ToolPose ideal = machine::tool_pose(model_, Machine::Ideal, target, tool.tool_length_mm, d);

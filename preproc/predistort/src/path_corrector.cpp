@@ -14,12 +14,11 @@ using machine::Status;
 
 constexpr double kTwoPi = 2.0 * M_PI;
 constexpr double kCheckPoints[] = {0.25, 0.5, 0.75};
-constexpr double kAcceptShare = 0.7;     // of the tolerance, at the check points
+constexpr double kAcceptShare = 0.7;      // of the tolerance, at the check points
 constexpr double kUncheckedShare = 0.25;  // of the tolerance, for the bounds
 
 [[noreturn]] void fail(const Move& move, const std::string& what, Status status) {
-  throw std::runtime_error("line " + std::to_string(move.line) + ": " + what + " (" +
-                           machine::describe(status) + ")");
+  throw std::runtime_error("line " + std::to_string(move.line) + ": " + what + " (" + machine::describe(status) + ")");
 }
 
 // Angle from `from` to `to` turning the given way, in (0, 2 pi] (a full turn if equal).
@@ -194,8 +193,8 @@ Position PathCorrector::commanded_at(const Move& move, const Node& a, const Piec
 }
 
 PathCorrector::PieceError PathCorrector::error_between(const Move& move, const Node& a, const Node& b,
-                                                      const Piece& piece, double t,
-                                                      const DirectionErrors* exact_direction_errors) {
+                                                       const Piece& piece, double t,
+                                                       const DirectionErrors* exact_direction_errors) {
   ++stats_.checks;
   const double L = model_.correction_length(move.tool_offset_mm);  // the tool-length rule
   const double s = a.s + t * (b.s - a.s);
@@ -216,7 +215,8 @@ PathCorrector::PieceError PathCorrector::error_between(const Move& move, const N
     // values interpolated miss it by tens of urad across the band.
     const auto& [at_a, at_b] = *exact_direction_errors;
     Eigen::Vector3d exact = Eigen::Vector3d::Zero();
-    if (at_a.squaredNorm() > 0 || at_b.squaredNorm() > 0 || machine::pole_angle(model_, nominal, L) < conditions_.fade.full_rad)
+    if (at_a.squaredNorm() > 0 || at_b.squaredNorm() > 0 ||
+        machine::pole_angle(model_, nominal, L) < conditions_.fade.full_rad)
       exact = direction_error(move, node_at(move, s));
     e.rad = (real.direction - ideal.direction - exact).norm();
   }
@@ -297,8 +297,7 @@ void PathCorrector::correct(const Move& move, std::vector<Piece>& pieces) {
   }
   // A short piece to the corrected start if the machine is not there (the previous move was
   // written uncorrected, or the tool length changed and with it the correction).
-  if (move.kind != MoveKind::Rapid &&
-      (!have_last_ || (last_.world - a.world).cwiseAbs().maxCoeff() > 1e-9)) {
+  if (move.kind != MoveKind::Rapid && (!have_last_ || (last_.world - a.world).cwiseAbs().maxCoeff() > 1e-9)) {
     Piece lead;
     lead.kind = MoveKind::Line;
     lead.end = a.program;

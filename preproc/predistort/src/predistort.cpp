@@ -20,7 +20,7 @@ namespace {
 struct Line {
   int number = 0;
   const std::string* file = nullptr;  // the program, or the subroutine file the line is in
-  long bytes = 0;  // read up to the end of this line
+  long bytes = 0;                     // read up to the end of this line
   std::string raw;
   gcode::Block block;
   interpreter::Effect effect;
@@ -171,8 +171,7 @@ void correct_lines(PathCorrector& corrector, LineQueue& queue, int lane, int lan
 // if they still run).
 class Workers {
  public:
-  Workers(Source& source, std::deque<PathCorrector>& correctors, LineQueue& queue)
-      : queue_(queue) {
+  Workers(Source& source, std::deque<PathCorrector>& correctors, LineQueue& queue) : queue_(queue) {
     threads_.emplace_back([&source, &queue] { read_lines(source, queue); });
     const int lanes = static_cast<int>(correctors.size());
     for (int lane = 0; lane < lanes; ++lane)
@@ -204,8 +203,7 @@ int corrector_lanes(const Job& job) {
 
 unsigned program_axes(const machine::Model& model) { return JointAxes(model).mask(); }
 
-Summary predistort(std::istream& in, std::ostream& out, const Job& job,
-                   const std::function<void(long)>& progress) {
+Summary predistort(std::istream& in, std::ostream& out, const Job& job, const std::function<void(long)>& progress) {
   // One corrector per lane (not copied: the threads hold them); lanes that start together
   // share the sampling of the bounds at a tool length.
   CorrectionBounds::Shared shared_bounds;

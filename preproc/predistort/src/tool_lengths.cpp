@@ -42,8 +42,8 @@ std::string ToolLengthLog::describe(const machine::Model& model, const std::stri
                                     const std::string& tool_table) const {
   if (sources_.empty()) return {};
   const std::string reference = "reference " + mm(model.tool_length_reference_mm);
-  const std::string table = tool_table.empty() ? std::string("the tool table")
-                                               : std::filesystem::path(tool_table).filename().string();
+  const std::string table =
+      tool_table.empty() ? std::string("the tool table") : std::filesystem::path(tool_table).filename().string();
   std::string text = "tool lengths: ";
   for (std::size_t s = 0; s < sources_.size(); ++s) {
     const Source& source = sources_[s];
@@ -89,8 +89,7 @@ ToolLengthLog read_tool_lengths(std::istream& program, const interpreter::Setup&
   std::string raw;
   ToolLengthLog log;
   while (reader.next(raw, origin, block, effect))
-    for (const interpreter::Move& m : effect.moves)
-      log.add(m, reader.files()[static_cast<std::size_t>(origin.file)]);
+    for (const interpreter::Move& m : effect.moves) log.add(m, reader.files()[static_cast<std::size_t>(origin.file)]);
   return log;
 }
 

@@ -73,10 +73,10 @@ void Writer::header(const Provenance& p) {
   h << '(' << commented("machine: " + p.machine + ", " + p.machine_name) << ")\n";
   for (const std::string& t : p.tables) h << '(' << commented("table: " + t) << ")\n";
   std::ostringstream files;
-  files << "tolerance: " << p.tolerance_mm << " mm; world: " << p.world << "; parameters: "
-        << (p.parameters.empty() ? "none" : p.parameters) << "; tool table: "
-        << (p.tool_table.empty() ? "none" : p.tool_table) << "; cutting process: "
-        << (p.process.empty() ? "none" : p.process);
+  files << "tolerance: " << p.tolerance_mm << " mm; world: " << p.world
+        << "; parameters: " << (p.parameters.empty() ? "none" : p.parameters)
+        << "; tool table: " << (p.tool_table.empty() ? "none" : p.tool_table)
+        << "; cutting process: " << (p.process.empty() ? "none" : p.process);
   h << '(' << commented(files.str()) << ")\n";
   emit(h.str());
   line_.clear();
@@ -259,7 +259,7 @@ void Writer::translated(std::string_view raw, const gcode::Block& block, const i
   for (std::size_t i = 0; i < removed.size(); ++i) {
     const gcode::Word& w = block.words[static_cast<std::size_t>(removed[i])];
     const std::size_t start = edit_text_.size();
-    if (i == 0 && count > 0) {  // (no moves: a line whose move cutter compensation dropped)
+    if (i == 0 && count > 0) {                      // (no moves: a line whose move cutter compensation dropped)
       if (effect.exact_path) edit_text_ += " G61";  // a canned cycle's moves: LinuxCNC runs them so
       append_piece(edit_text_, effect.moves.front(), pieces.front().front(), effect, effect.motion_code_word >= 0,
                    per_piece_feed);

@@ -49,8 +49,8 @@ class Page {
     for (const auto& [id, name] : contents_) nav += "<li><a href=\"#" + id + "\">" + escaped(name) + "</a></li>\n";
     nav += "</ol></nav>\n";
     return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + escaped(title) +
-           "</title>\n<style>" + kReportStyle + "</style>\n</head>\n<body>\n<header>\n<h1>" + escaped(title) + "</h1>\n" +
-           header + nav + "</header>\n" + body_ + "</body>\n</html>\n";
+           "</title>\n<style>" + kReportStyle + "</style>\n</head>\n<body>\n<header>\n<h1>" + escaped(title) +
+           "</h1>\n" + header + nav + "</header>\n" + body_ + "</body>\n</html>\n";
   }
 
  private:
@@ -69,8 +69,9 @@ std::string machine_section(const machine::Model& model) {
       {"temperature during measurement", fixed(model.info.temperature_C, 1) + " degC"},
       {"tool length L of the file", fixed(model.tool_length_mm, 1) + " mm"}};
   std::string html = html_table({}, rows, false);
-  html += "<h3>Files and their SHA-256 checksums</h3>\n<p class=\"note\">The report was made from exactly these files: "
-          "<code>sha256sum FILE</code> prints the same checksum.</p>\n";
+  html +=
+      "<h3>Files and their SHA-256 checksums</h3>\n<p class=\"note\">The report was made from exactly these files: "
+      "<code>sha256sum FILE</code> prints the same checksum.</p>\n";
   std::string files = "<table>\n<thead><tr><th>file</th><th>what</th><th>SHA-256</th></tr></thead>\n<tbody>\n";
   const auto file_row = [&](const std::string& path, const std::string& what) {
     files += "<tr><td>" + escaped(absolute(path)) + "</td><td>" + escaped(what) + "</td><td class=\"hash\">" +
@@ -92,14 +93,16 @@ std::string machine_section(const machine::Model& model) {
     const std::string unit = rotary ? " deg" : " mm";
     axes.push_back({std::string(1, a.letter), rotary ? "rotary" : "linear",
                     a.chain == machine::Chain::Tool ? "tool chain" : "workpiece chain",
-                    fixed(a.travel_min, 1) + unit + " .. " + fixed(a.travel_max, 1) + unit, std::to_string(a.tables.size())});
+                    fixed(a.travel_min, 1) + unit + " .. " + fixed(a.travel_max, 1) + unit,
+                    std::to_string(a.tables.size())});
   }
   html += "<h3>Axes</h3>\n" + html_table({"axis", "type", "chain", "travel", "tables"}, axes, false);
   for (const Warning& w : model.warnings) html += "<p class=\"note\">" + escaped(w.to_string()) + "</p>\n";
   return html;
 }
 
-std::string tables_section(const machine::Model& model, const Drawings& drawings, int& figures, std::ostream& progress) {
+std::string tables_section(const machine::Model& model, const Drawings& drawings, int& figures,
+                           std::ostream& progress) {
   std::string html =
       "<p>Each axis's component errors against its position, as the compensation uses them (the table file's units "
       "converted, the machine file's <code>scale</code> and <code>measured_at_mm</code> applied): translations in um, "
@@ -169,9 +172,10 @@ std::string balance_section(const machine::Model& model, const Drawings& drawing
   std::ostringstream gp;
   gp << "set datafile separator ','\nset style data histograms\nset style histogram clustered gap 1\n"
      << "set style fill solid 0.8 border -1\nset boxwidth 0.9\nset grid ytics\nset key top right\n"
-     << "set title " << plot::text_literal("Accuracy balance of " + model.info.name + ": the " + std::to_string(shown) +
-                                          " largest effects, each deviation alone at the tool tip (L = " +
-                                          fixed(b.tool_length_mm, 0) + " mm)")
+     << "set title "
+     << plot::text_literal("Accuracy balance of " + model.info.name + ": the " + std::to_string(shown) +
+                           " largest effects, each deviation alone at the tool tip (L = " + fixed(b.tool_length_mm, 0) +
+                           " mm)")
      << "\nset ylabel 'tool-tip error (um)'\nset xtics rotate by -45 font 'sans,11'\n"
      << "plot DATA every ::1 using 2:xtic(1) title 'M = max |error|' lc rgb '#c0392b', "
      << "'' every ::1 using 3 title 'RMS' lc rgb '#2e86c1'\n";
@@ -188,11 +192,12 @@ std::string balance_section(const machine::Model& model, const Drawings& drawing
          " poses, 5 positions per joint, L = " + fixed(b.tool_length_mm, 1) +
          " mm), largest first: measure the top of the list first (<code>volcomp balance</code>). M = max |error|, "
          "delta = M - min |error| (the source's criteria), share = RMS^2 over the sum of all RMS^2.</p>\n"
-         "<p>All deviations together: M " + fixed(b.total.max_um, 2) + " um, RMS " + fixed(b.total.rms_um, 2) +
-         " um, tool direction up to " + fixed(b.total.max_urad, 1) + " urad.</p>\n" +
+         "<p>All deviations together: M " +
+         fixed(b.total.max_um, 2) + " um, RMS " + fixed(b.total.rms_um, 2) + " um, tool direction up to " +
+         fixed(b.total.max_urad, 1) + " urad.</p>\n" +
          html_table({"deviation", "M [um]", "delta [um]", "RMS [um]", "share [%]", "direction [urad]"}, rows) +
-         html_png_figure(png, "accuracy balance bar chart", "The " + std::to_string(shown) +
-                                                                 " largest effects: M and RMS of each deviation alone, um.");
+         html_png_figure(png, "accuracy balance bar chart",
+                         "The " + std::to_string(shown) + " largest effects: M and RMS of each deviation alone, um.");
 }
 
 std::string volume_section(const machine::Model& model, const ReportOptions& options, const Drawings& drawings,
@@ -209,11 +214,13 @@ std::string volume_section(const machine::Model& model, const ReportOptions& opt
   for (const double l : map.levels_mm) levels += (levels.empty() ? "" : ", ") + fixed(l, 1);
   std::string html =
       "<p>The tool-tip error |e| = |real tip - ideal tip| (um, computed on the model: every table and location "
-      "error) over " + x + "-" + y + " (" + std::to_string(map.first_mm.size()) + " x " +
-      std::to_string(map.second_mm.size()) + " positions over the travel) at " + z + " = " + levels +
+      "error) over " +
+      x + "-" + y + " (" + std::to_string(map.first_mm.size()) + " x " + std::to_string(map.second_mm.size()) +
+      " positions over the travel) at " + z + " = " + levels +
       " mm, per tool length, with the rotary axes at 0 and at their worst position (the rotary setting, in 15 deg "
       "steps, whose largest uncompensated |e| over the linear travel is largest). Rows of each picture: no "
-      "compensation; " + (map.controller_title.empty() ? std::string("-") : map.controller_title) +
+      "compensation; " +
+      (map.controller_title.empty() ? std::string("-") : map.controller_title) +
       "'s own tables filled by the usual practice (each table its own measured deviation, negated) and by the "
       "modified method (all tables chosen together to make the largest tool-tip error smallest; fitted over these tool "
       "lengths, judged here on the map's poses, which it was not fitted on; <code>volcomp fit-tables</code>, "
@@ -232,10 +239,12 @@ std::string volume_section(const machine::Model& model, const ReportOptions& opt
   html += "<h3>Largest tool-tip error over each sheet</h3>\n" + html_table(header, rows);
   // The summary: per compensation its largest |e| over every sheet, and where.
   for (std::size_t c = 0; c < map.compensations.size(); ++c) {
-    const auto worst = std::max_element(map.sheets.begin(), map.sheets.end(),
-                                        [&](const plot::MapSheet& a, const plot::MapSheet& b) { return a.max_um[c] < b.max_um[c]; });
+    const auto worst =
+        std::max_element(map.sheets.begin(), map.sheets.end(),
+                         [&](const plot::MapSheet& a, const plot::MapSheet& b) { return a.max_um[c] < b.max_um[c]; });
     summary.push_back({"largest tool-tip error over the volume, " +
-                           (c == 0 ? std::string("no compensation") : map.controller_title + " tables by the " + map.compensations[c]),
+                           (c == 0 ? std::string("no compensation")
+                                   : map.controller_title + " tables by the " + map.compensations[c]),
                        fixed(worst->max_um[c], 1) + " um (L = " + fixed(worst->tool_length_mm, 1) + " mm, " +
                            worst->rotary.label + ")"});
   }
@@ -261,8 +270,8 @@ std::string measurements_section(const Measurements& found, const std::vector<st
   if (found.found.empty()) html += "<p class=\"note\">No laser runs or circular tests in the folder.</p>\n";
   for (std::size_t k = 0; k < found.found.size(); ++k) {
     const Measurement& m = found.found[k];
-    html += "<div class=\"measurement\">\n<h3>" + escaped(m.title) + "</h3>\n<p class=\"note\">" + escaped(absolute(m.path)) +
-            " <span class=\"hash\">sha256 " + sha256_file_hex(m.path) + "</span></p>\n";
+    html += "<div class=\"measurement\">\n<h3>" + escaped(m.title) + "</h3>\n<p class=\"note\">" +
+            escaped(absolute(m.path)) + " <span class=\"hash\">sha256 " + sha256_file_hex(m.path) + "</span></p>\n";
     std::vector<std::vector<std::string>> rows;
     for (const auto& [name, value] : m.figures) rows.push_back({name, value});
     html += html_table({m.kind == "laser" ? "ISO 230-2" : "ISO 230-4", ""}, rows, false);
@@ -271,9 +280,9 @@ std::string measurements_section(const Measurements& found, const std::vector<st
       for (const std::string& n : m.notes) html += "<li>" + escaped(n) + "</li>\n";
       html += "</ul>\n";
     }
-    html += html_png_figure(pngs[k], m.title, m.kind == "laser"
-                                                  ? "ISO 230-2: each run, the means up and down with their +-2s bands."
-                                                  : "ISO 230-4: the radius deviation of each direction, magnified.");
+    html += html_png_figure(pngs[k], m.title,
+                            m.kind == "laser" ? "ISO 230-2: each run, the means up and down with their +-2s bands."
+                                              : "ISO 230-4: the radius deviation of each direction, magnified.");
     html += "</div>\n";
   }
   for (const std::string& s : found.skipped) html += "<p class=\"note\">skipped: " + escaped(s) + "</p>\n";
@@ -310,7 +319,8 @@ Report accuracy_report(const machine::Model& model, const ReportOptions& options
     report.measurements = static_cast<int>(measured.found.size());
     std::string titles;
     for (const Measurement& m : measured.found) titles += (titles.empty() ? "" : "; ") + m.title;
-    summary.push_back({"measurements (" + std::to_string(measured.found.size()) + ")", titles.empty() ? "none found" : titles});
+    summary.push_back(
+        {"measurements (" + std::to_string(measured.found.size()) + ")", titles.empty() ? "none found" : titles});
   }
   const std::string header = "<p>Made " + utc_now() + " by <code>" + escaped(options.command) + "</code> from " +
                              escaped(absolute(model.path)) + " (sha256 <span class=\"hash\">" +

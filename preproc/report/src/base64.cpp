@@ -16,8 +16,8 @@ std::string base64(const std::string& bytes) {
     out += alphabet[v & 63];
   }
   if (const std::size_t rest = bytes.size() - at; rest > 0) {
-    const unsigned v = static_cast<unsigned char>(bytes[at]) << 16 |
-                       (rest == 2 ? static_cast<unsigned char>(bytes[at + 1]) << 8 : 0u);
+    const unsigned v =
+        static_cast<unsigned char>(bytes[at]) << 16 | (rest == 2 ? static_cast<unsigned char>(bytes[at + 1]) << 8 : 0u);
     out += alphabet[v >> 18 & 63];
     out += alphabet[v >> 12 & 63];
     out += rest == 2 ? alphabet[v >> 6 & 63] : '=';

@@ -13,8 +13,9 @@ namespace fs = std::filesystem;
 
 Drawings::Drawings() {
   std::string pattern = (fs::temp_directory_path() / "volcomp-report-XXXXXX").string();
-  if (!::mkdtemp(pattern.data())) throw std::runtime_error("cannot make a scratch folder for the report's pictures in " +
-                                                           fs::temp_directory_path().string());
+  if (!::mkdtemp(pattern.data()))
+    throw std::runtime_error("cannot make a scratch folder for the report's pictures in " +
+                             fs::temp_directory_path().string());
   folder_ = pattern;
 }
 

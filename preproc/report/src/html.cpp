@@ -10,12 +10,23 @@ std::string escaped(const std::string& text) {
   out.reserve(text.size());
   for (const char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&#39;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -40,7 +51,8 @@ std::string html_table(const std::vector<std::string>& header, const std::vector
 
 std::string html_png_figure(const std::string& png_bytes, const std::string& alt, const std::string& caption,
                             FigureSize size) {
-  return std::string("<figure class=\"") + (size == FigureSize::Half ? "half" : "full") + "\">\n<img src=\"data:image/png;base64," + base64(png_bytes) + "\" alt=\"" + escaped(alt) +
+  return std::string("<figure class=\"") + (size == FigureSize::Half ? "half" : "full") +
+         "\">\n<img src=\"data:image/png;base64," + base64(png_bytes) + "\" alt=\"" + escaped(alt) +
          "\">\n<figcaption>" + escaped(caption) + "</figcaption>\n</figure>\n";
 }
 

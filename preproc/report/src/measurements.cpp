@@ -55,11 +55,14 @@ tables::ErrorSymbol laser_error(const identify::LaserRuns& runs, const fs::path&
     named = stem.substr(0, stem.find_first_of("_-. "));
   }
   std::string upper = named;
-  std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+  std::transform(upper.begin(), upper.end(), upper.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
   const auto symbol = tables::parse_error_symbol(upper);
   if (!symbol || symbol->location)
-    throw std::runtime_error(file.string() + ": laser runs of which component error? Name the file after it (exx.csv, "
-                             "eyx_2026-11.csv) or add a line '# error: EXX' (\"" + named + "\" is none)");
+    throw std::runtime_error(file.string() +
+                             ": laser runs of which component error? Name the file after it (exx.csv, "
+                             "eyx_2026-11.csv) or add a line '# error: EXX' (\"" +
+                             named + "\" is none)");
   const bool rotary_axis = symbol->axis == 'A' || symbol->axis == 'B' || symbol->axis == 'C';
   if (runs.rotary != rotary_axis)
     throw std::runtime_error(file.string() + ": the targets are in " + (runs.rotary ? "deg" : "mm") + " but " +
@@ -67,8 +70,9 @@ tables::ErrorSymbol laser_error(const identify::LaserRuns& runs, const fs::path&
                              std::string(1, symbol->axis));
   if (runs.quantity != symbol->quantity())
     throw std::runtime_error(file.string() + ": the deviations are " +
-                             (runs.quantity == tables::Quantity::Length ? "lengths" : "angles") + " but " + symbol->name() +
-                             " is " + (symbol->quantity() == tables::Quantity::Length ? "a translation" : "a rotation"));
+                             (runs.quantity == tables::Quantity::Length ? "lengths" : "angles") + " but " +
+                             symbol->name() + " is " +
+                             (symbol->quantity() == tables::Quantity::Length ? "a translation" : "a rotation"));
   return *symbol;
 }
 
@@ -86,7 +90,9 @@ Measurement laser(const fs::path& file, const std::string& machine_name, const s
   }
   const identify::Iso230_2 e = identify::evaluate_iso230_2(runs, left_out);
   const tables::Quantity q = runs.quantity;
-  const auto up_down = [&](double up, double down) { return " (up " + shown(up, q) + ", down " + shown(down, q) + ")"; };
+  const auto up_down = [&](double up, double down) {
+    return " (up " + shown(up, q) + ", down " + shown(down, q) + ")";
+  };
   m.title = "ISO 230-2: " + symbol.name() + " " + plot::component_meaning(symbol) + " of axis " +
             std::string(1, symbol.axis) + ", " + machine_name;
   m.figures = {{"B", shown(e.reversal, q) + " (mean " + shown(e.mean_reversal, q) + ")"},
@@ -114,7 +120,8 @@ Measurement circle(const fs::path& file, const std::string& machine_name, const 
   Measurement m;
   m.path = file.string();
   m.kind = "circle";
-  m.title = "Circular test (ISO 230-4), plane " + test.plane + ", radius " + fixed(test.radius_mm, 1) + " mm, " + machine_name;
+  m.title = "Circular test (ISO 230-4), plane " + test.plane + ", radius " + fixed(test.radius_mm, 1) + " mm, " +
+            machine_name;
   m.figures.emplace_back("bidirectional circular deviation G(b)", um(e.circular_deviation_mm));
   if (test.runs.size() == 2) m.figures.emplace_back("circular hysteresis H", um(e.hysteresis_mm));
   std::vector<std::string> plotted;
@@ -123,8 +130,8 @@ Measurement circle(const fs::path& file, const std::string& machine_name, const 
     const std::string direction = f.ccw ? "ccw" : "cw";
     m.figures.emplace_back(direction + ": circular deviation G", um(f.circular_deviation_mm));
     m.figures.emplace_back(direction + ": radial deviation F", um(f.radial_deviation_mm));
-    m.figures.emplace_back(direction + ": centre offset", first + " " + um(f.centre_first_mm) + ", " + second + " " +
-                                                              um(f.centre_second_mm));
+    m.figures.emplace_back(direction + ": centre offset",
+                           first + " " + um(f.centre_first_mm) + ", " + second + " " + um(f.centre_second_mm));
     m.figures.emplace_back(direction + ": left by the first-order fit (RMS)", um(f.residual_rms_mm));
     plotted.push_back(direction + ": G " + um(f.circular_deviation_mm) + ", F " + um(f.radial_deviation_mm));
   }
@@ -150,7 +157,8 @@ Measurements read_measurements(const std::string& folder, const std::string& mac
   std::vector<fs::path> files;
   fs::directory_iterator it(folder, error);
   for (; !error && it != fs::directory_iterator(); it.increment(error)) files.push_back(it->path());
-  if (error) throw std::runtime_error("--measurements " + folder + ": cannot read the folder (" + error.message() + ")");
+  if (error)
+    throw std::runtime_error("--measurements " + folder + ": cannot read the folder (" + error.message() + ")");
   std::sort(files.begin(), files.end());
 
   Measurements result;
@@ -167,8 +175,9 @@ Measurements read_measurements(const std::string& folder, const std::string& mac
     else if (header.find("angle") != std::string::npos)
       result.found.push_back(circle(file, machine_name, image));
     else
-      result.skipped.push_back(file.filename().string() +
-                               ": neither laser runs (a target[mm] or target[deg] column) nor a circular test (an angle[deg] column)");
+      result.skipped.push_back(
+          file.filename().string() +
+          ": neither laser runs (a target[mm] or target[deg] column) nor a circular test (an angle[deg] column)");
   }
   return result;
 }

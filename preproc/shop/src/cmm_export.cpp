@@ -67,8 +67,8 @@ std::optional<LengthUnit> unit_line(const std::string& text) {
 
 bool has_nominal(const std::vector<ColumnName>& names, int axis) {
   return std::any_of(names.begin(), names.end(), [&](const ColumnName& n) {
-    return n.axis == axis && (n.role == ColumnRole::Coordinate || n.role == ColumnRole::Nominal ||
-                              n.role == ColumnRole::NominalOrNormal);
+    return n.axis == axis &&
+           (n.role == ColumnRole::Coordinate || n.role == ColumnRole::Nominal || n.role == ColumnRole::NominalOrNormal);
   });
 }
 
@@ -107,15 +107,16 @@ class ExportReader {
     for (++at; at < lines.size(); ++at)
       if (!blank(lines[at].text))
         if (auto p = point(lines[at])) points.push_back(*p);
-    if (points.empty()) throw LoadError({path_}, "no points below the header (line " + std::to_string(header_line_) + ")");
+    if (points.empty())
+      throw LoadError({path_}, "no points below the header (line " + std::to_string(header_line_) + ")");
     return points;
   }
 
  private:
   struct Column {
-    int index = -1;       // in the row's cells
-    double to_mm = 1.0;   // lengths
-    std::string unit;     // its name, for the layout
+    int index = -1;      // in the row's cells
+    double to_mm = 1.0;  // lengths
+    std::string unit;    // its name, for the layout
   };
 
   LoadError at_cell(int index, const std::string& message) const {
@@ -141,7 +142,8 @@ class ExportReader {
       if (const auto u = unit_line(lines[i].text)) {
         if (unit_line_ && unit_line_->name != u->name)
           throw LoadError({path_, lines[i].number}, "this units line says " + u->name + ", the one on line " +
-                                                        std::to_string(unit_line_number_) + " says " + unit_line_->name);
+                                                        std::to_string(unit_line_number_) + " says " +
+                                                        unit_line_->name);
         unit_line_ = u, unit_line_number_ = lines[i].number;
       } else if (std::any_of(names.begin(), names.end(),
                              [](const ColumnName& n) { return n.role == ColumnRole::LongLayout; })) {
@@ -153,8 +155,9 @@ class ExportReader {
                       "a table with one row per axis (columns such as Axis, Nominal, Measured) is not read: export "
                       "one row per point, with its nominal X, Y, Z, normal I, J, K and actual X, Y, Z or deviation "
                       "in columns");
-    throw LoadError({path_}, "no header naming the nominal X, Y and Z (e.g. 'Nominal X', 'X Nom', 'NX' or 'X'; or "
-                             "volcomp's id,x[mm],y[mm],z[mm],i,j,k,...)");
+    throw LoadError({path_},
+                    "no header naming the nominal X, Y and Z (e.g. 'Nominal X', 'X Nom', 'NX' or 'X'; or "
+                    "volcomp's id,x[mm],y[mm],z[mm],i,j,k,...)");
   }
 
   std::string not_understood() const {
@@ -196,26 +199,42 @@ class ExportReader {
       switch (n.role) {
         case ColumnRole::Coordinate:
           if (marked)
-            throw at_cell(index, quoted(index) + " is not marked nominal or actual, and another column is the "
-                                 "nominal " + xyz + ": rename it (e.g. 'Actual " + xyz + "')");
+            throw at_cell(index, quoted(index) +
+                                     " is not marked nominal or actual, and another column is the "
+                                     "nominal " +
+                                     xyz + ": rename it (e.g. 'Actual " + xyz + "')");
           [[fallthrough]];
-        case ColumnRole::Nominal: assign(nominal[n.axis], index, "the nominal " + xyz); break;
-        case ColumnRole::Normal: assign(normal[n.axis], index, std::string("the normal's ") + kIjk[n.axis]); break;
-        case ColumnRole::Actual: assign(actual[n.axis], index, "the actual " + xyz); break;
-        case ColumnRole::DeviationComponent: assign(vector[n.axis], index, "the deviation's " + xyz); break;
-        case ColumnRole::Deviation: assign(deviation_.index, index, "the deviation along the normal"); break;
-        case ColumnRole::Id: if (id_ < 0) id_ = index; break;
-        default: break;
+        case ColumnRole::Nominal:
+          assign(nominal[n.axis], index, "the nominal " + xyz);
+          break;
+        case ColumnRole::Normal:
+          assign(normal[n.axis], index, std::string("the normal's ") + kIjk[n.axis]);
+          break;
+        case ColumnRole::Actual:
+          assign(actual[n.axis], index, "the actual " + xyz);
+          break;
+        case ColumnRole::DeviationComponent:
+          assign(vector[n.axis], index, "the deviation's " + xyz);
+          break;
+        case ColumnRole::Deviation:
+          assign(deviation_.index, index, "the deviation along the normal");
+          break;
+        case ColumnRole::Id:
+          if (id_ < 0) id_ = index;
+          break;
+        default:
+          break;
       }
     }
     for (int a = 0; a < 3; ++a) {
       if (nominal[a] < 0)
-        throw LoadError({path_, header_line_}, std::string("no column for the nominal ") + kXyz[a] + " (e.g. 'Nominal " +
-                                                   kXyz[a] + "')" + not_understood());
+        throw LoadError({path_, header_line_}, std::string("no column for the nominal ") + kXyz[a] +
+                                                   " (e.g. 'Nominal " + kXyz[a] + "')" + not_understood());
       if (normal[a] < 0)
-        throw LoadError({path_, header_line_},
-                        std::string("no column for the normal's ") + kIjk[a] + " (the surface vector out of the "
-                        "material: e.g. '" + kIjk[a] + "' or 'Normal " + kXyz[a] + "')" + not_understood());
+        throw LoadError({path_, header_line_}, std::string("no column for the normal's ") + kIjk[a] +
+                                                   " (the surface vector out of the "
+                                                   "material: e.g. '" +
+                                                   kIjk[a] + "' or 'Normal " + kXyz[a] + "')" + not_understood());
       nominal_[a].index = nominal[a], normal_[a].index = normal[a];
     }
     const auto all_or_none = [&](const std::array<int, 3>& c, const std::string& what) {
@@ -236,15 +255,15 @@ class ExportReader {
   void resolve_unit(Column& c, bool coordinate) {
     if (c.index < 0) return;
     const ColumnName& n = names_[static_cast<std::size_t>(c.index)];
-    if (!n.bad_unit.empty())
-      throw at_cell(c.index, "'" + n.bad_unit + "' is not a length unit (mm, um, inch)");
+    if (!n.bad_unit.empty()) throw at_cell(c.index, "'" + n.bad_unit + "' is not a length unit (mm, um, inch)");
     std::optional<LengthUnit> file = unit_line_ ? unit_line_ : option_unit_;
     if (n.unit && coordinate && file && file->name != n.unit->name)
       throw at_cell(c.index, "the header says " + n.unit->name + ", " + file_unit_source() + " says " + file->name);
     const std::optional<LengthUnit> u = n.unit ? n.unit : file;
     if (!u)
       throw at_cell(c.index, "no unit for " + quoted(c.index) + ": write it in the header ('" +
-                                 cells_[static_cast<std::size_t>(c.index)].text + " [mm]'), on a line above the "
+                                 cells_[static_cast<std::size_t>(c.index)].text +
+                                 " [mm]'), on a line above the "
                                  "header ('Units: mm'), or give --report-unit mm|inch");
     c.to_mm = u->to_mm, c.unit = u->name;
   }
@@ -274,8 +293,10 @@ class ExportReader {
     if (actual_[0].index >= 0) return;  // n . (actual - nominal): no sign to state
     const int column = deviation_.index >= 0 ? deviation_.index : vector_[0].index;
     if (column < 0)
-      throw LoadError({path_, header_line_}, "a report needs the actual X, Y, Z or the deviation along the normal "
-                                             "(a column such as 'Dev' or 'Deviation')" + not_understood());
+      throw LoadError({path_, header_line_},
+                      "a report needs the actual X, Y, Z or the deviation along the normal "
+                      "(a column such as 'Dev' or 'Deviation')" +
+                          not_understood());
     if (format_.sign == DeviationSign::Unstated)
       throw at_cell(column, "the sign of " + quoted(column) +
                                 " is not stated: give --deviation-sign actual-minus-nominal (the usual CMM "
@@ -296,12 +317,14 @@ class ExportReader {
     if (report_ && actual_[0].index >= 0) {
       s += ", actual " + columns(actual_, true) + " (deviation = n . (actual - nominal)";
       if (deviation_.index >= 0)
-        s += format_.sign == DeviationSign::Unstated ? "; " + quoted(deviation_.index) + " not used, its sign not stated)"
-                                                     : ", checked against " + quoted(deviation_.index) + ")";
+        s += format_.sign == DeviationSign::Unstated
+                 ? "; " + quoted(deviation_.index) + " not used, its sign not stated)"
+                 : ", checked against " + quoted(deviation_.index) + ")";
       else
         s += ")";
     } else if (report_) {
-      const std::string sign = format_.sign == DeviationSign::ActualMinusNominal ? "actual - nominal" : "nominal - actual";
+      const std::string sign =
+          format_.sign == DeviationSign::ActualMinusNominal ? "actual - nominal" : "nominal - actual";
       s += deviation_.index >= 0 ? ", deviation " + quoted(deviation_.index) + " [" + deviation_.unit + "] as " + sign
                                  : ", deviation vector " + columns(vector_, true) + " as " + sign;
     }
@@ -332,9 +355,12 @@ class ExportReader {
     needed = std::max(needed, deviation_.index) + 1;
     if (static_cast<int>(row.size()) < needed)
       throw LoadError({path_, line.number}, std::to_string(row.size()) + " cells, the header (line " +
-                                                std::to_string(header_line_) + ") has " + std::to_string(cells_.size()));
+                                                std::to_string(header_line_) + ") has " +
+                                                std::to_string(cells_.size()));
     const auto length = [&](const Column& c) { return number(line, row, c.index) * c.to_mm; };
-    const auto digit = [&](const Column& c) { return last_digit(row[static_cast<std::size_t>(c.index)].text) * c.to_mm; };
+    const auto digit = [&](const Column& c) {
+      return last_digit(row[static_cast<std::size_t>(c.index)].text) * c.to_mm;
+    };
     CmmPoint p;
     p.line = line.number;
     p.id = id_ >= 0 ? row[static_cast<std::size_t>(id_)].text : "";
@@ -368,12 +394,12 @@ class ExportReader {
       rounding = rounding / 2 + 1e-9;
       if (std::abs(*stated - *p.deviation_mm) > rounding) {
         const bool opposite = std::abs(*stated + *p.deviation_mm) <= rounding;
-        throw LoadError({path_, line.number, row[static_cast<std::size_t>(deviation_.index)].column},
-                        "the deviation (" + um(*stated) + " as " +
-                            (sign > 0 ? "actual - nominal" : "nominal - actual") + ") " +
-                            (opposite ? "is the opposite of" : "disagrees with") +
-                            " the actual point's (n . (actual - nominal) = " + um(*p.deviation_mm) + "): " +
-                            (opposite ? "is --deviation-sign right?" : "is it the deviation along the normal?"));
+        throw LoadError(
+            {path_, line.number, row[static_cast<std::size_t>(deviation_.index)].column},
+            "the deviation (" + um(*stated) + " as " + (sign > 0 ? "actual - nominal" : "nominal - actual") + ") " +
+                (opposite ? "is the opposite of" : "disagrees with") +
+                " the actual point's (n . (actual - nominal) = " + um(*p.deviation_mm) +
+                "): " + (opposite ? "is --deviation-sign right?" : "is it the deviation along the normal?"));
       }
     }
     return p;

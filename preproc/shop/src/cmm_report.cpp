@@ -33,8 +33,9 @@ HeaderCell header_cell(const std::string& path, int line, const tables::CsvCell&
   const std::string unit = cell.text.substr(open + 1, cell.text.size() - open - 2);
   const auto u = tables::find_unit(unit);
   if (!u || u->quantity != tables::Quantity::Length)
-    throw LoadError({path, line, cell.column + static_cast<int>(open) + 1},
-                    "'" + unit + "' is not a length unit (" + std::string(tables::unit_names(tables::Quantity::Length)) + ")");
+    throw LoadError(
+        {path, line, cell.column + static_cast<int>(open) + 1},
+        "'" + unit + "' is not a length unit (" + std::string(tables::unit_names(tables::Quantity::Length)) + ")");
   h.to_mm = u->to_core;
   h.has_unit = true;
   return h;
@@ -54,7 +55,8 @@ bool is_volcomp_csv(const std::string& path) {
 
 std::vector<CmmPoint> read_volcomp_csv(const std::string& path, bool report) {
   const std::vector<tables::CsvRow> rows = tables::read_csv_rows(path, report ? "CMM report" : "CMM plan");
-  if (rows.empty()) throw LoadError({path}, "no header: id,x[mm],y[mm],z[mm],i,j,k" + std::string(report ? ",deviation[um]" : ""));
+  if (rows.empty())
+    throw LoadError({path}, "no header: id,x[mm],y[mm],z[mm],i,j,k" + std::string(report ? ",deviation[um]" : ""));
   const tables::CsvRow& header = rows.front();
   std::map<std::string, std::pair<int, HeaderCell>> columns;  // name -> index, cell
   for (std::size_t i = 0; i < header.cells.size(); ++i) {
@@ -81,8 +83,7 @@ std::vector<CmmPoint> read_volcomp_csv(const std::string& path, bool report) {
   const bool by_point = columns.count("mx") || columns.count("my") || columns.count("mz");
   if (report && !by_deviation && !by_point)
     throw LoadError({path, header.line}, "a report needs deviation[um] (along the normal) or mx[mm],my[mm],mz[mm]");
-  if (by_deviation && by_point)
-    throw LoadError({path, header.line}, "give either deviation or mx,my,mz, not both");
+  if (by_deviation && by_point) throw LoadError({path, header.line}, "give either deviation or mx,my,mz, not both");
   using Column = std::pair<int, HeaderCell>;
   std::optional<Column> deviation;
   std::optional<std::array<Column, 3>> measured;
@@ -102,7 +103,8 @@ std::vector<CmmPoint> read_volcomp_csv(const std::string& path, bool report) {
     CmmPoint p;
     p.line = row.line;
     p.id = row.cells[static_cast<std::size_t>(id->second.first)].text;
-    if (p.id.empty()) throw LoadError({path, row.line, row.cells[static_cast<std::size_t>(id->second.first)].column}, "empty id");
+    if (p.id.empty())
+      throw LoadError({path, row.line, row.cells[static_cast<std::size_t>(id->second.first)].column}, "empty id");
     if (const auto [it, fresh] = seen.emplace(p.id, row.line); !fresh)
       throw LoadError({path, row.line, row.cells[static_cast<std::size_t>(id->second.first)].column},
                       "id " + p.id + " already on line " + std::to_string(it->second));
@@ -130,14 +132,16 @@ std::vector<CmmPoint> read_cmm_points(const std::string& path, bool report, cons
                                       std::string* layout) {
   if (!is_volcomp_csv(path)) return read_cmm_export(path, report, format, layout);
   if (!format.unit.empty() || format.decimal_comma || format.sign == DeviationSign::NominalMinusActual)
-    throw std::runtime_error(path + " is volcomp's CSV (header id,x[mm],...): its units and sign are in its header "
+    throw std::runtime_error(path +
+                             " is volcomp's CSV (header id,x[mm],...): its units and sign are in its header "
                              "(deviation + = material left); --report-unit, --decimal-comma and --deviation-sign are "
                              "for other CMM exports");
   if (layout) *layout = "volcomp's CSV";
   return read_volcomp_csv(path, report);
 }
 
-void write_cmm_report(std::ostream& out, const std::vector<CmmPoint>& points, const std::vector<std::string>& comments) {
+void write_cmm_report(std::ostream& out, const std::vector<CmmPoint>& points,
+                      const std::vector<std::string>& comments) {
   for (const std::string& c : comments) out << "# " << c << '\n';
   out << "id,x[mm],y[mm],z[mm],i,j,k,deviation[um]\n";
   for (const CmmPoint& p : points) {

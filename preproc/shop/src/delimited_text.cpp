@@ -30,7 +30,7 @@ std::vector<tables::CsvCell> split_delimited(const std::string& line, char delim
           break;
         }
       }
-      cell.column = static_cast<int>(open) + 2;  // the first character inside the quotes
+      cell.column = static_cast<int>(open) + 2;                // the first character inside the quotes
       while (at < line.size() && line[at] != delimiter) ++at;  // blanks after the closing quote
     } else {
       const std::size_t end = line.find(delimiter, at);

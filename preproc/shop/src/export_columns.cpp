@@ -12,21 +12,23 @@ bool among(std::string_view word, const std::array<std::string_view, N>& words) 
   return std::find(words.begin(), words.end(), word) != words.end();
 }
 
-constexpr std::array<std::string_view, 10> kNominal{"nominal", "nom",    "theoretical", "theo", "target",
-                                                    "design",  "cad",    "reference",   "ref",  "nominals"};
-constexpr std::array<std::string_view, 7> kActual{"actual", "act", "measured", "meas", "measurement", "real", "actuals"};
+constexpr std::array<std::string_view, 10> kNominal{"nominal", "nom", "theoretical", "theo", "target",
+                                                    "design",  "cad", "reference",   "ref",  "nominals"};
+constexpr std::array<std::string_view, 7> kActual{"actual",      "act",  "measured", "meas",
+                                                  "measurement", "real", "actuals"};
 constexpr std::array<std::string_view, 6> kNormal{"normal", "norm", "vector", "vec", "direction", "dir"};
 constexpr std::array<std::string_view, 5> kDeviation{"deviation", "dev", "deviations", "error", "err"};
 constexpr std::array<std::string_view, 11> kId{"id",   "name", "point",  "pt",         "label", "feature",
                                                "feat", "no",   "number", "identifier", "nr"};
 // Understood and not needed: a cell with one of these is not used.
 constexpr std::array<std::string_view, 29> kNotNeeded{
-    "tol",   "tolerance", "tols",   "utol",    "ltol",   "upper",    "lower", "uppertol", "lowertol", "outtol",
-    "out",   "max",       "min",    "status",  "type",   "date",     "time",  "sigma",    "result",   "pass",
-    "fail",  "comment",   "angle",  "radius",  "diameter", "dia",    "size",  "probe",    "form"};
+    "tol",  "tolerance", "tols",  "utol",   "ltol",     "upper", "lower", "uppertol", "lowertol", "outtol",
+    "out",  "max",       "min",   "status", "type",     "date",  "time",  "sigma",    "result",   "pass",
+    "fail", "comment",   "angle", "radius", "diameter", "dia",   "size",  "probe",    "form"};
 // Words that say nothing about the role.
-constexpr std::array<std::string_view, 14> kFiller{"value", "val",     "coord", "coordinate", "coordinates",
-                                                   "pos",   "position", "surface", "of", "along", "at", "in", "3d", "n"};
+constexpr std::array<std::string_view, 14> kFiller{"value", "val",      "coord",   "coordinate", "coordinates",
+                                                   "pos",   "position", "surface", "of",         "along",
+                                                   "at",    "in",       "3d",      "n"};
 
 enum Role : unsigned { kNom = 1, kAct = 2, kNor = 4, kDev = 8, kNomOrNor = 16 };
 
@@ -40,10 +42,17 @@ std::optional<unsigned> role_word(std::string_view w) {
 
 int axis_letter(char c) {
   switch (c) {
-    case 'x': case 'i': return 0;
-    case 'y': case 'j': return 1;
-    case 'z': case 'k': return 2;
-    default: return -1;
+    case 'x':
+    case 'i':
+      return 0;
+    case 'y':
+    case 'j':
+      return 1;
+    case 'z':
+    case 'k':
+      return 2;
+    default:
+      return -1;
   }
 }
 
@@ -116,7 +125,8 @@ ColumnName column_name(std::string_view header_cell) {
       axis_word = true;
     } else if (w.size() == 1 && axis_letter(w[0]) >= 0) {
       axis = axis_letter(w[0]), ijk = w[0] >= 'i' && w[0] <= 'k', ++axes;
-    } else if (w.size() >= 2 && axis_letter(w.back()) >= 0 && (w.size() > 2 || w[0] == 'n' || w[0] == 'm' || w[0] == 'd') &&
+    } else if (w.size() >= 2 && axis_letter(w.back()) >= 0 &&
+               (w.size() > 2 || w[0] == 'n' || w[0] == 'm' || w[0] == 'd') &&
                (w.size() == 2 || role_word(w.substr(0, w.size() - 1)))) {
       // "nx" (nominal or normal), "mx" (measured), "dx" (deviation), "nomx", "measy", "devz".
       const std::string prefix = w.substr(0, w.size() - 1);
@@ -140,14 +150,22 @@ ColumnName column_name(std::string_view header_cell) {
     // I, J, K: the normal, unless measured or a deviation.
     name.role = (roles & (kAct | kDev)) ? ColumnRole::Ignored : ColumnRole::Normal;
   } else if (axis >= 0) {
-    if (roles == 0) name.role = ColumnRole::Coordinate;
-    else if (only(kNom)) name.role = ColumnRole::Nominal;
-    else if (only(kAct)) name.role = ColumnRole::Actual;
-    else if (only(kNor) || only(kNom | kNor)) name.role = ColumnRole::Normal;
-    else if (only(kNomOrNor)) name.role = ColumnRole::NominalOrNormal;
-    else if ((roles & kDev) && !(roles & kNor)) name.role = ColumnRole::DeviationComponent;
-    else if (roles & kAct) name.role = ColumnRole::Ignored;  // a measured normal
-    else name.role = ColumnRole::Unknown;
+    if (roles == 0)
+      name.role = ColumnRole::Coordinate;
+    else if (only(kNom))
+      name.role = ColumnRole::Nominal;
+    else if (only(kAct))
+      name.role = ColumnRole::Actual;
+    else if (only(kNor) || only(kNom | kNor))
+      name.role = ColumnRole::Normal;
+    else if (only(kNomOrNor))
+      name.role = ColumnRole::NominalOrNormal;
+    else if ((roles & kDev) && !(roles & kNor))
+      name.role = ColumnRole::DeviationComponent;
+    else if (roles & kAct)
+      name.role = ColumnRole::Ignored;  // a measured normal
+    else
+      name.role = ColumnRole::Unknown;
   } else if (roles & kDev) {
     name.role = ColumnRole::Deviation;
   } else if (axis_word || only(kNom) || only(kAct)) {

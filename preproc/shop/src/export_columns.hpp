@@ -36,9 +36,9 @@ enum class ColumnRole {
 
 struct ColumnName {
   ColumnRole role = ColumnRole::Unknown;
-  int axis = -1;                       // 0, 1, 2 for X, Y, Z (I, J, K of a normal)
-  std::optional<LengthUnit> unit;      // written in the cell
-  std::string bad_unit;                // a bracketed unit that is not a length unit
+  int axis = -1;                   // 0, 1, 2 for X, Y, Z (I, J, K of a normal)
+  std::optional<LengthUnit> unit;  // written in the cell
+  std::string bad_unit;            // a bracketed unit that is not a length unit
 };
 
 ColumnName column_name(std::string_view header_cell);

@@ -9,7 +9,7 @@
 namespace vc::shop {
 namespace {
 
-constexpr double kSameFace = 0.985;  // cos 10 deg: normals of one face
+constexpr double kSameFace = 0.985;     // cos 10 deg: normals of one face
 constexpr double kShapedWithin = 0.05;  // mm: cuts this close to the deepest also shaped the surface
 
 std::string where(const CmmPoint& p) { return "point " + p.id + " (report line " + std::to_string(p.line) + ")"; }
@@ -45,8 +45,9 @@ std::optional<double> face_mean(const MatchedPoint& a, const std::vector<Matched
 void low_pass(std::vector<MatchedPoint>& points, double cutoff_mm) {
   const double width = std::sqrt(std::log(2.0) / M_PI) * cutoff_mm;
   for (MatchedPoint& a : points) {
-    a.filtered_mm = face_mean(a, points, cutoff_mm, false, [&](double d) { return std::exp(-M_PI * (d / width) * (d / width)); })
-                        .value_or(*a.point.deviation_mm);
+    a.filtered_mm = face_mean(a, points, cutoff_mm, false, [&](double d) {
+                      return std::exp(-M_PI * (d / width) * (d / width));
+                    }).value_or(*a.point.deviation_mm);
     a.short_wave_mm = *a.point.deviation_mm - a.filtered_mm;
   }
 }
@@ -89,8 +90,8 @@ std::optional<std::string> report_wide_cause(const std::vector<CmmPoint>& report
   for (const auto& [scale, unit] : {std::pair{25.4, "inches"}, std::pair{1 / 25.4, "millimetres"}})
     if (const double share = share_on_cuts(scale); share >= 0.8 && share > as_given + 0.3)
       return "read as " + std::string(unit) + ", " + std::to_string(static_cast<int>(share * 100)) +
-             " % of the report's points lie on cut surfaces (as given: " + std::to_string(static_cast<int>(as_given * 100)) +
-             " %): is the report's unit right?";
+             " % of the report's points lie on cut surfaces (as given: " +
+             std::to_string(static_cast<int>(as_given * 100)) + " %): is the report's unit right?";
   return std::nullopt;
 }
 
@@ -164,18 +165,20 @@ FirstPart analyse_first_part(const machine::Model& model, std::istream& program,
     const std::size_t shown = std::min<std::size_t>(part.left_out.size(), 5);
     for (std::size_t k = 0; k < shown; ++k)
       message += "\n  " + where(part.left_out[k].point) + ": " + part.left_out[k].reason;
-    if (part.left_out.size() > shown) message += "\n  ... and " + std::to_string(part.left_out.size() - shown) + " more";
+    if (part.left_out.size() > shown)
+      message += "\n  ... and " + std::to_string(part.left_out.size() - shown) + " more";
     // report_wide_cause found none of these for the report as a whole.
-    message += "\n  tested and not the cause: the program cuts (feed moves with the spindle on), its tool has a "
-               "diameter, the report's unit (read as inches or millimetres no more of its points lie on cuts)";
+    message +=
+        "\n  tested and not the cause: the program cuts (feed moves with the spindle on), its tool has a "
+        "diameter, the report's unit (read as inches or millimetres no more of its points lie on cuts)";
     throw std::runtime_error(message);
   }
 
   // Outliers first (against their neighbours, twice: a first outlier hides the next one),
   // then the low-pass of what is left.
   for (int pass = 0; pass < 2; ++pass)
-    part.robust_sigma_mm = flag_outliers(part.points, options.outlier_reach_mm, options.outlier_sigmas,
-                                         options.outlier_floor_mm);
+    part.robust_sigma_mm =
+        flag_outliers(part.points, options.outlier_reach_mm, options.outlier_sigmas, options.outlier_floor_mm);
   low_pass(part.points, options.cutoff_mm);
   double sum = 0;
   int kept = 0;

@@ -54,8 +54,8 @@ void write_location(const LocationValue& v, char letter, const std::string& chai
   // The uncertainty in the unit of the key that receives the value (mm or um, arcsec or urad ...).
   const auto with_uncertainty = [&](const std::string& text, const tables::Unit& unit) {
     if (v.uncertainty < 0) return text;
-    return text + " +- " + number_text(std::round(v.uncertainty / unit.to_core * 1e6) / 1e6 + 0.0) + " " + std::string(unit.name) +
-           " (standard uncertainty)";
+    return text + " +- " + number_text(std::round(v.uncertainty / unit.to_core * 1e6) / 1e6 + 0.0) + " " +
+           std::string(unit.name) + " (standard uncertainty)";
   };
   int last_key_line = -1;
   if (location) {
@@ -67,15 +67,17 @@ void write_location(const LocationValue& v, char letter, const std::string& chai
       if (underscore == std::string::npos || k.substr(0, underscore) != symbol) continue;
       const auto unit = tables::find_unit(k.substr(underscore + 1));
       if (!unit) throw std::runtime_error("unknown unit in " + k);
-      std::string& text = replaced.count(line) ? replaced[line] : (replaced[line] = lines[static_cast<std::size_t>(line)]);
+      std::string& text =
+          replaced.count(line) ? replaced[line] : (replaced[line] = lines[static_cast<std::size_t>(line)]);
       const auto begin = static_cast<std::size_t>(node.source().begin.column) - 1;
       const auto end = static_cast<std::size_t>(node.source().end.column) - 1;
       if (node.source().end.line != node.source().begin.line || end > text.size() || begin >= end)
         throw std::runtime_error("line " + std::to_string(line + 1) + ": cannot rewrite the value of " + k);
       const std::string old = text.substr(begin, end - begin);
-      text = text.substr(0, begin) + number_text(std::round(v.value / unit->to_core * 1e6) / 1e6 + 0.0) +
-             text.substr(end);
-      text += (text.find('#') == std::string::npos ? "   # " : "; ") + with_uncertainty(comment, *unit) + ", was " + old;
+      text =
+          text.substr(0, begin) + number_text(std::round(v.value / unit->to_core * 1e6) / 1e6 + 0.0) + text.substr(end);
+      text +=
+          (text.find('#') == std::string::npos ? "   # " : "; ") + with_uncertainty(comment, *unit) + ", was " + old;
       return;
     }
   }
@@ -97,15 +99,15 @@ void write_location(const LocationValue& v, char letter, const std::string& chai
 
 }  // namespace
 
-void write_table_csv(const tables::ErrorTable& table, const std::string& path, const std::vector<std::string>& comments) {
+void write_table_csv(const tables::ErrorTable& table, const std::string& path,
+                     const std::vector<std::string>& comments) {
   tables::write_atomically(path, [&](std::ostream& out) { write_table_csv(table, out, comments); });
 }
 
 void write_table_csv(const tables::ErrorTable& table, std::ostream& out, const std::vector<std::string>& comments) {
   for (const std::string& c : comments) out << "# " << c << '\n';
   const auto& grid = table.grid();
-  for (std::size_t v = 0; v < grid.size(); ++v)
-    out << (v ? "," : "") << grid[v].name() << '[' << grid[v].unit() << ']';
+  for (std::size_t v = 0; v < grid.size(); ++v) out << (v ? "," : "") << grid[v].name() << '[' << grid[v].unit() << ']';
   for (const auto& c : table.columns())
     out << ',' << c.symbol.name() << (c.symbol.quantity() == tables::Quantity::Length ? "[um]" : "[urad]");
   out << '\n';
@@ -121,7 +123,9 @@ void write_table_csv(const tables::ErrorTable& table, std::ostream& out, const s
     for (std::size_t c = 0; c < table.columns().size(); ++c) {
       // um or urad, to a thousandth of them
       const bool length = table.columns()[c].symbol.quantity() == tables::Quantity::Length;
-      out << ',' << number_text(std::round(table.value(node, static_cast<int>(c)) * (length ? 1e6 : 1e9)) / 1e3 + 0.0);  // no "-0"
+      out << ','
+          << number_text(std::round(table.value(node, static_cast<int>(c)) * (length ? 1e6 : 1e9)) / 1e3 +
+                         0.0);  // no "-0"
     }
     out << '\n';
   }
@@ -159,10 +163,10 @@ std::string write_machine_with_tables(const machine::Model& model, const std::st
   const machine::TomlFile machine_file(model.path);  // the model loaded from it: it parses
   const toml::table& root = machine_file.root();
 
-  std::map<int, std::string> replaced_lines;                // 0-based line -> new text
+  std::map<int, std::string> replaced_lines;                           // 0-based line -> new text
   std::map<int, std::vector<std::string>, std::greater<>> insertions;  // before 0-based line, last first
   std::vector<AxisSection> sections;
-  std::vector<std::pair<char, std::string>> existing;      // (axis, file name) already listed
+  std::vector<std::pair<char, std::string>> existing;  // (axis, file name) already listed
   for (const char* chain : {"workpiece_chain", "tool_chain"}) {
     const toml::array* axes = root[chain].as_array();
     if (!axes) continue;
@@ -172,7 +176,8 @@ std::string write_machine_with_tables(const machine::Model& model, const std::st
       sections.push_back({letter, chain, static_cast<int>(element.source().begin.line) - 1});
       for (const LocationValue& v : locations)
         if (model.axes[static_cast<std::size_t>(v.joint)].letter == letter)
-          write_location(v, letter, chain, axis, sections.back().header_line, lines, replaced_lines, insertions, comment);
+          write_location(v, letter, chain, axis, sections.back().header_line, lines, replaced_lines, insertions,
+                         comment);
       const toml::array* list = axis["tables"].as_array();
       if (!list) continue;
       for (const toml::node& t : *list) {
@@ -184,8 +189,7 @@ std::string write_machine_with_tables(const machine::Model& model, const std::st
         const bool is_extra = std::any_of(extras.begin(), extras.end(), [&](const ExtraTable& e) {
           return e.file_name == name && model.axes[static_cast<std::size_t>(e.joint)].letter == letter;
         });
-        const std::string target =
-            is_extra ? name : fs::relative(fs::absolute(base / value), out_dir).generic_string();
+        const std::string target = is_extra ? name : fs::relative(fs::absolute(base / value), out_dir).generic_string();
         const int line = static_cast<int>(file->source().begin.line) - 1;
         std::string& text = replaced_lines.count(line) ? replaced_lines[line] : (replaced_lines[line] = lines[line]);
         const auto open = static_cast<std::size_t>(file->source().begin.column) - 1;
@@ -212,8 +216,10 @@ std::string write_machine_with_tables(const machine::Model& model, const std::st
       tables::write_atomically((out_dir / e.file_name).string(), [&](std::ostream& copy) { copy << e.text; });
     }
     if (std::find(existing.begin(), existing.end(), std::pair(letter, e.file_name)) != existing.end()) continue;
-    const auto section = std::find_if(sections.begin(), sections.end(), [&](const AxisSection& s) { return s.letter == letter; });
-    if (section == sections.end()) throw std::runtime_error("axis " + std::string(1, letter) + " has no section in " + model.path);
+    const auto section =
+        std::find_if(sections.begin(), sections.end(), [&](const AxisSection& s) { return s.letter == letter; });
+    if (section == sections.end())
+      throw std::runtime_error("axis " + std::string(1, letter) + " has no section in " + model.path);
     int at = section->header_line + 1;
     while (at < static_cast<int>(lines.size())) {
       const std::string t = trimmed(lines[static_cast<std::size_t>(at)]);
@@ -227,8 +233,8 @@ std::string write_machine_with_tables(const machine::Model& model, const std::st
       if (!t.empty() && t[0] != '#') break;
       --at;
     }
-    insertions[at].insert(insertions[at].end(), {"[[" + section->chain + ".tables]]",
-                                                 "file = \"" + e.file_name + "\"   # " + comment});
+    insertions[at].insert(insertions[at].end(),
+                          {"[[" + section->chain + ".tables]]", "file = \"" + e.file_name + "\"   # " + comment});
   }
   for (const auto& [at, text] : insertions) lines.insert(lines.begin() + at, text.begin(), text.end());
 

@@ -11,8 +11,8 @@ constexpr double kFar = std::numeric_limits<double>::infinity();
 
 // Signed distance of p to one tool (tip t, unit axis a, radius r, cutting length l):
 // negative inside. Exact for the flat cylinder and the ball-ended one.
-double tool_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& t, const Eigen::Vector3d& a, double r,
-                     double l, ToolEnd end) {
+double tool_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& t, const Eigen::Vector3d& a, double r, double l,
+                     ToolEnd end) {
   if (end == ToolEnd::Ball) {
     const Eigen::Vector3d w = p - (t + r * a);  // from the ball centre
     const double h = w.dot(a);
@@ -106,7 +106,8 @@ std::vector<Contact> MachinedSurface::contacts(const Eigen::Vector3d& p, double 
   std::sort(found.begin(), found.end(), [](const Contact& a, const Contact& b) { return a.depth_mm < b.depth_mm; });
   if (found.empty() || !(std::abs(found.front().depth_mm) <= options_.reach_mm)) return {};
   const double limit = found.front().depth_mm + within_mm;
-  found.erase(std::find_if(found.begin(), found.end(), [&](const Contact& c) { return c.depth_mm > limit; }), found.end());
+  found.erase(std::find_if(found.begin(), found.end(), [&](const Contact& c) { return c.depth_mm > limit; }),
+              found.end());
   return found;
 }
 
@@ -123,8 +124,8 @@ std::optional<double> MachinedSurface::deviation(const Eigen::Vector3d& p, const
     if (!std::isfinite(f1)) return std::nullopt;
     if (std::abs(f1) <= kExact) return t1;
     const double slope = (f1 - f0) / (t1 - t0);
-    const double t2 = std::clamp(slope < -0.05 ? t1 - f1 / slope : t1 + f1, -2 * options_.reach_mm,
-                                 2 * options_.reach_mm);
+    const double t2 =
+        std::clamp(slope < -0.05 ? t1 - f1 / slope : t1 + f1, -2 * options_.reach_mm, 2 * options_.reach_mm);
     if (t2 == t1) break;
     t0 = t1, f0 = f1;
     t1 = t2, f1 = removed(p + t1 * n);

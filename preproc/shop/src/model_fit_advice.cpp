@@ -8,7 +8,8 @@ ModelFitAdvice advise(const ModelFit& fit) {
     if (s.share < kSeenShare) advice.unseen.push_back(s.symbol);
   // next_unseen is largest first: the named ones are its head.
   for (const ModelFit::Unseen& u : fit.next_unseen) {
-    if (u.largest_mm_per_unit * 1e3 < kFeltUmPerUnit || static_cast<int>(advice.felt_by_next.size()) == kMostFelt) break;
+    if (u.largest_mm_per_unit * 1e3 < kFeltUmPerUnit || static_cast<int>(advice.felt_by_next.size()) == kMostFelt)
+      break;
     advice.felt_by_next.push_back(u);
   }
   advice.overfitted = fit.effective_unknowns > 0.5 * fit.points;

@@ -29,7 +29,8 @@ int piece_count(const interpreter::Move& m, double step_mm, double chord_toleran
   double n = path_length(m) / step_mm;
   if (m.kind == interpreter::MoveKind::Arc) {
     const double r = arc_radius(m);
-    if (r > chord_tolerance_mm) n = std::max(n, std::abs(m.arc.sweep_rad) / (2 * std::acos(1 - chord_tolerance_mm / r)));
+    if (r > chord_tolerance_mm)
+      n = std::max(n, std::abs(m.arc.sweep_rad) / (2 * std::acos(1 - chord_tolerance_mm / r)));
   }
   for (int i = 3; i < interpreter::kAxes; ++i) n = std::max(n, std::abs(m.end[i] - m.start[i]) / step_deg);
   return std::max(1, static_cast<int>(std::ceil(n)));

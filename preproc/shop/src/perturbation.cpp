@@ -30,7 +30,8 @@ std::vector<ExtraTable> perturbation_tables(const machine::Model& model, double 
           table.set_value(node, static_cast<int>(c), f * original.value(node, static_cast<int>(c)));
         }
       }
-      extras.push_back({j, "perturbation_" + std::filesystem::path(original.path()).filename().string(), std::move(table)});
+      extras.push_back(
+          {j, "perturbation_" + std::filesystem::path(original.path()).filename().string(), std::move(table)});
     }
   return extras;
 }

@@ -24,13 +24,15 @@ class ProgramPoints {
   // Throws vc::LoadError at the move's line if no joint position reaches the point.
   machine::Joints nominal(const interpreter::Move& m, const machine::Joints& world) const {
     machine::Joints q;
-    if (machine::nominal_inverse(model_, world_, world, model_.correction_length(m.tool_offset_mm), q) != machine::Status::Ok)
+    if (machine::nominal_inverse(model_, world_, world, model_.correction_length(m.tool_offset_mm), q) !=
+        machine::Status::Ok)
       throw LoadError({file_, m.line}, "no joint position reaches this point of the move");
     return q;
   }
   Eigen::Vector3d ideal_tip(const interpreter::Move& m, const interpreter::Position& program) const {
     return machine::tool_pose(model_, machine::Machine::Ideal, nominal(m, world(m, program)),
-                             model_.correction_length(m.tool_offset_mm)).tip_mm;
+                              model_.correction_length(m.tool_offset_mm))
+        .tip_mm;
   }
   // The ideal machine's tool frame in the part frame (z: the tool axis, tip into the spindle).
   Eigen::Isometry3d ideal_pose(const interpreter::Move& m, const interpreter::Position& program) const {

@@ -49,7 +49,7 @@ bool turns_rotary_axes(const Move& m, unsigned axes) {
 
 // What the path shift does at a point of a move.
 struct PointChange {
-  Position change{};  // program coordinates
+  Position change{};                                      // program coordinates
   Eigen::Vector3d tip_on_part = Eigen::Vector3d::Zero();  // the programmed tool tip, part frame
   double tip_shift_mm = 0.0;                              // how far the change moves it on the part
   bool covered = false;
@@ -59,10 +59,13 @@ struct PointChange {
 
 class PathShift {
  public:
-  PathShift(const machine::Model& model, const interpreter::Setup& setup, std::vector<Anchor> anchors,
-            double noise_mm, const LocalOptions& options)
-      : points_(model, options.world, setup.file), axes_(setup.machine_axes), anchors_(std::move(anchors)),
-        noise_mm_(noise_mm), options_(options) {}
+  PathShift(const machine::Model& model, const interpreter::Setup& setup, std::vector<Anchor> anchors, double noise_mm,
+            const LocalOptions& options)
+      : points_(model, options.world, setup.file),
+        axes_(setup.machine_axes),
+        anchors_(std::move(anchors)),
+        noise_mm_(noise_mm),
+        options_(options) {}
 
   // Rotary axes that can turn the tool (any of A B C).
   bool machine_tilts() const { return (axes_ >> 3) != 0; }
@@ -81,7 +84,8 @@ class PathShift {
     // which changes faster, from those within them, the tilt taken off.
     LocalFitOptions wide{2 * options_.radius_mm, 2 * options_.angle_deg * M_PI / 180, five_axis,
                          options_.tilt_spread_mm, noise_mm_};
-    const LocalFit tilt = five_axis ? fit_tool_displacement(anchors_, pose.translation(), pose.linear(), wide) : LocalFit{};
+    const LocalFit tilt =
+        five_axis ? fit_tool_displacement(anchors_, pose.translation(), pose.linear(), wide) : LocalFit{};
     LocalFitOptions narrow{options_.radius_mm, options_.angle_deg * M_PI / 180, false, options_.tilt_spread_mm,
                            noise_mm_};
     if (tilt.tilt == TiltFit::Estimated) narrow.known_tilt_rad = tilt.tilt_rad;
@@ -99,9 +103,14 @@ class PathShift {
     c.covered = fit.covered;
     if (!c.covered) return c;
     switch (tilt.tilt) {
-      case TiltFit::NotAsked: break;
-      case TiltFit::Unseen: c.tilt = PointChange::Tilt::Unseen; break;
-      case TiltFit::BelowNoise: c.tilt = PointChange::Tilt::BelowNoise; break;
+      case TiltFit::NotAsked:
+        break;
+      case TiltFit::Unseen:
+        c.tilt = PointChange::Tilt::Unseen;
+        break;
+      case TiltFit::BelowNoise:
+        c.tilt = PointChange::Tilt::BelowNoise;
+        break;
       case TiltFit::Estimated: {
         const Eigen::Vector3d turn = -options_.gain * (pose.linear() * tilt.tilt_rad);
         const Eigen::Vector3d tip_change = -options_.gain * (pose.linear() * fit.shift_mm);
@@ -188,10 +197,18 @@ class PathShift {
 void count_tilt(const PointChange& c, bool machine_tilts, LocalSummary& summary) {
   if (!c.covered || !machine_tilts) return;
   switch (c.tilt) {
-    case PointChange::Tilt::NotAsked: ++summary.tilt.rotary_held; break;
-    case PointChange::Tilt::Unseen: ++summary.tilt.unseen; break;
-    case PointChange::Tilt::BelowNoise: ++summary.tilt.below_noise; break;
-    case PointChange::Tilt::Singular: ++summary.tilt.singular; break;
+    case PointChange::Tilt::NotAsked:
+      ++summary.tilt.rotary_held;
+      break;
+    case PointChange::Tilt::Unseen:
+      ++summary.tilt.unseen;
+      break;
+    case PointChange::Tilt::BelowNoise:
+      ++summary.tilt.below_noise;
+      break;
+    case PointChange::Tilt::Singular:
+      ++summary.tilt.singular;
+      break;
     case PointChange::Tilt::Done:
       ++summary.tilt.tilted;
       summary.tilt.largest_rad = std::max(summary.tilt.largest_rad, c.tilt_rad);
@@ -248,8 +265,8 @@ void shifted_pieces(const Move& m, const PathShift& shift, const LocalOptions& o
 }  // namespace
 
 LocalSummary shift_program(const machine::Model& model, const FirstPart& part, std::istream& program,
-                           const interpreter::Setup& setup, const predistort::Provenance& provenance,
-                           std::ostream& out, const LocalOptions& options) {
+                           const interpreter::Setup& setup, const predistort::Provenance& provenance, std::ostream& out,
+                           const LocalOptions& options) {
   const PathShift shift(model, setup, anchors_of(model, part), part.robust_sigma_mm, options);
   interpreter::Interpreter interpreter(setup);
   predistort::Writer writer(out, setup.machine_axes, options.tolerance_mm);
@@ -259,22 +276,22 @@ LocalSummary shift_program(const machine::Model& model, const FirstPart& part, s
   double covered_length = 0;
   std::vector<std::vector<predistort::Piece>> pieces;
   bool header_written = false;
-  for_each_block(program, interpreter, setup, [&](const std::string& raw, const gcode::Block& block,
-                                           const interpreter::Effect& effect, int) {
-    if (!header_written && !block.percent) {
-      writer.header(provenance);
-      header_written = true;
-    }
-    ++summary.lines;
-    if (!effect.translate) {
-      writer.verbatim(raw, block, effect, interpreter.position(), interpreter.frame());
-      return;
-    }
-    pieces.assign(effect.moves.size(), {});
-    for (std::size_t k = 0; k < effect.moves.size(); ++k)
-      shifted_pieces(effect.moves[k], shift, options, summary, covered_length, pieces[k]);
-    writer.translated(raw, block, effect, pieces);
-  });
+  for_each_block(program, interpreter, setup,
+                 [&](const std::string& raw, const gcode::Block& block, const interpreter::Effect& effect, int) {
+                   if (!header_written && !block.percent) {
+                     writer.header(provenance);
+                     header_written = true;
+                   }
+                   ++summary.lines;
+                   if (!effect.translate) {
+                     writer.verbatim(raw, block, effect, interpreter.position(), interpreter.frame());
+                     return;
+                   }
+                   pieces.assign(effect.moves.size(), {});
+                   for (std::size_t k = 0; k < effect.moves.size(); ++k)
+                     shifted_pieces(effect.moves[k], shift, options, summary, covered_length, pieces[k]);
+                   writer.translated(raw, block, effect, pieces);
+                 });
   if (!header_written) writer.header(provenance);
   writer.flush();
   summary.covered_fraction = summary.cutting_length_mm > 0 ? covered_length / summary.cutting_length_mm : 0.0;

@@ -27,8 +27,8 @@ struct Probe {
   int table;  // index into the tuned model's tables
   std::vector<tables::ErrorSymbol> columns;
   bool periodic;
-  int nodes;      // table rows
-  int order = 0;  // periodic: the series' highest harmonic
+  int nodes;                                                               // table rows
+  int order = 0;                                                           // periodic: the series' highest harmonic
   int distinct_nodes() const { return periodic ? 2 * order + 1 : nodes; }  // unknowns per column
 };
 
@@ -76,12 +76,14 @@ Selection selected(const machine::Model& model, const ModelOptions& options) {
   for (const std::string& name : options.deviations) {
     const auto symbol = tables::parse_error_symbol(name);
     if (!symbol)
-      throw std::invalid_argument(name + " is not an error symbol (component errors EXX, EYX, ..., ECC; location "
-                                         "errors EX0C, EA0C, ...)");
+      throw std::invalid_argument(name +
+                                  " is not an error symbol (component errors EXX, EYX, ..., ECC; location "
+                                  "errors EX0C, EA0C, ...)");
     const int j = model.joint_of(symbol->axis);
     if (j < 0) throw std::invalid_argument(name + ": the machine has no axis " + std::string(1, symbol->axis));
     if (symbol->location) {
-      if (std::none_of(out.locations.begin(), out.locations.end(), [&](const auto& s) { return s.name() == symbol->name(); }))
+      if (std::none_of(out.locations.begin(), out.locations.end(),
+                       [&](const auto& s) { return s.name() == symbol->name(); }))
         out.locations.push_back(*symbol);
       continue;
     }
@@ -100,7 +102,8 @@ double& location_value(machine::Axis& axis, int component) {
 // (1 sigma): the median and the largest over the rows.
 std::pair<double, double> carried(double scatter_mm, const Eigen::MatrixXd& influence) {
   std::vector<double> sigma(static_cast<std::size_t>(influence.rows()));
-  for (Eigen::Index k = 0; k < influence.rows(); ++k) sigma[static_cast<std::size_t>(k)] = scatter_mm * influence.row(k).norm();
+  for (Eigen::Index k = 0; k < influence.rows(); ++k)
+    sigma[static_cast<std::size_t>(k)] = scatter_mm * influence.row(k).norm();
   std::sort(sigma.begin(), sigma.end());
   return {sigma[sigma.size() / 2], sigma.back()};
 }
@@ -112,7 +115,7 @@ std::string tuning_table_name(char axis) {
 }
 
 ModelFit fit_model(const machine::Model& model, const FirstPart& part, const ModelOptions& options,
-                    const FirstPart* next) {
+                   const FirstPart* next) {
   if (options.nodes < 2 || options.nodes > 101) throw std::invalid_argument("--nodes must be in [2, 101]");
   const Selection selection = selected(model, options);
   // Probe tables (all zero) on a copy of the model: the unknowns are their values.
@@ -144,17 +147,20 @@ ModelFit fit_model(const machine::Model& model, const FirstPart& part, const Mod
       for (std::size_t c = 0; c < probes[p].columns.size(); ++c)
         unknowns.push_back({static_cast<int>(p), node, static_cast<int>(c), -1, 0});
   }
-  for (const tables::ErrorSymbol& s : selection.locations) unknowns.push_back({-1, 0, 0, model.joint_of(s.axis), s.component});
+  for (const tables::ErrorSymbol& s : selection.locations)
+    unknowns.push_back({-1, 0, 0, model.joint_of(s.axis), s.component});
   // The unknown of a table value (a periodic table's nodes counted round the turn).
   const auto index = [&](int probe, int node, int column) {
     const Probe& pr = probes[static_cast<std::size_t>(probe)];
     node %= pr.distinct_nodes();
     if (node < 0) node += pr.distinct_nodes();
-    return first_unknown[static_cast<std::size_t>(probe)] + node * static_cast<Eigen::Index>(pr.columns.size()) + column;
+    return first_unknown[static_cast<std::size_t>(probe)] + node * static_cast<Eigen::Index>(pr.columns.size()) +
+           column;
   };
   const auto quantity = [&](const Unknown& x) {
-    return x.location() ? (x.component < 3 ? tables::Quantity::Length : tables::Quantity::Angle)
-                        : probes[static_cast<std::size_t>(x.probe)].columns[static_cast<std::size_t>(x.column)].quantity();
+    return x.location()
+               ? (x.component < 3 ? tables::Quantity::Length : tables::Quantity::Angle)
+               : probes[static_cast<std::size_t>(x.probe)].columns[static_cast<std::size_t>(x.column)].quantity();
   };
   // Sets an unknown on the tuned model: a table's rows (a periodic table's first is also its
   // last), or a location error (the axis line's placement follows).
@@ -173,8 +179,7 @@ ModelFit fit_model(const machine::Model& model, const FirstPart& part, const Mod
     }
     // one term of the series (the others are zero while the sensitivities are taken); the
     // last row is the first
-    for (int row = 0; row < pr.nodes; ++row)
-      t.set_value(row, x.column, value * harmonic(x.node, turn_angle(t, row)));
+    for (int row = 0; row < pr.nodes; ++row) t.set_value(row, x.column, value * harmonic(x.node, turn_angle(t, row)));
   };
 
   // One equation per kept point: sensitivities by a small value of one unknown at a time.
@@ -289,8 +294,9 @@ ModelFit fit_model(const machine::Model& model, const FirstPart& part, const Mod
   // The tuned model's error at the next part's points is next_scaled (resolution - I) x_true
   // plus the noise: the first term is what this part cannot see.
   const Eigen::MatrixXd next_unseen =
-      next_scaled.size() > 0 ? Eigen::MatrixXd(next_scaled * (Eigen::MatrixXd::Identity(cols, cols) - resolution_matrix))
-                             : Eigen::MatrixXd();
+      next_scaled.size() > 0
+          ? Eigen::MatrixXd(next_scaled * (Eigen::MatrixXd::Identity(cols, cols) - resolution_matrix))
+          : Eigen::MatrixXd();
   std::map<std::string, std::pair<double, int>> by_symbol;
   std::map<std::string, std::vector<Eigen::Index>> columns_of;
   for (Eigen::Index u = 0; u < cols; ++u) {
@@ -338,11 +344,13 @@ ModelFit fit_model(const machine::Model& model, const FirstPart& part, const Mod
     std::vector<tables::ErrorSymbol> columns = probe.columns;
     const machine::BoundTable* earlier = nullptr;
     for (int t : model.axes[static_cast<std::size_t>(probe.joint)].tables)
-      if (std::filesystem::path(model.tables[static_cast<std::size_t>(t)].table.path()).filename() == tuning_table_name(letter))
+      if (std::filesystem::path(model.tables[static_cast<std::size_t>(t)].table.path()).filename() ==
+          tuning_table_name(letter))
         earlier = &model.tables[static_cast<std::size_t>(t)];
     if (earlier)
       for (const auto& c : earlier->table.columns())
-        if (std::none_of(columns.begin(), columns.end(), [&](const auto& s) { return s.component == c.symbol.component; }))
+        if (std::none_of(columns.begin(), columns.end(),
+                         [&](const auto& s) { return s.component == c.symbol.component; }))
           columns.push_back(c.symbol);
     tables::ErrorTable table = zero_table(model, probe.joint, probe.nodes, columns, tuning_table_name(letter));
     for (int node = 0; node < probe.nodes; ++node) {

@@ -46,8 +46,7 @@ class Simulator {
         if (status != machine::Status::Ok)
           throw LoadError({setup_.file, m.line}, "the compensation does not converge at this move");
       }
-      const machine::ToolPose real =
-          machine::tool_pose(machine_, machine::Machine::Real, sample.joints, L);
+      const machine::ToolPose real = machine::tool_pose(machine_, machine::Machine::Real, sample.joints, L);
       const machine::ToolPose ideal = machine::tool_pose(machine_, machine::Machine::Ideal, nominal, L);
       sample.tip = real.tip_mm;
       sample.axis = real.direction;
@@ -69,7 +68,9 @@ class Simulator {
   Eigen::Vector3d deflection(const Move& m, double s, const machine::Joints& nominal,
                              const machine::ToolPose& ideal) const {
     constexpr double ds = 1e-4;
-    auto ideal_tip = [&](double at) { return points_.ideal_tip(m, interpreter::point_at(m, std::clamp(at, 0.0, 1.0))); };
+    auto ideal_tip = [&](double at) {
+      return points_.ideal_tip(m, interpreter::point_at(m, std::clamp(at, 0.0, 1.0)));
+    };
     const Eigen::Vector3d feed = ideal_tip(s + ds) - ideal_tip(s - ds);
     if (feed.norm() < 1e-12) return Eigen::Vector3d::Zero();
     double length = 0;

@@ -9,9 +9,8 @@
 namespace vc::shop {
 namespace {
 
-constexpr const char* kColumns[] = {"move", "line",  "tool",  "radius[mm]", "end",    "cutting",
-                                    "s",    "x[mm]", "y[mm]", "z[mm]",      "i",      "j",
-                                    "k",    "ex[um]", "ey[um]", "ez[um]"};
+constexpr const char* kColumns[] = {"move",  "line",  "tool", "radius[mm]", "end", "cutting", "s",      "x[mm]",
+                                    "y[mm]", "z[mm]", "i",    "j",          "k",   "ex[um]",  "ey[um]", "ez[um]"};
 constexpr int kColumnCount = sizeof kColumns / sizeof kColumns[0];
 
 }  // namespace
@@ -39,7 +38,8 @@ ToolPath read_tool_path(const std::string& path) {
   const tables::CsvRow& header = rows.front();
   for (int i = 0; i < kColumnCount; ++i) {
     if (i >= static_cast<int>(header.cells.size()))
-      throw LoadError({path, header.line}, std::string("missing column ") + kColumns[i] + " (volcomp simulate writes them)");
+      throw LoadError({path, header.line},
+                      std::string("missing column ") + kColumns[i] + " (volcomp simulate writes them)");
     if (header.cells[static_cast<std::size_t>(i)].text != kColumns[i])
       throw LoadError({path, header.line, header.cells[static_cast<std::size_t>(i)].column},
                       "column " + std::to_string(i + 1) + " must be " + kColumns[i] + ", not '" +
@@ -50,8 +50,8 @@ ToolPath read_tool_path(const std::string& path) {
   for (std::size_t r = 1; r < rows.size(); ++r) {
     const tables::CsvRow& row = rows[r];
     if (static_cast<int>(row.cells.size()) != kColumnCount)
-      throw LoadError({path, row.line}, std::to_string(row.cells.size()) + " cells, the header has " +
-                                            std::to_string(kColumnCount));
+      throw LoadError({path, row.line},
+                      std::to_string(row.cells.size()) + " cells, the header has " + std::to_string(kColumnCount));
     auto number = [&](int i) { return tables::csv_number(path, row.line, row.cells[static_cast<std::size_t>(i)]); };
     PathSample p;
     p.move = static_cast<int>(number(0));

@@ -43,10 +43,10 @@ SessionTrace read_session_trace(const std::string& path, const machine::Model& m
     if (column[w] < 0)
       throw LoadError({path, header.line, 1}, "no column '" + wanted[w] + "' (the machine's axes are " + axes + ")");
 
-  int gain = -1;                // optional: a session without volkins (stock kinematics) has none
+  int gain = -1;               // optional: a session without volkins (stock kinematics) has none
   int correction_length = -1;  // optional: traces recorded before volkins slewed the tool length
-  int tcp = -1;                 // optional: the kinematics type's world, per sample
-  int tool_axis = -1;           // optional: the tool-axis coordinate (5axiskins' W)
+  int tcp = -1;                // optional: the kinematics type's world, per sample
+  int tool_axis = -1;          // optional: the tool-axis coordinate (5axiskins' W)
   const std::string tool_axis_name(1, static_cast<char>(std::tolower(model.tool_axis_coordinate)));
   for (std::size_t c = 0; c < header.cells.size(); ++c) {
     if (header.cells[c].text == "gain") gain = static_cast<int>(c);
@@ -59,7 +59,8 @@ SessionTrace read_session_trace(const std::string& path, const machine::Model& m
   std::vector<int> temperature_column(model.temperatures.size(), -1);
   for (std::size_t c = 0; c < header.cells.size(); ++c)
     for (std::size_t i = 0; i < model.temperatures.size(); ++i)
-      if (header.cells[c].text == "temperature_" + model.temperatures[i].name) temperature_column[i] = static_cast<int>(c);
+      if (header.cells[c].text == "temperature_" + model.temperatures[i].name)
+        temperature_column[i] = static_cast<int>(c);
 
   SessionTrace t;
   t.path = path;
@@ -85,8 +86,9 @@ SessionTrace read_session_trace(const std::string& path, const machine::Model& m
       t.correction_length_mm.push_back(tables::csv_number(path, row.line, row.cells[correction_length]));
     if (tool_axis >= 0) t.tool_axis_mm.push_back(tables::csv_number(path, row.line, row.cells[tool_axis]));
     if (tcp >= 0)
-      t.convention.push_back(tables::csv_number(path, row.line, row.cells[tcp]) != 0.0 ? machine::WorldConvention::Tcp
-                                                                                        : machine::WorldConvention::Axes);
+      t.convention.push_back(tables::csv_number(path, row.line, row.cells[tcp]) != 0.0
+                                 ? machine::WorldConvention::Tcp
+                                 : machine::WorldConvention::Axes);
     for (std::size_t i = 0; i < temperature_column.size(); ++i)
       if (temperature_column[i] >= 0)
         t.temperature_degC[i].push_back(tables::csv_number(path, row.line, row.cells[temperature_column[i]]));
@@ -115,12 +117,14 @@ TraceSummary check_trace(const machine::Model& machine_model, machine::WorldConv
   // runs first) and the tool length of cycle k-1 (motion writes tooloffset.z at its end).
   const bool recorded_L = trace.correction_length_mm.size() == count;
   auto correction_length = [&](std::size_t k) {
-    return recorded_L ? trace.correction_length_mm[k] : model.correction_length(trace.tool_offset_mm[k == 0 ? 0 : k - 1]);
+    return recorded_L ? trace.correction_length_mm[k]
+                      : model.correction_length(trace.tool_offset_mm[k == 0 ? 0 : k - 1]);
   };
   std::vector<Joints> nominal(count), expected(count);
   std::vector<machine::Correction> corrections(count);
   for (std::size_t k = 0; k < count; ++k) {
-    const machine::WorldConvention convention = trace.convention.size() == count ? trace.convention[k] : loaded_convention;
+    const machine::WorldConvention convention =
+        trace.convention.size() == count ? trace.convention[k] : loaded_convention;
     const double offset = trace.tool_offset_mm[k == 0 ? 0 : k - 1];
     const double L = correction_length(k);  // the tool-length rule (slewed)
     const Joints world = core_world(model, convention, trace.world[k], offset);

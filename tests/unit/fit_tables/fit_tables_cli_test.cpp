@@ -254,8 +254,8 @@ TEST(FitTablesCli, TheLasersReversalGoesIntoTheForwardAndReverseColumns) {
         }
   }
   const std::string common = "fit-tables " + test::machine_path("mill3") + " --controller linuxcnc --fresh 200";
-  const test::CommandResult with = test::run_volcomp(common + " --reversal X=" + (dir / "x_runs.csv").string() +
-                                                     " -o " + (dir / "with").string());
+  const test::CommandResult with =
+      test::run_volcomp(common + " --reversal X=" + (dir / "x_runs.csv").string() + " -o " + (dir / "with").string());
   ASSERT_EQ(with.exit_code, 0) << with.out;
   EXPECT_NE(with.out.find("reversal of X from"), std::string::npos) << with.out;
   EXPECT_NE(with.out.find("B = 10.00 um, mean 8.00 um"), std::string::npos) << with.out;
@@ -269,7 +269,8 @@ TEST(FitTablesCli, TheLasersReversalGoesIntoTheForwardAndReverseColumns) {
     ASSERT_EQ(c.nominal, plain.nominal);
     const bool x = std::string(file).find("_x.comp") != std::string::npos;
     for (std::size_t k = 0; k < c.nominal.size(); ++k) {
-      const double forward = linuxcnc_comp_value(c, c.nominal[k], true), reverse = linuxcnc_comp_value(c, c.nominal[k], false);
+      const double forward = linuxcnc_comp_value(c, c.nominal[k], true),
+                   reverse = linuxcnc_comp_value(c, c.nominal[k], false);
       EXPECT_NEAR(reverse - forward, x ? b_mm(std::clamp(c.nominal[k], 0.0, 500.0)) : 0.0, 1e-7) << c.nominal[k];
       EXPECT_NEAR(0.5 * (forward + reverse), linuxcnc_comp_value(plain, c.nominal[k], true), 1e-7) << c.nominal[k];
     }
@@ -279,8 +280,8 @@ TEST(FitTablesCli, TheLasersReversalGoesIntoTheForwardAndReverseColumns) {
   for (const auto& [arguments, message] : std::vector<std::pair<std::string, std::string>>{
            {"--controller source14 --reversal X=" + (dir / "x_runs.csv").string(), "--reversal: the tables of"},
            {"--controller linuxcnc --reversal Q=" + (dir / "x_runs.csv").string(), "AXIS one of the machine's (xyz)"},
-           {"--controller linuxcnc --reversal X=" + (dir / "x_runs.csv").string() + " --reversal x=" +
-                (dir / "x_runs.csv").string(),
+           {"--controller linuxcnc --reversal X=" + (dir / "x_runs.csv").string() +
+                " --reversal x=" + (dir / "x_runs.csv").string(),
             "that axis is given twice"}}) {
     const fs::path out = dir / "refused";
     const test::CommandResult run =

@@ -21,12 +21,11 @@ Figures simulated(const machine::Model& model, const std::vector<SinumerikTable>
                   const std::vector<Pose>& poses) {
   std::vector<double> errors;
   for (const Pose& p : poses)
-    errors.push_back((machine::tool_pose(model, machine::Machine::Real, sinumerik_commanded(tables, p.q),
-                                         p.tool_length_mm)
-                          .tip_mm -
-                      machine::tool_pose(model, machine::Machine::Ideal, p.q, p.tool_length_mm).tip_mm)
-                         .norm() *
-                     1e3);
+    errors.push_back(
+        (machine::tool_pose(model, machine::Machine::Real, sinumerik_commanded(tables, p.q), p.tool_length_mm).tip_mm -
+         machine::tool_pose(model, machine::Machine::Ideal, p.q, p.tool_length_mm).tip_mm)
+            .norm() *
+        1e3);
   return figures(errors);
 }
 
@@ -209,19 +208,19 @@ TEST(FitTablesSinumerikFile, RefusesWhatItDoesNotUnderstandWithFileLineColumn) {
   EXPECT_EQ(refusal(edited(eec, 5, "$AA_ENC_COMP[0,x,AX1]=0.01")).rfind("bad.INI:5:16: error: the node N", 0), 0u)
       << refusal(edited(eec, 5, "$AA_ENC_COMP[0,x,AX1]=0.01"));
   // A machine axis name that is not AXn.
-  EXPECT_EQ(refusal(edited(eec, 5, "$AA_ENC_COMP[0,1,X1]=0.01")).rfind("bad.INI:5:18: error: expected a machine axis", 0),
-            0u)
+  EXPECT_EQ(
+      refusal(edited(eec, 5, "$AA_ENC_COMP[0,1,X1]=0.01")).rfind("bad.INI:5:18: error: expected a machine axis", 0), 0u)
       << refusal(edited(eec, 5, "$AA_ENC_COMP[0,1,X1]=0.01"));
   // A node beyond (MAX - MIN) / STEP + 1 = 3.
   EXPECT_EQ(refusal(edited(eec, 5, "$AA_ENC_COMP[0,3,AX1]=0.01")).rfind("bad.INI:5:16: error: node 3 is beyond", 0), 0u)
       << refusal(edited(eec, 5, "$AA_ENC_COMP[0,3,AX1]=0.01"));
   // A missing node (reported at the table's first line).
-  EXPECT_EQ(refusal(edited(eec, 5, nullptr)).rfind("bad.INI:4:1: error: the EEC table of AX1 has no value for node 1", 0),
-            0u)
+  EXPECT_EQ(
+      refusal(edited(eec, 5, nullptr)).rfind("bad.INI:4:1: error: the EEC table of AX1 has no value for node 1", 0), 0u)
       << refusal(edited(eec, 5, nullptr));
   // An unknown variable (column of its name, after '$').
-  EXPECT_EQ(refusal(edited(cec, 13, "  $AN_CEC_FOO[0]=0")).rfind("bad.INI:13:4: error: unknown variable $AN_CEC_FOO", 0),
-            0u)
+  EXPECT_EQ(
+      refusal(edited(cec, 13, "  $AN_CEC_FOO[0]=0")).rfind("bad.INI:13:4: error: unknown variable $AN_CEC_FOO", 0), 0u)
       << refusal(edited(cec, 13, "  $AN_CEC_FOO[0]=0"));
   // An EEC variable in a CEC file is unknown there too.
   EXPECT_NE(refusal(edited(cec, 13, "$AA_ENC_COMP_STEP[0,AX1]=1.0")).find("bad.INI:13:2: error: unknown variable"),

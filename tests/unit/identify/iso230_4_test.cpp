@@ -88,7 +88,8 @@ TEST(CircularTest, SquarenessComesBackInTheMachineFilesTerms) {
   const int x = model.joint_of('X');
   machine::Model truth = model;
   truth.axes[x].location_rad[2] = 12 * kArcsec;
-  truth.axes[x].real_base = machine::line_placement(truth.axes[x].pole_mm, truth.axes[x].location_mm, truth.axes[x].location_rad);
+  truth.axes[x].real_base =
+      machine::line_placement(truth.axes[x].pole_mm, truth.axes[x].location_mm, truth.axes[x].location_rad);
   const double R = 100;
   const std::string run = write("mill3.csv", circle_of(truth, R));
   const CircularEvaluation e = evaluate_circular_test(read_circular_test(run));
@@ -99,12 +100,14 @@ TEST(CircularTest, SquarenessComesBackInTheMachineFilesTerms) {
   EXPECT_NEAR(terms[0].value_rad / kArcsec, 12.0, 0.05);
   EXPECT_NEAR(terms[0].in_file_rad / kArcsec, 8.0, 1e-9);
   EXPECT_GT(std::abs(e.squareness_rad - terms[0].value_rad) / kArcsec, 0.3);  // the tables carry a squareness too
-  const CircularEvaluation own = evaluate_circular_test(read_circular_test(write("mill3_own.csv", circle_of(model, R))));
+  const CircularEvaluation own =
+      evaluate_circular_test(read_circular_test(write("mill3_own.csv", circle_of(model, R))));
   EXPECT_NEAR(squareness_terms(model, "XY", R, own.squareness_rad)[0].value_rad / kArcsec, 8.0, 0.05);
 
   // Through the command line: the file written with it loads, carries it and shows the measured squareness.
   const std::string dir = (fs::temp_directory_path() / ("vc_circle_out_" + std::to_string(::getpid()))).string();
-  const auto r = test::run_volcomp("identify circle " + run + " --machine " + test::machine_path("mill3") + " --machine-out " + dir);
+  const auto r = test::run_volcomp("identify circle " + run + " --machine " + test::machine_path("mill3") +
+                                   " --machine-out " + dir);
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("EC0X = 12.0"), std::string::npos) << r.out;
   const machine::Model written = machine::load_machine(dir + "/mill3.toml");

@@ -52,7 +52,10 @@ TEST_P(LaserLineOnEveryMachine, IdentifiedFileReadsTheTruthAndHoldsItsError) {
     const int own = static_cast<int>(std::string("XYZABC").find(axis.letter));
     for (int c = 0; c < 6; ++c) {
       if (rotary && c != own) continue;  // of a rotary axis, its positioning (an angular reference)
-      test::LaserLine line{j, {c, axis.letter, false}, machine::Joints::Zero(model.joint_count()), Eigen::Vector3d(15, -25, -model.tool_length_mm)};
+      test::LaserLine line{j,
+                           {c, axis.letter, false},
+                           machine::Joints::Zero(model.joint_count()),
+                           Eigen::Vector3d(15, -25, -model.tool_length_mm)};
       for (int k = 0; k < model.joint_count(); ++k) {
         const machine::Axis& a = model.axes[static_cast<std::size_t>(k)];
         line.at[k] = a.type == machine::AxisType::Rotary ? 0.0 : 0.3 * a.travel_min + 0.7 * a.travel_max;
@@ -73,8 +76,9 @@ TEST_P(LaserLineOnEveryMachine, IdentifiedFileReadsTheTruthAndHoldsItsError) {
         grid.nodes.push_back(lo + (hi - lo) * t);
         change.push_back(size * (std::sin(2 * M_PI * t + 0.5) - std::sin(0.5) + (turn ? 0.0 : 0.6 * t)));
       }
-      const shop::ExtraTable extra{j, "truth.csv",
-                                   tables::ErrorTable("truth.csv", {grid}, {{line.error, {}}}, change, tables::Interpolation::Linear)};
+      const shop::ExtraTable extra{
+          j, "truth.csv",
+          tables::ErrorTable("truth.csv", {grid}, {{line.error, {}}}, change, tables::Interpolation::Linear)};
       const machine::Model truth = machine::load_machine(
           shop::write_machine_with_tables(model, (folder / (line.error.name() + "_truth")).string(), {extra}, "truth"));
 

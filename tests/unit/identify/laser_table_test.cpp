@@ -53,8 +53,8 @@ TEST(LaserTable, OneTurnIsARotaryAxisFrom0To360WithMoreThanTwoTargets) {
 }
 
 TEST(LaserTable, OverOneTurnBothEndsHoldTheMeanOfTheirReadings) {
-  const Iso230_2 e = evaluation({target(0, 2e-6, 2e-6), target(120, 5e-6, 5e-6), target(240, 1e-6, 1e-6),
-                                 target(360, 4e-6, 4e-6)});
+  const Iso230_2 e =
+      evaluation({target(0, 2e-6, 2e-6), target(120, 5e-6, 5e-6), target(240, 1e-6, 1e-6), target(360, 4e-6, 4e-6)});
   const std::vector<TableRow> rows = laser_table_rows(e, true, TableValue::Bidirectional);
   ASSERT_EQ(rows.size(), 4u);
   EXPECT_DOUBLE_EQ(rows.front().value, 3e-6);

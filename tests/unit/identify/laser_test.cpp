@@ -59,7 +59,8 @@ TEST(Iso230_2, CaseWorkedByHand) {
 // noise 0.5 um + 0.5 um/m (issue 20), five runs each way over 0..600 mm every 50 mm.
 double truth_um(double x) { return 3.0 * std::sin(x / 150.0) + 0.010 * x; }
 
-std::string simulated_runs(unsigned seed, const std::function<double(int run, bool up, double x, double v)>& edit = {}) {
+std::string simulated_runs(unsigned seed,
+                           const std::function<double(int run, bool up, double x, double v)>& edit = {}) {
   std::mt19937 random(seed);
   std::normal_distribution<double> unit(0.0, 1.0);
   std::ostringstream csv;
@@ -87,7 +88,7 @@ TEST(Iso230_2, RecoversASimulatedAxisWithinTheNoise) {
     EXPECT_NEAR(t.mean * 1e3, truth_um(t.target), 3.5 * sigma_of_mean) << t.target;
   }
   EXPECT_NEAR(e.mean_reversal * 1e3, 1.5, 0.6);  // 13 reversal values of sigma ~0.55 um
-  EXPECT_GT(e.repeatability * 1e3, 2.0);          // 4 s >= 2 um, plus the reversal
+  EXPECT_GT(e.repeatability * 1e3, 2.0);         // 4 s >= 2 um, plus the reversal
   EXPECT_LT(e.repeatability * 1e3, 8.0);
   ASSERT_EQ(runs.metadata.size(), 3u);
   EXPECT_EQ(runs.metadata[2].first, "measured_at_mm");
@@ -109,20 +110,21 @@ TEST(Iso230_2, FindsRunsThatDisagreeAndWhy) {
   ASSERT_EQ(disturbed.size(), 1u);
   EXPECT_NE(disturbed[0].reason.find("stands off"), std::string::npos) << disturbed[0].reason;
   // Left out, the evaluation is that of the four good runs.
-  const LaserRuns runs = read_laser_runs(write("bad.csv", simulated_runs(7, [](int run, bool up, double, double v) {
-                                                 return run == 3 && up ? -v : v;
-                                               })));
+  const LaserRuns runs = read_laser_runs(
+      write("bad.csv", simulated_runs(7, [](int run, bool up, double, double v) { return run == 3 && up ? -v : v; })));
   const Iso230_2 e = evaluate_iso230_2(runs, {RunKey(3, Direction::Up)});
   EXPECT_EQ(e.runs_up, 4);
   EXPECT_EQ(e.runs_down, 5);
 }
 
 TEST(LaserRuns, WideLayoutReadsAsTheLongOne) {
-  const LaserRuns wide = read_laser_runs(write("wide.csv", "target[mm],1+[um],1-[um],run2+[um],run2-[um]\n"
-                                                           "0,1,-1,3,1\n100,2,0,2,4\n"));
-  const LaserRuns by_row = read_laser_runs(write("long.csv", "target[mm],run,direction,deviation[um]\n"
-                                                            "0,1,+,1\n100,1,+,2\n100,1,-,0\n0,1,-,-1\n"
-                                                            "0,2,up,3\n100,2,up,2\n100,2,down,4\n0,2,down,1\n"));
+  const LaserRuns wide = read_laser_runs(write("wide.csv",
+                                               "target[mm],1+[um],1-[um],run2+[um],run2-[um]\n"
+                                               "0,1,-1,3,1\n100,2,0,2,4\n"));
+  const LaserRuns by_row = read_laser_runs(write("long.csv",
+                                                 "target[mm],run,direction,deviation[um]\n"
+                                                 "0,1,+,1\n100,1,+,2\n100,1,-,0\n0,1,-,-1\n"
+                                                 "0,2,up,3\n100,2,up,2\n100,2,down,4\n0,2,down,1\n"));
   const Iso230_2 a = evaluate_iso230_2(wide), b = evaluate_iso230_2(by_row);
   ASSERT_EQ(a.targets.size(), b.targets.size());
   for (std::size_t i = 0; i < a.targets.size(); ++i) EXPECT_DOUBLE_EQ(a.targets[i].mean, b.targets[i].mean);
@@ -138,16 +140,20 @@ TEST(LaserRuns, BadFilesAreRefusedWithTheirPlace) {
     }
     return "not refused";
   };
-  EXPECT_NE(message("target[mm],run,direction,deviation[um]\n0,1,sideways,1\n").find("refused.csv:2:5: error: direction 'sideways'"),
+  EXPECT_NE(message("target[mm],run,direction,deviation[um]\n0,1,sideways,1\n")
+                .find("refused.csv:2:5: error: direction 'sideways'"),
             std::string::npos);
   EXPECT_NE(message("target[mm],run,direction,deviation[furlong]\n").find("refused.csv:1:"), std::string::npos);
-  EXPECT_NE(message("target,run,direction,deviation[um]\n0,1,+,1\n").find("the target needs its unit"), std::string::npos);
+  EXPECT_NE(message("target,run,direction,deviation[um]\n0,1,+,1\n").find("the target needs its unit"),
+            std::string::npos);
   EXPECT_NE(message("target[mm],run,direction,deviation[um]\n0,1,+,1\n0,1,-,1\n100,1,+,1\n100,1,-,1\n")
                 .find("at least 2 runs in each direction"),
             std::string::npos);
-  EXPECT_NE(message("target[mm],1+[um],1-[um],2+[um],2-[um]\n0,1,1,1,1\n100,1,1,,1\n").find("run 2+ has no reading at target 100"),
+  EXPECT_NE(message("target[mm],1+[um],1-[um],2+[um],2-[um]\n0,1,1,1,1\n100,1,1,,1\n")
+                .find("run 2+ has no reading at target 100"),
             std::string::npos);
-  EXPECT_NE(message("target[mm],run,direction,deviation[um]\n0,1,+,1\n0,1,+,2\n").find("refused.csv:3: error: run 1+ reads target 0 again"),
+  EXPECT_NE(message("target[mm],run,direction,deviation[um]\n0,1,+,1\n0,1,+,2\n")
+                .find("refused.csv:3: error: run 1+ reads target 0 again"),
             std::string::npos);
 }
 

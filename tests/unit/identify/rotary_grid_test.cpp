@@ -10,8 +10,7 @@ namespace {
 using Poses = std::vector<std::vector<double>>;
 
 TEST(RotaryGrid, EveryCombinationTheFirstAxisFastest) {
-  EXPECT_EQ(rotary_grid({{0, -30}, {0, 90, 180}}),
-            (Poses{{0, 0}, {-30, 0}, {0, 90}, {-30, 90}, {0, 180}, {-30, 180}}));
+  EXPECT_EQ(rotary_grid({{0, -30}, {0, 90, 180}}), (Poses{{0, 0}, {-30, 0}, {0, 90}, {-30, 90}, {0, 180}, {-30, 180}}));
 }
 
 TEST(RotaryGrid, OneAxisGivesItsPositionsInTheirOrder) {

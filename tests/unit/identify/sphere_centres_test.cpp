@@ -75,17 +75,18 @@ std::vector<SpherePose> plan(const machine::Model& truth, const std::vector<doub
 TEST(SphereCentres, FindsTheRotaryLinesWithinTheirUncertainty) {
   const machine::Model model = machine::load_machine(test::machine_path("mc300"));
   machine::Model truth = model;
-  offset(truth, 'C', 0, 0.015);            // EX0C +15 um
-  offset(truth, 'C', 1, -0.010);           // EY0C -10 um
-  offset(truth, 'C', 3, -3 * kArcsec);     // EA0C
-  offset(truth, 'C', 4, 4 * kArcsec);      // EB0C
-  offset(truth, 'B', 0, -0.012);           // EX0B
-  offset(truth, 'B', 2, 0.008);            // EZ0B
-  offset(truth, 'B', 5, 6 * kArcsec);      // EC0B
+  offset(truth, 'C', 0, 0.015);         // EX0C +15 um
+  offset(truth, 'C', 1, -0.010);        // EY0C -10 um
+  offset(truth, 'C', 3, -3 * kArcsec);  // EA0C
+  offset(truth, 'C', 4, 4 * kArcsec);   // EB0C
+  offset(truth, 'B', 0, -0.012);        // EX0B
+  offset(truth, 'B', 2, 0.008);         // EZ0B
+  offset(truth, 'B', 5, 6 * kArcsec);   // EC0B
   const std::vector<SpherePose> poses = plan(truth, {0, -30, -60, -90}, {0, 60, 120, 180, 240, 300}, 3);
   const SphereFit fit = identify_from_sphere(model, poses, {}, model.tool_length_mm);
   const auto flagged = [&](const std::string& s) {
-    const auto it = std::find_if(fit.not_separable.begin(), fit.not_separable.end(), [&](const auto& n) { return n.symbol == s; });
+    const auto it =
+        std::find_if(fit.not_separable.begin(), fit.not_separable.end(), [&](const auto& n) { return n.symbol == s; });
     return it == fit.not_separable.end() ? nullptr : &*it;
   };
   // Along and about C's own line: the sphere elsewhere on the table.
@@ -108,8 +109,8 @@ TEST(SphereCentres, FindsTheRotaryLinesWithinTheirUncertainty) {
     if (e.symbol == "EB0B" || e.symbol == "EB0C")  // the sum of the pair, less the model's other one
       truth_value += truth.axes[truth.joint_of(e.symbol == "EB0B" ? 'C' : 'B')].location_rad[1] -
                      model.axes[model.joint_of(e.symbol == "EB0B" ? 'C' : 'B')].location_rad[1];
-    EXPECT_LE(std::abs(e.value - truth_value), 3 * e.uncertainty) << e.symbol << " " << e.value << " +- " << e.uncertainty
-                                                                   << " truth " << truth_value;
+    EXPECT_LE(std::abs(e.value - truth_value), 3 * e.uncertainty)
+        << e.symbol << " " << e.value << " +- " << e.uncertainty << " truth " << truth_value;
     EXPECT_GT(e.uncertainty, 0.0);
   }
   EXPECT_GE(fit.estimates.size(), 6u);
@@ -155,7 +156,8 @@ TEST_P(SphereCentresOn, TheIdentifiedMachineExplainsPosesItWasNotFittedTo) {
   EXPECT_GT(fit.rms_before_um, 5.0);
   EXPECT_LT(fit.rms_after_um, 3.0);
   machine::Model identified = model;
-  for (const LocationEstimate& e : fit.estimates) offset(identified, model.axes[e.joint].letter, e.component, e.value - e.before);
+  for (const LocationEstimate& e : fit.estimates)
+    offset(identified, model.axes[e.joint].letter, e.component, e.value - e.before);
   // Poses between the fitted ones, without noise: the tips' spread about their mean.
   std::vector<double> between;
   for (std::size_t i = 0; i + 1 < kind.tilts.size(); ++i) between.push_back((kind.tilts[i] + kind.tilts[i + 1]) / 2);
@@ -187,7 +189,8 @@ TEST_P(SphereCentresOn, TheIdentifiedMachineExplainsPosesItWasNotFittedTo) {
 
 INSTANTIATE_TEST_SUITE_P(Kinds, SphereCentresOn,
                          ::testing::Values(OtherKind{test::machine_path("ac_trunnion"), 'A', {0, -30, -60, -90}},
-                                           OtherKind{test::source_path("tests/unit/machines/data/bc_head.toml"), 'B',
+                                           OtherKind{test::source_path("tests/unit/machines/data/bc_head.toml"),
+                                                     'B',
                                                      {-60, -30, 0, 30, 60}}));
 
 // The uncertainty is honest: over 100 noise draws, the truth lies within 2 standard
@@ -200,9 +203,9 @@ TEST(SphereCentres, UncertaintyCoversTheTruthAsItSays) {
   offset(truth, 'B', 2, 0.008);
   int within = 0, total = 0;
   for (unsigned seed = 0; seed < 100; ++seed) {
-    const SphereFit fit = identify_from_sphere(model, plan(truth, {0, -45, -90}, {0, 90, 180, 270}, 100 + seed),
-                                               {"EX0C", "EY0C", "EA0C", "EX0B", "EZ0B", "EA0B", "EC0B"},
-                                               model.tool_length_mm);
+    const SphereFit fit =
+        identify_from_sphere(model, plan(truth, {0, -45, -90}, {0, 90, 180, 270}, 100 + seed),
+                             {"EX0C", "EY0C", "EA0C", "EX0B", "EZ0B", "EA0B", "EC0B"}, model.tool_length_mm);
     for (const LocationEstimate& e : fit.estimates) {
       const machine::Axis& a = truth.axes[static_cast<std::size_t>(e.joint)];
       const double t = e.component < 3 ? a.location_mm[e.component] : a.location_rad[e.component - 3];
@@ -240,7 +243,8 @@ TEST(SphereCentres, CommandLineWritesAMachineFileThatLoads) {
   // The standard uncertainty printed goes into the written line's comment, in the key's unit
   // (EX0C_mm: mm), where the report's "where from" shows it.
   std::smatch printed, in_file;
-  ASSERT_TRUE(std::regex_search(r.out, printed, std::regex(R"(EX0C = [-0-9.]+ um \+- ([0-9.]+) um \(standard uncertainty)")))
+  ASSERT_TRUE(
+      std::regex_search(r.out, printed, std::regex(R"(EX0C = [-0-9.]+ um \+- ([0-9.]+) um \(standard uncertainty)")))
       << r.out;
   const std::string text = test::file_text(dir / "out" / "mc300.toml");
   ASSERT_TRUE(std::regex_search(text, in_file, std::regex(R"(EX0C_mm = .*\+- ([0-9.]+) mm \(standard uncertainty\))")))
@@ -261,7 +265,8 @@ TEST(SphereCentres, ProbePlanAndItsLogCloseTheLoop) {
   auto r = test::run_volcomp("probe-plan " + test::machine_path("mc300") +
                              " --centre -300,-160,-200 --grid B=0,-45,-90 --grid C=0,90,180,270 -o " + program);
   ASSERT_EQ(r.exit_code, 0) << r.out;
-  const std::string rs274 = "cd " + dir.string() + " && HOME=" + dir.string() + " rs274 -g plan.ngc < /dev/null > rs274.out 2>&1";
+  const std::string rs274 =
+      "cd " + dir.string() + " && HOME=" + dir.string() + " rs274 -g plan.ngc < /dev/null > rs274.out 2>&1";
   EXPECT_EQ(std::system(rs274.c_str()), 0);
   std::ifstream rs274_out(dir / "rs274.out");
   const std::string canon((std::istreambuf_iterator<char>(rs274_out)), std::istreambuf_iterator<char>());
@@ -275,14 +280,14 @@ TEST(SphereCentres, ProbePlanAndItsLogCloseTheLoop) {
   const double reach = (25.0 + 2.0) / 2;
   const auto write_log = [&](const std::string& name, double reach_written, const std::string& axes) {
     std::ofstream log(dir / name);
-    log << "# volcomp probe log: sphere_diameter_mm 25.0000 ball_diameter_mm 2.0000 probe_length_mm 100.0000 axes " << axes
-        << "\n";
+    log << "# volcomp probe log: sphere_diameter_mm 25.0000 ball_diameter_mm 2.0000 probe_length_mm 100.0000 axes "
+        << axes << "\n";
     int pose = 0;
     for (const SpherePose& p : plan(truth, {0, -45, -90}, {0, 90, 180, 270}, 21)) {
       ++pose;
       const Eigen::Vector3d c(p.joints[0], p.joints[1], p.joints[2]);
       for (const Eigen::Vector3d& d : {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(-1, 0, 0),
-                                      Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, -1, 0)}) {
+                                       Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, -1, 0)}) {
         // Where the true machine's ball touches the sphere on the joints' line c + s d (the
         // linear axes' errors make s differ from the reach by up to a few um).
         const Eigen::Vector3d sphere = machine::tool_pose(truth, machine::Machine::Real, p.joints, 100.0).tip_mm;
@@ -310,13 +315,17 @@ TEST(SphereCentres, ProbePlanAndItsLogCloseTheLoop) {
   EXPECT_NE(r.out.find("probe log: 12 poses, sphere 25 mm, ball 2 mm; the points lie within 0.0"), std::string::npos)
       << r.out;
   const machine::Model written = machine::load_machine((dir / "out" / "mc300.toml").string());
-  EXPECT_NEAR(written.axes[written.joint_of('C')].location_mm[0], truth.axes[truth.joint_of('C')].location_mm[0], 0.002);
-  EXPECT_NEAR(written.axes[written.joint_of('B')].location_mm[2], truth.axes[truth.joint_of('B')].location_mm[2], 0.002);
+  EXPECT_NEAR(written.axes[written.joint_of('C')].location_mm[0], truth.axes[truth.joint_of('C')].location_mm[0],
+              0.002);
+  EXPECT_NEAR(written.axes[written.joint_of('B')].location_mm[2], truth.axes[truth.joint_of('B')].location_mm[2],
+              0.002);
 
-  r = test::run_volcomp("identify sphere " + test::machine_path("mc300") + " " + write_log("wrong.txt", reach + 0.5, "xyzbc"));
+  r = test::run_volcomp("identify sphere " + test::machine_path("mc300") + " " +
+                        write_log("wrong.txt", reach + 0.5, "xyzbc"));
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.out.find("off the sphere of diameter"), std::string::npos) << r.out;
-  r = test::run_volcomp("identify sphere " + test::machine_path("mc300") + " " + write_log("other.txt", reach, "xyzac"));
+  r = test::run_volcomp("identify sphere " + test::machine_path("mc300") + " " +
+                        write_log("other.txt", reach, "xyzac"));
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.out.find("other.txt:1: error: the log is of a machine with axes xyzac"), std::string::npos) << r.out;
   std::filesystem::remove_all(dir);

@@ -38,7 +38,8 @@ TEST(TravelSurvey, TheGridsLargestErrorIsTheCoresAtItsWorstPose) {
   EXPECT_DOUBLE_EQ(s.max_position_mm, largest);
   EXPECT_DOUBLE_EQ(s.max_direction_rad, largest_direction);
   ASSERT_EQ(s.worst_position.size(), n);
-  EXPECT_DOUBLE_EQ(machine::volumetric_error(model, s.worst_position, model.tool_length_mm).position_mm.norm(), largest);
+  EXPECT_DOUBLE_EQ(machine::volumetric_error(model, s.worst_position, model.tool_length_mm).position_mm.norm(),
+                   largest);
 }
 
 TEST(TravelSurvey, TheRandomPosesAreTheSameEveryRunAndInsideTheTravel) {

@@ -64,7 +64,8 @@ InitResult init_and_patch(const fs::path& ini, const std::string& machine = "mac
 }
 
 TEST(ConfigPatch, PutsVolkinsInTheXyzbcSample) {
-  if (!test::samples_installed()) GTEST_SKIP() << "LinuxCNC's sample configurations are not installed (" << test::kSampleConfigs << ")";
+  if (!test::samples_installed())
+    GTEST_SKIP() << "LinuxCNC's sample configurations are not installed (" << test::kSampleConfigs << ")";
   const fs::path original = test::kSampleConfigs / "table-rotary-tilting";
   const fs::path copy = test::scratch_folder("xyzbc_patch") / "table-rotary-tilting";
   fs::copy(original, copy, fs::copy_options::recursive);
@@ -76,20 +77,21 @@ TEST(ConfigPatch, PutsVolkinsInTheXyzbcSample) {
   EXPECT_NE(std::find(after.begin(), after.end(),
                       "KINEMATICS = volkins machine=xyzbc.toml coordinates=xyzbc sparm=identityfirst"),
             after.end());
-  EXPECT_NE(std::find(after.begin(), after.end(), "HALCMD = net  :tool-offset  volkins.tool-offset xyzbc-trt-gui.tool-offset"),
+  EXPECT_NE(std::find(after.begin(), after.end(),
+                      "HALCMD = net  :tool-offset  volkins.tool-offset xyzbc-trt-gui.tool-offset"),
             after.end());
   EXPECT_NE(std::find(after.begin(), after.end(), "HALCMD = addf volkins.update servo-thread 1"), after.end());
   // The lines the patch adds or changes, exactly; every other line kept, in order.
-  const std::set<std::string> changed{
-      "KINEMATICS = volkins machine=xyzbc.toml coordinates=xyzbc sparm=identityfirst",
-      "HALCMD = net  :tool-offset  volkins.tool-offset xyzbc-trt-gui.tool-offset",
-      "HALCMD = net  :x-offset    xyzbc-trt-gui.x-offset",
-      "HALCMD = net  :z-offset    xyzbc-trt-gui.z-offset",
-      "# volkins (volcomp init): its update function runs first in the servo thread",
-      "HALCMD = addf volkins.update servo-thread 1"};
-  EXPECT_EQ(added_lines(before, after, [](const std::string& line) {
-              return line.find("xyzbc-trt-kins.") != std::string::npos || line.rfind("KINEMATICS", 0) == 0;
-            }),
+  const std::set<std::string> changed{"KINEMATICS = volkins machine=xyzbc.toml coordinates=xyzbc sparm=identityfirst",
+                                      "HALCMD = net  :tool-offset  volkins.tool-offset xyzbc-trt-gui.tool-offset",
+                                      "HALCMD = net  :x-offset    xyzbc-trt-gui.x-offset",
+                                      "HALCMD = net  :z-offset    xyzbc-trt-gui.z-offset",
+                                      "# volkins (volcomp init): its update function runs first in the servo thread",
+                                      "HALCMD = addf volkins.update servo-thread 1"};
+  EXPECT_EQ(added_lines(before, after,
+                        [](const std::string& line) {
+                          return line.find("xyzbc-trt-kins.") != std::string::npos || line.rfind("KINEMATICS", 0) == 0;
+                        }),
             changed);
   // No HAL command of the configuration names a stock pin; every other file is unchanged. (Its
   // remap_subs/centering.ngc reads the rot-point pins guarded by `exists`, and its
@@ -107,7 +109,8 @@ TEST(ConfigPatch, PutsVolkinsInTheXyzbcSample) {
 // The bridgemill (5axiskins): 5axiskins.pivot-length taken off its net (pivotsum stays, its out
 // driving nothing), volkins.tool-offset on :tool-len, the signal motion.tooloffset.z drives.
 TEST(ConfigPatch, PutsVolkinsInTheBridgemillSample) {
-  if (!test::samples_installed()) GTEST_SKIP() << "LinuxCNC's sample configurations are not installed (" << test::kSampleConfigs << ")";
+  if (!test::samples_installed())
+    GTEST_SKIP() << "LinuxCNC's sample configurations are not installed (" << test::kSampleConfigs << ")";
   const fs::path original = test::kSampleConfigs / "bridgemill";
   const fs::path copy = test::scratch_folder("bridgemill_patch") / "bridgemill";
   fs::copy(original, copy, fs::copy_options::recursive);
@@ -117,11 +120,13 @@ TEST(ConfigPatch, PutsVolkinsInTheBridgemillSample) {
   const auto stock = [](const std::string& line) {
     return line.find("5axiskins.") != std::string::npos || line.find("KINEMATICS = 5axiskins") != std::string::npos;
   };
-  EXPECT_EQ(added_lines(lines_of(test::file_text(original / "5axis.ini")), lines_of(test::file_text(copy / "5axis.ini")), stock),
+  EXPECT_EQ(added_lines(lines_of(test::file_text(original / "5axis.ini")),
+                        lines_of(test::file_text(copy / "5axis.ini")), stock),
             (std::set<std::string>{" KINEMATICS = volkins machine=5axis.toml coordinates=xyzbcwy world=tcp",
                                    "# volkins (volcomp init): its update function runs first in the servo thread; it "
                                    "takes LinuxCNC's tool length offset",
-                                   "HALCMD = addf volkins.update servo-thread 1", "HALCMD = net :tool-len volkins.tool-offset"}));
+                                   "HALCMD = addf volkins.update servo-thread 1",
+                                   "HALCMD = net :tool-len volkins.tool-offset"}));
   const std::vector<std::string> hal_before = lines_of(test::file_text(original / "5axisgui.hal"));
   const std::vector<std::string> hal_after = lines_of(test::file_text(copy / "5axisgui.hal"));
   EXPECT_EQ(added_lines(hal_before, hal_after, stock), std::set<std::string>{});
@@ -132,7 +137,8 @@ TEST(ConfigPatch, PutsVolkinsInTheBridgemillSample) {
     if (!entry.is_regular_file()) continue;
     const std::string name = entry.path().filename().string();
     if (name != "5axis.ini" && name != "5axisgui.hal" && name != "5axis.toml") {
-      EXPECT_EQ(test::file_text(entry.path()), test::file_text(original / fs::relative(entry.path(), copy))) << entry.path();
+      EXPECT_EQ(test::file_text(entry.path()), test::file_text(original / fs::relative(entry.path(), copy)))
+          << entry.path();
     }
   }
 }
@@ -148,9 +154,9 @@ TEST(ConfigPatch, RewritesTheConfigurationsOwnHalFilesByteForByte) {
       "[HAL]\r\nHALFILE = LIB:sim.tcl\r\nHALFILE = kins.hal\r\n[EMCIO]\r\nTOOL_TABLE = t.tbl\r\n";
   const double limits[5][2] = {{-1, 1}, {-2, 2}, {-3, 3}, {-90, 90}, {-36000, 36000}};
   for (int j = 0; j < 5; ++j)
-    ini += "[JOINT_" + std::to_string(j) + "]\r\nTYPE = " + (j < 3 ? "LINEAR" : "ANGULAR") + "\r\nMIN_LIMIT = " +
-           std::to_string(static_cast<int>(limits[j][0])) + "\r\nMAX_LIMIT = " +
-           std::to_string(static_cast<int>(limits[j][1])) + "\r\n";
+    ini += "[JOINT_" + std::to_string(j) + "]\r\nTYPE = " + (j < 3 ? "LINEAR" : "ANGULAR") +
+           "\r\nMIN_LIMIT = " + std::to_string(static_cast<int>(limits[j][0])) +
+           "\r\nMAX_LIMIT = " + std::to_string(static_cast<int>(limits[j][1])) + "\r\n";
   test::write_file(dir / "own.ini", ini);
   test::write_file(dir / "t.tbl", "T1 P1 Z50 D6 ;long\nT2 P2 Z75.5 ;longer\n");
   const std::string hal =
@@ -176,7 +182,8 @@ TEST(ConfigPatch, RewritesTheConfigurationsOwnHalFilesByteForByte) {
             "sets :xoff 1\n"
             "addf motion-controller servo-thread");
   std::string patched_ini = ini;
-  patched_ini.replace(patched_ini.find("xyzac-trt-kins   "), 17, "volkins machine=machine.toml coordinates=xyzac world=tcp");
+  patched_ini.replace(patched_ini.find("xyzac-trt-kins   "), 17,
+                      "volkins machine=machine.toml coordinates=xyzac world=tcp");
   patched_ini.insert(patched_ini.find("[EMCIO]"),
                      "# volkins (volcomp init): its update function runs first in the servo thread\r\n"
                      "HALCMD = addf volkins.update servo-thread 1\r\n");
@@ -199,10 +206,10 @@ TEST(ConfigPatch, RewritesTheConfigurationsOwnHalFilesByteForByte) {
 TEST(ConfigPatch, RefusesWhatItCannotRewrite) {
   const fs::path dir = test::scratch_folder("cannot");
   const fs::path lib = test::scratch_folder("cannot_lib");
-  std::string ini = "[KINS]\nKINEMATICS = xyzbc-trt-kins\nJOINTS = 5\n[TRAJ]\nCOORDINATES = XYZBC\nLINEAR_UNITS = mm\n"
-                    "[HAL]\nHALFILE = m.hal\n";
-  for (int j = 0; j < 5; ++j)
-    ini += "[JOINT_" + std::to_string(j) + "]\nMIN_LIMIT = -1\nMAX_LIMIT = 1\n";
+  std::string ini =
+      "[KINS]\nKINEMATICS = xyzbc-trt-kins\nJOINTS = 5\n[TRAJ]\nCOORDINATES = XYZBC\nLINEAR_UNITS = mm\n"
+      "[HAL]\nHALFILE = m.hal\n";
+  for (int j = 0; j < 5; ++j) ini += "[JOINT_" + std::to_string(j) + "]\nMIN_LIMIT = -1\nMAX_LIMIT = 1\n";
   test::write_file(dir / "m.ini", ini);
   auto refusal = [&](const std::string& hal) -> std::string {
     test::write_file(dir / "m.hal", hal);
@@ -214,29 +221,33 @@ TEST(ConfigPatch, RefusesWhatItCannotRewrite) {
     return "accepted";
   };
   EXPECT_EQ(refusal("loadrt [KINS]KINEMATICS\ngetp xyzbc-trt-kins.x-offset\n"),
-            (dir / "m.hal").string() + ":2: error: `getp xyzbc-trt-kins.x-offset` names xyzbc-trt-kins.x-offset: init "
-                                       "rewrites the setp and net lines of xyzbc-trt-kins pins only; change this one "
-                                       "by hand (volkins has no such pin)");
+            (dir / "m.hal").string() +
+                ":2: error: `getp xyzbc-trt-kins.x-offset` names xyzbc-trt-kins.x-offset: init "
+                "rewrites the setp and net lines of xyzbc-trt-kins pins only; change this one "
+                "by hand (volkins has no such pin)");
   EXPECT_EQ(refusal("setp xyzbc-trt-kins.no-such-pin 1\n"),
             (dir / "m.hal").string() + ":1: error: xyzbc-trt-kins has no pin xyzbc-trt-kins.no-such-pin");
   EXPECT_EQ(refusal("net :x other.pin => xyzbc-trt-kins.x-offset\n"),
-            (dir / "m.hal").string() + ":1: error: xyzbc-trt-kins.x-offset follows other.pin at run time (both are on "
-                                       "signal :x, which no sets gives a value); volkins takes the geometry from the "
-                                       "machine file: set it with setp");
+            (dir / "m.hal").string() +
+                ":1: error: xyzbc-trt-kins.x-offset follows other.pin at run time (both are on "
+                "signal :x, which no sets gives a value); volkins takes the geometry from the "
+                "machine file: set it with setp");
   EXPECT_EQ(refusal("loadrt xyzbc-trt-kins sparm=identityfirst\n"),
-            (dir / "m.hal").string() + ":1: error: `loadrt xyzbc-trt-kins sparm=identityfirst` loads xyzbc-trt-kins "
-                                       "with other parameters than [KINS]KINEMATICS (m.ini:2 `KINEMATICS = "
-                                       "xyzbc-trt-kins`): make them the same (`loadrt [KINS]KINEMATICS`)");
+            (dir / "m.hal").string() +
+                ":1: error: `loadrt xyzbc-trt-kins sparm=identityfirst` loads xyzbc-trt-kins "
+                "with other parameters than [KINS]KINEMATICS (m.ini:2 `KINEMATICS = "
+                "xyzbc-trt-kins`): make them the same (`loadrt [KINS]KINEMATICS`)");
   // A stock pin in a file outside the configuration folder.
   test::write_file(lib / "outside.hal", "setp xyzbc-trt-kins.x-offset 3\n");
   std::string with_lib = ini;
   with_lib.replace(with_lib.find("HALFILE = m.hal"), 15, "HALFILE = " + (lib / "outside.hal").string());
   test::write_file(dir / "m.ini", with_lib);
   const std::string outside = refusal("");
-  EXPECT_EQ(outside.rfind((lib / "outside.hal").string() + ":1: error: `setp xyzbc-trt-kins.x-offset 3` sets a "
-                                                           "xyzbc-trt-kins pin, in a file outside the configuration folder",
-                          0),
-            0u)
+  EXPECT_EQ(
+      outside.rfind((lib / "outside.hal").string() + ":1: error: `setp xyzbc-trt-kins.x-offset 3` sets a "
+                                                     "xyzbc-trt-kins pin, in a file outside the configuration folder",
+                    0),
+      0u)
       << outside;
 }
 

@@ -163,8 +163,8 @@ TEST(HalFile, ReadsLoadCommandsAndTheSignalOfAPin) {
 }
 
 TEST(HalFile, RefusesAnUndefinedIniReferenceWithItsLine) {
-  const fs::path ini = configuration("undefined", {{"m.ini", "[HAL]\nHALFILE = m.hal\n"},
-                                                   {"m.hal", "# first\nsetp a.b [NOPE]VALUE\n"}});
+  const fs::path ini =
+      configuration("undefined", {{"m.ini", "[HAL]\nHALFILE = m.hal\n"}, {"m.hal", "# first\nsetp a.b [NOPE]VALUE\n"}});
   try {
     read_hal(LinuxcncIni::read(ini.string()));
     FAIL() << "an undefined reference was accepted";

@@ -38,9 +38,10 @@ Eigen::Vector3d stock_forward(const Trt& p, double dt, const Joints& j) {
   const double t = j[3] * kRad, c = j[4] * kRad, dz = p.dz + dt;
   if (p.bc) {
     const double u = j[0] - p.dx - p.xr, v = j[1] - p.yr, w = j[2] - dz - p.zr;
-    return {std::cos(c) * std::cos(t) * u + std::sin(c) * v - std::cos(c) * std::sin(t) * w + std::cos(c) * p.dx + p.xr,
-            -std::sin(c) * std::cos(t) * u + std::cos(c) * v + std::sin(c) * std::sin(t) * w - std::sin(c) * p.dx + p.yr,
-            std::sin(t) * u + std::cos(t) * w + dz + p.zr};
+    return {
+        std::cos(c) * std::cos(t) * u + std::sin(c) * v - std::cos(c) * std::sin(t) * w + std::cos(c) * p.dx + p.xr,
+        -std::sin(c) * std::cos(t) * u + std::cos(c) * v + std::sin(c) * std::sin(t) * w - std::sin(c) * p.dx + p.yr,
+        std::sin(t) * u + std::cos(t) * w + dz + p.zr};
   }
   const double u = j[0] - p.xr, v = j[1] - p.dy - p.yr, w = j[2] - dz - p.zr;
   return {std::cos(c) * u + std::sin(c) * std::cos(t) * v + std::sin(c) * std::sin(t) * w + std::sin(c) * p.dy + p.xr,
@@ -124,7 +125,8 @@ void expect_vector(const Eigen::Vector3d& v, const Eigen::Vector3d& expected, co
 }
 
 TEST(StockKinematics, XyzbcSampleMatchesXyzbcTrtKins) {
-  if (!test::samples_installed()) GTEST_SKIP() << "LinuxCNC's sample configurations are not installed (" << test::kSampleConfigs << ")";
+  if (!test::samples_installed())
+    GTEST_SKIP() << "LinuxCNC's sample configurations are not installed (" << test::kSampleConfigs << ")";
   const Generated g = generate(test::kSampleConfigs / "table-rotary-tilting/xyzbc-trt.ini", "xyzbc_sample");
   // The sample's values: x-offset -20, z-offset -15 (sets on their signals), rot points 0.
   expect_vector(g.model.axes[3].pole_mm, {-20, 0, -15}, "B pole");
@@ -135,7 +137,8 @@ TEST(StockKinematics, XyzbcSampleMatchesXyzbcTrtKins) {
   EXPECT_EQ(g.model.tool_length_mm, 10.0);  // T2 Z10 of xyzbc-trt.tbl
   EXPECT_EQ(g.model.info.name, "sim-xyzbc-trt-kins (switchkins)");
   EXPECT_TRUE(g.result.machine.identity_first);
-  EXPECT_EQ(g.result.patch.kinematics, "volkins machine=" + g.result.machine_path + " coordinates=xyzbc sparm=identityfirst");
+  EXPECT_EQ(g.result.patch.kinematics,
+            "volkins machine=" + g.result.machine_path + " coordinates=xyzbc sparm=identityfirst");
   EXPECT_NE(g.result.machine_text.find("x-offset = -20: xyzbc-trt.ini:65 `HALCMD = sets :x-offset     -20`"),
             std::string::npos)
       << g.result.machine_text;
@@ -143,7 +146,8 @@ TEST(StockKinematics, XyzbcSampleMatchesXyzbcTrtKins) {
 }
 
 TEST(StockKinematics, XyzacSampleMatchesXyzacTrtKins) {
-  if (!test::samples_installed()) GTEST_SKIP() << "LinuxCNC's sample configurations are not installed (" << test::kSampleConfigs << ")";
+  if (!test::samples_installed())
+    GTEST_SKIP() << "LinuxCNC's sample configurations are not installed (" << test::kSampleConfigs << ")";
   const Generated g = generate(test::kSampleConfigs / "table-rotary-tilting/xyzac-trt.ini", "xyzac_sample");
   // y-offset 20, z-offset 10.
   expect_vector(g.model.axes[3].pole_mm, {0, 20, 10}, "A pole");
@@ -158,26 +162,42 @@ fs::path trt_configuration(const std::string& name, const Trt& p) {
   const std::string module = p.bc ? "xyzbc-trt-kins" : "xyzac-trt-kins";
   const char tilt = p.bc ? 'B' : 'A';
   const fs::path dir = test::scratch_folder(name);
-  std::string ini = "[EMC]\nMACHINE = random trt\n[KINS]\nKINEMATICS = " + module + "\nJOINTS = 5\n"
-                    "[TRAJ]\nCOORDINATES = XYZ" + std::string(1, tilt) + "C\nLINEAR_UNITS = mm\nANGULAR_UNITS = deg\n"
-                    "[HAL]\nHALFILE = trt.hal\nHALCMD = net :tool-offset motion.tooloffset.z " + module + ".tool-offset\n";
+  std::string ini = "[EMC]\nMACHINE = random trt\n[KINS]\nKINEMATICS = " + module +
+                    "\nJOINTS = 5\n"
+                    "[TRAJ]\nCOORDINATES = XYZ" +
+                    std::string(1, tilt) +
+                    "C\nLINEAR_UNITS = mm\nANGULAR_UNITS = deg\n"
+                    "[HAL]\nHALFILE = trt.hal\nHALCMD = net :tool-offset motion.tooloffset.z " +
+                    module + ".tool-offset\n";
   const double limits[5][2] = {{-300, 250}, {-200, 220}, {-350, 100}, {-120, 120}, {-36000, 36000}};
   for (int j = 0; j < 5; ++j)
-    ini += "[JOINT_" + std::to_string(j) + "]\nTYPE = " + (j < 3 ? "LINEAR" : "ANGULAR") + "\nMIN_LIMIT = " +
-           std::to_string(limits[j][0]) + "\nMAX_LIMIT = " + std::to_string(limits[j][1]) + "\n";
+    ini += "[JOINT_" + std::to_string(j) + "]\nTYPE = " + (j < 3 ? "LINEAR" : "ANGULAR") +
+           "\nMIN_LIMIT = " + std::to_string(limits[j][0]) + "\nMAX_LIMIT = " + std::to_string(limits[j][1]) + "\n";
   test::write_file(dir / "trt.ini", ini);
   auto number = [](double v) {
     char text[40];
     std::snprintf(text, sizeof text, "%.17g", v);
     return std::string(text);
   };
-  test::write_file(dir / "trt.hal", "loadrt [KINS]KINEMATICS\n"
-                                    "setp " + module + ".x-rot-point " + number(p.xr) + "\n"
-                                    "setp " + module + ".y-rot-point " + number(p.yr) + "\n"
-                                    "net :zr " + module + ".z-rot-point\nsets :zr " + number(p.zr) + "\n"
-                                    "setp " + module + ".x-offset " + number(p.dx) + "\n"
-                                    "setp " + module + ".y-offset " + number(p.dy) + "\n"
-                                    "net :dz => " + module + ".z-offset\nsets :dz " + number(p.dz) + "\n");
+  test::write_file(dir / "trt.hal",
+                   "loadrt [KINS]KINEMATICS\n"
+                   "setp " +
+                       module + ".x-rot-point " + number(p.xr) +
+                       "\n"
+                       "setp " +
+                       module + ".y-rot-point " + number(p.yr) +
+                       "\n"
+                       "net :zr " +
+                       module + ".z-rot-point\nsets :zr " + number(p.zr) +
+                       "\n"
+                       "setp " +
+                       module + ".x-offset " + number(p.dx) +
+                       "\n"
+                       "setp " +
+                       module + ".y-offset " + number(p.dy) +
+                       "\n"
+                       "net :dz => " +
+                       module + ".z-offset\nsets :dz " + number(p.dz) + "\n");
   return dir / "trt.ini";
 }
 
@@ -186,8 +206,13 @@ TEST(StockKinematics, RandomRotationPointsAndOffsetsMatchTheStockModules) {
   auto uniform = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
   for (bool bc : {true, false}) {
     for (int geometry = 0; geometry < 5; ++geometry) {
-      const Trt p{bc, uniform(-200, 200), uniform(-200, 200), uniform(-200, 200), uniform(-100, 100),
-                  uniform(-100, 100), uniform(-100, 100)};
+      const Trt p{bc,
+                  uniform(-200, 200),
+                  uniform(-200, 200),
+                  uniform(-200, 200),
+                  uniform(-100, 100),
+                  uniform(-100, 100),
+                  uniform(-100, 100)};
       SCOPED_TRACE(std::string(bc ? "xyzbc" : "xyzac") + " geometry " + std::to_string(geometry));
       const std::string name = std::string(bc ? "bc" : "ac") + std::to_string(geometry);
       const Generated g = generate(trt_configuration(name, p), name + "_machine");
@@ -280,7 +305,8 @@ void record_largest_difference(double worst) {
 }
 
 TEST(StockKinematics, BridgemillSampleMatches5axiskins) {
-  if (!test::samples_installed()) GTEST_SKIP() << "LinuxCNC's sample configurations are not installed (" << test::kSampleConfigs << ")";
+  if (!test::samples_installed())
+    GTEST_SKIP() << "LinuxCNC's sample configurations are not installed (" << test::kSampleConfigs << ")";
   const Generated g = generate(test::kSampleConfigs / "bridgemill/5axis.ini", "bridgemill_sample");
   // pivot-length = pivotsum.out = 5axisgui.pivot_len (250, its default) + motion.tooloffset.z.
   expect_vector(g.model.axes[4].pole_mm, {0, 0, 250}, "C pole");
@@ -295,14 +321,14 @@ TEST(StockKinematics, BridgemillSampleMatches5axiskins) {
   EXPECT_EQ(g.model.axes[1].travel_max, 500.0);   // [JOINT_1], the first Y
   EXPECT_EQ(g.result.machine.coordinates, "xyzbcwy");
   EXPECT_EQ(g.result.patch.kinematics, "volkins machine=" + g.result.machine_path + " coordinates=xyzbcwy world=tcp");
-  for (const char* origin : {"5axisgui.hal:29 `net :pivot-len => 5axiskins.pivot-length`",
-                             "5axisgui.hal:28 `net :pivot-len <= pivotsum.out`",
-                             "5axisgui.hal:18 `loadrt sum2 names=pivotsum`",
-                             "5axisgui.hal:25 `net :tool-len => pivotsum.in1`",
-                             "in0 = 250: 5axisgui.pivot_len (5axisgui.hal:22 `net :gui-pivot-len => pivotsum.in0`), "
-                             "5axisgui's pivot_len: 5axisgui.hal:1 `loadusr -W 5axisgui`, no pivot_len=: 5axisgui's "
-                             "default 250",
-                             "tool_axis_coordinate = \"W\"        # joint 5 of 5axiskins coordinates=xyzbcwy (5axis.ini:98 "})
+  for (const char* origin :
+       {"5axisgui.hal:29 `net :pivot-len => 5axiskins.pivot-length`",
+        "5axisgui.hal:28 `net :pivot-len <= pivotsum.out`", "5axisgui.hal:18 `loadrt sum2 names=pivotsum`",
+        "5axisgui.hal:25 `net :tool-len => pivotsum.in1`",
+        "in0 = 250: 5axisgui.pivot_len (5axisgui.hal:22 `net :gui-pivot-len => pivotsum.in0`), "
+        "5axisgui's pivot_len: 5axisgui.hal:1 `loadusr -W 5axisgui`, no pivot_len=: 5axisgui's "
+        "default 250",
+        "tool_axis_coordinate = \"W\"        # joint 5 of 5axiskins coordinates=xyzbcwy (5axis.ini:98 "})
     EXPECT_NE(g.result.machine_text.find(origin), std::string::npos) << origin << "\n" << g.result.machine_text;
   record_largest_difference(expect_five_axis_kinematics(g.model, {}, 2000, 3));
 }
@@ -311,13 +337,14 @@ TEST(StockKinematics, BridgemillSampleMatches5axiskins) {
 // and a constant (the other input, by setp or sets), with a gain and an offset.
 struct FiveAxisGeometry {
   PivotSum sum;
-  int tool = 1;             // the input on motion.tooloffset.z
-  bool names = true;        // loadrt sum2 names=..., else count=2 (sum2.1)
-  bool sets = false;        // the constant by sets on its signal, else setp
+  int tool = 1;       // the input on motion.tooloffset.z
+  bool names = true;  // loadrt sum2 names=..., else count=2 (sum2.1)
+  bool sets = false;  // the constant by sets on its signal, else setp
   bool identity_first = false;
 };
 
-fs::path five_axis_configuration(const std::string& name, const FiveAxisGeometry& p, const std::string& extra_hal = "") {
+fs::path five_axis_configuration(const std::string& name, const FiveAxisGeometry& p,
+                                 const std::string& extra_hal = "") {
   const fs::path dir = test::scratch_folder(name);
   std::string ini = std::string("[EMC]\nMACHINE = random 5axis\n[KINS]\nKINEMATICS = 5axiskins") +
                     (p.identity_first ? " sparm=identityfirst" : "") +
@@ -325,8 +352,8 @@ fs::path five_axis_configuration(const std::string& name, const FiveAxisGeometry
                     "[HAL]\nHALFILE = fiveaxis.hal\n";
   const double limits[6][2] = {{-400, 300}, {-250, 350}, {-450, 80}, {-110, 95}, {-36000, 36000}, {-100, 500}};
   for (int j = 0; j < 6; ++j)
-    ini += "[JOINT_" + std::to_string(j) + "]\nTYPE = " + (j < 3 || j == 5 ? "LINEAR" : "ANGULAR") + "\nMIN_LIMIT = " +
-           std::to_string(limits[j][0]) + "\nMAX_LIMIT = " + std::to_string(limits[j][1]) + "\n";
+    ini += "[JOINT_" + std::to_string(j) + "]\nTYPE = " + (j < 3 || j == 5 ? "LINEAR" : "ANGULAR") +
+           "\nMIN_LIMIT = " + std::to_string(limits[j][0]) + "\nMAX_LIMIT = " + std::to_string(limits[j][1]) + "\n";
   test::write_file(dir / "fiveaxis.ini", ini);
   auto number = [](double v) {
     char text[40];
@@ -335,14 +362,21 @@ fs::path five_axis_configuration(const std::string& name, const FiveAxisGeometry
   };
   const std::string s = p.names ? "pivot" : "sum2.1";
   const std::string tool = s + ".in" + std::to_string(p.tool), constant = s + ".in" + std::to_string(1 - p.tool);
-  std::string hal = "loadrt [KINS]KINEMATICS\n" + std::string(p.names ? "loadrt sum2 names=other,pivot\n" : "loadrt sum2 count=2\n") +
-                    "addf " + s + " servo-thread\n"
-                    "net :tool-length motion.tooloffset.z => " + tool + "\n" +
-                    (p.sets ? "net :mechanical-pivot => " + constant + "\nsets :mechanical-pivot " + number(p.sum.pivot) + "\n"
-                            : "setp " + constant + " " + number(p.sum.pivot) + "\n") +
-                    "setp " + s + ".gain" + std::to_string(1 - p.tool) + " " + number(p.sum.gain) + "\n"
-                    "setp " + s + ".offset " + number(p.sum.offset) + "\n"
-                    "net :pivot-length " + s + ".out => 5axiskins.pivot-length\n" + extra_hal;
+  std::string hal =
+      "loadrt [KINS]KINEMATICS\n" + std::string(p.names ? "loadrt sum2 names=other,pivot\n" : "loadrt sum2 count=2\n") +
+      "addf " + s +
+      " servo-thread\n"
+      "net :tool-length motion.tooloffset.z => " +
+      tool + "\n" +
+      (p.sets ? "net :mechanical-pivot => " + constant + "\nsets :mechanical-pivot " + number(p.sum.pivot) + "\n"
+              : "setp " + constant + " " + number(p.sum.pivot) + "\n") +
+      "setp " + s + ".gain" + std::to_string(1 - p.tool) + " " + number(p.sum.gain) +
+      "\n"
+      "setp " +
+      s + ".offset " + number(p.sum.offset) +
+      "\n"
+      "net :pivot-length " +
+      s + ".out => 5axiskins.pivot-length\n" + extra_hal;
   test::write_file(dir / "fiveaxis.hal", hal);
   return dir / "fiveaxis.ini";
 }
@@ -375,14 +409,16 @@ TEST(StockKinematics, RandomPivotLengthsMatch5axiskins) {
 TEST(StockKinematics, TakesThePivotFrom5axisguisArgument) {
   // The bridgemill way, with pivot_len= on the loadusr line (-Wn: halcmd's option with a name).
   const fs::path ini = five_axis_configuration("fiveaxis_gui", {});
-  test::write_file(ini.parent_path() / "fiveaxis.hal",
-                   "loadrt [KINS]KINEMATICS\nloadusr -Wn 5axisgui 5axisgui pivot_len=312.5\nloadrt sum2\n"
-                   "net :gui-pivot-len <= 5axisgui.pivot_len\nnet :gui-pivot-len => sum2.0.in0\nsetp sum2.0.gain0 2\n"
-                   "net :tool-len <= motion.tooloffset.z => sum2.0.in1\nnet :pivot-len sum2.0.out 5axiskins.pivot-length\n");
+  test::write_file(
+      ini.parent_path() / "fiveaxis.hal",
+      "loadrt [KINS]KINEMATICS\nloadusr -Wn 5axisgui 5axisgui pivot_len=312.5\nloadrt sum2\n"
+      "net :gui-pivot-len <= 5axisgui.pivot_len\nnet :gui-pivot-len => sum2.0.in0\nsetp sum2.0.gain0 2\n"
+      "net :tool-len <= motion.tooloffset.z => sum2.0.in1\nnet :pivot-len sum2.0.out 5axiskins.pivot-length\n");
   const Generated g = generate(ini, "fiveaxis_gui_machine");
   expect_vector(g.model.axes[4].pole_mm, {0, 0, 625}, "C pole");  // 2 x 312.5
-  EXPECT_NE(g.result.machine_text.find("in0 = 312.5: 5axisgui.pivot_len (fiveaxis.hal:5 `net :gui-pivot-len => sum2.0.in0`), "
-                                       "5axisgui's pivot_len: fiveaxis.hal:2 `loadusr -Wn 5axisgui 5axisgui pivot_len=312.5`"),
+  EXPECT_NE(g.result.machine_text.find(
+                "in0 = 312.5: 5axisgui.pivot_len (fiveaxis.hal:5 `net :gui-pivot-len => sum2.0.in0`), "
+                "5axisgui's pivot_len: fiveaxis.hal:2 `loadusr -Wn 5axisgui 5axisgui pivot_len=312.5`"),
             std::string::npos)
       << g.result.machine_text;
   record_largest_difference(expect_five_axis_kinematics(g.model, {312.5, 2.0, 0.0}, 200, 4));
@@ -400,7 +436,8 @@ LoadError refusal(const fs::path& ini) {
 }
 
 TEST(StockKinematics, RefusesTheSamplesTheModelCannotExpress) {
-  if (!test::samples_installed()) GTEST_SKIP() << "LinuxCNC's sample configurations are not installed (" << test::kSampleConfigs << ")";
+  if (!test::samples_installed())
+    GTEST_SKIP() << "LinuxCNC's sample configurations are not installed (" << test::kSampleConfigs << ")";
   // (bridgemill, 5axiskins, is accepted: BridgemillSampleMatches5axiskins.)
   const LoadError max5 = refusal(test::kSampleConfigs / "max5/max5kins.ini");
   EXPECT_EQ(max5.where().line, 4);
@@ -418,8 +455,9 @@ TEST(StockKinematics, RefusesTheSamplesTheModelCannotExpress) {
 
 // The pivot lengths init cannot follow, and the coordinates volkins cannot pass through.
 TEST(StockKinematics, Refuses5axiskinsPivotLengthsThatDoNotFollowTheToolOffset) {
-  const std::string why = "with a pivot length that does not follow motion.tooloffset.z, G43 moves world Z only, which "
-                          "volkins' TCP world does not express";
+  const std::string why =
+      "with a pivot length that does not follow motion.tooloffset.z, G43 moves world Z only, which "
+      "volkins' TCP world does not express";
   const fs::path ini = five_axis_configuration("fiveaxis_refused", {});
   const fs::path hal = ini.parent_path() / "fiveaxis.hal";
   struct Case {
@@ -432,16 +470,19 @@ TEST(StockKinematics, Refuses5axiskinsPivotLengthsThatDoNotFollowTheToolOffset) 
       {head + "setp 5axiskins.pivot-length 300\n", 3, "5axiskins.pivot-length is the constant 300: " + why},
       {head + "net :p => 5axiskins.pivot-length\nsets :p 300\n", 4,
        "5axiskins.pivot-length is the constant 300 (sets on its signal :p): " + why},
-      {head, -4, "5axiskins.pivot-length is netted nowhere in the HAL files read: it keeps 5axiskins' default 250, a "
-                "constant: " + why},
+      {head, -4,
+       "5axiskins.pivot-length is netted nowhere in the HAL files read: it keeps 5axiskins' default 250, a "
+       "constant: " +
+           why},
       {head + "net :p other.out => 5axiskins.pivot-length\n", 3,
        "5axiskins.pivot-length follows other.out at run time (signal :p), which is not the out of a sum2 loaded in the "
        "HAL files read"},
       // The constant part live from another pin than 5axisgui's pivot_len.
       {head + "net :t motion.tooloffset.z => pivot.in1\nnet :c gui.pivot => pivot.in0\nnet :p pivot.out => "
               "5axiskins.pivot-length\n",
-       4, "pivot.in0 follows gui.pivot at run time (both are on signal :c, which no sets gives a value): the pivot "
-          "length's other part must be a constant"},
+       4,
+       "pivot.in0 follows gui.pivot at run time (both are on signal :c, which no sets gives a value): the pivot "
+       "length's other part must be a constant"},
       // The tool offset with another gain.
       {head + "net :t motion.tooloffset.z => pivot.in1\nsetp pivot.in0 250\nsetp pivot.gain1 2\nnet :p pivot.out => "
               "5axiskins.pivot-length\n",
@@ -449,7 +490,8 @@ TEST(StockKinematics, Refuses5axiskinsPivotLengthsThatDoNotFollowTheToolOffset) 
       // No input on the tool offset.
       {head + "setp pivot.in0 250\nnet :p pivot.out => 5axiskins.pivot-length\n", 4,
        "5axiskins.pivot-length follows pivot.out, but neither pivot.in0 nor pivot.in1 is on the signal "
-       "motion.tooloffset.z drives (it is netted nowhere); " + why},
+       "motion.tooloffset.z drives (it is netted nowhere); " +
+           why},
       // Both.
       {head + "net :t motion.tooloffset.z => pivot.in1 pivot.in0\nnet :p pivot.out => 5axiskins.pivot-length\n", 4,
        "5axiskins.pivot-length follows pivot.out, but both pivot.in0 and pivot.in1 are on :t: the pivot length would grow "
@@ -474,10 +516,11 @@ TEST(StockKinematics, Refuses5axiskinsPivotLengthsThatDoNotFollowTheToolOffset) 
   test::write_file(ini, text);
   const LoadError u = refusal(ini);
   EXPECT_EQ(u.where().line, 4);
-  EXPECT_EQ(u.message(), "5axiskins coordinates=xyzbcwu (fiveaxis.ini:4 `KINEMATICS = 5axiskins coordinates=xyzbcwu`) has "
-                         "U, which 5axiskins passes through to its joint one-to-one: volkins does not pass it through "
-                         "(its joints are the machine file's axes X Y Z B C and the tool-axis coordinate W); remove the "
-                         "joint");
+  EXPECT_EQ(u.message(),
+            "5axiskins coordinates=xyzbcwu (fiveaxis.ini:4 `KINEMATICS = 5axiskins coordinates=xyzbcwu`) has "
+            "U, which 5axiskins passes through to its joint one-to-one: volkins does not pass it through "
+            "(its joints are the machine file's axes X Y Z B C and the tool-axis coordinate W); remove the "
+            "joint");
   // W is required, as by 5axiskins.
   text.replace(text.find("coordinates=xyzbcwu"), 19, "coordinates=xyzbc");
   test::write_file(ini, text);
@@ -487,8 +530,9 @@ TEST(StockKinematics, Refuses5axiskinsPivotLengthsThatDoNotFollowTheToolOffset) 
 
 TEST(StockKinematics, GantryKeepsEachAxisOnceWithItsFirstJointsTravel) {
   const fs::path dir = test::scratch_folder("gantry");
-  std::string ini = "[KINS]\nKINEMATICS = trivkins coordinates=XYYZ kinstype=BOTH\nJOINTS = 4\n"
-                    "[TRAJ]\nCOORDINATES = X Y Y Z\nLINEAR_UNITS = mm\n[HAL]\nHALFILE = g.hal\n";
+  std::string ini =
+      "[KINS]\nKINEMATICS = trivkins coordinates=XYYZ kinstype=BOTH\nJOINTS = 4\n"
+      "[TRAJ]\nCOORDINATES = X Y Y Z\nLINEAR_UNITS = mm\n[HAL]\nHALFILE = g.hal\n";
   const double limits[4][2] = {{0, 400}, {0, 2000}, {-5, 2005}, {-100, 0}};
   for (int j = 0; j < 4; ++j)
     ini += "[JOINT_" + std::to_string(j) + "]\nTYPE = LINEAR\nMIN_LIMIT = " + std::to_string(limits[j][0]) +
@@ -515,12 +559,13 @@ TEST(StockKinematics, GantryKeepsEachAxisOnceWithItsFirstJointsTravel) {
 
 TEST(StockKinematics, TrivkinsRotaryAxesAreCarriedByTheTableWithAPlaceholderPole) {
   const fs::path dir = test::scratch_folder("xyzac_triv");
-  std::string ini = "[KINS]\nKINEMATICS = trivkins coordinates=xyzac\nJOINTS = 5\n"
-                    "[TRAJ]\nCOORDINATES = XYZAC\nLINEAR_UNITS = mm\nANGULAR_UNITS = degree\n[HAL]\nHALCMD = loadrt trivkins coordinates=xyzac\n";
+  std::string ini =
+      "[KINS]\nKINEMATICS = trivkins coordinates=xyzac\nJOINTS = 5\n"
+      "[TRAJ]\nCOORDINATES = XYZAC\nLINEAR_UNITS = mm\nANGULAR_UNITS = degree\n[HAL]\nHALCMD = loadrt trivkins coordinates=xyzac\n";
   const double limits[5][2] = {{0, 400}, {0, 300}, {-200, 0}, {-100, 30}, {-720, 720}};
   for (int j = 0; j < 5; ++j)
-    ini += "[JOINT_" + std::to_string(j) + "]\nTYPE = " + (j < 3 ? "LINEAR" : "ANGULAR") + "\nMIN_LIMIT = " +
-           std::to_string(limits[j][0]) + "\nMAX_LIMIT = " + std::to_string(limits[j][1]) + "\n";
+    ini += "[JOINT_" + std::to_string(j) + "]\nTYPE = " + (j < 3 ? "LINEAR" : "ANGULAR") +
+           "\nMIN_LIMIT = " + std::to_string(limits[j][0]) + "\nMAX_LIMIT = " + std::to_string(limits[j][1]) + "\n";
   test::write_file(dir / "m.ini", ini);
   const Generated g = generate(dir / "m.ini", "xyzac_triv_machine");
   ASSERT_EQ(g.model.coordinates(), "xyzac");
@@ -530,7 +575,9 @@ TEST(StockKinematics, TrivkinsRotaryAxesAreCarriedByTheTableWithAPlaceholderPole
   EXPECT_NE(g.result.machine_text.find("A PLACEHOLDER: trivkins does not know where the rotary axes are"),
             std::string::npos);
   ASSERT_EQ(g.result.machine.remarks.size(), 1u);
-  EXPECT_NE(g.result.machine.remarks[0].find("A and C are: their pole_mm are placeholders; measure them (volcomp identify sphere)"), std::string::npos);
+  EXPECT_NE(g.result.machine.remarks[0].find(
+                "A and C are: their pole_mm are placeholders; measure them (volcomp identify sphere)"),
+            std::string::npos);
   // The HALCMD loading trivkins itself becomes volkins' line, written out (a HALCMD has no
   // INI references).
   EXPECT_NE(g.result.patch.diff.find("+HALCMD = loadrt volkins machine="), std::string::npos) << g.result.patch.diff;

@@ -48,12 +48,15 @@ std::string patched(const std::string& name, const std::string& original, const 
 
 TEST(UnifiedDiff, ReplacesDeletesAndInsertsWithThreeLinesOfContext) {
   std::string diff;
-  const std::string result = patched("basic", numbered_lines(30), [](FileEdits& e) {
-    e.replace(2, "two");
-    e.remove(4);
-    e.insert_after(20, {"after 20", "and more"});
-    e.remove(30);
-  }, &diff);
+  const std::string result = patched(
+      "basic", numbered_lines(30),
+      [](FileEdits& e) {
+        e.replace(2, "two");
+        e.remove(4);
+        e.insert_after(20, {"after 20", "and more"});
+        e.remove(30);
+      },
+      &diff);
   std::string expected = numbered_lines(30);
   expected.replace(expected.find("line 2\n"), 7, "two\n");
   expected.erase(expected.find("line 4\n"), 7);
@@ -62,27 +65,37 @@ TEST(UnifiedDiff, ReplacesDeletesAndInsertsWithThreeLinesOfContext) {
   EXPECT_EQ(result, expected);
   EXPECT_EQ(diff.substr(0, 27), "--- a/f.txt\n+++ b/f.txt\n@@ ");
   EXPECT_NE(diff.find("@@ -1,7 +1,6 @@\n line 1\n-line 2\n+two\n line 3\n-line 4\n line 5\n"), std::string::npos)
-      << "replacement and deletion in one hunk:\n" << diff;
+      << "replacement and deletion in one hunk:\n"
+      << diff;
   EXPECT_NE(diff.find("@@ -18,6 +17,8 @@\n"), std::string::npos) << diff;
   EXPECT_NE(diff.find("@@ -27,4 +28,3 @@\n"), std::string::npos) << diff;
 }
 
 TEST(UnifiedDiff, MergesHunksWhoseContextOverlaps) {
   std::string diff;
-  patched("merged", numbered_lines(20), [](FileEdits& e) {
-    e.replace(5, "five");
-    e.replace(11, "eleven");  // 5 lines between: one hunk
-  }, &diff);
+  patched(
+      "merged", numbered_lines(20),
+      [](FileEdits& e) {
+        e.replace(5, "five");
+        e.replace(11, "eleven");  // 5 lines between: one hunk
+      },
+      &diff);
   EXPECT_EQ(std::count(diff.begin(), diff.end(), '@'), 4) << diff;
-  patched("apart", numbered_lines(20), [](FileEdits& e) {
-    e.replace(5, "five");
-    e.replace(12, "twelve");  // 6 lines between: still one (the contexts touch)
-  }, &diff);
+  patched(
+      "apart", numbered_lines(20),
+      [](FileEdits& e) {
+        e.replace(5, "five");
+        e.replace(12, "twelve");  // 6 lines between: still one (the contexts touch)
+      },
+      &diff);
   EXPECT_EQ(std::count(diff.begin(), diff.end(), '@'), 4) << diff;
-  patched("far", numbered_lines(20), [](FileEdits& e) {
-    e.replace(5, "five");
-    e.replace(13, "thirteen");
-  }, &diff);
+  patched(
+      "far", numbered_lines(20),
+      [](FileEdits& e) {
+        e.replace(5, "five");
+        e.replace(13, "thirteen");
+      },
+      &diff);
   EXPECT_EQ(std::count(diff.begin(), diff.end(), '@'), 8) << diff;
 }
 

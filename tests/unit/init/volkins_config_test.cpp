@@ -30,8 +30,8 @@ const Config kShipped[] = {{"kins/configs/mc300/mc300.ini", "machines/data/mc300
                            {"kins/configs/mill3/mill3_gantry.ini", "machines/data/mill3.toml"}};
 
 // The INI's text with `KEY = value` of [JOINT_n] replaced, written beside nothing else.
-std::filesystem::path with_joint_value(const Config& config, int joint, const std::string& key, const std::string& value,
-                                       const std::string& name) {
+std::filesystem::path with_joint_value(const Config& config, int joint, const std::string& key,
+                                       const std::string& value, const std::string& name) {
   std::string text = test::file_text(source_path(config.ini));
   const std::string section = "[JOINT_" + std::to_string(joint) + "]";
   const std::size_t at = text.find("\n" + key + " = ", text.find(section)) + 1;
@@ -91,7 +91,8 @@ TEST(HomePosition, HomingAtTheLimitIsRefusedWithTheLinesAndTheFix) {
   const std::string& p = check.problems[0];
   EXPECT_NE(p.find("X homes "), std::string::npos) << p;
   EXPECT_NE(p.find("beyond its MAX_LIMIT (config.ini:"), std::string::npos) << p;
-  EXPECT_TRUE(std::regex_search(p, std::regex("config.ini:[0-9]+ `HOME = 0` puts the corrected world X at 0\\.00"))) << p;
+  EXPECT_TRUE(std::regex_search(p, std::regex("config.ini:[0-9]+ `HOME = 0` puts the corrected world X at 0\\.00")))
+      << p;
   EXPECT_NE(p.find("would exceed X's positive limit"), std::string::npos) << p;
   EXPECT_NE(p.find("[JOINT_0]HOME = -0.1"), std::string::npos) << p;
   EXPECT_GT(check.axes[0].world, 0.0);
@@ -99,8 +100,8 @@ TEST(HomePosition, HomingAtTheLimitIsRefusedWithTheLinesAndTheFix) {
   // mill3: X homes at its MIN_LIMIT 0, the world ~6 um below it.
   const std::filesystem::path mill_ini = with_home(kShipped[2], 0, "0", "mill3_at_limit");
   const LinuxcncIni mill = LinuxcncIni::read(mill_ini.string());
-  const HomeCheck mill_check = check_home_position(mill, machine::load_machine(source_path(kShipped[2].machine)),
-                                                   read_volkins_parameters(mill));
+  const HomeCheck mill_check =
+      check_home_position(mill, machine::load_machine(source_path(kShipped[2].machine)), read_volkins_parameters(mill));
   ASSERT_EQ(mill_check.problems.size(), 1u);
   EXPECT_NE(mill_check.problems[0].find("beyond its MIN_LIMIT"), std::string::npos) << mill_check.problems[0];
   EXPECT_NE(mill_check.problems[0].find("[JOINT_0]HOME = 0.1"), std::string::npos) << mill_check.problems[0];
@@ -110,8 +111,8 @@ TEST(HomePosition, TheGantrysSecondJointIsReadForItsLetter) {
   // coordinates=xyyz: the machine's Z is LinuxCNC's joint 3; a Z homed at its MAX_LIMIT there.
   const std::filesystem::path ini_path = with_home(kShipped[3], 3, "0.2", "gantry_z");
   const LinuxcncIni ini = LinuxcncIni::read(ini_path.string());
-  const HomeCheck check = check_home_position(ini, machine::load_machine(source_path(kShipped[3].machine)),
-                                              read_volkins_parameters(ini));
+  const HomeCheck check =
+      check_home_position(ini, machine::load_machine(source_path(kShipped[3].machine)), read_volkins_parameters(ini));
   ASSERT_EQ(check.axes.size(), 3u);
   EXPECT_EQ(check.axes[2].joint, 3);
   EXPECT_DOUBLE_EQ(check.axes[2].home, 0.2);
@@ -172,9 +173,10 @@ TEST(JointRoom, AJointLimitAtItsAxisLimitIsRefusedWithTheFix) {
   const JointRoomCheck check = check_joint_room(ini, model, read_volkins_parameters(ini));
   ASSERT_EQ(check.problems.size(), 1u);
   const std::string& p = check.problems[0];
-  EXPECT_TRUE(std::regex_search(p, std::regex("^joint 1 \\(Y\\): the correction takes it to 0\\.1[0-9]* at the upper end "
-                                              "of Y's travel, [0-9.]+ um beyond its MAX_LIMIT \\(config.ini:[0-9]+ "
-                                              "`MAX_LIMIT = 0`\\)")))
+  EXPECT_TRUE(
+      std::regex_search(p, std::regex("^joint 1 \\(Y\\): the correction takes it to 0\\.1[0-9]* at the upper end "
+                                      "of Y's travel, [0-9.]+ um beyond its MAX_LIMIT \\(config.ini:[0-9]+ "
+                                      "`MAX_LIMIT = 0`\\)")))
       << p;
   EXPECT_NE(p.find("[JOINT_1]MAX_LIMIT = 0.2"), std::string::npos) << p;
 

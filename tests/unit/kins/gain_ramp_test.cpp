@@ -27,7 +27,8 @@ TEST(GainRamp, FromRestToRestInRampTime) {
     EXPECT_EQ(ramp.gain, 1.0);
     // Whole periods: within a few of T.
     EXPECT_NEAR(periods * kPeriod, ramp_time, 3 * kPeriod) << "ramp-time " << ramp_time;
-    EXPECT_LE(ramp.rate, 4.0 / (ramp_time * ramp_time) * kPeriod * (1 + 1e-6)) << "the last period: within one change of rate";
+    EXPECT_LE(ramp.rate, 4.0 / (ramp_time * ramp_time) * kPeriod * (1 + 1e-6))
+        << "the last period: within one change of rate";
     ramp.step(1.0, kPeriod, ramp_time);
     EXPECT_EQ(ramp.gain, 1.0);  // it stays, at rest
     EXPECT_EQ(ramp.rate, 0.0);
@@ -62,9 +63,10 @@ TEST(GainRamp, RateAndItsChangeStayBoundedWhenEnableSwitchesAnyTime) {
     const double rate_limit = 2.0 / ramp_time, change_limit = 4.0 / (ramp_time * ramp_time);
     EXPECT_LE(largest_rate, rate_limit * (1 + 1e-9)) << "ramp-time " << ramp_time;
     EXPECT_LE(largest_change, change_limit * (1 + 1e-6)) << "ramp-time " << ramp_time;
-    std::printf("ramp-time %.1f s: %d reversals during a ramp; largest rate %.4f /s (limit %.4f), largest change "
-                "of rate %.4f /s^2 (limit %.4f)\n",
-                ramp_time, reversals, largest_rate, rate_limit, largest_change, change_limit);
+    std::printf(
+        "ramp-time %.1f s: %d reversals during a ramp; largest rate %.4f /s (limit %.4f), largest change "
+        "of rate %.4f /s^2 (limit %.4f)\n",
+        ramp_time, reversals, largest_rate, rate_limit, largest_change, change_limit);
   }
 }
 
@@ -108,8 +110,8 @@ TEST(ToolLengthSlew, OneChangeFromRestToRestInSlewTime) {
 // progress, and every slew ends at rest on the last offset.
 TEST(ToolLengthSlew, RateAndItsChangeStayBoundedWhenTheOffsetChangesDuringASlew) {
   std::mt19937_64 random(5);
-  std::uniform_int_distribution<int> hold(1, 400);                 // periods between changes
-  std::uniform_real_distribution<double> offset(-20.0, 150.0);    // mm
+  std::uniform_int_distribution<int> hold(1, 400);              // periods between changes
+  std::uniform_real_distribution<double> offset(-20.0, 150.0);  // mm
   const double time = 0.25;
   ToolLengthSlew slew;
   slew.reset(0.0);
@@ -143,8 +145,10 @@ TEST(ToolLengthSlew, RateAndItsChangeStayBoundedWhenTheOffsetChangesDuringASlew)
   EXPECT_GT(settled, 300);
   EXPECT_LE(worst_rate, 1.0 + 1e-9);
   EXPECT_LE(worst_change, 1.0 + 1e-6);
-  std::printf("%d offset changes during a slew, %d slews settled; largest rate %.4f and change of rate %.4f of "
-              "their limits\n", during, settled, worst_rate, worst_change);
+  std::printf(
+      "%d offset changes during a slew, %d slews settled; largest rate %.4f and change of rate %.4f of "
+      "their limits\n",
+      during, settled, worst_rate, worst_change);
 }
 
 TEST(ToolLengthSlew, WithoutSlewTimeLFollowsAtOnce) {

@@ -102,9 +102,10 @@ travel_deg = [-120, 120]
   const std::array<int, 7> axis_of{0, 1, 2, 3, 4, -1, 1};
   for (int k = 0; k < 7; ++k) EXPECT_EQ(s.model_joint[k], axis_of[k]) << k;
   EXPECT_EQ(s.tool_axis_joint, 5);
-  EXPECT_EQ(s.tool_axis_field, 8);  // EmcPose's w
+  EXPECT_EQ(s.tool_axis_field, 8);                                                        // EmcPose's w
   EXPECT_EQ(settings_from_parameters(file.c_str(), "xyzbc", "tcp").tool_axis_joint, -1);  // W unused: w = 0
-  EXPECT_THROW(settings_from_parameters(file.c_str(), "xyzbcwu", "tcp"), std::runtime_error);  // U is not its coordinate
+  EXPECT_THROW(settings_from_parameters(file.c_str(), "xyzbcwu", "tcp"),
+               std::runtime_error);  // U is not its coordinate
   EXPECT_THROW(settings_from_parameters(test::machine_path("mc300").c_str(), "xyzbcw", nullptr), std::runtime_error);
   std::filesystem::remove(file);
 }

@@ -47,8 +47,8 @@ TEST_P(ContractionBoundTest, UncheckedStepsLandWithinTheirBoundOnTheCoresJoints)
   const int poses = test::pose_count(3000);
   for (int k = 0; k < poses; ++k) {
     for (std::size_t i = 0; i < model.temperatures.size(); ++i)
-      at.temperature_degC[i] = std::uniform_real_distribution<double>(model.temperatures[i].min_degC,
-                                                                      model.temperatures[i].max_degC)(rng);
+      at.temperature_degC[i] =
+          std::uniform_real_distribution<double>(model.temperatures[i].min_degC, model.temperatures[i].max_degC)(rng);
     const Joints q = test::random_pose(model, rng);
     const double L = length(rng);
     const Correction core = correct(model, at, q, L);
@@ -74,8 +74,8 @@ TEST_P(ContractionBoundTest, UncheckedStepsLandWithinTheirBoundOnTheCoresJoints)
       // chain, within what the solver stops on there (the direction tolerance times sin(phi)).
       ++unchecked_band;
       ASSERT_TRUE(band) << test::text(q);
-      const double limit = std::min(tolerance, kDirectionLeverMm * model.solver.direction_tolerance_rad *
-                                                   std::sin(core.pole_angle_rad));
+      const double limit =
+          std::min(tolerance, kDirectionLeverMm * model.solver.direction_tolerance_rad * std::sin(core.pole_angle_rad));
       const Eigen::Isometry3d real = part_T_tool(model, at, Machine::Real, c.full_joints, L);
       const Eigen::Isometry3d ideal = part_T_tool(model, Machine::Ideal, q, L);
       const double position = (real.translation() - ideal.translation()).norm();
@@ -106,10 +106,11 @@ TEST_P(ContractionBoundTest, UncheckedStepsLandWithinTheirBoundOnTheCoresJoints)
     ASSERT_LE(position, c.residual_mm + 1e-12) << test::text(q) << " seed off by " << scale << ", L " << L;
     if (c.residual_mm > 1e-12) worst_ratio = std::max(worst_ratio, position / c.residual_mm);
   }
-  std::printf("%s: %d of %d poses at full correction and %d of %d in the fade band or at the pole solved with an "
-              "unchecked step, %d with the fade band's full correction unchecked; exact residual / bound (above "
-              "1e-12 mm) at most %.3f, the band's full correction's / its limit %.3f\n",
-              GetParam().c_str(), unchecked, full, unchecked_faded, faded, unchecked_band, worst_ratio, worst_band);
+  std::printf(
+      "%s: %d of %d poses at full correction and %d of %d in the fade band or at the pole solved with an "
+      "unchecked step, %d with the fade band's full correction unchecked; exact residual / bound (above "
+      "1e-12 mm) at most %.3f, the band's full correction's / its limit %.3f\n",
+      GetParam().c_str(), unchecked, full, unchecked_faded, faded, unchecked_band, worst_ratio, worst_band);
   // Seeds up to 1e-6 off: most at full correction are within reach of the bound, and some below.
   EXPECT_GT(unchecked, full / 2);
   if (faded >= 20) {

@@ -133,10 +133,11 @@ TEST_P(EveryMachine, PartialCorrectionWithAnySeedRoundTrips) {
       far_correction.array() += 5.0;
       nan_correction[1] = std::nan("");
       for (const Joints* seed : std::array<const Joints*, 4>{nullptr, &near_seed, &far_seed, &nan_seed}) {
-        for (const Joints* correction :
-             std::array<const Joints*, 5>{nullptr, &exact_correction, &near_correction, &far_correction, &nan_correction}) {
+        for (const Joints* correction : std::array<const Joints*, 5>{nullptr, &exact_correction, &near_correction,
+                                                                     &far_correction, &nan_correction}) {
           Joints joints, back;
-          ASSERT_EQ(joints_from_world(model_, convention, world, L, Applied{gain, seed, correction}, joints), Status::Ok);
+          ASSERT_EQ(joints_from_world(model_, convention, world, L, Applied{gain, seed, correction}, joints),
+                    Status::Ok);
           ASSERT_LT((joints - (nominal + gain * (full - nominal))).cwiseAbs().maxCoeff(), 1e-9) << text(world);
           const Joints world_seed = seed ? Joints(world.array() + 0.02) : world;
           ASSERT_EQ(world_from_joints(model_, convention, joints, L, Applied{gain, &world_seed, correction}, back),

@@ -78,7 +78,8 @@ TEST(IdealJacobianSolver, RefusesTheRealMachinesDerivativesAndASingularBlock) {
   tool_pose(model, Machine::Real, q, model.tool_length_mm, real);
   const CorrectionTarget target = full_target(model, pose, ideal);
   EXPECT_TRUE(solver.factorize(target, ideal));
-  EXPECT_FALSE(solver.factorize(target, real)) << "the real machine's linear joints turn the tool: not block triangular";
+  EXPECT_FALSE(solver.factorize(target, real))
+      << "the real machine's linear joints turn the tool: not block triangular";
   PoseDerivatives flat = ideal;
   flat.direction.col(4).setZero();  // C would not turn the tool: D singular
   EXPECT_FALSE(solver.factorize(target, flat));

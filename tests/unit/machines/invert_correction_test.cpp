@@ -113,10 +113,8 @@ TEST_P(EveryMachine, IdealStepRemainderBoundsTheSecondOrder) {
     const ToolPose start = tool_pose(model_, Machine::Ideal, from, L, d);
     const Joints step = to - from;
     const Eigen::Isometry3d end = part_T_tool(model_, Machine::Ideal, to, L);
-    const double position =
-        (end.translation() - start.tip_mm - d.tip.leftCols(step.size()) * step).norm();
-    const double direction =
-        (end.linear().col(2) - start.direction - d.direction.leftCols(step.size()) * step).norm();
+    const double position = (end.translation() - start.tip_mm - d.tip.leftCols(step.size()) * step).norm();
+    const double direction = (end.linear().col(2) - start.direction - d.direction.leftCols(step.size()) * step).norm();
     const StepRemainder bound = ideal_step_remainder(model_, from, to, L);
     // Rounding of the two chains: ~1e-13 mm, ~1e-16 rad.
     ASSERT_LE(position, bound.position_mm + 1e-12) << text(from) << " to " << text(to) << ", L " << L;
@@ -124,8 +122,8 @@ TEST_P(EveryMachine, IdealStepRemainderBoundsTheSecondOrder) {
     if (bound.position_mm > 1e-9) tightest_position = std::max(tightest_position, position / bound.position_mm);
     if (bound.direction_rad > 1e-12) tightest_direction = std::max(tightest_direction, direction / bound.direction_rad);
   }
-  std::printf("%s: largest remainder / bound: position %.3f, direction %.3f\n", GetParam().c_str(),
-              tightest_position, tightest_direction);
+  std::printf("%s: largest remainder / bound: position %.3f, direction %.3f\n", GetParam().c_str(), tightest_position,
+              tightest_direction);
 }
 
 // Started ~1e-11 to 1e-7 off (LinuxCNC's feedback less the correction volkins keeps for it),
@@ -184,7 +182,8 @@ TEST_P(EveryMachine, KeptFullCorrectionsStartTheFadeBandsSolvesNotTheirAnswers) 
     ++band;
     // full_joints is the full correction (its own solve, unseeded).
     ASSERT_EQ(c.full_joints.size(), nominal.size()) << text(nominal);
-    ASSERT_LT(max_difference(c.full_joints, full_correction(model_, nominal, L, nominal).joints), 1e-9) << text(nominal);
+    ASSERT_LT(max_difference(c.full_joints, full_correction(model_, nominal, L, nominal).joints), 1e-9)
+        << text(nominal);
     const double scale = std::pow(10.0, exponent(rng));
     const Joints full = off(Joints(c.full_joints - nominal), scale), crude = off(Joints(c.full_joints - nominal), 1e-3);
     // The forward.
@@ -196,7 +195,8 @@ TEST_P(EveryMachine, KeptFullCorrectionsStartTheFadeBandsSolvesNotTheirAnswers) 
     for (const Joints* d : {&full, &crude}) {
       const Uncorrection u = invert_correction(model_, c.joints, L, 1.0, seed, d);
       ASSERT_EQ(u.status, Status::Ok) << text(nominal);
-      ASSERT_LT(max_difference(u.nominal, nominal), 1e-9) << text(nominal) << ", D off by " << (d == &full ? scale : 1e-3);
+      ASSERT_LT(max_difference(u.nominal, nominal), 1e-9)
+          << text(nominal) << ", D off by " << (d == &full ? scale : 1e-3);
       ASSERT_LT(max_difference(u.nominal, plain.nominal), 1e-9) << text(nominal);
       if (d == &full) forward_with += u.iterations;
     }
@@ -212,9 +212,10 @@ TEST_P(EveryMachine, KeptFullCorrectionsStartTheFadeBandsSolvesNotTheirAnswers) 
     inverse_without += bare.iterations;
     inverse_with += kept.iterations;
   }
-  std::printf("%s: %d poses in the fade band; forward's steps and corrections %ld -> %ld, inverse's Newton steps "
-              "%ld -> %ld with the full corrections kept\n",
-              GetParam().c_str(), band, forward_without, forward_with, inverse_without, inverse_with);
+  std::printf(
+      "%s: %d poses in the fade band; forward's steps and corrections %ld -> %ld, inverse's Newton steps "
+      "%ld -> %ld with the full corrections kept\n",
+      GetParam().c_str(), band, forward_without, forward_with, inverse_without, inverse_with);
   if (band == 0) GTEST_SKIP() << "the tool never comes near a rotary axis line: no fade band";
   EXPECT_GE(band, 50);
   EXPECT_LT(forward_with, forward_without);

@@ -52,8 +52,7 @@ TEST_F(Mc300Alone, RollTimesLeverArm) {
   // Lever arm: the tool tip relative to the X slide's origin, in the X frame (model.md,
   // MC-300 table): Y pole + Y travel + Z pole + Z travel + tool.
   const Eigen::Vector3d r = Eigen::Vector3d(-300, -100, -300) + y * Eigen::Vector3d(0, -1, 0) +
-                            Eigen::Vector3d(0, -100, -400) + z * Eigen::Vector3d(0, 0, 1) +
-                            Eigen::Vector3d(0, 0, -100);
+                            Eigen::Vector3d(0, -100, -400) + z * Eigen::Vector3d(0, 0, 1) + Eigen::Vector3d(0, 0, -100);
   const Eigen::Vector3d expected = Eigen::AngleAxisd(a, Eigen::Vector3d::UnitX()) * r - r;
   const VolumetricError e = volumetric_error(m, pose(x, y, z, 0, 0), 100.0);
   EXPECT_LT((e.position_mm - expected).norm(), 1e-13);
@@ -77,7 +76,8 @@ TEST_F(Mc300Alone, SquarenessOnACircleGivesTwoLobesOfHalfRTheta) {
     const double t = 2.0 * M_PI * i / n;
     // Tool tip on the circle: machine X and Y move by -x and -y (u = -x, -y).
     const Eigen::Vector3d dir(std::cos(t), std::sin(t), 0.0);
-    const VolumetricError e = volumetric_error(m, pose(-300 - radius * dir.x(), -160 - radius * dir.y(), -150, 0, 0), 100.0);
+    const VolumetricError e =
+        volumetric_error(m, pose(-300 - radius * dir.x(), -160 - radius * dir.y(), -150, 0, 0), 100.0);
     radial[i] = e.position_mm.dot(dir);
     harmonic[0] += radial[i] / n;
     harmonic[1] += 2.0 * radial[i] * std::cos(t) / n;

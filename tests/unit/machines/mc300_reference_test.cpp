@@ -65,12 +65,12 @@ TEST_F(Mc300Reference, CorrectedJointsAndFadeAtSixtyControlPoints) {
 // e-index of the listing -> ISO symbol in our machine file (seed000_B_model.md, s. 2.2).
 // e30 and e31 (DSbx, DSbz) are never used by the listing: the reference gives zeros.
 const char* const kListingSymbols[42] = {
-    nullptr, "EZZ", "EXZ", "EYZ", "EAZ", "EBZ", "ECZ", "EA0Z", "EB0Z",  // e1..e8
-    "EYY", "EXY", "EZY", "EAY", "EBY", "ECY", "EC0Y",                    // e9..e15
-    "EXX", "EYX", "EZX", "EAX", "EBX", "ECX",                            // e16..e21
-    "EBB", "EYB", "EZB", "EXB", "ECB", "EAB", "EC0B", "EA0B",            // e22..e29
-    nullptr, nullptr,                                                    // e30, e31
-    "ECC", "EZC", "EXC", "EYC", "EBC", "EAC", "EC0C", "EA0C", "EX0C", "EZ0C"};  // e32..e41
+    nullptr, "EZZ",   "EXZ", "EYZ", "EAZ", "EBZ", "ECZ",  "EA0Z", "EB0Z",           // e1..e8
+    "EYY",   "EXY",   "EZY", "EAY", "EBY", "ECY", "EC0Y",                           // e9..e15
+    "EXX",   "EYX",   "EZX", "EAX", "EBX", "ECX",                                   // e16..e21
+    "EBB",   "EYB",   "EZB", "EXB", "ECB", "EAB", "EC0B", "EA0B",                   // e22..e29
+    nullptr, nullptr,                                                               // e30, e31
+    "ECC",   "EZC",   "EXC", "EYC", "EBC", "EAC", "EC0C", "EA0C", "EX0C", "EZ0C"};  // e32..e41
 
 TEST_F(Mc300Reference, EachOfTheFortyOneDeviationsAlone) {
   const test::CsvTable ref(test::source_path("tests/reference/mc300/single_ctrl60_ref.csv"));
@@ -98,8 +98,7 @@ TEST_F(Mc300Reference, FullModelFiguresAtControlPoints) {
     max_e = std::max(max_e, e);
     min_e = std::min(min_e, e);
   }
-  std::printf("MC-300, 60 control points, full model: M = max|e| = %.6f mm, Delta = %.6f mm\n", max_e,
-              max_e - min_e);
+  std::printf("MC-300, 60 control points, full model: M = max|e| = %.6f mm, Delta = %.6f mm\n", max_e, max_e - min_e);
   EXPECT_GT(max_e, 0.02);  // tens of micrometres, as the source's machine
   EXPECT_LT(max_e, 0.15);
 }

@@ -147,7 +147,8 @@ TEST(TemperatureTable, AThermalExpansionNeedsNoTable) {
     text = s.str();
   }
   const std::string y = "travel_mm = [0, 400]";
-  text.insert(text.find(y) + y.size(), "\nthermal = { input = \"x_screw\", expansion_um_per_m_K = 11.5, reference_mm = 100 }");
+  text.insert(text.find(y) + y.size(),
+              "\nthermal = { input = \"x_screw\", expansion_um_per_m_K = 11.5, reference_mm = 100 }");
   std::ofstream(scratch("y_thermal.toml")) << text;
   const Model model = load_machine(scratch("y_thermal.toml").string());
   ASSERT_TRUE(model.axes[1].tables.empty());
@@ -195,8 +196,10 @@ TEST(TemperatureTable, TheMc300ExampleIsMc300AtItsReferenceAndMovesByItsTablesWh
   // volcomp check: usable, and it lists the inputs and the temperature grids.
   const auto r = test::run_volcomp("check " + test::machine_path("mc300_thermal"));
   EXPECT_EQ(r.exit_code, 0) << r.out;
-  EXPECT_NE(r.out.find("temperature inputs (degC; surveyed at the reference): coolant 19 (18 .. 26) spindle 19 (18 .. 28)"),
-            std::string::npos) << r.out;
+  EXPECT_NE(
+      r.out.find("temperature inputs (degC; surveyed at the reference): coolant 19 (18 .. 26) spindle 19 (18 .. 28)"),
+      std::string::npos)
+      << r.out;
   EXPECT_NE(r.out.find("grid spindle: 3 nodes 18 .. 28 degC"), std::string::npos) << r.out;
 }
 
@@ -208,8 +211,9 @@ TEST(TemperatureTable, PredistortMakesTheProgramForTheGivenTemperature) {
   std::ofstream(dir / "zero.var") << "5220\t1.000000\n5221\t0.000000\n5222\t0.000000\n5223\t0.000000\n";
   std::ofstream(dir / "p.ngc") << "G21 G90 G54\nG0 X-300 Y-100 Z-100 B0 C0\nG1 Z-120 F500\nM2\n";
   const auto z_of_the_cut = [&](const std::string& extra) {
-    const auto r = test::run_volcomp("predistort " + test::machine_path("mc300_thermal") + " " + (dir / "p.ngc").string() +
-                                     " -o " + (dir / "o.ngc").string() + " --var " + (dir / "zero.var").string() + " -q " + extra);
+    const auto r =
+        test::run_volcomp("predistort " + test::machine_path("mc300_thermal") + " " + (dir / "p.ngc").string() +
+                          " -o " + (dir / "o.ngc").string() + " --var " + (dir / "zero.var").string() + " -q " + extra);
     EXPECT_EQ(r.exit_code, 0) << r.out;
     std::ifstream out(dir / "o.ngc");
     double z = 0;

@@ -20,8 +20,9 @@ namespace {
 
 // mill3.toml with [temperatures] and a thermal line on X (`thermal`: what to put there).
 std::string thermal_mill3(const std::string& name, const std::string& thermal,
-                          const std::string& temperatures = "[temperatures]\nx_screw = { reference_degC = 20.0, "
-                                                            "min_degC = 15.0, max_degC = 45.0 }\n") {
+                          const std::string& temperatures =
+                              "[temperatures]\nx_screw = { reference_degC = 20.0, "
+                              "min_degC = 15.0, max_degC = 45.0 }\n") {
   std::ifstream in(test::machine_path("mill3"));
   std::stringstream text;
   text << in.rdbuf();
@@ -38,7 +39,8 @@ std::string thermal_mill3(const std::string& name, const std::string& thermal,
 }
 
 TEST(Thermal, AScrewThatGrowsCarriesTheToolFurtherAlongIt) {
-  const Model model = load_machine(thermal_mill3("m.toml", "thermal = { input = \"x_screw\", expansion_um_per_m_K = 11.5, reference_mm = 50 }"));
+  const Model model = load_machine(
+      thermal_mill3("m.toml", "thermal = { input = \"x_screw\", expansion_um_per_m_K = 11.5, reference_mm = 50 }"));
   const Model plain = load_machine(test::machine_path("mill3"));
   ASSERT_EQ(model.temperatures.size(), 1u);
   Joints q(3);
@@ -49,7 +51,7 @@ TEST(Thermal, AScrewThatGrowsCarriesTheToolFurtherAlongIt) {
   model.set_temperature(at, "x_screw", 30.0);
   const Eigen::Vector3d warm = tool_pose(model, at, Machine::Real, q, 100).tip_mm;
   const double growth = 11.5e-6 * 10.0 * (420.0 - 50.0);  // 42.55 um
-  EXPECT_NEAR(warm.x() - cold.x(), growth, 1e-5);  // (the axis's own small tilts turn it by < 1e-4)
+  EXPECT_NEAR(warm.x() - cold.x(), growth, 1e-5);         // (the axis's own small tilts turn it by < 1e-4)
   EXPECT_NEAR(warm.y() - cold.y(), 0.0, 1e-5);
   EXPECT_NEAR(warm.z() - cold.z(), 0.0, 1e-5);
   EXPECT_THROW(model.set_temperature(at, "x_screw", 50.0), std::invalid_argument);  // beyond max_degC
@@ -67,8 +69,9 @@ TEST(Thermal, PredistortMakesTheProgramForTheGivenTemperature) {
   std::ofstream(dir / "zero.var") << "5220\t1.000000\n5221\t0.000000\n5222\t0.000000\n5223\t0.000000\n";
   std::ofstream(dir / "p.ngc") << "G21 G90 G54\nG0 X0 Y100 Z-50\nG1 X450 F500\nM2\n";
   const auto x_of_the_cut = [&](const std::string& extra) {
-    const auto r = test::run_volcomp("predistort " + machine + " " + (dir / "p.ngc").string() + " -o " + (dir / "o.ngc").string() +
-                                     " --var " + (dir / "zero.var").string() + " -q " + extra);
+    const auto r =
+        test::run_volcomp("predistort " + machine + " " + (dir / "p.ngc").string() + " -o " + (dir / "o.ngc").string() +
+                          " --var " + (dir / "zero.var").string() + " -q " + extra);
     EXPECT_EQ(r.exit_code, 0) << r.out;
     std::ifstream out(dir / "o.ngc");
     double x = 0;
@@ -78,8 +81,8 @@ TEST(Thermal, PredistortMakesTheProgramForTheGivenTemperature) {
   };
   const double cold = x_of_the_cut(""), warm = x_of_the_cut("--temperature x_screw=30");
   EXPECT_NEAR(warm - cold, -11.5e-6 * 10 * (450 - 50), 0.0005);  // -46 um, to the tolerance
-  auto r = test::run_volcomp("predistort " + machine + " " + (dir / "p.ngc").string() + " -o " + (dir / "o.ngc").string() +
-                             " --temperature x_screw=60");
+  auto r = test::run_volcomp("predistort " + machine + " " + (dir / "p.ngc").string() + " -o " +
+                             (dir / "o.ngc").string() + " --temperature x_screw=60");
   EXPECT_NE(r.out.find("outside the range the model holds for"), std::string::npos) << r.out;
   r = test::run_volcomp("predistort " + machine + " " + (dir / "p.ngc").string() + " -o " + (dir / "o.ngc").string() +
                         " --temperature spindle=25");

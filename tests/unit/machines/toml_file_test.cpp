@@ -58,7 +58,9 @@ TEST(TomlFile, TypedGettersNameTheirPlace) {
   EXPECT_EQ(error_of([&] { file.table(head, "name", false, ""); }), path + ":2:8: error: 'name' must be a table");
   EXPECT_EQ(error_of([&] { file.table(file.root(), "tail", true, "the file"); }),
             path + ":1:1: error: the file needs a [tail] table");
-  EXPECT_EQ(error_of([&] { file.check_keys(head, "[head]", {"name", "size", "flag"}); }),
+  EXPECT_EQ(error_of([&] {
+              file.check_keys(head, "[head]", {"name", "size", "flag"});
+            }),
             path + ":5:1: error: unknown key 'odd' in [head] (expected one of: name, size, flag)");
 }
 

@@ -47,8 +47,8 @@ TEST(SinCosDeg, WithinTwoUlpOfTheTrueValuesOverTenTurns) {
     exact(deg, es, ec);
     const double error = static_cast<double>(std::max(std::abs(s - es), std::abs(c - ec)));
     const double x = deg * tables::kDegToRad;
-    library_worst = std::max(library_worst, static_cast<double>(std::max(std::abs(std::sin(x) - es),
-                                                                         std::abs(std::cos(x) - ec))));
+    library_worst =
+        std::max(library_worst, static_cast<double>(std::max(std::abs(std::sin(x) - es), std::abs(std::cos(x) - ec))));
     worst = std::max(worst, error);
     return error;
   };

@@ -57,7 +57,7 @@ TEST(CorrectingThreads, TwoWriteWhatOneWrites) {
   EXPECT_EQ(one.corrector.moves, two.corrector.moves);
   EXPECT_EQ(one.corrector.pieces, two.corrector.pieces);
   EXPECT_GT(two.corrector.corrections, one.corrector.corrections);  // each take-over corrects a move's end again
-  EXPECT_EQ(two.written_as_is_moves, 1);                              // the G28
+  EXPECT_EQ(two.written_as_is_moves, 1);                            // the G28
   // Line by line: the same words; numbers within one unit of the last (sixth) decimal.
   std::istringstream la(a), lb(b);
   std::string x, y;
@@ -70,7 +70,8 @@ TEST(CorrectingThreads, TwoWriteWhatOneWrites) {
     ++differing;
     EXPECT_EQ(std::regex_replace(x, number, "#"), std::regex_replace(y, number, "#")) << x << "\n" << y;
     std::sregex_iterator i(x.begin(), x.end(), number), j(y.begin(), y.end(), number), end;
-    for (; i != end && j != end; ++i, ++j) EXPECT_NEAR(std::stod(i->str()), std::stod(j->str()), 1.5e-6) << x << "\n" << y;
+    for (; i != end && j != end; ++i, ++j)
+      EXPECT_NEAR(std::stod(i->str()), std::stod(j->str()), 1.5e-6) << x << "\n" << y;
   }
   EXPECT_FALSE(std::getline(lb, y)) << "two threads wrote more lines";
   std::printf("%d lines, %d differ in the last digit\n", lines, differing);

@@ -31,7 +31,8 @@ TEST(CorrectionBounds, KinksAreTheNodesOfLinearTablesAndThePeriodicWrap) {
   const CorrectionBounds bounds(model, model.reference_conditions());
   // MC-300 C table: 0:5:360 deg, linear, periodic; 1e-3 deg clear of a node.
   const auto c_move = [&](double from, double to) {
-    return bounds.crosses_kink(joints({-301.3, -161.7, -201.9, -36.2, from}), joints({-301.3, -161.7, -201.9, -36.2, to}));
+    return bounds.crosses_kink(joints({-301.3, -161.7, -201.9, -36.2, from}),
+                               joints({-301.3, -161.7, -201.9, -36.2, to}));
   };
   EXPECT_FALSE(c_move(1.0, 4.0));
   EXPECT_TRUE(c_move(4.0, 6.0));
@@ -83,7 +84,8 @@ void expect_bounds_hold(const std::string& machine_name) {
       error = std::max(error, (real.tip_mm - ideal).norm());
       // The direction against the exact correction's there (the pole fade leaves it off ideal).
       const machine::Correction exact = machine::correct(model, a + t * (b - a), L);
-      const Eigen::Vector3d exact_direction = machine::tool_pose(model, machine::Machine::Real, exact.joints, L).direction;
+      const Eigen::Vector3d exact_direction =
+          machine::tool_pose(model, machine::Machine::Real, exact.joints, L).direction;
       error_rad = std::max(error_rad, (real.direction - exact_direction).norm());
     }
     const CorrectionBounds::Bound slope = bounds.slope_bound(a, b, L);
@@ -107,10 +109,11 @@ void expect_bounds_hold(const std::string& machine_name) {
     if (rotary) worst_curvature_rad = std::max(worst_curvature_rad, error_rad / curvature.rad);
     below_curvature += curvature.mm <= 1.25e-4;
   }
-  std::printf("%s: 3000 pieces, %d cross no kink; largest error / bound: slope %.3f, curvature %.3f (tool "
-              "direction: %.3f, %.3f); within a quarter of 0.5 um: slope %d, curvature %d\n",
-              machine_name.c_str(), smooth, worst_slope, worst_curvature, worst_slope_rad, worst_curvature_rad,
-              below_slope, below_curvature);
+  std::printf(
+      "%s: 3000 pieces, %d cross no kink; largest error / bound: slope %.3f, curvature %.3f (tool "
+      "direction: %.3f, %.3f); within a quarter of 0.5 um: slope %d, curvature %d\n",
+      machine_name.c_str(), smooth, worst_slope, worst_curvature, worst_slope_rad, worst_curvature_rad, below_slope,
+      below_curvature);
   EXPECT_GT(smooth, 300);  // the curvature bound is exercised
 }
 
@@ -128,7 +131,8 @@ TEST(CorrectionBounds, KinkSearchesFromTheLastAnswerAnswerAsFreshOnes) {
     Joints b = a;
     for (int j = 0; j < 5; ++j) b[j] += (k % 2 ? 1 : -1) * length(rng);
     const bool fresh = CorrectionBounds(model, model.reference_conditions()).crosses_kink(a, b);
-    ASSERT_EQ(walked.crosses_kink(a, b), fresh) << "query " << k << " from " << a.transpose() << " to " << b.transpose();
+    ASSERT_EQ(walked.crosses_kink(a, b), fresh)
+        << "query " << k << " from " << a.transpose() << " to " << b.transpose();
     crossings += fresh;
   }
   EXPECT_GT(crossings, 200);
@@ -154,7 +158,8 @@ TEST(CorrectionBounds, SharedSamplingGivesTheBoundsOfOneSamplingAlone) {
 
   CorrectionBounds::Shared shared;
   const machine::Conditions reference = model.reference_conditions();
-  CorrectionBounds first(model, reference, &shared), second(model, reference, &shared), later(model, reference, &shared);
+  CorrectionBounds first(model, reference, &shared), second(model, reference, &shared),
+      later(model, reference, &shared);
   std::array<double, 4> got_first{}, got_second{};
   std::thread other([&] { got_second = bounds_of(second); });
   got_first = bounds_of(first);

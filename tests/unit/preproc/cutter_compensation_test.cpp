@@ -23,13 +23,13 @@ void expect_at(const Position& p, double x, double y) {
 }
 
 TEST(CutterCompensation, SquareByHandWithEachLineKeepingItsMoves) {
-  const std::vector<Line> lines = run(
-      "G21 G90 G17 G0 X-20 Y-20 Z0\n"   // 1
-      "G41.1 D10 G1 X0 Y0 F100\n"       // 2: entry, tool on the left: ends 5 mm left of (0, 0)
-      "G1 X40\n"                        // 3: convex corner at (0, 0): an arc, then the line
-      "G1 Y40\n"                        // 4: concave corner at (40, 0): line 3 ends 5 mm short
-      "G40 G1 X60 Y60\n"                // 5: out, from where the tool is
-      "M2\n");
+  const std::vector<Line> lines =
+      run("G21 G90 G17 G0 X-20 Y-20 Z0\n"  // 1
+          "G41.1 D10 G1 X0 Y0 F100\n"      // 2: entry, tool on the left: ends 5 mm left of (0, 0)
+          "G1 X40\n"                       // 3: convex corner at (0, 0): an arc, then the line
+          "G1 Y40\n"                       // 4: concave corner at (40, 0): line 3 ends 5 mm short
+          "G40 G1 X60 Y60\n"               // 5: out, from where the tool is
+          "M2\n");
   ASSERT_EQ(lines.size(), 6u);
   const double h = 5 / std::sqrt(2.0);
   // The lines come out in order, each with its own moves.

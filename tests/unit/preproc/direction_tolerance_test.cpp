@@ -24,8 +24,8 @@ Joints joints_of(const Position& p) {  // MC-300: X Y Z B C
 // Largest direction deviation (rad) from the exact correction over a move through the fade band,
 // and the number of pieces written.
 std::pair<double, std::size_t> worst_direction(const machine::Model& model, double tolerance_rad,
-                                              const Position& start = {-300, -160, -200, 0, -0.5, 0},
-                                              const Position& end = {-290, -150, -195, 0, -14, 60}) {
+                                               const Position& start = {-300, -160, -200, 0, -0.5, 0},
+                                               const Position& end = {-290, -150, -195, 0, -14, 60}) {
   CorrectorOptions options;
   options.tolerance_rad = tolerance_rad;
   PathCorrector corrector(model, model.reference_conditions(), options, nullptr);
@@ -69,9 +69,10 @@ TEST(DirectionTolerance, BoundsTheToolDirectionBetweenWrittenPoints) {
   const auto [by_default, pieces] = worst_direction(model, 2e-5);
   const auto [tight, pieces_tight] = worst_direction(model, 5e-6);
   const auto [unbounded, pieces_unbounded] = worst_direction(model, 0.0);  // the position tolerance only
-  std::printf("through the pole fade band: direction deviation %.3g rad in %zu pieces at 2e-5 rad, %.3g rad in %zu "
-              "at 5e-6 rad, %.3g rad in %zu with the position tolerance only\n",
-              by_default, pieces, tight, pieces_tight, unbounded, pieces_unbounded);
+  std::printf(
+      "through the pole fade band: direction deviation %.3g rad in %zu pieces at 2e-5 rad, %.3g rad in %zu "
+      "at 5e-6 rad, %.3g rad in %zu with the position tolerance only\n",
+      by_default, pieces, tight, pieces_tight, unbounded, pieces_unbounded);
   EXPECT_LE(by_default, 2e-5);
   EXPECT_LE(tight, 5e-6);
   EXPECT_GT(unbounded, 5e-6);  // the position tolerance alone does not bound it

@@ -21,7 +21,7 @@ struct Interpreted {
 };
 
 Interpreted interpret(const std::string& program, const ToolTable* tools = nullptr,
-              const gcode::Parameters* var = nullptr, unsigned axes = kXyzbc, double machine_unit_mm = 1.0) {
+                      const gcode::Parameters* var = nullptr, unsigned axes = kXyzbc, double machine_unit_mm = 1.0) {
   Setup setup;
   setup.file = "test.ngc";
   setup.machine_axes = axes;
@@ -72,7 +72,8 @@ TEST(Interpreter, WorkOffsetsFromTheParameterFileAndG10) {
   gcode::Parameters var;
   var[5221] = 100;  // G54 X
   var[5243] = -20;  // G55 Z
-  const Interpreted r = interpret(kStart + "G55 G0 X1 Z1\nG10 L2 P1 Y7\nG54 G1 Y0 F10\nG10 L20 P1 X0\nG0 X5\n", nullptr, &var);
+  const Interpreted r =
+      interpret(kStart + "G55 G0 X1 Z1\nG10 L2 P1 Y7\nG54 G1 Y0 F10\nG10 L20 P1 X0\nG0 X5\n", nullptr, &var);
   ASSERT_EQ(r.moves.size(), 4u);
   EXPECT_DOUBLE_EQ(r.moves[0].frame.world(r.moves[0].end)[0], 100.0);  // G54 X0
   EXPECT_DOUBLE_EQ(r.moves[1].frame.world(r.moves[1].end)[2], -19.0);  // G55 Z1
@@ -104,13 +105,13 @@ TEST(Interpreter, MachineCoordinatesIgnoreWorkOffsets) {
 TEST(Interpreter, ArcsInEveryPlaneWithCenterAndRadiusForms) {
   gcode::Parameters var;
   const Interpreted r = interpret(kStart +
-                              "G1 X10 F100\n"
-                              "G3 X0 Y10 I-10 J0\n"      // quarter turn CCW about the origin
-                              "G2 X10 Y0 R-10\n"         // R < 0: the long way round (270 deg)
-                              "G18 G2 X20 Z0 I5 K0\n"    // XZ plane
-                              "G19 G3 Y0 Z10 J-5 K5\n"
-                              "G17 G2 X20 Y0 I-5 J0 P3\n",  // three full turns
-                          nullptr, &var);
+                                      "G1 X10 F100\n"
+                                      "G3 X0 Y10 I-10 J0\n"    // quarter turn CCW about the origin
+                                      "G2 X10 Y0 R-10\n"       // R < 0: the long way round (270 deg)
+                                      "G18 G2 X20 Z0 I5 K0\n"  // XZ plane
+                                      "G19 G3 Y0 Z10 J-5 K5\n"
+                                      "G17 G2 X20 Y0 I-5 J0 P3\n",  // three full turns
+                                  nullptr, &var);
   ASSERT_EQ(r.moves.size(), 7u);
   EXPECT_NEAR(r.moves[2].arc.sweep_rad, M_PI / 2, 1e-12);
   EXPECT_NEAR(r.moves[3].arc.sweep_rad, -1.5 * M_PI, 1e-12);
@@ -135,10 +136,11 @@ TEST(Interpreter, ParametersAndExpressions) {
 // acceptance corpus compares whole programs that print them, tests/acceptance).
 TEST(Interpreter, StateParametersAsLinuxCncShowsThem) {
   gcode::Parameters var;
-  const Interpreted r = interpret(kStart + "G20 G55 G91 G0 X1 Y2\n"
-                                           "#1 = #<_x>\n#2 = #5421\n#3 = #<_coord_system>\n#4 = #<_imperial>\n"
-                                           "#5 = #<_incremental>\n#6 = #<_motion_mode>\n#7 = EXISTS[#<_metric>]\n"
-                                           "G1 X#1 F10\n",
+  const Interpreted r = interpret(kStart +
+                                      "G20 G55 G91 G0 X1 Y2\n"
+                                      "#1 = #<_x>\n#2 = #5421\n#3 = #<_coord_system>\n#4 = #<_imperial>\n"
+                                      "#5 = #<_incremental>\n#6 = #<_motion_mode>\n#7 = EXISTS[#<_metric>]\n"
+                                      "G1 X#1 F10\n",
                                   nullptr, &var);
   ASSERT_EQ(r.moves.size(), 3u);
   EXPECT_NEAR(r.locals[0], 1.0, 1e-12);  // inches
@@ -159,8 +161,10 @@ TEST(Interpreter, RefusesWhatItCannotTranslateWithLineAndColumn) {
   EXPECT_NE(refusal(kStart + "G41.1 D1 F1 G1 X5\nG92 X0\n").find("test.ngc:4:1: error: cannot use G92 with cutter"),
             std::string::npos);
   EXPECT_NE(refusal(kStart + "G1 F1 D1 X5\n").find("D word without G41"), std::string::npos);
-  EXPECT_NE(refusal(kStart + "G41 D100000000000000000000 G1 X5\n").find("out of range"), std::string::npos);  // (the fuzzer's)
-  EXPECT_NE(refusal(kStart + "G1 F10 G87 X1 Z-1 R1\n").find("test.ngc:3:8: error: G87: the back boring"), std::string::npos);
+  EXPECT_NE(refusal(kStart + "G41 D100000000000000000000 G1 X5\n").find("out of range"),
+            std::string::npos);  // (the fuzzer's)
+  EXPECT_NE(refusal(kStart + "G1 F10 G87 X1 Z-1 R1\n").find("test.ngc:3:8: error: G87: the back boring"),
+            std::string::npos);
   EXPECT_NE(refusal(kStart + "G18 F10 G81 X1 Y-1 R1 @1\n").find("XY plane (G17) only"), std::string::npos);
   EXPECT_NE(refusal(kStart + "F10 G81 X1 Z-1\n").find("R (the retract plane) is missing"), std::string::npos);
   EXPECT_NE(refusal(kStart + "o100 sub\n").find("O-word"), std::string::npos);
@@ -222,8 +226,8 @@ TEST(Interpreter, ArcToleranceIsLinuxCncs) {
   EXPECT_EQ(refusal(from + "G2 X10 Y0 R4.99875\n"), "accepted");
   EXPECT_NE(refusal(from + "G2 X10 Y0 R4.99870\n").find("radius too small"), std::string::npos);
   EXPECT_EQ(refusal(from + "G2 X10 Y0 I5.014 J0\n"), "accepted");  // radii differ by 0.028 mm (0.56 %)
-  EXPECT_NE(refusal(from + "G2 X10 Y0 I5.0145 J0\n").find("differs"), std::string::npos);  // 0.029 mm
-  EXPECT_EQ(refusal(from + "G2 X100 Y0 I50.0162 J0\n"), "accepted");  // 0.0324 mm, 0.065 %
+  EXPECT_NE(refusal(from + "G2 X10 Y0 I5.0145 J0\n").find("differs"), std::string::npos);     // 0.029 mm
+  EXPECT_EQ(refusal(from + "G2 X100 Y0 I50.0162 J0\n"), "accepted");                          // 0.0324 mm, 0.065 %
   EXPECT_NE(refusal(from + "G2 X10000 Y0 I5001.5 J0\n").find("differs"), std::string::npos);  // 3 mm, 0.06 %
   EXPECT_NE(refusal(from + "G2 X0.001 Y0 I0.0005 J0\n").find("zero radius"), std::string::npos);
   EXPECT_EQ(refusal(from + "G20 G2 X1 Y0 I0.5014 J0\n"), "accepted");  // 0.0028 in (0.0283 in G21 would refuse)
@@ -240,7 +244,7 @@ TEST(Interpreter, ToolLengthOnAToolChangeLineIsMarkedForALineOfItsOwn) {
   EXPECT_EQ(change.after_tool_change_words[0], 2);
   EXPECT_EQ(change.after_tool_change_words[1], 3);
   EXPECT_DOUBLE_EQ(r.moves[2].frame.world(r.moves[2].end)[2], 50.0);  // the machine stays at Z50
-  EXPECT_TRUE(r.effects[5].after_tool_change_words.empty());  // a move on the line: no ambiguity
+  EXPECT_TRUE(r.effects[5].after_tool_change_words.empty());          // a move on the line: no ambiguity
 }
 
 // G43.1's axis words are the tool's length, not a move.
@@ -258,22 +262,23 @@ TEST(Interpreter, AxisOffsetsShiftTheProgramAndKeepTheMachineStill) {
   gcode::Parameters var;
   const Interpreted r = interpret(kStart +
                                       "G0 X10 Y0\n"
-                                      "G92 X0\n"       // here becomes X0: offset 10
-                                      "G0 X5\n"        // world 15
-                                      "G52 X2\n"       // offset 2: program X 13 here
-                                      "G0 X5\n"        // world 7
-                                      "G92.2\n"        // off, #5211 kept
-                                      "G0 X5\n"        // world 5
-                                      "G92.3\n"        // back on: offset 2
-                                      "G0 X5\n"        // world 7
-                                      "G92.1\n"        // off and zeroed
-                                      "G0 X5\n",      // world 5
+                                      "G92 X0\n"  // here becomes X0: offset 10
+                                      "G0 X5\n"   // world 15
+                                      "G52 X2\n"  // offset 2: program X 13 here
+                                      "G0 X5\n"   // world 7
+                                      "G92.2\n"   // off, #5211 kept
+                                      "G0 X5\n"   // world 5
+                                      "G92.3\n"   // back on: offset 2
+                                      "G0 X5\n"   // world 7
+                                      "G92.1\n"   // off and zeroed
+                                      "G0 X5\n",  // world 5
                                   nullptr, &var);
   ASSERT_EQ(r.moves.size(), 7u);
   const double expected[] = {15, 7, 5, 7, 5};
   for (int k = 0; k < 5; ++k)
-    EXPECT_DOUBLE_EQ(r.moves[static_cast<std::size_t>(k + 2)].frame.world(r.moves[static_cast<std::size_t>(k + 2)].end)[0],
-                     expected[k])
+    EXPECT_DOUBLE_EQ(
+        r.moves[static_cast<std::size_t>(k + 2)].frame.world(r.moves[static_cast<std::size_t>(k + 2)].end)[0],
+        expected[k])
         << k;
   EXPECT_DOUBLE_EQ(r.moves[3].start[0], 13.0);  // after G52 X2, at world 15
   gcode::Parameters rotated;
@@ -318,8 +323,8 @@ TEST(Interpreter, ToolTableChangesTakeEffectAtTheNextG43) {
 
 // A LinuxCNC set up in inches ([TRAJ]LINEAR_UNITS = inch): the .var file, the tool table and the
 // parameters that hold their lengths are in inches; #1..#10 at the end of the program.
-std::array<double, 10> run_on_inch_machine(const std::string& program, const ToolTable& tools, const gcode::Parameters& var,
-                                           std::vector<Move>* moves = nullptr) {
+std::array<double, 10> run_on_inch_machine(const std::string& program, const ToolTable& tools,
+                                           const gcode::Parameters& var, std::vector<Move>* moves = nullptr) {
   const Interpreted run = interpret(program, &tools, &var, kXyzbc, 25.4);
   if (moves) *moves = run.moves;
   return run.locals;
@@ -327,13 +332,13 @@ std::array<double, 10> run_on_inch_machine(const std::string& program, const Too
 
 TEST(Interpreter, OnAnInchMachineTheParameterFileAndToolTableAreInInches) {
   gcode::Parameters var;
-  var[5221] = 1.0;  // G54 X, inches
-  var[5163] = 2.0;  // G28 Z, inches
+  var[5221] = 1.0;                                      // G54 X, inches
+  var[5163] = 2.0;                                      // G28 Z, inches
   const ToolTable tools{{1, mill_tool(1, 50.8, 6.0)}};  // read from a file in inches: 2 in
   std::vector<Move> moves;
   const auto locals = run_on_inch_machine(
-      "G21 G90 G54\nG0 X0 Y0 Z0 B0 C0\n#1 = #5221\nG10 L2 P1 X2.54\n#2 = #5221\nT1 M6 G43\nG0 X0\nG28 Z10\n", tools, var,
-      &moves);
+      "G21 G90 G54\nG0 X0 Y0 Z0 B0 C0\n#1 = #5221\nG10 L2 P1 X2.54\n#2 = #5221\nT1 M6 G43\nG0 X0\nG28 Z10\n", tools,
+      var, &moves);
   EXPECT_DOUBLE_EQ(moves.at(0).frame.world(moves[0].end)[0], 25.4);  // G54 X0 is 1 in
   EXPECT_DOUBLE_EQ(locals[0], 1.0);                                  // the program reads inches
   EXPECT_NEAR(locals[1], 0.1, 1e-15);                                // G10 L2 writes them

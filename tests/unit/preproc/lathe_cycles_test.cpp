@@ -48,15 +48,15 @@ TEST(LatheCycles, TurningByHand) {
   };
   const MoveKind G0 = MoveKind::Rapid, G1 = MoveKind::Line;
   std::vector<Expected> expected = {{G0, 10, 1}};  // to the cycle's X Z
-  expected.push_back({G0, 10, 1});                  // to the profile's start
-  const double dive_z[] = {1, 0.75, 0.5, 0.25};     // the approach line crosses X10 X8 X6 X4 here
+  expected.push_back({G0, 10, 1});                 // to the profile's start
+  const double dive_z[] = {1, 0.75, 0.5, 0.25};    // the approach line crosses X10 X8 X6 X4 here
   for (int k = 0; k < 4; ++k) {
     const double x = 10 - 2 * k, z = dive_z[k];
-    expected.push_back({G0, x, z});               // down the approach to this depth
-    expected.push_back({G1, x, -10});             // the cut, to the shoulder
-    expected.push_back({G0, x + 0.5, -9.5});      // escape
-    expected.push_back({G0, x + 0.5, z - 0.5});   // back
-    expected.push_back({G0, x, z});               // and down again
+    expected.push_back({G0, x, z});              // down the approach to this depth
+    expected.push_back({G1, x, -10});            // the cut, to the shoulder
+    expected.push_back({G0, x + 0.5, -9.5});     // escape
+    expected.push_back({G0, x + 0.5, z - 0.5});  // back
+    expected.push_back({G0, x, z});              // and down again
   }
   expected.push_back({G0, 2, 0});    // the last depth reaches the profile
   expected.push_back({G1, 2, -10});  // along it
@@ -84,12 +84,14 @@ TEST(LatheCycles, RefusesWhatLinuxCncRefusesWithTheLine) {
   EXPECT_NE(refusal("G17 G21 G90 G54\nG0 X20 Y0 Z5\nF100\n" + std::string(kProfile) + "G71 Q1 X10 Z1\nM2\n")
                 .find("lathe.ngc:9:1: error: G71: LinuxCNC runs the lathe cycles in the XZ plane (G18) only"),
             std::string::npos);
-  EXPECT_NE(refusal(setup + "G71 Q1 X10 Z1 I0\nM2\n").find("lathe.ngc:9:15: error: G7X error: I must be greater than zero"),
-            std::string::npos);
+  EXPECT_NE(
+      refusal(setup + "G71 Q1 X10 Z1 I0\nM2\n").find("lathe.ngc:9:15: error: G7X error: I must be greater than zero"),
+      std::string::npos);
   EXPECT_NE(refusal(setup + "G41.1 D1\nG71 Q1 X10 Z1\nM2\n")
                 .find("lathe.ngc:10:1: error: G71: LinuxCNC refuses this cycle with cutter compensation on"),
             std::string::npos);
-  EXPECT_NE(refusal(setup + "G91 G71 Q1 X10 Z1\nM2\n").find("error: G71: in incremental mode (G91)"), std::string::npos);
+  EXPECT_NE(refusal(setup + "G91 G71 Q1 X10 Z1\nM2\n").find("error: G71: in incremental mode (G91)"),
+            std::string::npos);
   EXPECT_NE(refusal(setup + "G72 Q7 X10 Z1\nM2\n").find("subroutine o7 (the profile of this lathe cycle)"),
             std::string::npos);
   // A profile LinuxCNC cannot cut, with its reason, at the cycle's line.

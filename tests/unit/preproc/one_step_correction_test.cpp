@@ -102,12 +102,13 @@ TEST_P(OneStepCorrectionTest, AgreesWithTheCoreAndItsContractionBoundHolds) {
       fast += bound <= OneStepCorrection::kAcceptedResidualMm;
     }
   }
-  std::printf("%s: kappa %.3g at the full-correction angle, %.3g at 60 deg (L = %.0f mm); residual after a step / its bound: largest %.3f; "
-              "%d of %d seeds within one unverified step, %d declined (pole); "
-              "largest joint difference to the core %.2e mm or deg\n",
-              GetParam(), one_step.contraction(model.tool_length_mm, model.fade.full_rad),
-              one_step.contraction(model.tool_length_mm, M_PI / 3), model.tool_length_mm, worst_ratio, fast, tried,
-              declined, worst_difference);
+  std::printf(
+      "%s: kappa %.3g at the full-correction angle, %.3g at 60 deg (L = %.0f mm); residual after a step / its bound: largest %.3f; "
+      "%d of %d seeds within one unverified step, %d declined (pole); "
+      "largest joint difference to the core %.2e mm or deg\n",
+      GetParam(), one_step.contraction(model.tool_length_mm, model.fade.full_rad),
+      one_step.contraction(model.tool_length_mm, M_PI / 3), model.tool_length_mm, worst_ratio, fast, tried, declined,
+      worst_difference);
   EXPECT_LE(worst_difference, 1e-8);
   EXPECT_GT(fast, tried / 2);  // most points of a path cost one chain walk
 }

@@ -52,16 +52,16 @@ std::string refusal(const std::string& program) {
 }
 
 TEST(ProgramReader, SubroutineArgumentsLocalsAndReturnValue) {
-  const Executed e = run(
-      "o<twice> sub\n"               // 1
-      "#<half> = #1\n"              // 2: a local: dropped from the flat program
-      "G0 X[#<half> * 2] Y#2\n"     // 3
-      "o<twice> return [#1 + 1]\n"  // 4
-      "o<twice> endsub\n"           // 5
-      "#1 = 7\n"                    // 6
-      "o<twice> call [5] [3]\n"     // 7
-      "G0 X#<_value> Y#1\n"         // 8: the caller's #1 is back
-      "M2\n");                      // 9
+  const Executed e =
+      run("o<twice> sub\n"              // 1
+          "#<half> = #1\n"              // 2: a local: dropped from the flat program
+          "G0 X[#<half> * 2] Y#2\n"     // 3
+          "o<twice> return [#1 + 1]\n"  // 4
+          "o<twice> endsub\n"           // 5
+          "#1 = 7\n"                    // 6
+          "o<twice> call [5] [3]\n"     // 7
+          "G0 X#<_value> Y#1\n"         // 8: the caller's #1 is back
+          "M2\n");                      // 9
   EXPECT_EQ(e.lines, (std::vector<int>{6, 3, 8, 9}));
   EXPECT_EQ(e.texts[1], "G0 X10 Y3");
   EXPECT_EQ(e.texts[2], "G0 X6 Y7");  // reads the call's result: evaluated (the caller's #1 is back)
@@ -69,54 +69,54 @@ TEST(ProgramReader, SubroutineArgumentsLocalsAndReturnValue) {
 }
 
 TEST(ProgramReader, LoopsAndConditionsRunAsLinuxCncRunsThem) {
-  const Executed e = run(
-      "#1 = 0\n"                    // 1
-      "o10 while [#1 LT 4]\n"       // 2
-      "#1 = [#1 + 1]\n"             // 3
-      "o11 if [#1 EQ 2]\n"          // 4
-      "o10 continue\n"              // 5
-      "o11 elseif [#1 EQ 3]\n"      // 6
-      "G0 X3\n"                     // 7
-      "o11 else\n"                  // 8
-      "G0 X#1\n"                    // 9
-      "o11 endif\n"                 // 10
-      "o10 endwhile\n"              // 11
-      "o20 repeat [2]\n"            // 12
-      "G0 Y1\n"                     // 13
-      "o20 endrepeat\n"             // 14
-      "o30 do\n"                    // 15
-      "#1 = [#1 - 3]\n"             // 16
-      "o30 while [#1 GT 0]\n"       // 17
-      "M2\n");                      // 18
+  const Executed e =
+      run("#1 = 0\n"                // 1
+          "o10 while [#1 LT 4]\n"   // 2
+          "#1 = [#1 + 1]\n"         // 3
+          "o11 if [#1 EQ 2]\n"      // 4
+          "o10 continue\n"          // 5
+          "o11 elseif [#1 EQ 3]\n"  // 6
+          "G0 X3\n"                 // 7
+          "o11 else\n"              // 8
+          "G0 X#1\n"                // 9
+          "o11 endif\n"             // 10
+          "o10 endwhile\n"          // 11
+          "o20 repeat [2]\n"        // 12
+          "G0 Y1\n"                 // 13
+          "o20 endrepeat\n"         // 14
+          "o30 do\n"                // 15
+          "#1 = [#1 - 3]\n"         // 16
+          "o30 while [#1 GT 0]\n"   // 17
+          "M2\n");                  // 18
   // #1 = 1: X1 (else); 2: continue; 3: X3 (elseif); 4: X4 (else); then repeat twice; the do
   // loop runs while #1 - 3k > 0: twice (4 -> 1 -> -2).
   EXPECT_EQ(e.lines, (std::vector<int>{1, 3, 9, 3, 3, 7, 3, 9, 13, 13, 16, 16, 18}));
 }
 
 TEST(ProgramReader, BreakLeavesTheLoop) {
-  const Executed e = run(
-      "#1 = 0\n"
-      "o1 while [1]\n"
-      "#1 = [#1 + 1]\n"
-      "o2 if [#1 GE 3]\n"
-      "o1 break\n"
-      "o2 endif\n"
-      "o1 endwhile\n"
-      "G0 X#1\n"
-      "M2\n");
+  const Executed e =
+      run("#1 = 0\n"
+          "o1 while [1]\n"
+          "#1 = [#1 + 1]\n"
+          "o2 if [#1 GE 3]\n"
+          "o1 break\n"
+          "o2 endif\n"
+          "o1 endwhile\n"
+          "G0 X#1\n"
+          "M2\n");
   EXPECT_EQ(e.lines, (std::vector<int>{1, 3, 3, 3, 8, 9}));
 }
 
 TEST(ProgramReader, FanucSubprogramsWithRepeats) {
-  const Executed e = run(
-      "G0 X0\n"           // 1
-      "M98 P1000 L3\n"    // 2
-      "G0 X1\n"           // 3
-      "M30\n"             // 4
-      "O1000\n"           // 5
-      "G91 G0 Y1\n"       // 6
-      "G90\n"             // 7
-      "M99\n");           // 8
+  const Executed e =
+      run("G0 X0\n"         // 1
+          "M98 P1000 L3\n"  // 2
+          "G0 X1\n"         // 3
+          "M30\n"           // 4
+          "O1000\n"         // 5
+          "G91 G0 Y1\n"     // 6
+          "G90\n"           // 7
+          "M99\n");         // 8
   EXPECT_EQ(e.lines, (std::vector<int>{1, 6, 7, 6, 7, 6, 7, 3, 4}));
 }
 
@@ -138,7 +138,8 @@ TEST(ProgramReader, MessagesInACallAreExpandedAndTheLineNumberIsTheSources) {
 // assignments to the main program's own parameters stay in it (later lines read them), while a
 // call's own are left out.
 TEST(ProgramReader, MainProgramAssignmentsFromTheStateAreKept) {
-  const Executed e = run("G0 X3 Y0 Z0\n#<home> = #<_x>\nG1 X#<home> F100\no1 sub\n#<own> = #<_x>\no1 endsub\no1 call\nM2\n");
+  const Executed e =
+      run("G0 X3 Y0 Z0\n#<home> = #<_x>\nG1 X#<home> F100\no1 sub\n#<own> = #<_x>\no1 endsub\no1 call\nM2\n");
   ASSERT_GE(e.texts.size(), 3u);
   EXPECT_EQ(e.texts[1], "#<home>=3");
   EXPECT_EQ(e.texts[2], "G1 X#<home> F100");
@@ -148,21 +149,21 @@ TEST(ProgramReader, MainProgramAssignmentsFromTheStateAreKept) {
 // M70-M73: the state is restored by the G-code LinuxCNC writes for it (F with one decimal, the
 // G and M codes that differ), run as lines of the flat program; M73's on the return.
 TEST(ProgramReader, SavedModalStateIsRestoredByTheLinesLinuxCncRuns) {
-  const Executed e = run(
-      "o<sub> sub\n"          // 1
-      "M73\n"                 // 2
-      "G91 F5 M8\n"           // 3
-      "o<sub> endsub\n"       // 4
-      "G21 F100.04 S500 M3\n" // 5
-      "M70 (save)\n"          // 6
-      "F20 G91 M4\n"          // 7
-      "M72\n"                 // 8
-      "o<sub> call\n"         // 9
-      "M2\n");                // 10
+  const Executed e =
+      run("o<sub> sub\n"                                     // 1
+          "M73\n"                                            // 2
+          "G91 F5 M8\n"                                      // 3
+          "o<sub> endsub\n"                                  // 4
+          "G21 F100.04 S500 M3\n"                            // 5
+          "M70 (save)\n"                                     // 6
+          "F20 G91 M4\n"                                     // 7
+          "M72\n"                                            // 8
+          "o<sub> call\n"                                    // 9
+          "M2\n");                                           // 10
   const std::vector<int> lines{5, 6, 7, 8, 8, 2, 3, 4, 10};  // (4: the restore after endsub)
   EXPECT_EQ(e.lines, lines);
   ASSERT_EQ(e.texts.size(), lines.size());
-  EXPECT_EQ(e.texts[3], "M72");  // (the writer leaves the word out: Effect::dropped_words)
+  EXPECT_EQ(e.texts[3], "M72");                     // (the writer leaves the word out: Effect::dropped_words)
   EXPECT_EQ(e.texts[4], " F100.0 S500 G90 G64M3");  // G64: LinuxCNC always states it
   EXPECT_EQ(e.texts[7], " F100.0 S500 G90 G64M9");  // M73's restore on the return from o<sub>
 }

@@ -179,44 +179,54 @@ TEST(Splines, RefusesWhatLinuxCncRefusesWithLineAndColumn) {
             std::string::npos);
   EXPECT_NE(refusal(kStart + "G5 X1 Y1 I1 P0 Q1\n").find("test.ngc:4:10: error: G5 needs both I and J, or neither"),
             std::string::npos);
-  EXPECT_NE(refusal(kStart + "G5 X1 Y1 I1 J0 P1\n").find("test.ngc:4:1: error: G5 needs both P and Q"), std::string::npos);
-  EXPECT_NE(refusal(kStart + "G5.1 X1 Y1 I1\n").find("test.ngc:4:1: error: G5.1 needs both I and J"), std::string::npos);
+  EXPECT_NE(refusal(kStart + "G5 X1 Y1 I1 J0 P1\n").find("test.ngc:4:1: error: G5 needs both P and Q"),
+            std::string::npos);
+  EXPECT_NE(refusal(kStart + "G5.1 X1 Y1 I1\n").find("test.ngc:4:1: error: G5.1 needs both I and J"),
+            std::string::npos);
   EXPECT_NE(refusal(kStart + "G5.1 X1 Y1 Z1 I1 J0\n").find("test.ngc:4:12: error: splines may not have motion in Z"),
             std::string::npos);
   EXPECT_NE(refusal(kStart + "G5.1 I1 J0\n").find("test.ngc:4:1: error: G5.1 without axis words"), std::string::npos);
-  EXPECT_NE(refusal("G21 G90 G54\nG0 X0 Y0 Z0\nG5.1 X1 Y1 I1 J0\n").find("test.ngc:3:1: error: G5.1 spline with zero feed"),
-            std::string::npos);
+  EXPECT_NE(
+      refusal("G21 G90 G54\nG0 X0 Y0 Z0\nG5.1 X1 Y1 I1 J0\n").find("test.ngc:3:1: error: G5.1 spline with zero feed"),
+      std::string::npos);
   EXPECT_NE(refusal(kStart + "G93 G5.1 X1 Y1 I1 J0 F1\n").find("inverse time feed (G93) is not translated"),
             std::string::npos);
   EXPECT_NE(refusal(kStart + "G5.3\n").find("test.ngc:4:1: error: G5.3 without G5.2 first"), std::string::npos);
   EXPECT_NE(refusal(kStart + "G81 X1 Y1 Z-1 R1\nG5.3\n").find("test.ngc:5:1: error: G5.3 without G5.2 first"),
             std::string::npos);
-  EXPECT_NE(refusal(kStart + "G5.2 X1 Y1 P1 L4\nX2 Y0 P1\nG5.3\n").find("test.ngc:6:1: error: a NURBS of order L = 4 needs "
-                                                                        "at least 4 control points"),
+  EXPECT_NE(refusal(kStart + "G5.2 X1 Y1 P1 L4\nX2 Y0 P1\nG5.3\n")
+                .find("test.ngc:6:1: error: a NURBS of order L = 4 needs "
+                      "at least 4 control points"),
             std::string::npos);
   EXPECT_NE(refusal(kStart + "G5.2 X1 Y1 P1 L65\n").find("test.ngc:4:15: error: a NURBS of order L above 64"),
             std::string::npos);
   EXPECT_NE(refusal(kStart + "G5.2 X1 P1\n").find("test.ngc:4:6: error: a G5.2 control point needs both X and Y"),
             std::string::npos);
-  EXPECT_NE(refusal(kStart + "G5.2 X1 Y1 P1\nX2 Y0\n").find("test.ngc:5:1: error: every G5.2 control point needs a "
-                                                            "positive weight P"),
+  EXPECT_NE(refusal(kStart + "G5.2 X1 Y1 P1\nX2 Y0\n")
+                .find("test.ngc:5:1: error: every G5.2 control point needs a "
+                      "positive weight P"),
             std::string::npos);
-  EXPECT_NE(refusal(kStart + "G5.2 X1 Y1 P1\nG5.2 P2\n").find("test.ngc:5:6: error: P without X and Y is the weight of the "
-                                                              "first G5.2 point only"),
+  EXPECT_NE(refusal(kStart + "G5.2 X1 Y1 P1\nG5.2 P2\n")
+                .find("test.ngc:5:6: error: P without X and Y is the weight of the "
+                      "first G5.2 point only"),
             std::string::npos);
-  EXPECT_NE(refusal(kStart + "G5.2 X1 Y1 P1\nX2 Y0 P1\nG5.3 G1 X3\n").find("test.ngc:6:6: error: between G5.2 and G5.3 only "
-                                                                          "more G5.2"),
+  EXPECT_NE(refusal(kStart + "G5.2 X1 Y1 P1\nX2 Y0 P1\nG5.3 G1 X3\n")
+                .find("test.ngc:6:6: error: between G5.2 and G5.3 only "
+                      "more G5.2"),
             std::string::npos);
-  EXPECT_NE(refusal(kStart + "G5.2 X1 Y1 P1\nX2 Y0 P1\nG5.3\nX3\n").find("test.ngc:7:1: error: axis words without a motion "
-                                                                        "mode (G0, G1, G2 or G3): G5.3 leaves none"),
+  EXPECT_NE(refusal(kStart + "G5.2 X1 Y1 P1\nX2 Y0 P1\nG5.3\nX3\n")
+                .find("test.ngc:7:1: error: axis words without a motion "
+                      "mode (G0, G1, G2 or G3): G5.3 leaves none"),
             std::string::npos);
-  EXPECT_NE(refusal(kStart + "G5.2 X1 Y1 P1\nX2 Y0 P1\nG5.3 G4 P1\n").find("test.ngc:6:6: error: G4 on a line with G5.3"),
-            std::string::npos);
+  EXPECT_NE(
+      refusal(kStart + "G5.2 X1 Y1 P1\nX2 Y0 P1\nG5.3 G4 P1\n").find("test.ngc:6:6: error: G4 on a line with G5.3"),
+      std::string::npos);
   EXPECT_NE(refusal(kStart + "G53 G5.1 X1 Y1 I1 J0\n").find("test.ngc:4:1: error: G53 on a line with G5.1"),
             std::string::npos);
   const ToolTable tools{{1, mill_tool(1, 10.0, 6.0)}};
-  EXPECT_NE(refusal(kStart + "G41 D1 G1 X5\nG5.1 X7 Y1 I1 J0\n", &tools).find("test.ngc:5:1: error: G5.1 spline with "
-                                                                             "cutter radius compensation on"),
+  EXPECT_NE(refusal(kStart + "G41 D1 G1 X5\nG5.1 X7 Y1 I1 J0\n", &tools)
+                .find("test.ngc:5:1: error: G5.1 spline with "
+                      "cutter radius compensation on"),
             std::string::npos);
   // What a pre-distorter cannot write faithfully: a P, Q or L the moves would read as theirs,
   // a curve starting off the tool, LinuxCNC's own arithmetic failing (a straight piece).
@@ -224,16 +234,19 @@ TEST(Splines, RefusesWhatLinuxCncRefusesWithLineAndColumn) {
             std::string::npos);
   EXPECT_NE(refusal(kStart + "G5 X1 Y1 I1 J0 P0 Q1 M50\n").find("P on this line is both G5's and another code's"),
             std::string::npos);
-  EXPECT_NE(refusal(kStart + "G41 D1 G1 X5\nG40\nG5.1 X7 Y1 I1 J0\n", &tools).find("test.ngc:6:1: error: G5.1 spline "
-                                                                                  "where the tool is not at the "
-                                                                                  "programmed point (just after G40"),
+  EXPECT_NE(refusal(kStart + "G41 D1 G1 X5\nG40\nG5.1 X7 Y1 I1 J0\n", &tools)
+                .find("test.ngc:6:1: error: G5.1 spline "
+                      "where the tool is not at the "
+                      "programmed point (just after G40"),
             std::string::npos);
   EXPECT_EQ(refusal(kStart + "G41 D1 G1 X5\nG40\nG1 X6\nG5.1 X7 Y1 I1 J0\n", &tools), "accepted");
-  EXPECT_NE(refusal(kStart + "G5.1 X10 Y0 I5 J0\n").find("test.ngc:4:1: error: LinuxCNC 2.9's arcs for this curve are not "
-                                                          "finite"),
+  EXPECT_NE(refusal(kStart + "G5.1 X10 Y0 I5 J0\n")
+                .find("test.ngc:4:1: error: LinuxCNC 2.9's arcs for this curve are not "
+                      "finite"),
             std::string::npos);
-  EXPECT_NE(refusal(kStart + "G5.2 X1 Y1 P1\nX2 Y0 P1\nG1 X5\nG5.1 X6 Y1 I1 J0\n").find("after G5.2 points no G5.3 ended"),
-            std::string::npos);
+  EXPECT_NE(
+      refusal(kStart + "G5.2 X1 Y1 P1\nX2 Y0 P1\nG1 X5\nG5.1 X6 Y1 I1 J0\n").find("after G5.2 points no G5.3 ended"),
+      std::string::npos);
   EXPECT_NE(refusal(kStart + "G5.2 X1 Y1 P1\nX2 Y0 P1\nG92 X5\nG5.3\n").find("no longer where the tool is"),
             std::string::npos);
   EXPECT_NE(refusal("G21 G90 G54\nF100\nG5.1 X1 Y1 I1 J0\n").find("from an unknown position"), std::string::npos);

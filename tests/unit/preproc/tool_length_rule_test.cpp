@@ -52,8 +52,8 @@ std::vector<std::string> motion(const Practice& p) {
 TEST(ToolLengthRule, TheThreePracticesGiveTheSameMotion) {
   // The world Z of a program point is Z + G54 Z + offset: each practice touches off so that
   // the same program point is the same machine position.
-  const Practice gauge{0.0, 100.0, true, -340.0};     // tool table: gauge lengths
-  const Practice relative{100.0, 0.0, true, -240.0};  // reference tool (100 mm) at 0: this tool is it
+  const Practice gauge{0.0, 100.0, true, -340.0};                // tool table: gauge lengths
+  const Practice relative{100.0, 0.0, true, -240.0};             // reference tool (100 mm) at 0: this tool is it
   const Practice touch_off{100.0, std::nullopt, false, -240.0};  // no tool table, no G43
   const std::vector<std::string> a = motion(gauge);
   ASSERT_GE(a.size(), 5u);

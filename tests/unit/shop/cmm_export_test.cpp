@@ -104,7 +104,8 @@ TEST_F(CmmExport, TabsUnitsInTheHeaderAndTheDeviationWithItsStatedSign) {
 
 TEST_F(CmmExport, ColumnsInAnyOrderWithTheCommonSpellings) {
   // Bare X, Y, Z are the nominal; the deviation comes from the actual point, no sign needed.
-  const auto a = read("Meas Z,K,ID,X,J,Meas X,Z,I,Y,Meas Y\n7.002,1,A,5,0,5,7,0,6,6\n", sign(DeviationSign::Unstated, "mm"));
+  const auto a =
+      read("Meas Z,K,ID,X,J,Meas X,Z,I,Y,Meas Y\n7.002,1,A,5,0,5,7,0,6,6\n", sign(DeviationSign::Unstated, "mm"));
   EXPECT_EQ(a.at(0).id, "A");
   EXPECT_EQ(a.at(0).nominal, Eigen::Vector3d(5, 6, 7));
   EXPECT_NEAR(*a.at(0).deviation_mm, 0.002, 1e-12);
@@ -128,8 +129,9 @@ TEST_F(CmmExport, ColumnsInAnyOrderWithTheCommonSpellings) {
 }
 
 TEST_F(CmmExport, AStatedSignIsCheckedAgainstTheActualPointToTheDigitsWritten) {
-  const std::string text = "Units=MM\nX Nom,Y Nom,Z Nom,I,J,K,X Meas,Y Meas,Z Meas,Dev\n"
-                           "0,0,0,0.7071,0.7071,0,0.0007,0.0007,0,0.0010\n";
+  const std::string text =
+      "Units=MM\nX Nom,Y Nom,Z Nom,I,J,K,X Meas,Y Meas,Z Meas,Dev\n"
+      "0,0,0,0.7071,0.7071,0,0.0007,0.0007,0,0.0010\n";
   // sqrt(2) * 0.0007 = 0.00099: within the rounding of the digits written.
   EXPECT_NEAR(*read(text, sign(DeviationSign::ActualMinusNominal)).at(0).deviation_mm, 0.0007 * 1.4142, 1e-7);
   refused(text, sign(DeviationSign::NominalMinusActual), "3:39", "is the opposite of the actual point's");
@@ -147,9 +149,11 @@ TEST_F(CmmExport, OurCsvIsStillOursAndTakesNoExportOptions) {
   const auto p = read("# ours\nid,x[mm],y[mm],z[mm],i,j,k,deviation[um]\nA,1,2,3,0,0,1,4\n");
   EXPECT_EQ(layout_, "volcomp's CSV");
   EXPECT_NEAR(*p.at(0).deviation_mm, 0.004, 1e-15);
-  EXPECT_NO_THROW(read("id,x[mm],y[mm],z[mm],i,j,k,deviation[um]\nA,1,2,3,0,0,1,4\n", sign(DeviationSign::ActualMinusNominal)));
-  EXPECT_THROW(read("id,x[mm],y[mm],z[mm],i,j,k,deviation[um]\nA,1,2,3,0,0,1,4\n", sign(DeviationSign::Unstated, "inch")),
-               std::runtime_error);
+  EXPECT_NO_THROW(
+      read("id,x[mm],y[mm],z[mm],i,j,k,deviation[um]\nA,1,2,3,0,0,1,4\n", sign(DeviationSign::ActualMinusNominal)));
+  EXPECT_THROW(
+      read("id,x[mm],y[mm],z[mm],i,j,k,deviation[um]\nA,1,2,3,0,0,1,4\n", sign(DeviationSign::Unstated, "inch")),
+      std::runtime_error);
 }
 
 TEST_F(CmmExport, AmbiguousOrIncompleteFilesAreRefusedWithTheWayOut) {
@@ -164,7 +168,8 @@ TEST_F(CmmExport, AmbiguousOrIncompleteFilesAreRefusedWithTheWayOut) {
   refused("Units: mm\nX Nom,Y Nom [in],Z Nom,I,J,K,X Act,Y Act,Z Act\n0,0,0,0,0,1,0,0,0\n", none, "2:7",
           "the header says inch, the units line (line 1) says mm");
   refused("X [deg],Y,Z,I,J,K,Dev\n", mm, "1:1", "'deg' is not a length unit");
-  refused("Units: mm\nUnits: inch\nX,Y,Z,I,J,K,Dev\n", stated, "2", "this units line says inch, the one on line 1 says mm");
+  refused("Units: mm\nUnits: inch\nX,Y,Z,I,J,K,Dev\n", stated, "2",
+          "this units line says inch, the one on line 1 says mm");
   ReportFormat comma = stated;
   comma.decimal_comma = true;
   refused("X,Y,Z,I,J,K,Dev\n0,0,0,0,0,1,0\n", comma, "1", "--decimal-comma, but the header is separated by commas");
@@ -174,7 +179,8 @@ TEST_F(CmmExport, AmbiguousOrIncompleteFilesAreRefusedWithTheWayOut) {
   // Which column is what.
   refused("NX,NY,NZ,MX,MY,MZ\n0,0,0,0,0,0\n", mm, "1:1", "'NX' may be the nominal X or the normal's I");
   refused("Nominal X,Nominal Y,Nominal Z,X,Y,Z,I,J,K\n", mm, "1:31", "'X' is not marked nominal or actual");
-  refused("X,Y,Z,I,J,K,Meas X,Meas Y,Meas Z,X Act\n", mm, "1:34", "'X Act' is the actual X, and so is 'Meas X' (column 13)");
+  refused("X,Y,Z,I,J,K,Meas X,Meas Y,Meas Z,X Act\n", mm, "1:34",
+          "'X Act' is the actual X, and so is 'Meas X' (column 13)");
   refused("X,Y,Z,I,J,Meas X,Meas Y,Meas Z,Vektor K\n", mm, "1", "no column for the normal's K");
   refused("X,Y,Z,I,J,K,Meas X,Meas Z\n", mm, "1", "the actual point has no Y column");
   refused("X,Y,Z,I,J,K,Tol\n0,0,0,0,0,1,0.1\n", stated, "1", "a report needs the actual X, Y, Z or the deviation");

@@ -57,7 +57,8 @@ std::vector<shop::Anchor> anchors(const shop::ToolPath& path, const std::vector<
 TEST(LocalFit, ASwarfWallTellsTheTiltTowardsItFromAShiftOfTheTip) {
   const double y0 = -0.002, z0 = 0.0015, tilt = 1e-4;  // 2 um into the wall, 1.5 um above the floor, 100 urad
   const std::vector<shop::Anchor> a = anchors(pass(y0, z0, tilt), {2, 6, 10, 14, 18}, true);
-  const shop::LocalFit fit = shop::fit_tool_displacement(a, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), {40.0, 0.0, true, 1.0, 0.0});
+  const shop::LocalFit fit =
+      shop::fit_tool_displacement(a, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), {40.0, 0.0, true, 1.0, 0.0});
   ASSERT_TRUE(fit.covered);
   EXPECT_EQ(fit.tilt_components, 1) << "the wall sees the tilt towards it only";
   // Turning e_z toward +y by `tilt` is a rotation of -tilt about x.
@@ -69,7 +70,8 @@ TEST(LocalFit, ASwarfWallTellsTheTiltTowardsItFromAShiftOfTheTip) {
 
   // The same points fitted with a shift alone: the tilt's mean over the heights is taken as a
   // shift, the rest is left.
-  const shop::LocalFit shift_only = shop::fit_tool_displacement(a, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), {40.0, 0.0, false, 1.0, 0.0});
+  const shop::LocalFit shift_only = shop::fit_tool_displacement(a, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(),
+                                                                {40.0, 0.0, false, 1.0, 0.0});
   EXPECT_EQ(shift_only.tilt_components, 0);
   EXPECT_NEAR(shift_only.shift_mm.y(), y0 + 10 * tilt, 2e-5);
 }
@@ -79,8 +81,10 @@ TEST(LocalFit, PointsAtOneHeightOrOnTheFloorDoNotTellATilt) {
   for (const auto& [heights, floor] : {std::pair{std::vector<double>{8}, true}, std::pair{std::vector<double>{}, true},
                                        std::pair{std::vector<double>{9.5, 10, 10.5}, false}}) {
     const std::vector<shop::Anchor> a = anchors(path, heights, floor);
-    const shop::LocalFit with = shop::fit_tool_displacement(a, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), {40.0, 0.0, true, 1.0, 0.0});
-    const shop::LocalFit without = shop::fit_tool_displacement(a, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), {40.0, 0.0, false, 1.0, 0.0});
+    const shop::LocalFit with = shop::fit_tool_displacement(a, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(),
+                                                            {40.0, 0.0, true, 1.0, 0.0});
+    const shop::LocalFit without = shop::fit_tool_displacement(a, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(),
+                                                               {40.0, 0.0, false, 1.0, 0.0});
     EXPECT_EQ(with.tilt_components, 0) << heights.size() << " heights";
     EXPECT_EQ(with.tilt_rad, Eigen::Vector3d::Zero());
     EXPECT_EQ(with.shift_mm, without.shift_mm) << "the tip's shift as without the tilt";
@@ -129,13 +133,13 @@ TEST(LocalFit, NormalsAFewDegreesApartDoNotTellAShiftAlongTheSurface) {
   std::vector<shop::Anchor> a;
   for (int point = 0; point < 20; ++point)
     for (int cut = -3; cut <= 3; ++cut) {
-      const double turn = (cut + 0.3 * (point % 3)) * M_PI / 180;  // not symmetric about the point
+      const double turn = (cut + 0.3 * (point % 3)) * M_PI / 180;      // not symmetric about the point
       const double deviation = 0.010 + 0.001 * ((point * 7) % 5 - 2);  // 10 um, +-2 um of scatter
       a.push_back({Eigen::Vector3d(0.5 * cut, 2.0 * point - 20, 0), Eigen::Vector3d(std::cos(turn), std::sin(turn), 0),
                    5.0, deviation, Eigen::Matrix3d::Identity(), point});
     }
-  const shop::LocalFit fit =
-      shop::fit_tool_displacement(a, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), {40.0, 0.0, false, 1.0, 0.0});
+  const shop::LocalFit fit = shop::fit_tool_displacement(a, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(),
+                                                         {40.0, 0.0, false, 1.0, 0.0});
   EXPECT_NEAR(fit.shift_mm.x(), 0.010, 0.002);
   // Along the mean normal (turned by 0.3 deg: 0.05 um of y), not the least-squares answer.
   EXPECT_LT(std::abs(fit.shift_mm.y()), 1e-4);
@@ -172,7 +176,8 @@ TEST(LocalFit, TwoWallsAtACornerTellBothComponentsOfTheTilt) {
         const Eigen::Vector3d on_tool = h * Eigen::Vector3d::UnitZ() - kRadius * n;  // the side touching the wall
         a.push_back({tip, n, h, n.dot(v + turn * on_tool - on_tool)});
       }
-  const shop::LocalFit fit = shop::fit_tool_displacement(a, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), {40.0, 0.0, true, 1.0, 0.0});
+  const shop::LocalFit fit =
+      shop::fit_tool_displacement(a, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), {40.0, 0.0, true, 1.0, 0.0});
   EXPECT_EQ(fit.tilt_components, 2);
   EXPECT_NEAR((fit.tilt_rad - w).norm(), 0.0, 1e-3 * w.norm());
   EXPECT_NEAR(fit.shift_mm.x(), v.x(), 1e-7);

@@ -111,10 +111,10 @@ TEST(MachinedSurface, BallEndLeavesASphereBelowItsCentre) {
 TEST(MachinedSurface, PointsNoCutReachesAreNotOnTheSurface) {
   const shop::ToolPath path = pass(-5, -5);
   const shop::MachinedSurface surface(path);
-  EXPECT_FALSE(surface.deviation({0, 3, -3}, {0, -1, 0}));    // 3 mm inside the material
-  EXPECT_FALSE(surface.deviation({80, 0, -3}, {0, -1, 0}));   // beyond the end of the pass
+  EXPECT_FALSE(surface.deviation({0, 3, -3}, {0, -1, 0}));   // 3 mm inside the material
+  EXPECT_FALSE(surface.deviation({80, 0, -3}, {0, -1, 0}));  // beyond the end of the pass
   EXPECT_TRUE(surface.contacts({80, 0, -3}, 0.05).empty());
-  EXPECT_EQ(surface.contacts({0, 0, -3}, 0.05).size(), 2u);   // the segments ending and starting at x = 0
+  EXPECT_EQ(surface.contacts({0, 0, -3}, 0.05).size(), 2u);  // the segments ending and starting at x = 0
 }
 
 std::vector<shop::CmmPoint> floor_plan(int n) {
@@ -354,16 +354,19 @@ TEST_F(Files, ModelFitFindsARotaryAxisLocationErrorAndWritesIt) {
   ASSERT_EQ(fit.locations.size(), 2u);
   for (const shop::LocationValue& v : fit.locations) {
     EXPECT_EQ(v.joint, c);
-    EXPECT_NEAR(v.value, v.component == 0 ? model.axes[static_cast<std::size_t>(c)].location_mm[0] + 0.010 : 0.0, 0.0003)
+    EXPECT_NEAR(v.value, v.component == 0 ? model.axes[static_cast<std::size_t>(c)].location_mm[0] + 0.010 : 0.0,
+                0.0003)
         << v.component;
   }
   ASSERT_EQ(fit.seen.size(), 2u);
   for (const auto& seen : fit.seen) EXPECT_GT(seen.share, 0.9) << seen.symbol;
   EXPECT_LT(fit.rms_after_mm, 0.05 * fit.rms_before_mm);
 
-  const std::string written = shop::write_machine_with_tables(model, (dir_ / "located").string(), {}, "selftune", fit.locations);
+  const std::string written =
+      shop::write_machine_with_tables(model, (dir_ / "located").string(), {}, "selftune", fit.locations);
   const machine::Model loaded = machine::load_machine(written);
-  EXPECT_NEAR(loaded.axes[static_cast<std::size_t>(c)].location_mm[0], fit.locations[0].value, 1e-6);  // written to 1 nm
+  EXPECT_NEAR(loaded.axes[static_cast<std::size_t>(c)].location_mm[0], fit.locations[0].value,
+              1e-6);  // written to 1 nm
   EXPECT_NEAR(loaded.axes[static_cast<std::size_t>(c)].location_mm[1], fit.locations[1].value, 1e-6);
   std::ifstream in(written);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -407,7 +410,10 @@ TEST_F(Files, ModelFitReportsTheNoiseItCarriesHonestly) {
   // Per point, the sum and sum of squares of the tuned model's prediction over the draws.
   struct Spread {
     std::vector<double> sum, squares;
-    void add(std::size_t k, double value) { sum[k] += value; squares[k] += value * value; }
+    void add(std::size_t k, double value) {
+      sum[k] += value;
+      squares[k] += value * value;
+    }
     double median() const {  // of the points' standard deviations over the draws
       std::vector<double> sd;
       for (std::size_t k = 0; k < sum.size(); ++k) {
@@ -440,17 +446,18 @@ TEST_F(Files, ModelFitReportsTheNoiseItCarriesHonestly) {
       for (std::size_t k = 0; k < on.points.size(); ++k) {
         const machine::Joints& q = on.path[k].joints;
         spread.add(k, on.points[k].point.normal.dot(machine::tool_pose(tuned, machine::Machine::Real, q, 100).tip_mm -
-                                                     machine::tool_pose(model, machine::Machine::Real, q, 100).tip_mm));
+                                                    machine::tool_pose(model, machine::Machine::Real, q, 100).tip_mm));
       }
     };
     predict(part, at_points);
     predict(next, at_next);
   }
-  std::printf("noise 1 um: scatter estimated %.3f um, effective unknowns %.2f; carried (reported / spread of the "
-              "prediction over %d draws, median over the points): at the measured points %.3f / %.3f um, at the "
-              "other part's %.3f / %.3f um\n",
-              scatter * 1e3, effective, kDraws, carried * 1e3, at_points.median() * 1e3, next_carried * 1e3,
-              at_next.median() * 1e3);
+  std::printf(
+      "noise 1 um: scatter estimated %.3f um, effective unknowns %.2f; carried (reported / spread of the "
+      "prediction over %d draws, median over the points): at the measured points %.3f / %.3f um, at the "
+      "other part's %.3f / %.3f um\n",
+      scatter * 1e3, effective, kDraws, carried * 1e3, at_points.median() * 1e3, next_carried * 1e3,
+      at_next.median() * 1e3);
   EXPECT_NEAR(effective, 2.0, 0.05);
   EXPECT_NEAR(scatter, 0.001, 0.00005);
   EXPECT_NEAR(at_points.median() / carried, 1.0, 0.15);
@@ -511,7 +518,9 @@ TEST(SelftuneLocal, ThePathIsMeasuredOnThePart) {
   at0 << -400, -160, -200, 0, 0;
   at180 << -400, -160, -200, 0, 180;
   const double radius = (machine::part_T_tool(model, machine::Machine::Ideal, at0, 0.0).translation() -
-                         machine::part_T_tool(model, machine::Machine::Ideal, at180, 0.0).translation()).norm() / 2;
+                         machine::part_T_tool(model, machine::Machine::Ideal, at180, 0.0).translation())
+                            .norm() /
+                        2;
   ASSERT_GT(radius, 50.0);
   // The pieces are chords of at most 0.05 deg: shorter than the arc by under 1e-7 of it.
   EXPECT_NEAR(summary.cutting_length_mm, M_PI / 2 * radius + 50.0, 1e-6 * radius);

@@ -71,8 +71,8 @@ double value_at(const ErrorTable& t, double x, int column = 0) { return at(t, x,
 TEST(LinearTable, ReproducesALinearFunctionOnAnUnevenGrid) {
   // Steps of 10, 90, 2.5, 402.5 and 100 mm: the lookup must search, not divide.
   const std::vector<double> nodes{-600, -590, -500, -497.5, -95, 5};
-  const ErrorTable t = table_1d(nodes, {[](double x) { return 0.002 - 3e-6 * x; },
-                                        [](double x) { return -1e-4 + 7e-7 * x; }});
+  const ErrorTable t =
+      table_1d(nodes, {[](double x) { return 0.002 - 3e-6 * x; }, [](double x) { return -1e-4 + 7e-7 * x; }});
   ASSERT_EQ(t.grid()[0].uniform_step, 0.0);
   for (double x = -600; x <= 5; x += 1.7) {
     const Lookup a = at(t, x, 0), b = at(t, x, 1);
@@ -115,9 +115,9 @@ TEST(LinearTable, FindsTheRightCellOnAnEvenGrid) {
 TEST(LinearTable, InterpolatesBetweenNodesOfACurve) {
   // Data that is not linear: the lookup is the chord of each cell, slope the chord's slope.
   const ErrorTable t = table_1d({0, 10, 40}, {[](double x) { return x * x * 1e-5; }});
-  EXPECT_NEAR(value_at(t, 5), 0.5e-3, 1e-15);          // midway 0 .. 1e-3
-  EXPECT_NEAR(at(t, 5).slope, 1e-4, 1e-15);            // 1e-3 / 10
-  EXPECT_NEAR(value_at(t, 25), 8.5e-3, 1e-15);         // midway 1e-3 .. 16e-3
+  EXPECT_NEAR(value_at(t, 5), 0.5e-3, 1e-15);   // midway 0 .. 1e-3
+  EXPECT_NEAR(at(t, 5).slope, 1e-4, 1e-15);     // 1e-3 / 10
+  EXPECT_NEAR(value_at(t, 25), 8.5e-3, 1e-15);  // midway 1e-3 .. 16e-3
   EXPECT_NEAR(at(t, 25).slope, 15e-3 / 30, 1e-15);
 }
 
@@ -140,8 +140,7 @@ TEST(LinearTable, HoldsEndValuesOutsideTheGridWithSlopeZero) {
 
 TEST(LinearTable, ARotaryGridShorterThan360DegHoldsItsEnds) {
   // B of a tilting table: -120 .. 30 deg is not periodic.
-  const ErrorTable t = table_1d({-120, -60, 0, 30}, {[](double b) { return 1e-5 * b; }},
-                                Interpolation::Linear, true);
+  const ErrorTable t = table_1d({-120, -60, 0, 30}, {[](double b) { return 1e-5 * b; }}, Interpolation::Linear, true);
   ASSERT_FALSE(t.grid()[0].periodic);
   EXPECT_EQ(value_at(t, 40), value_at(t, 30));
   EXPECT_EQ(at(t, 40).slope, 0.0);
@@ -151,8 +150,8 @@ TEST(LinearTable, ARotaryGridShorterThan360DegHoldsItsEnds) {
 TEST(LinearTable, PeriodicRotaryGridWraps) {
   std::vector<double> nodes;
   for (int c = 0; c <= 360; c += 30) nodes.push_back(c);
-  const ErrorTable t = table_1d(nodes, {[](double c) { return 1e-3 * std::sin(c * kDeg); }},
-                                Interpolation::Linear, true);
+  const ErrorTable t =
+      table_1d(nodes, {[](double c) { return 1e-3 * std::sin(c * kDeg); }}, Interpolation::Linear, true);
   ASSERT_TRUE(t.grid()[0].periodic);
   // Where the held-ends rule would give 0 (the end value), the wrap gives the value across 0.
   const double chord = 1e-3 * std::sin(30 * kDeg) / 30;  // slope of the cells next to 0
@@ -174,8 +173,8 @@ TEST(LinearTable, PeriodicRotaryGridWraps) {
 TEST(LinearTable, PeriodicGridNotStartingAtZeroWraps) {
   // -180 .. 180 deg, uneven steps.
   const std::vector<double> nodes{-180, -100, -45, 0, 30, 120, 180};
-  const ErrorTable t = table_1d(nodes, {[](double c) { return 1e-3 * std::cos(c * kDeg); }},
-                                Interpolation::Linear, true);
+  const ErrorTable t =
+      table_1d(nodes, {[](double c) { return 1e-3 * std::cos(c * kDeg); }}, Interpolation::Linear, true);
   ASSERT_TRUE(t.grid()[0].periodic);
   EXPECT_NEAR(value_at(t, 190), value_at(t, -170), 1e-15);
   EXPECT_NEAR(value_at(t, -190), value_at(t, 170), 1e-15);
@@ -194,8 +193,7 @@ TEST(MultilinearTable, TwoDimensionsReproduceABilinearFunction) {
   std::vector<double> values;
   for (double z : zs)
     for (double y : ys) values.push_back(f(z, y));
-  const ErrorTable t("t.csv", {variable('Z', zs), variable('Y', ys)}, {column("EZZ")}, values,
-                     Interpolation::Linear);
+  const ErrorTable t("t.csv", {variable('Z', zs), variable('Y', ys)}, {column("EZZ")}, values, Interpolation::Linear);
   const double h = 1e-3;
   for (double z = -300; z <= 0; z += 13.7)
     for (double y = 0; y <= 300; y += 21.1) {
@@ -226,8 +224,7 @@ TEST(MultilinearTable, TwoDimensionsHoldEachVariableSeparately) {
   std::vector<double> values;
   for (double z : zs)
     for (double y : ys) values.push_back(f(z, y));
-  const ErrorTable t("t.csv", {variable('Z', zs), variable('Y', ys)}, {column("EZZ")}, values,
-                     Interpolation::Linear);
+  const ErrorTable t("t.csv", {variable('Z', zs), variable('Y', ys)}, {column("EZZ")}, values, Interpolation::Linear);
   const double p[2] = {-120, 450};
   ErrorTable::Sample s;
   t.evaluate(p, s);
@@ -244,8 +241,7 @@ TEST(MultilinearTable, TwoDimensionsHoldEachVariableSeparately) {
 TEST(MultilinearTable, ThreeDimensionsReproduceATrilinearFunction) {
   const std::vector<double> xs{0, 50, 75, 200}, ys{-10, 0, 30}, zs{-300, -100, 0};
   auto f = [](double x, double y, double z) {
-    return 1e-3 + 2e-6 * x - 3e-6 * y + 4e-9 * x * y + 1e-6 * z + 5e-9 * x * z - 2e-9 * y * z -
-           2e-11 * x * y * z;
+    return 1e-3 + 2e-6 * x - 3e-6 * y + 4e-9 * x * y + 1e-6 * z + 5e-9 * x * z - 2e-9 * y * z - 2e-11 * x * y * z;
   };
   auto fx = [](double, double y, double z) { return 2e-6 + 4e-9 * y + 5e-9 * z - 2e-11 * y * z; };
   auto fy = [](double x, double, double z) { return -3e-6 + 4e-9 * x - 2e-9 * z - 2e-11 * x * z; };
@@ -257,8 +253,8 @@ TEST(MultilinearTable, ThreeDimensionsReproduceATrilinearFunction) {
         values.push_back(f(x, y, z));
         values.push_back(-2 * f(x, y, z));
       }
-  const ErrorTable t("t.csv", {variable('X', xs), variable('Y', ys), variable('Z', zs)},
-                     {column("EZX"), column("EYX")}, values, Interpolation::Linear);
+  const ErrorTable t("t.csv", {variable('X', xs), variable('Y', ys), variable('Z', zs)}, {column("EZX"), column("EYX")},
+                     values, Interpolation::Linear);
   const double h = 1e-3;
   for (double x : {0.0, 3.0, 50.0, 60.0, 199.0})
     for (double y : {-7.0, 0.5, 12.5, 29.0})
@@ -334,8 +330,8 @@ std::vector<double> reference_natural_curvature(const std::vector<double>& x, co
   return m;
 }
 
-double reference_spline(const std::vector<double>& x, const std::vector<double>& y,
-                        const std::vector<double>& m, double at) {
+double reference_spline(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& m,
+                        double at) {
   std::size_t i = 0;
   while (i + 2 < x.size() && at > x[i + 1]) ++i;
   const double h = x[i + 1] - x[i], a = (x[i + 1] - at) / h, b = (at - x[i]) / h;
@@ -381,7 +377,8 @@ TEST(CubicTable, IsTheNaturalSplineOfTheData) {
   std::vector<double> y;
   for (double x : kUnevenNodes) y.push_back(curve(x));
   const std::vector<double> m = reference_natural_curvature(kUnevenNodes, y);
-  for (double x = 0; x <= 100; x += 0.77) EXPECT_NEAR(value_at(t, x), reference_spline(kUnevenNodes, y, m, x), 1e-15) << x;
+  for (double x = 0; x <= 100; x += 0.77)
+    EXPECT_NEAR(value_at(t, x), reference_spline(kUnevenNodes, y, m, x), 1e-15) << x;
   const double chord = y[0] + (y[1] - y[0]) * 0.5;
   EXPECT_GT(std::abs(value_at(t, 5) - chord), 1e-5);
 }
@@ -430,8 +427,9 @@ TEST(PeriodicCubicTable, FollowsSinAndCosAndIsSmoothAcross360) {
   std::vector<double> nodes;
   for (int c = 0; c <= 360; c += 15) nodes.push_back(c);
   const double amplitude = 1.0;
-  const ErrorTable t = table_1d(nodes, {[&](double c) { return amplitude * std::sin(c * kDeg); },
-                                        [&](double c) { return amplitude * std::cos(c * kDeg); }},
+  const ErrorTable t = table_1d(nodes,
+                                {[&](double c) { return amplitude * std::sin(c * kDeg); },
+                                 [&](double c) { return amplitude * std::cos(c * kDeg); }},
                                 Interpolation::Cubic, true);
   ASSERT_TRUE(t.grid()[0].periodic);
   double worst = 0.0;
@@ -486,7 +484,8 @@ void expect_components_match(const ErrorTable& t, const double* p, const char* w
   t.add_components(p, sum);
   std::array<double, ErrorTable::kMaxColumns> expected = before;
   for (std::size_t c = 0; c < t.columns().size(); ++c) expected[t.columns()[c].symbol.component] += s.value[c];
-  for (int k = 0; k < ErrorTable::kMaxColumns; ++k) EXPECT_DOUBLE_EQ(sum[k], expected[k]) << where << " component " << k;
+  for (int k = 0; k < ErrorTable::kMaxColumns; ++k)
+    EXPECT_DOUBLE_EQ(sum[k], expected[k]) << where << " component " << k;
 }
 
 TEST(ErrorTable, AddComponentsAddsEachColumnAtItsComponent) {

@@ -28,8 +28,8 @@ class LoadTable : public ::testing::Test {
     static std::atomic<int> counter{0};
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     dir_ = fs::temp_directory_path() /
-           ("vc_load_table_test_" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()) +
-            "_" + std::to_string(counter++) + "_" + info->name());
+           ("vc_load_table_test_" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()) + "_" +
+            std::to_string(counter++) + "_" + info->name());
     ASSERT_TRUE(fs::create_directories(dir_)) << dir_;
   }
   void TearDown() override {
@@ -309,8 +309,9 @@ TEST_F(LoadTable, ThreeDimensionalTableLoads) {
   std::string text = "x[mm],y[mm],z[mm],EXX[um],EYX[um]\n";
   for (int x : {0, 100})
     for (int y : {0, 50, 100})
-      for (int z : {-10, 0}) text += std::to_string(x) + "," + std::to_string(y) + "," + std::to_string(z) + "," +
-                                     std::to_string(0.01 * x + 0.02 * y + 0.1 * z) + ",1\n";
+      for (int z : {-10, 0})
+        text += std::to_string(x) + "," + std::to_string(y) + "," + std::to_string(z) + "," +
+                std::to_string(0.01 * x + 0.02 * y + 0.1 * z) + ",1\n";
   const ErrorTable t = load("xyz.csv", text);
   ASSERT_EQ(t.grid().size(), 3u);
   EXPECT_EQ(t.grid()[2].nodes, (std::vector<double>{-10, 0}));

@@ -59,9 +59,7 @@ class ContractionBound {
   // as band_of(pole_angle_at(...))).
   int band_at(const ToolPose& ideal, const PoseDerivatives& d) const;
   // Whether the bound was sampled for this tool length (within the sampled ones' range).
-  bool covers(double tool_length_mm) const {
-    return tool_length_mm >= shortest_mm_ && tool_length_mm <= longest_mm_;
-  }
+  bool covers(double tool_length_mm) const { return tool_length_mm >= shortest_mm_ && tool_length_mm <= longest_mm_; }
 
  private:
   // The largest contraction per band at one tool length over the travel, and the position's
@@ -79,7 +77,7 @@ class ContractionBound {
 
   bool affine_;  // three linear axes: one band
   double full_rad_;
-  double fade_start_rad_;  // the fade band sampled: [fade_start_rad_, full_rad_)
+  double fade_start_rad_;               // the fade band sampled: [fade_start_rad_, full_rad_)
   std::array<int, kMaxAxes> rotary_{};  // the rotary joints
   int rotary_count_ = 0;
   std::array<double, kBands> edge_cos_{}, edge_sin_{};  // of the bands' lower edges

@@ -18,12 +18,12 @@
 namespace vc::machine {
 
 struct Correction {
-  Joints nominal;             // q_n
-  Joints joints;              // q_c (not clamped to the travel: limits are LinuxCNC's business)
+  Joints nominal;  // q_n
+  Joints joints;   // q_c (not clamped to the travel: limits are LinuxCNC's business)
   Status status = Status::Ok;
-  int iterations = 0;         // Newton steps taken
-  double residual_mm = 0.0;   // |pos P(q_c) - pos P'(q_n)|
-  double residual_rad = 0.0;  // |k'(q_n) x k(q_c)|: tool direction error left (by design > 0 where f < 1)
+  int iterations = 0;           // Newton steps taken
+  double residual_mm = 0.0;     // |pos P(q_c) - pos P'(q_n)|
+  double residual_rad = 0.0;    // |k'(q_n) x k(q_c)|: tool direction error left (by design > 0 where f < 1)
   bool unchecked_step = false;  // the last step taken on the contraction bound: residual_mm is its bound
                                 // (and residual_rad at full correction)
   double pole_angle_rad = 0.0;  // phi: ideal tool direction to the nearest rotary axis line
@@ -87,8 +87,8 @@ struct Uncorrection {
 };
 // For a partly applied correction, q_c = q_n + gain * (correct(q_n) - q_n) with gain in [0, 1]
 // (the module's enable ramp), starting at `nominal_seed` (e.g. the previous answer).
-Uncorrection uncorrect(const Model& model, const Conditions& conditions, const Joints& corrected,
-                       double tool_length_mm, double gain, const Joints& nominal_seed) noexcept;
+Uncorrection uncorrect(const Model& model, const Conditions& conditions, const Joints& corrected, double tool_length_mm,
+                       double gain, const Joints& nominal_seed) noexcept;
 inline Uncorrection uncorrect(const Model& model, const Joints& corrected, double tool_length_mm, double gain,
                               const Joints& nominal_seed) noexcept {
   return uncorrect(model, model.reference_conditions(), corrected, tool_length_mm, gain, nominal_seed);

@@ -65,9 +65,8 @@ StepRemainder ideal_step_remainder(const Model& model, const Joints& from, const
 Uncorrection invert_correction(const Model& model, const Conditions& conditions, const Joints& corrected,
                                double tool_length_mm, double gain, const Joints& nominal_seed,
                                const Joints* full_correction = nullptr) noexcept;
-inline Uncorrection invert_correction(const Model& model, const Joints& corrected, double tool_length_mm,
-                                      double gain, const Joints& nominal_seed,
-                                      const Joints* full_correction = nullptr) noexcept {
+inline Uncorrection invert_correction(const Model& model, const Joints& corrected, double tool_length_mm, double gain,
+                                      const Joints& nominal_seed, const Joints* full_correction = nullptr) noexcept {
   return invert_correction(model, model.reference_conditions(), corrected, tool_length_mm, gain, nominal_seed,
                            full_correction);
 }

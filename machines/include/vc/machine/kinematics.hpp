@@ -18,16 +18,16 @@ namespace vc::machine {
 enum class WorldConvention { Axes, Tcp };
 
 // Nominal (ideal machine) kinematics.
-Status nominal_inverse(const Model& model, WorldConvention convention, const Joints& world,
-                       double tool_length_mm, Joints& nominal) noexcept;
+Status nominal_inverse(const Model& model, WorldConvention convention, const Joints& world, double tool_length_mm,
+                       Joints& nominal) noexcept;
 Joints nominal_forward(const Model& model, WorldConvention convention, const Joints& nominal,
                        double tool_length_mm) noexcept;
 
 // Corrected kinematics. `report` (optional) receives the correction's summary.
-Status joints_from_world(const Model& model, WorldConvention convention, const Joints& world,
-                         double tool_length_mm, Joints& joints, Correction* report = nullptr) noexcept;
-Status world_from_joints(const Model& model, WorldConvention convention, const Joints& joints,
-                         double tool_length_mm, Joints& world) noexcept;
+Status joints_from_world(const Model& model, WorldConvention convention, const Joints& world, double tool_length_mm,
+                         Joints& joints, Correction* report = nullptr) noexcept;
+Status world_from_joints(const Model& model, WorldConvention convention, const Joints& joints, double tool_length_mm,
+                         Joints& world) noexcept;
 
 // What the kinematics module asks: a fraction of the correction, and solvers that start near
 // the answer. LinuxCNC passes the previous joints to the inverse and the previous world
@@ -39,8 +39,8 @@ Status world_from_joints(const Model& model, WorldConvention convention, const J
 // the joints less it within slope x following error of this cycle's nominal joints. Where
 // given, it takes the place of `seed`.
 struct Applied {
-  double gain = 1.0;                  // 0: nominal kinematics, 1: full correction
-  const Joints* seed = nullptr;       // joints (inverse) or world position (forward), or none
+  double gain = 1.0;                   // 0: nominal kinematics, 1: full correction
+  const Joints* seed = nullptr;        // joints (inverse) or world position (forward), or none
   const Joints* correction = nullptr;  // a full correction q_c - q_n of a pose nearby, or none
   // The inverse: where it proves a Newton step within the tolerance, the step is taken without
   // evaluating the real machine after it (contraction_bound.hpp), or none.
@@ -64,12 +64,10 @@ struct Applied {
   static constexpr double kSeedRadius = machine::kSeedRadius;
 };
 // q = q_n + gain * (correct(q_n) - q_n).
-Status joints_from_world(const Model& model, WorldConvention convention, const Joints& world,
-                         double tool_length_mm, const Applied& applied, Joints& joints,
-                         Correction* report = nullptr) noexcept;
+Status joints_from_world(const Model& model, WorldConvention convention, const Joints& world, double tool_length_mm,
+                         const Applied& applied, Joints& joints, Correction* report = nullptr) noexcept;
 // Its exact inverse; `iterations` (optional) receives the corrections evaluated.
-Status world_from_joints(const Model& model, WorldConvention convention, const Joints& joints,
-                         double tool_length_mm, const Applied& applied, Joints& world,
-                         int* iterations = nullptr) noexcept;
+Status world_from_joints(const Model& model, WorldConvention convention, const Joints& joints, double tool_length_mm,
+                         const Applied& applied, Joints& world, int* iterations = nullptr) noexcept;
 
 }  // namespace vc::machine

@@ -41,23 +41,23 @@ enum class Chain { Tool, Workpiece };
 // temperature input): the axis travels (1 + expansion (T - T_reference)) times as far from its
 // reference point, the extra along its own direction u (an error of its frame's translation).
 struct LinearThermal {
-  int input = -1;                    // index into Model::temperatures (and Conditions); -1: none
-  double expansion_per_K = 0.0;      // 1/K (11.5e-6 for steel)
-  double reference_mm = 0.0;         // the point of the axis that does not move as it grows
+  int input = -1;                // index into Model::temperatures (and Conditions); -1: none
+  double expansion_per_K = 0.0;  // 1/K (11.5e-6 for steel)
+  double reference_mm = 0.0;     // the point of the axis that does not move as it grows
 };
 
 // What a chain walk reads comes first, from a cache line's start (the servo thread's cycle
 // walks every axis; between cycles other threads evict them).
 struct alignas(64) Axis {
-  Eigen::Isometry3d real_base;    // T(o + d0) * R(e0)
-  Eigen::Vector3d direction;      // u: unit direction of travel or rotation (child in parent)
-  Eigen::Vector3d pole_mm;        // o: the pole at q = 0, in the parent frame
-  Eigen::Vector3d location_rad;   // e0: orientation error of the axis line (EA0?, EB0?, EC0?)
+  Eigen::Isometry3d real_base;   // T(o + d0) * R(e0)
+  Eigen::Vector3d direction;     // u: unit direction of travel or rotation (child in parent)
+  Eigen::Vector3d pole_mm;       // o: the pole at q = 0, in the parent frame
+  Eigen::Vector3d location_rad;  // e0: orientation error of the axis line (EA0?, EB0?, EC0?)
   AxisType type;
-  unsigned moved_by = 0;          // bit j set: joint j moves this axis's frame (itself, table variables)
-  std::vector<int> tables;        // indices into Model::tables
-  LinearThermal thermal;          // linear axes: the expansion with a temperature input
-  char letter;                    // 'X', 'Y', 'Z', 'A', 'B', 'C', ...
+  unsigned moved_by = 0;    // bit j set: joint j moves this axis's frame (itself, table variables)
+  std::vector<int> tables;  // indices into Model::tables
+  LinearThermal thermal;    // linear axes: the expansion with a temperature input
+  char letter;              // 'X', 'Y', 'Z', 'A', 'B', 'C', ...
   Chain chain;
   double travel_min, travel_max;  // mm or deg
   Eigen::Vector3d location_mm;    // d0: position error of the axis line (EX0?, EY0?, EZ0?)
@@ -139,12 +139,12 @@ struct AxisCompliance {
 struct Model {
   std::string path;  // machine file
   MachineInfo info;
-  std::vector<Axis> axes;              // joint order: letters in "XYZABCUVW" order
-  std::vector<int> tool_chain;         // joint indices, bed outward
-  std::vector<int> workpiece_chain;    // joint indices, bed outward
+  std::vector<Axis> axes;            // joint order: letters in "XYZABCUVW" order
+  std::vector<int> tool_chain;       // joint indices, bed outward
+  std::vector<int> workpiece_chain;  // joint indices, bed outward
   Spindle spindle;
-  Eigen::Isometry3d fixture;           // T(t) * R(r) in the last workpiece-chain frame
-  double tool_length_mm = 0.0;         // L of a typical tool: gauge length + tool length (check, poses)
+  Eigen::Isometry3d fixture;    // T(t) * R(r) in the last workpiece-chain frame
+  double tool_length_mm = 0.0;  // L of a typical tool: gauge length + tool length (check, poses)
   // The tool-length rule (every component: volkins, predistort, simulate, selftune): the
   // correction is computed for L = tool_length_reference_mm + the active tool length offset
   // (G43, LinuxCNC's motion.tooloffset.z). 0 where the tool table holds gauge lengths.
@@ -155,18 +155,18 @@ struct Model {
   // tool, L long, stays w short of it); the correction is still for the real tool, L. Not a
   // joint of the model: volkins passes its LinuxCNC joint through (joint = world).
   char tool_axis_coordinate = 0;
-  PoleFade fade;                       // the file's (volkins: the pins' defaults)
+  PoleFade fade;  // the file's (volkins: the pins' defaults)
   SolverOptions solver;
   std::vector<BoundTable> tables;
-  std::vector<AxisCompliance> compliance;  // per joint ([stiffness]); all rigid if absent
+  std::vector<AxisCompliance> compliance;      // per joint ([stiffness]); all rigid if absent
   std::vector<TemperatureInput> temperatures;  // [temperatures], in the file's order (at most kMaxTemperatureInputs)
-  Warnings warnings;                   // found at load time, for `check` and loadrt
+  Warnings warnings;                           // found at load time, for `check` and loadrt
 
   int joint_count() const { return static_cast<int>(axes.size()); }
   // L the correction is computed for while LinuxCNC's tool length offset is `offset_mm`.
   double correction_length(double offset_mm) const { return tool_length_reference_mm + offset_mm; }
   int rotary_count() const;
-  int joint_of(char letter) const;     // -1 if the machine has no such axis
+  int joint_of(char letter) const;                    // -1 if the machine has no such axis
   int temperature_of(const std::string& name) const;  // -1 if the machine has no such input
   // Every temperature at its reference, the file's pole fade.
   Conditions reference_conditions() const noexcept;
@@ -174,7 +174,7 @@ struct Model {
   // std::invalid_argument for an unknown input or a value outside its range. The servo thread
   // sets Conditions::temperature_degC[i] directly.
   void set_temperature(Conditions& conditions, const std::string& name, double degC) const;
-  std::string coordinates() const;     // lower-case letters in joint order, e.g. "xyzbc"
+  std::string coordinates() const;  // lower-case letters in joint order, e.g. "xyzbc"
 };
 
 // True if a joint lies outside the grid of a table that reads it (the table then holds its

@@ -29,16 +29,14 @@ class TomlFile {
 
   // Every key of `t` is one of `allowed`, else "unknown key 'K' in CONTEXT (expected one of: ...)"
   // at the key.
-  void check_keys(const toml::table& t, const std::string& context,
-                  const std::vector<std::string_view>& allowed) const;
+  void check_keys(const toml::table& t, const std::string& context, const std::vector<std::string_view>& allowed) const;
 
   // The value of `key`; nullptr if it is absent and not required, else "CONTEXT needs 'KEY'" at
   // the table (an empty context: "needs 'KEY'").
   const toml::node* get(const toml::table& t, std::string_view key, bool required, const std::string& context) const;
 
   // The table `key`; nullptr if absent and not required, else "CONTEXT needs a [KEY] table".
-  const toml::table* table(const toml::table& t, std::string_view key, bool required,
-                           const std::string& context) const;
+  const toml::table* table(const toml::table& t, std::string_view key, bool required, const std::string& context) const;
 
   // A string: "'KEY' must be a string" at the value; absent and not required: "".
   std::string text(const toml::node& n, std::string_view key) const;

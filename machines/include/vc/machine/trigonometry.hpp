@@ -54,19 +54,31 @@ inline void sin_cos_deg(double deg, double& s, double& c) noexcept {
   const double cr =
       1.0 - z * (f2 - z * (f4 - z * (f6 - z * (f8 - z * (f10 - z * (f12 - z * (f14 - z * (f16 - z * f18))))))));
   switch (static_cast<std::int64_t>(quarters) & 3) {  // deg = 90 quarters + r
-    case 0: s = sr; c = cr; break;
-    case 1: s = cr; c = -sr; break;
-    case 2: s = -sr; c = -cr; break;
-    default: s = -cr; c = sr; break;
+    case 0:
+      s = sr;
+      c = cr;
+      break;
+    case 1:
+      s = cr;
+      c = -sr;
+      break;
+    case 2:
+      s = -sr;
+      c = -cr;
+      break;
+    default:
+      s = -cr;
+      c = sr;
+      break;
   }
 }
 
 // R(a, b, c) = Rx(a) * Ry(b) * Rz(c) (model.md), exact trigonometry, from the sines and
 // cosines of a, b, c.
-inline void rotation_xyz(double sa, double ca, double sb, double cb, double sc, double cc, Eigen::Matrix3d& r) noexcept {
-  r << cb * cc, -cb * sc, sb,
-       ca * sc + sa * sb * cc, ca * cc - sa * sb * sc, -sa * cb,
-       sa * sc - ca * sb * cc, sa * cc + ca * sb * sc, ca * cb;
+inline void rotation_xyz(double sa, double ca, double sb, double cb, double sc, double cc,
+                         Eigen::Matrix3d& r) noexcept {
+  r << cb * cc, -cb * sc, sb, ca * sc + sa * sb * cc, ca * cc - sa * sb * sc, -sa * cb, sa * sc - ca * sb * cc,
+      sa * cc + ca * sb * sc, ca * cb;
 }
 
 // R(a, b, c).
@@ -88,9 +100,7 @@ inline void rotation_xyz(const Eigen::Vector3d& abc, Eigen::Matrix3d& r, Eigen::
   sin_cos(abc[1], sb, cb);
   sin_cos(abc[2], sc, cc);
   rotation_xyz(sa, ca, sb, cb, sc, cc, r);
-  rate << 1.0, 0.0, sb,
-          0.0, ca, -sa * cb,
-          0.0, sa, ca * cb;
+  rate << 1.0, 0.0, sb, 0.0, ca, -sa * cb, 0.0, sa, ca * cb;
 }
 
 }  // namespace vc::machine

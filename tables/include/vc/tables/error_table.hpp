@@ -32,12 +32,12 @@ struct GridVariable {
   // 1 / uniform_step and 1 / (width of each cell): lookups multiply, they do not divide.
   double inverse_step = 0.0;
   double first = 0.0, last = 0.0;  // nodes.front(), nodes.back()
-  bool periodic;              // rotary grid spanning exactly 360 deg
-  bool rotary;                // positions in deg (else mm)
-  char axis;                  // upper-case axis letter whose position this is; 0 for a temperature
+  bool periodic;                   // rotary grid spanning exactly 360 deg
+  bool rotary;                     // positions in deg (else mm)
+  char axis;                       // upper-case axis letter whose position this is; 0 for a temperature
   std::vector<double> inverse_width;
-  std::string temperature;    // a temperature (degC): the input's name, as in the header; else empty
-  SourceLocation where;       // header cell
+  std::string temperature;  // a temperature (degC): the input's name, as in the header; else empty
+  SourceLocation where;     // header cell
 
   bool is_temperature() const { return !temperature.empty(); }
   // The header's name: "x" for an axis position, the input's name for a temperature.
@@ -64,8 +64,8 @@ class ErrorTable {
 
   // Builds a table from node-major samples (values[node * columns + column], nodes in
   // row-major order, first variable slowest); precomputes the cubic spline if asked.
-  ErrorTable(std::string path, std::vector<GridVariable> grid, std::vector<Column> columns,
-             std::vector<double> values, Interpolation interpolation);
+  ErrorTable(std::string path, std::vector<GridVariable> grid, std::vector<Column> columns, std::vector<double> values,
+             Interpolation interpolation);
 
   // Value and (if with_slopes) slope of every column at the positions of the grid variables
   // (positions[i] belongs to grid()[i]).

@@ -17,7 +17,7 @@ struct SlopeLimits {
 // inside each cell for cubic ones (a spline overshoots the node-to-node slopes).
 struct SteepestSlope {
   double fraction = 0.0;
-  int column = -1;  // column of the table where it occurs
+  int column = -1;    // column of the table where it occurs
   int node = -1;      // the two nodes bounding the segment or cell where it occurs
   int next = -1;      //   (node indices of the table, in its increasing order)
   int variable = -1;  // grid variable along which it occurs

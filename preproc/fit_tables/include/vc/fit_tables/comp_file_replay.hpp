@@ -24,7 +24,7 @@ namespace vc::fit_tables {
 // first sample.
 struct JointLimits {
   double max_velocity = 0.0, max_acceleration = 0.0;  // units/s, units/s^2
-  int homing_move = 0;  // the move to HOME: +1 up, -1 down, 0 none (HOME = HOME_OFFSET)
+  int homing_move = 0;                                // the move to HOME: +1 up, -1 down, 0 none (HOME = HOME_OFFSET)
 };
 
 struct CompReplay {

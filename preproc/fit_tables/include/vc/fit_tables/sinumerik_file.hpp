@@ -66,7 +66,7 @@ std::string sinumerik_setup_lines(const TableSet& set, const std::vector<Sinumer
 // One table as read back.
 struct SinumerikTable {
   enum class Kind { Lec, Cec } kind = Kind::Lec;
-  int index = 0;                    // CEC: t; LEC: the measuring system e (always 0 here)
+  int index = 0;                        // CEC: t; LEC: the measuring system e (always 0 here)
   int input_axis = 0, output_axis = 0;  // AXn: n - 1 (LEC: both the table's axis)
   double min = 0.0, max = 0.0, step = 0.0;
   bool modulo = false;

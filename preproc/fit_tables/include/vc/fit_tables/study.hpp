@@ -52,9 +52,9 @@ struct Study {
   Eigen::VectorXd modified;  // the fit's values, rounded likewise
   FitResult fit;             // the final fit (after the refit)
   int levels = 0;
-  int grid_poses = 0;   // all tool lengths
+  int grid_poses = 0;     // all tool lengths
   int program_poses = 0;  // of the part programs, fitted (with the grid unless programs_only)
-  int added_poses = 0;  // probe poses added by the refit
+  int added_poses = 0;    // probe poses added by the refit
   std::vector<double> fitted_lengths_mm, check_lengths_mm;
   std::vector<ReportRow> rows;  // per tool length (fitted ones first, ascending), grid then fresh
 };

@@ -15,12 +15,12 @@ struct NumberedParameter;  // #n, #[expr]
 struct NamedParameter {    // #<name>, #<_global>: name lower case, without spaces
   std::string name;
 };
-struct Unary;   // ABS[e], -e, ...
-struct Atan2;   // ATAN[y]/[x]
-struct Chain;   // e op e op e ... (one precedence level, left to right)
+struct Unary;  // ABS[e], -e, ...
+struct Atan2;  // ATAN[y]/[x]
+struct Chain;  // e op e op e ... (one precedence level, left to right)
 
-struct Expression : x3::variant<double, NamedParameter, x3::forward_ast<NumberedParameter>,
-                                x3::forward_ast<Unary>, x3::forward_ast<Atan2>, x3::forward_ast<Chain>> {
+struct Expression : x3::variant<double, NamedParameter, x3::forward_ast<NumberedParameter>, x3::forward_ast<Unary>,
+                                x3::forward_ast<Atan2>, x3::forward_ast<Chain>> {
   using base_type::base_type;
   using base_type::operator=;
 };

@@ -26,19 +26,19 @@ struct BalanceOptions {
 };
 
 struct DeviationEffect {
-  std::string symbol;        // EXX, EC0Y, ... ("all" for the total)
-  double max_um = 0.0;       // M: largest |tool-tip error|
-  double delta_um = 0.0;     // max - min |tool-tip error|
+  std::string symbol;     // EXX, EC0Y, ... ("all" for the total)
+  double max_um = 0.0;    // M: largest |tool-tip error|
+  double delta_um = 0.0;  // max - min |tool-tip error|
   double rms_um = 0.0;
-  double share = 0.0;        // 0..1 of the sum of RMS^2
-  double max_urad = 0.0;     // largest tool-direction error
+  double share = 0.0;     // 0..1 of the sum of RMS^2
+  double max_urad = 0.0;  // largest tool-direction error
 };
 
 struct Balance {
   int poses = 0;
   double tool_length_mm = 0.0;
-  DeviationEffect total;                  // all deviations together
-  std::vector<DeviationEffect> effects;   // largest M first
+  DeviationEffect total;                 // all deviations together
+  std::vector<DeviationEffect> effects;  // largest M first
 };
 
 // Throws std::invalid_argument for levels outside 2..21.

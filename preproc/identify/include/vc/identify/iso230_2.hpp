@@ -32,18 +32,18 @@ struct TargetStatistics {
   double target = 0.0;
   double mean_up = 0.0, mean_down = 0.0, mean = 0.0;  // x_i_up, x_i_down, x_i
   double s_up = 0.0, s_down = 0.0;
-  double reversal = 0.0;                              // B_i
-  double r_up = 0.0, r_down = 0.0, r = 0.0;           // R_i_up, R_i_down, R_i
+  double reversal = 0.0;                     // B_i
+  double r_up = 0.0, r_down = 0.0, r = 0.0;  // R_i_up, R_i_down, R_i
 };
 
 struct Iso230_2 {
   int runs_up = 0, runs_down = 0;
-  std::vector<TargetStatistics> targets;  // ascending
-  double reversal = 0.0, mean_reversal = 0.0;                        // B, mean B_i
+  std::vector<TargetStatistics> targets;                                         // ascending
+  double reversal = 0.0, mean_reversal = 0.0;                                    // B, mean B_i
   double repeatability_up = 0.0, repeatability_down = 0.0, repeatability = 0.0;  // R_up, R_down, R
   double systematic_up = 0.0, systematic_down = 0.0, systematic = 0.0;           // E_up, E_down, E
-  double accuracy_up = 0.0, accuracy_down = 0.0, accuracy = 0.0;                // A_up, A_down, A
-  double range = 0.0;                                                // M
+  double accuracy_up = 0.0, accuracy_down = 0.0, accuracy = 0.0;                 // A_up, A_down, A
+  double range = 0.0;                                                            // M
 };
 
 using RunKey = std::pair<int, Direction>;  // run number, direction

@@ -40,12 +40,12 @@ CircularTest read_circular_test(const std::string& path);
 struct CircleFit {
   bool ccw = true;
   double centre_first_mm = 0.0, centre_second_mm = 0.0;  // cx, cy
-  double mean_scale = 0.0;         // (ex + ey) / 2
-  double scale_mismatch = 0.0;     // ex - ey
-  double squareness_rad = 0.0;     // theta: x' = x + theta y
-  double circular_deviation_mm = 0.0;  // G: max - min of dR about the least-squares centre
-  double radial_deviation_mm = 0.0;    // F: max |dR| about the nominal centre
-  double residual_rms_mm = 0.0;        // after the fit (what the first-order model leaves)
+  double mean_scale = 0.0;                               // (ex + ey) / 2
+  double scale_mismatch = 0.0;                           // ex - ey
+  double squareness_rad = 0.0;                           // theta: x' = x + theta y
+  double circular_deviation_mm = 0.0;                    // G: max - min of dR about the least-squares centre
+  double radial_deviation_mm = 0.0;                      // F: max |dR| about the nominal centre
+  double residual_rms_mm = 0.0;                          // after the fit (what the first-order model leaves)
   // Reversal spikes: where an axis reverses (the plane's first axis at 90 and 270 deg, its
   // second at 0 and 180 deg), the residual's peak within 6 deg above the residual around it.
   std::vector<std::pair<double, double>> spikes;  // angle (deg), height (mm)
@@ -72,9 +72,9 @@ CircularEvaluation evaluate_circular_test(const CircularTest& test);
 // by what one radian of it alone makes there. One squareness in the file, however many
 // instruments measured it; the file's convention and chain decide the sign, not this code.
 struct SquarenessTerm {
-  std::string symbol;   // e.g. EC0Y
-  double value_rad;     // its value for the measured squareness, the file's other errors as they are
-  double in_file_rad;   // its value in the machine file now
+  std::string symbol;          // e.g. EC0Y
+  double value_rad;            // its value for the measured squareness, the file's other errors as they are
+  double in_file_rad;          // its value in the machine file now
   double file_squareness_rad;  // the squareness the file shows now (all its errors)
 };
 std::vector<SquarenessTerm> squareness_terms(const machine::Model& model, const std::string& plane, double radius_mm,

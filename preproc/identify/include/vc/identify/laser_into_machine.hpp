@@ -17,9 +17,9 @@ namespace vc::identify {
 
 struct LaserLineRuns {
   LaserSetup setup;
-  std::vector<double> targets;    // ascending, mm or deg; a full turn 0 .. 360
-  std::vector<double> readings;   // the runs' mean at each target (mm or rad)
-  std::vector<double> noise;      // the standard uncertainty of each mean (mm or rad)
+  std::vector<double> targets;   // ascending, mm or deg; a full turn 0 .. 360
+  std::vector<double> readings;  // the runs' mean at each target (mm or rad)
+  std::vector<double> noise;     // the standard uncertainty of each mean (mm or rad)
   Reference reference = Reference::None;
   std::string squareness;             // a referenced straightness: the location error that takes its slope
                                       // (e.g. EC0X; empty: the measured axis's own, or the one the file uses)
@@ -27,19 +27,19 @@ struct LaserLineRuns {
 };
 
 struct LaserIntoMachine {
-  std::string written;                 // the machine file
-  std::string table_file;              // the identified table's file name, e.g. x_EXX_laser.csv
-  std::string zeroed_copy;             // the copy of the table that held the error, its column 0 ("" if none)
-  std::vector<std::string> kept;       // other tables with the error (cross-axis, over a temperature): kept
-  ReferenceLine runs_reference;        // the runs' datum value or reference line
-  ReferenceLine file_reference;        // what the file read there before (Datum: put in the runs' place)
-  std::string squareness;              // a referenced straightness: the location error set, e.g. EC0X;
-                                       // empty where none turns the line against the part (the file's slope kept)
+  std::string written;            // the machine file
+  std::string table_file;         // the identified table's file name, e.g. x_EXX_laser.csv
+  std::string zeroed_copy;        // the copy of the table that held the error, its column 0 ("" if none)
+  std::vector<std::string> kept;  // other tables with the error (cross-axis, over a temperature): kept
+  ReferenceLine runs_reference;   // the runs' datum value or reference line
+  ReferenceLine file_reference;   // what the file read there before (Datum: put in the runs' place)
+  std::string squareness;         // a referenced straightness: the location error set, e.g. EC0X;
+                                  // empty where none turns the line against the part (the file's slope kept)
   double squareness_before_rad = 0.0, squareness_rad = 0.0;
-  std::vector<double> aimed;           // the readings the written file is made to give
-  std::vector<double> written_reads;   // what it gives, read back from the written file
-  std::vector<double> table;           // the identified column, node by node (mm or rad)
-  double largest_misfit = 0.0;         // max |written_reads - aimed|
+  std::vector<double> aimed;          // the readings the written file is made to give
+  std::vector<double> written_reads;  // what it gives, read back from the written file
+  std::vector<double> table;          // the identified column, node by node (mm or rad)
+  double largest_misfit = 0.0;        // max |written_reads - aimed|
 };
 
 LaserIntoMachine laser_into_machine(const machine::Model& model, const LaserLineRuns& runs, const std::string& folder,

@@ -29,9 +29,9 @@ namespace vc::identify {
 
 // Where a laser run was made.
 struct LaserSetup {
-  int joint = -1;                  // the axis that moved (the one whose error is measured)
+  int joint = -1;                            // the axis that moved (the one whose error is measured)
   tables::ErrorSymbol error{0, 'X', false};  // what the optics measure
-  machine::Joints at;              // every joint where it stood; the moving joint's value is the target
+  machine::Joints at;                        // every joint where it stood; the moving joint's value is the target
   Eigen::Vector3d tool_point_mm = Eigen::Vector3d::Zero();  // the tool-side optic in the spindle frame, from
                                                             // the gauge point: (0, 0, -L) at a tool's tip
 };
@@ -76,8 +76,8 @@ struct LineUnknowns {
 // full turn reads 0 and 360 deg twice). Throws std::runtime_error when a reading does not depend
 // on them (the line cannot see the error) or the solve does not converge.
 struct LineSolution {
-  std::vector<double> values;     // the column, node by node (mm or rad)
-  double squareness_rad = 0.0;    // the location error, if one was solved for
+  std::vector<double> values;   // the column, node by node (mm or rad)
+  double squareness_rad = 0.0;  // the location error, if one was solved for
   int iterations = 0;
   double largest_residual = 0.0;  // of the readings, mm or rad
 };

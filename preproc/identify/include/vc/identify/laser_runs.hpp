@@ -33,7 +33,7 @@ struct Reading {
 
 struct LaserRuns {
   std::string path;
-  bool rotary = false;              // targets in deg
+  bool rotary = false;                                   // targets in deg
   tables::Quantity quantity = tables::Quantity::Length;  // of the deviations
   std::vector<Reading> readings;
   std::vector<std::pair<std::string, std::string>> metadata;  // "# key: value" lines, in order

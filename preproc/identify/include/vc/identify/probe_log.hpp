@@ -19,8 +19,8 @@ namespace vc::identify {
 
 struct ProbeLog {
   double sphere_diameter_mm = 0.0, ball_diameter_mm = 0.0, probe_length_mm = 0.0;
-  std::vector<SpherePose> centres;  // one per pose, joints at the fitted centre
-  double largest_residual_um = 0.0; // of a point from its fitted sphere
+  std::vector<SpherePose> centres;   // one per pose, joints at the fitted centre
+  double largest_residual_um = 0.0;  // of a point from its fitted sphere
 };
 
 // Throws vc::LoadError (file:line) for what it cannot read or fit.

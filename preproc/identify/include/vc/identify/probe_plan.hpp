@@ -24,14 +24,14 @@ namespace vc::identify {
 struct ProbePlanOptions {
   Eigen::Vector3d centre_mm = Eigen::Vector3d::Zero();  // joints X Y Z of the sphere's centre at rotary 0
   double sphere_diameter_mm = 25.0;
-  double ball_diameter_mm = 2.0;     // the probe's stylus ball
-  double probe_length_mm = 0.0;      // gauge point to ball centre (0: the machine file's tool length)
+  double ball_diameter_mm = 2.0;  // the probe's stylus ball
+  double probe_length_mm = 0.0;   // gauge point to ball centre (0: the machine file's tool length)
   double clearance_mm = 3.0;
-  double safe_z_mm = 0.0;            // machine Z of the rapids (default: the top of Z's travel)
-  double probe_feed_mm_min = 100.0;  // the search for the surface
-  double back_off_mm = 0.3;          // after the search, before the measuring touch
-  double touch_feed_mm_min = 10.0;   // the measuring touch (what is logged)
-  double rapid_feed_mm_min = 2000.0; // the moves between the probe points
+  double safe_z_mm = 0.0;                             // machine Z of the rapids (default: the top of Z's travel)
+  double probe_feed_mm_min = 100.0;                   // the search for the surface
+  double back_off_mm = 0.3;                           // after the search, before the measuring touch
+  double touch_feed_mm_min = 10.0;                    // the measuring touch (what is logged)
+  double rapid_feed_mm_min = 2000.0;                  // the moves between the probe points
   std::vector<std::vector<double>> rotary_positions;  // per pose, the rotary axes in joint order (deg)
   std::string log_file = "volcomp_sphere_probe.txt";
 };

@@ -36,11 +36,11 @@ struct SpherePose {
 std::vector<SpherePose> read_sphere_centres(const std::string& path, const machine::Model& model);
 
 struct LocationEstimate {
-  std::string symbol;   // EX0C, EA0B, ...
+  std::string symbol;            // EX0C, EA0B, ...
   int joint = 0, component = 0;  // component 0..5: X Y Z (mm), A B C (rad)
-  double before = 0.0;  // the machine file's value
-  double value = 0.0;   // identified
-  double uncertainty = 0.0;  // standard uncertainty (1 sigma)
+  double before = 0.0;           // the machine file's value
+  double value = 0.0;            // identified
+  double uncertainty = 0.0;      // standard uncertainty (1 sigma)
 };
 
 // A location error the poses cannot tell apart from others: left out (zero change); only a
@@ -51,11 +51,11 @@ struct NotSeparable {
 };
 
 struct SphereFit {
-  std::vector<LocationEstimate> estimates;  // the identified ones
-  std::vector<NotSeparable> not_separable;  // asked for, but the poses cannot tell them apart
+  std::vector<LocationEstimate> estimates;              // the identified ones
+  std::vector<NotSeparable> not_separable;              // asked for, but the poses cannot tell them apart
   Eigen::Vector3d centre_mm = Eigen::Vector3d::Zero();  // p0, part frame
   int rank = 0, parameters = 0;
-  double condition = 0.0;                    // of the scaled Jacobian (identified parameters)
+  double condition = 0.0;  // of the scaled Jacobian (identified parameters)
   double rms_before_um = 0.0, rms_after_um = 0.0;
   std::vector<double> residual_before_um, residual_after_um;  // |tip - p0| per pose
 };

@@ -12,7 +12,7 @@ struct TravelSurvey {
   machine::Joints worst_position, worst_direction;        // ... and where
   int failures = 0;                                       // poses where the correction did not converge
   machine::Joints first_failure;
-  int max_iterations = 0;                                 // of the converged corrections
+  int max_iterations = 0;  // of the converged corrections
   double max_residual_mm = 0.0;
 };
 

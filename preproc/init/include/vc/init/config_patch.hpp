@@ -28,9 +28,9 @@
 namespace vc::init {
 
 struct ConfigPatch {
-  std::string diff;                 // "" if nothing changes
-  std::string kinematics;           // the new [KINS]KINEMATICS value
-  std::vector<std::string> changes; // per file: what changes, for the summary
+  std::string diff;                  // "" if nothing changes
+  std::string kinematics;            // the new [KINS]KINEMATICS value
+  std::vector<std::string> changes;  // per file: what changes, for the summary
 };
 
 // machine_path: the machine file as volkins' machine= takes it (relative to the configuration

@@ -27,14 +27,14 @@ struct HalToken {
 };
 
 struct HalCommand {
-  std::string path;       // the HAL file, or the INI file (or an included one) for a HALCMD
-  int line = 0;           // first line
-  int last_line = 0;      // last line (continued with '\')
-  bool in_ini = false;    // a [HAL]HALCMD entry
-  std::string text;       // the first line, trimmed
-  std::vector<HalToken> tokens;     // the words as written, in the first line's text
-  std::vector<std::string> words;   // the words halcmd runs (references replaced, quotes removed)
-  std::vector<int> word_token;      // the token each word comes from
+  std::string path;                // the HAL file, or the INI file (or an included one) for a HALCMD
+  int line = 0;                    // first line
+  int last_line = 0;               // last line (continued with '\')
+  bool in_ini = false;             // a [HAL]HALCMD entry
+  std::string text;                // the first line, trimmed
+  std::vector<HalToken> tokens;    // the words as written, in the first line's text
+  std::vector<std::string> words;  // the words halcmd runs (references replaced, quotes removed)
+  std::vector<int> word_token;     // the token each word comes from
 
   SourceLocation where() const { return {path, line}; }
   // The word is its token exactly (no reference that expands to several words): the patch can

@@ -22,17 +22,17 @@
 namespace vc::init {
 
 struct HomedAxis {
-  char letter = 'X';          // upper case
-  int joint = 0;              // LinuxCNC's joint (the first of its letter)
-  double home = 0.0;          // [JOINT_n]HOME, mm or deg
-  double world = 0.0;         // the world coordinate after homing
+  char letter = 'X';                           // upper case
+  int joint = 0;                               // LinuxCNC's joint (the first of its letter)
+  double home = 0.0;                           // [JOINT_n]HOME, mm or deg
+  double world = 0.0;                          // the world coordinate after homing
   double min_limit = -1e99, max_limit = 1e99;  // [AXIS_x] (LinuxCNC's defaults where missing)
-  std::string home_from;      // "file:line `HOME = 0`" or "[JOINT_0] gives no HOME (0)"
+  std::string home_from;                       // "file:line `HOME = 0`" or "[JOINT_0] gives no HOME (0)"
 };
 
 struct HomeCheck {
   machine::WorldConvention convention = machine::WorldConvention::Axes;
-  std::vector<HomedAxis> axes;      // in the machine file's joint order
+  std::vector<HomedAxis> axes;        // in the machine file's joint order
   std::vector<std::string> problems;  // one per axis homed beyond a limit: what, where, the fix
 };
 

@@ -19,10 +19,10 @@ struct InitRequest {
 };
 
 struct InitResult {
-  std::string folder;                 // the configuration folder
+  std::string folder;  // the configuration folder
   NominalMachine machine;
-  std::string machine_text;           // the machine file (TOML)
-  std::string machine_path;           // the machine file as volkins' machine= names it
+  std::string machine_text;  // the machine file (TOML)
+  std::string machine_path;  // the machine file as volkins' machine= names it
   ConfigPatch patch;
   std::vector<std::string> not_read;  // HAL files init could not read (Tcl), and where they are named
 };

@@ -23,16 +23,16 @@ namespace vc::init {
 
 struct JointRoom {
   char letter = 'X';
-  int joint = 0;                                  // LinuxCNC's (every joint of the letter is checked)
-  double min_limit = -1e99, max_limit = 1e99;     // [JOINT_n], mm or deg
-  double lowest = 0.0, highest = 0.0;             // the corrected joint over the samples
+  int joint = 0;                               // LinuxCNC's (every joint of the letter is checked)
+  double min_limit = -1e99, max_limit = 1e99;  // [JOINT_n], mm or deg
+  double lowest = 0.0, highest = 0.0;          // the corrected joint over the samples
 };
 
 struct JointRoomCheck {
-  std::vector<JointRoom> joints;      // one per LinuxCNC joint that drives an axis of the model
-  int poses = 0;                      // corrections evaluated
+  std::vector<JointRoom> joints;            // one per LinuxCNC joint that drives an axis of the model
+  int poses = 0;                            // corrections evaluated
   std::array<double, 2> tool_lengths_mm{};  // the L they were evaluated at
-  std::vector<std::string> problems;  // one per joint limit the correction crosses: where, the fix
+  std::vector<std::string> problems;        // one per joint limit the correction crosses: where, the fix
 };
 
 // Throws vc::LoadError for a limit that is not a number.

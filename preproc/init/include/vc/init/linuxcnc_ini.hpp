@@ -22,11 +22,11 @@ namespace vc::init {
 
 struct IniEntry {
   std::string section, key, value;
-  std::string path;             // the file it is written in (the INI or an included file)
-  int line = 0;                 // its first line
-  int last_line = 0;            // its last line (a value continued with '\' spans several)
-  std::size_t value_offset = 0; // where the value starts in the first line's text
-  std::string text;             // the first line, trimmed: for messages and comments
+  std::string path;              // the file it is written in (the INI or an included file)
+  int line = 0;                  // its first line
+  int last_line = 0;             // its last line (a value continued with '\' spans several)
+  std::size_t value_offset = 0;  // where the value starts in the first line's text
+  std::string text;              // the first line, trimmed: for messages and comments
 
   SourceLocation where() const { return {path, line}; }
 };
@@ -34,7 +34,7 @@ struct IniEntry {
 struct IniSection {
   std::string name;
   std::string path;
-  int line = 0;                 // of the [NAME] line
+  int line = 0;  // of the [NAME] line
   std::vector<IniEntry> entries;
 };
 

@@ -14,11 +14,11 @@
 namespace vc::init {
 
 struct LayoutAxis {
-  char letter = 'X';       // upper case
-  int joint = 0;           // the first joint of this letter (the one the travel is read from)
+  char letter = 'X';  // upper case
+  int joint = 0;      // the first joint of this letter (the one the travel is read from)
   bool rotary = false;
   double travel_min = 0.0, travel_max = 0.0;  // mm or deg
-  std::string type_from;   // where its TYPE is written, or that it is not
+  std::string type_from;                      // where its TYPE is written, or that it is not
   std::string travel_from;
 };
 

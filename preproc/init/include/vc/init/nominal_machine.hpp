@@ -23,8 +23,8 @@ struct NominalAxis {
 
 struct NominalMachine {
   std::string name, name_from;
-  std::string module;                // the stock kinematics module
-  std::vector<std::string> remarks;  // for the header: what the user must know or do
+  std::string module;                                    // the stock kinematics module
+  std::vector<std::string> remarks;                      // for the header: what the user must know or do
   std::vector<NominalAxis> tool_chain, workpiece_chain;  // bed outward
   Vector3 gauge_point_mm{};
   std::string gauge_point_from;
@@ -32,15 +32,15 @@ struct NominalMachine {
   std::string tool_length_from;
   double tool_length_reference_mm = 0.0;
   std::string tool_length_reference_from;
-  char tool_axis_coordinate = 0;     // 5axiskins: 'W' (machines/README.md); 0: none
+  char tool_axis_coordinate = 0;  // 5axiskins: 'W' (machines/README.md); 0: none
   std::string tool_axis_from;
   Vector3 fixture_origin_mm{};
   std::vector<std::string> fixture_from;
 
   // What volkins' KINEMATICS line takes over from the stock one.
-  std::string coordinates;       // the joints' letters, as LinuxCNC maps them (duplicates kept)
-  std::string world;             // "tcp", or "" (volkins' default: the world is the axes)
-  bool identity_first = false;   // sparm=identityfirst: kinematics type 0 is the identity
+  std::string coordinates;      // the joints' letters, as LinuxCNC maps them (duplicates kept)
+  std::string world;            // "tcp", or "" (volkins' default: the world is the axes)
+  bool identity_first = false;  // sparm=identityfirst: kinematics type 0 is the identity
   // The stock module's HAL pins (without the "module." prefix), and the one that takes
   // LinuxCNC's tool length offset ("" if none).
   std::vector<std::string> pins;

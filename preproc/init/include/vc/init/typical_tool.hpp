@@ -11,7 +11,7 @@ namespace vc::init {
 
 struct TypicalTool {
   double length_mm = 0.0;
-  std::string from;  // which tool, file:line and the entry, or why 0
+  std::string from;         // which tool, file:line and the entry, or why 0
   bool unreadable = false;  // the tool table could not be read (`from` says why)
 };
 

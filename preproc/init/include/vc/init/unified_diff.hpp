@@ -18,7 +18,7 @@ class FileEdits {
   explicit FileEdits(const TextFile& file) : file_(&file) {}
 
   const TextFile& file() const { return *file_; }
-  void replace(int line, std::string text);                      // 1-based
+  void replace(int line, std::string text);  // 1-based
   void remove(int line);
   void insert_after(int line, const std::vector<std::string>& texts);  // 0: before the first line
   bool removed(int line) const;

@@ -63,20 +63,18 @@ class CutterCompensation {
  private:
   struct Queued {
     long sequence;
-    Move move;           // uncompensated for the lathe tool's origin (applied when issued)
-    double d1 = 0, d2 = 0;  // straight: direction of the original motion (the gouge check)
+    Move move;                 // uncompensated for the lathe tool's origin (applied when issued)
+    double d1 = 0, d2 = 0;     // straight: direction of the original motion (the gouge check)
     double original_turn = 0;  // arc: its sweep when queued (0: not checked)
-    int turn = 0;        // arc: LinuxCNC's turn (+ counter-clockwise, - clockwise; |turn| = P)
+    int turn = 0;              // arc: LinuxCNC's turn (+ counter-clockwise, - clockwise; |turn| = P)
   };
   double get1(const Position& p) const { return p[a_]; }
   double get2(const Position& p) const { return p[b_]; }
-  bool tool_inside_arc(int turn) const {
-    return (side_ == kLeft && turn > 0) || (side_ == kRight && turn < 0);
-  }
+  bool tool_inside_arc(int turn) const { return (side_ == kLeft && turn > 0) || (side_ == kRight && turn < 0); }
   void enqueue_straight(const Move& line, long sequence, double d1, double d2, double x, double y,
                         const Position& rest);
-  void enqueue_arc(const Move& arc, long sequence, double original_turn, double x, double y, double cx,
-                   double cy, int turn, const Position& rest);
+  void enqueue_arc(const Move& arc, long sequence, double original_turn, double x, double y, double cx, double cy,
+                   int turn, const Position& rest);
   void move_endpoint_and_flush(double x, double y, std::vector<ReleasedMove>& out);
   void dequeue(std::vector<ReleasedMove>& out);
   void set_endpoint(double x, double y) {
@@ -85,18 +83,20 @@ class CutterCompensation {
     endpoint_valid_ = true;
   }
   // The first held move, or the one LinuxCNC's cleared queue still holds in its memory.
-  const Queued* front() const { return queue_.empty() ? (stale_front_.sequence >= 0 ? &stale_front_ : nullptr) : &queue_.front(); }
+  const Queued* front() const {
+    return queue_.empty() ? (stale_front_.sequence >= 0 ? &stale_front_ : nullptr) : &queue_.front();
+  }
   void lathe_origin(Position& p) const;  // the lathe tool's origin point from its radius centre
 
   Side side_ = kOff;
   double radius_ = 0.0;
   int orientation_ = 0;
-  int a_ = 0, b_ = 1, n_ = 2;   // plane axes: G17 X Y (Z), G18 Z X (Y)
+  int a_ = 0, b_ = 1, n_ = 2;  // plane axes: G17 X Y (Z), G18 Z X (Y)
   bool xz_ = false;
-  double unit_ = 1.0;           // mm per program unit (LinuxCNC's tolerances are in program units)
+  double unit_ = 1.0;  // mm per program unit (LinuxCNC's tolerances are in program units)
   bool first_ = true;
-  Position current_{};          // compensated point (LinuxCNC's current_x...), before the lathe origin
-  Position tool_{};             // where the issued moves leave the tool
+  Position current_{};  // compensated point (LinuxCNC's current_x...), before the lathe origin
+  Position tool_{};     // where the issued moves leave the tool
   std::vector<Queued> queue_;
   Queued stale_front_{-1, {}};
   double endpoint_[2] = {0, 0};

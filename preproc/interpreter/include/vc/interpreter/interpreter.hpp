@@ -26,9 +26,9 @@
 namespace vc::interpreter {
 
 struct Setup {
-  std::string file;                   // program path, for messages
-  unsigned machine_axes = 0;          // bit i: the machine has program axis i (XYZABC)
-  const ToolTable* tools = nullptr;   // null: no tool table given
+  std::string file;                             // program path, for messages
+  unsigned machine_axes = 0;                    // bit i: the machine has program axis i (XYZABC)
+  const ToolTable* tools = nullptr;             // null: no tool table given
   const gcode::Parameters* var_file = nullptr;  // null: no parameter file given
   // World convention of the kinematics the program runs on: with TCP kinematics LinuxCNC
   // still adds the tool length to world Z and the kinematics takes it off again, so the
@@ -56,27 +56,27 @@ struct ControlPoint {
 
 // What one block does, for a writer that copies the block and replaces its motion.
 struct Effect {
-  std::vector<Move> moves;           // in the order LinuxCNC makes them
-  bool translate = false;            // moves must be replaced by corrected ones
-  std::vector<int> motion_words;     // words (indices into block.words) the corrected moves replace
-  std::vector<int> stop_words;       // M0 M1 M2 M30 M60: LinuxCNC runs them after the motion
+  std::vector<Move> moves;                              // in the order LinuxCNC makes them
+  bool translate = false;                               // moves must be replaced by corrected ones
+  std::vector<int> motion_words;                        // words (indices into block.words) the corrected moves replace
+  std::vector<int> stop_words;                          // M0 M1 M2 M30 M60: LinuxCNC runs them after the motion
   int g64_word = -1, g64_p_word = -1, g64_q_word = -1;  // path blending words, if any
-  int f_word = -1;                   // F word, if any
-  int motion_code_word = -1;         // G0/G1/G2/G3 word, if any (replaced with the moves)
-  int modal_motion = G_80;           // motion mode after the block, G code x10 (-1: none after G5.3)
+  int f_word = -1;                                      // F word, if any
+  int motion_code_word = -1;                            // G0/G1/G2/G3 word, if any (replaced with the moves)
+  int modal_motion = G_80;                              // motion mode after the block, G code x10 (-1: none after G5.3)
   // Modal state the moves are written in.
   bool inches = false;
-  bool incremental = false;          // G91
-  bool arc_absolute = false;         // G90.1
-  bool program_end = false;          // M2 / M30
+  bool incremental = false;   // G91
+  bool arc_absolute = false;  // G90.1
+  bool program_end = false;   // M2 / M30
   // A canned cycle: its moves run in exact path mode (LinuxCNC's cycles switch to it and back):
   // the writer states G61 before them and the program's mode after (G61.1, or G64 with this P
   // in mm, < 0: none).
   bool exact_path = false;
   int restore_path_mode = G_64;
   double restore_path_p_mm = -1.0;
-  bool moved_as_written = false;     // the block moves the machine but is written as it is (G28/G30, a
-                                     // rapid to a partly known position)
+  bool moved_as_written = false;  // the block moves the machine but is written as it is (G28/G30, a
+                                  // rapid to a partly known position)
   // A tool change (M6, M61) and a tool length code (G43, G43.1, G49) on a line without motion:
   // the tool length words and the stop codes, to be written on a line of their own after it.
   // LinuxCNC keeps the machine still there, but the standalone interpreter (rs274, previews)
@@ -156,8 +156,8 @@ class Interpreter {
   void refuse(int line, int offset, const std::string& message) const;
   void set_tool_length(const Words& w, int line);
   void set_coordinate_system(int index);
-  void set_offsets(const Words& w, int line);  // G10 L2 / L20
-  void set_tool_entry(const Words& w, int l, int line);  // G10 L1, L10, L11
+  void set_offsets(const Words& w, int line);                 // G10 L2 / L20
+  void set_tool_entry(const Words& w, int l, int line);       // G10 L1, L10, L11
   void set_axis_offsets(const Words& w, int code, int line);  // G92, G92.1-G92.3, G52
   void go_home(const Words& w, int code, int line, Effect& effect);
   void move(const Words& w, int line, Effect& effect);
@@ -178,9 +178,9 @@ class Interpreter {
     std::array<int, 11> g{};  // plane, cutter comp, distance, feed mode, system, tool offset, retract,
                               // spindle mode, arc centres, lathe mode, G92 applied (-1: not restored)
     int path_mode = G_64;
-    double path_p = -1.0;     // program units
+    double path_p = -1.0;  // program units
     double feed = 0.0, speed = 0.0;
-    std::array<int, 6> m{};   // spindle, mist, flood, overrides, adaptive feed, feed hold
+    std::array<int, 6> m{};  // spindle, mist, flood, overrides, adaptive feed, feed hold
   };
   struct Context {
     std::optional<ModalState> saved;
@@ -208,8 +208,8 @@ class Interpreter {
   void spline_rules(const Words& w, int line) const;
   void spline(const Words& w, int previous_motion, int line, Effect& effect);
   void cubic_or_quadratic_spline(const Words& w, int code, int line, Effect& effect);  // G5, G5.1
-  void nurbs_point(const Words& w, int mode_before, int line);                           // G5.2
-  void end_nurbs(const Words& w, int previous_motion, int line, Effect& effect);         // G5.3
+  void nurbs_point(const Words& w, int mode_before, int line);                         // G5.2
+  void end_nurbs(const Words& w, int previous_motion, int line, Effect& effect);       // G5.3
   // The curve's moves (LinuxCNC's NURBS_FEED in the task's canon), from the current point.
   void curve_moves(const std::vector<ControlPoint>& points, unsigned order, int line, int offset, Effect& effect);
   void spline_start_rules(int line, int offset, const std::string& what, bool nurbs) const;  // what a curve needs
@@ -227,22 +227,22 @@ class Interpreter {
   void set_world_position(const Position& world);  // after a frame change, as LinuxCNC does
   Position end_point(const Words& w, int line) const;
   std::array<double, 2> program_xy() const;  // the current X Y in program units (program_xy_)
-  void note_program_xy(double x, double y);   // position_ is at these X Y (program units)
-  void polar_end_point(const Words& w, int line, double& x, double& y) const;  // '@' '^' 
+  void note_program_xy(double x, double y);  // position_ is at these X Y (program units)
+  void polar_end_point(const Words& w, int line, double& x, double& y) const;  // '@' '^'
   void arc_geometry(const Words& w, const Position& end, int line, Move& move) const;
 
   Setup setup_;
   StateView state_view_{*this};
   std::unique_ptr<LatheCycle> lathe_;  // a lathe cycle reading its profile
-  std::optional<ToolTable> tools_;  // the tool table as G10 L1 leaves it (none: no table given)
+  std::optional<ToolTable> tools_;     // the tool table as G10 L1 leaves it (none: no table given)
   gcode::Parameters parameters_;
   // Modal state, LinuxCNC's defaults at program start.
   bool inches_ = false;
   bool incremental_ = false;
   bool arc_absolute_ = false;
   int plane_ = G_17;
-  int motion_ = G_80;          // none yet (-1: none after G5.3, as LinuxCNC)
-  int path_mode_ = G_64;       // G61, G61.1, G64, and G64's P (mm; < 0: none)
+  int motion_ = G_80;     // none yet (-1: none after G5.3, as LinuxCNC)
+  int path_mode_ = G_64;  // G61, G61.1, G64, and G64's P (mm; < 0: none)
   double path_p_ = -1.0;
   // Canned cycles: retract to R (G99, rs274's start) or to the start Z (G98); the words that
   // stay from block to block (R, Z, P, Q, in mm and s) and the Z the cycles started from.
@@ -257,29 +257,29 @@ class Interpreter {
   std::vector<ControlPoint> nurbs_points_;
   unsigned nurbs_order_ = 3;
   bool inverse_time_ = false;
-  double feed_ = 0.0;          // program units per minute, or 1/min in G93
+  double feed_ = 0.0;  // program units per minute, or 1/min in G93
   double spindle_rpm_ = 0.0;
   bool spindle_on_ = false;
-  bool spindle_clockwise_ = true;  // M3 (M4: false)
-  bool mist_ = false, flood_ = false;  // M7, M8 (M9: both off)
+  bool spindle_clockwise_ = true;                        // M3 (M4: false)
+  bool mist_ = false, flood_ = false;                    // M7, M8 (M9: both off)
   bool feed_override_ = true, spindle_override_ = true;  // M48-M51: LinuxCNC starts with both on
   bool adaptive_feed_ = false, feed_hold_ = true;        // M52, M53 (rs274 starts with feed hold enabled)
   bool constant_surface_speed_ = false;                  // G96 (G97: off)
-  int selected_tool_ = -1;     // T word
-  int tool_in_spindle_ = -1;   // after M6 / M61
+  int selected_tool_ = -1;                               // T word
+  int tool_in_spindle_ = -1;                             // after M6 / M61
   // #5401-#5413 read the spindle's tool table entry: known after M6, when LinuxCNC synchronises
   // the interpreter with the tool changer; after M61 they depend on when the task does (the
   // standalone rs274 keeps the previous tool's), so they are not given then.
   bool tool_data_known_ = false;
-  double tool_offset_ = 0.0;   // mm: LinuxCNC's tool length offset (G43, G43.1; 0: G49), not L
+  double tool_offset_ = 0.0;  // mm: LinuxCNC's tool length offset (G43, G43.1; 0: G49), not L
   ToolOffsetFrom tool_offset_from_ = ToolOffsetFrom::None;  // where it comes from
-  int tool_offset_tool_ = -1;  // G43's tool (its table entry), if from the tool table
-  int coordinate_system_ = 1;  // 1..9: G54..G59.3
-  bool offsets_known_ = false; // the active system's offsets came from the .var file or G10
-  unsigned offsets_set_ = 0;   // bit n: system n set by G10 in this program
-  Position g92_{};             // G92/G52 offsets (mm, deg), added before the rotation
-  Position position_{};        // current point, program coordinates (mm, deg); with cutter
-                               // compensation the programmed point, not the tool's
+  int tool_offset_tool_ = -1;                               // G43's tool (its table entry), if from the tool table
+  int coordinate_system_ = 1;                               // 1..9: G54..G59.3
+  bool offsets_known_ = false;  // the active system's offsets came from the .var file or G10
+  unsigned offsets_set_ = 0;    // bit n: system n set by G10 in this program
+  Position g92_{};              // G92/G52 offsets (mm, deg), added before the rotation
+  Position position_{};         // current point, program coordinates (mm, deg); with cutter
+                                // compensation the programmed point, not the tool's
   // LinuxCNC's current X and Y in program units as it computes them (the words as written, G91
   // sums and unit changes in program units), where the interpreter knows them: a spline's
   // arithmetic starts from them, and converted from mm they can differ in the last bit, which
@@ -299,7 +299,7 @@ class Interpreter {
   std::vector<Context> contexts_;  // by call level
   std::string restore_lines_;
   std::vector<ReleasedMove> released_, own_;
-  unsigned known_ = 0;         // axes whose current position is known
+  unsigned known_ = 0;  // axes whose current position is known
 };
 
 }  // namespace vc::interpreter

@@ -16,8 +16,8 @@ namespace vc::interpreter {
 struct Tool {
   static constexpr const char* kOffsetLetters = "XYZABCUVW";
   int number = 0;
-  std::array<double, 9> offset{};  // X Y Z A B C U V W: mm and deg; Z is the tool length offset
-  double diameter = 0.0;           // D column, mm; 0 if absent
+  std::array<double, 9> offset{};              // X Y Z A B C U V W: mm and deg; Z is the tool length offset
+  double diameter = 0.0;                       // D column, mm; 0 if absent
   double front_angle = 0.0, back_angle = 0.0;  // I J (lathe tools), deg
   int orientation = 0;                         // Q (lathe tools)
 

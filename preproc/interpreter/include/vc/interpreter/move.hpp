@@ -59,25 +59,25 @@ enum class ToolOffsetFrom : unsigned char { None, G43, G43_1 };
 struct Arc {
   int first = 0, second = 1, normal = 2;
   double center_first = 0, center_second = 0;  // program coordinates, mm
-  double sweep_rad = 0;   // signed: > 0 counter-clockwise (G3); full turns included
-  int turns = 1;          // P word (>= 1)
+  double sweep_rad = 0;                        // signed: > 0 counter-clockwise (G3); full turns included
+  int turns = 1;                               // P word (>= 1)
   bool clockwise = false;
 };
 
 struct Move {
   MoveKind kind = MoveKind::Line;
-  Position start{}, end{};      // program coordinates, mm and deg
-  unsigned known_start = 0;     // bit i: start[i] is known (the program has set that axis)
-  Frame frame;                  // program -> world for this move (identity offset for G53)
+  Position start{}, end{};           // program coordinates, mm and deg
+  unsigned known_start = 0;          // bit i: start[i] is known (the program has set that axis)
+  Frame frame;                       // program -> world for this move (identity offset for G53)
   bool machine_coordinates = false;  // G53
   // LinuxCNC's active tool length offset (G43, G43.1; 0 without G43 or after G49), not the
   // physical tool length L: the correction is for L = Model::correction_length(tool_offset_mm)
   // (the tool-length rule, machines/README.md).
   double tool_offset_mm = 0.0;
   ToolOffsetFrom tool_offset_from = ToolOffsetFrom::None;  // where tool_offset_mm comes from
-  int tool_offset_tool = -1;    // the tool whose table entry G43 applied (ToolOffsetFrom::G43)
-  int tool = 0;                 // tool in the spindle
-  Arc arc;                      // kind == Arc
+  int tool_offset_tool = -1;  // the tool whose table entry G43 applied (ToolOffsetFrom::G43)
+  int tool = 0;               // tool in the spindle
+  Arc arc;                    // kind == Arc
   // Feed: units/min in program units (G94), or 1/min (G93 inverse time).
   bool inverse_time = false;
   double feed = 0.0;
@@ -88,7 +88,7 @@ struct Move {
   double compensated_rate_mm_per_min = 0.0;
   bool spindle_on = false;
   double spindle_rpm = 0.0;
-  int line = 0;                 // 1-based line in the source file
+  int line = 0;  // 1-based line in the source file
 };
 
 // Point at fraction s in [0, 1] of a move's nominal path in program coordinates: straight

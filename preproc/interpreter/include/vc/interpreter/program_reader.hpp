@@ -53,31 +53,31 @@ class ProgramReader {
   long program_bytes() const;
 
  private:
-  struct Source;                    // an open file and where its reading is
-  struct Label {                    // where an O word was met (LinuxCNC's offset_map)
+  struct Source;  // an open file and where its reading is
+  struct Label {  // where an O word was met (LinuxCNC's offset_map)
     gcode::OWord::Kind kind;
     int file;
-    long offset;                    // of the labelled line's start
+    long offset;  // of the labelled line's start
     int line;
-    long repeats_left = -1;         // repeat: iterations still to run (-1: not counting)
-    long iterations = 0;            // times a loop jumped back here (to stop endless loops)
+    long repeats_left = -1;  // repeat: iterations still to run (-1: not counting)
+    long iterations = 0;     // times a loop jumped back here (to stop endless loops)
   };
-  struct Frame {                    // a call in progress
-    int file;                       // where to return: the line after the call
+  struct Frame {  // a call in progress
+    int file;     // where to return: the line after the call
     long offset;
     int line;
     gcode::Parameters::Scope caller;
-    bool m98 = false;               // an M98 subprogram: shares the caller's #1..#30
+    bool m98 = false;  // an M98 subprogram: shares the caller's #1..#30
     std::string name;
-    long repeats_left = 0;          // M98 L: calls still to make after this one
+    long repeats_left = 0;  // M98 L: calls still to make after this one
   };
 
-  struct Held {                     // a line whose moves cutter compensation still holds back
+  struct Held {  // a line whose moves cutter compensation still holds back
     std::string raw;
     Origin origin;
     gcode::Block block;
     Effect effect;
-    long sequence;                  // Interpreter::sequence() of the line
+    long sequence;  // Interpreter::sequence() of the line
   };
 
   bool execute_next(std::string& raw, Origin& origin, gcode::Block& block, Effect& effect);
@@ -109,17 +109,17 @@ class ProgramReader {
   std::vector<std::string> subroutine_path_;
   std::vector<std::unique_ptr<Source>> sources_;
   std::deque<std::string> file_names_;
-  int current_ = 0;                 // source being read
-  long line_start_ = 0;             // byte offset of the line last read in it
+  int current_ = 0;      // source being read
+  long line_start_ = 0;  // byte offset of the line last read in it
   std::map<std::string, Label> labels_;
   std::vector<Frame> frames_;
-  std::string skipping_to_;         // O name the lines are skipped up to (empty: none)
-  bool skipping_to_sub_ = false;    // ... and it is a subroutine a call looks for
-  bool defining_sub_ = false;       // between "sub" and "endsub" at the program's level
-  std::string defining_name_;       // ... of this subroutine
+  std::string skipping_to_;       // O name the lines are skipped up to (empty: none)
+  bool skipping_to_sub_ = false;  // ... and it is a subroutine a call looks for
+  bool defining_sub_ = false;     // between "sub" and "endsub" at the program's level
+  std::string defining_name_;     // ... of this subroutine
   bool executed_if_ = false, doing_break_ = false, doing_continue_ = false;
   bool ended_ = false;
-  gcode::Block original_;           // a rewritten line as it was written
+  gcode::Block original_;  // a rewritten line as it was written
   std::deque<Held> held_;
   std::deque<std::pair<std::string, Origin>> injected_;
 };

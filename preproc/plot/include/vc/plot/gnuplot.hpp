@@ -11,8 +11,8 @@
 namespace vc::plot {
 
 struct Figure {
-  std::string image;       // where the picture goes: a .png (pngcairo) or .svg (svg) file
-  std::string data;        // the CSV text the plot draws: written to data_path(image)
+  std::string image;  // where the picture goes: a .png (pngcairo) or .svg (svg) file
+  std::string data;   // the CSV text the plot draws: written to data_path(image)
   // gnuplot commands after the terminal and output are set; DATA is a gnuplot string
   // variable holding the data file's path (`plot DATA using 1:2`).
   std::string script;

@@ -18,8 +18,8 @@
 namespace vc::plot {
 
 struct LaserPlotText {
-  std::string title;                  // e.g. "EXX positioning of X, MC-300"
-  std::vector<std::string> notes;     // the runs' metadata, the runs left out: under the figures
+  std::string title;               // e.g. "EXX positioning of X, MC-300"
+  std::vector<std::string> notes;  // the runs' metadata, the runs left out: under the figures
   // The figures as the command prints them, e.g. {"A", "18.96 um (up 17.1 um, down 16.2 um)"}.
   std::vector<std::pair<std::string, std::string>> figures;
 };

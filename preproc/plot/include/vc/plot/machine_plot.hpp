@@ -15,20 +15,20 @@
 namespace vc::plot {
 
 struct AxisPlot {
-  bool drawn = false;                   // the axis has a table over its own position alone
-  Figure figure;                        // when drawn
-  std::vector<std::string> not_drawn;   // its other tables (over other axes or a temperature), why
+  bool drawn = false;                  // the axis has a table over its own position alone
+  Figure figure;                       // when drawn
+  std::vector<std::string> not_drawn;  // its other tables (over other axes or a temperature), why
 };
 
 // The tables of axis `joint` over its own position alone, drawn into `image`.
 AxisPlot axis_plot(const machine::Model& model, int joint, const std::string& image);
 
 struct LocationRow {
-  std::string line;      // the axis letter, or "spindle"
-  std::string symbol;    // EC0Y, EX0C, EA0S, ...
+  std::string line;    // the axis letter, or "spindle"
+  std::string symbol;  // EC0Y, EX0C, EA0S, ...
   std::string meaning;
-  double value = 0.0;    // in `unit`
-  std::string unit;      // um (lengths) or arcsec (angles)
+  double value = 0.0;  // in `unit`
+  std::string unit;    // um (lengths) or arcsec (angles)
 };
 
 // Every location error of every axis line and of the spindle line, zero or not, joint order.

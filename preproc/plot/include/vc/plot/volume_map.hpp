@@ -34,9 +34,9 @@ struct VolumeMapOptions {
 
 // One place the rotary axes are held at while the linear ones sweep the map.
 struct RotarySetting {
-  std::string label;           // "B 0 deg, C 0 deg" ("no rotary axes" on a 3-axis machine)
-  bool worst = false;          // the worst position found, not 0
-  machine::Joints q;           // every joint; only the rotary ones matter (the linear ones swept)
+  std::string label;   // "B 0 deg, C 0 deg" ("no rotary axes" on a 3-axis machine)
+  bool worst = false;  // the worst position found, not 0
+  machine::Joints q;   // every joint; only the rotary ones matter (the linear ones swept)
 };
 
 // The map's errors for one tool length and one rotary setting.
@@ -56,11 +56,11 @@ struct VolumeMap {
   // The compensations drawn, in order: "none", then (with a controller) "usual practice" and
   // "modified method" with the controller's tables.
   std::vector<std::string> compensations;
-  std::string controller_title;  // "" without a controller
-  std::vector<MapSheet> sheets;  // per tool length (ascending), rotary 0 first, then the worst
-  int poses = 0;                 // poses of the whole map (each compensation judged on all)
+  std::string controller_title;         // "" without a controller
+  std::vector<MapSheet> sheets;         // per tool length (ascending), rotary 0 first, then the worst
+  int poses = 0;                        // poses of the whole map (each compensation judged on all)
   double full_correction_max_um = 0.0;  // volkins' largest |e| over all of them (the model's own: ~0)
-  double seconds = 0.0;          // how long the map took
+  double seconds = 0.0;                 // how long the map took
 };
 
 // Throws std::invalid_argument for a machine with fewer than three linear joints, a grid or

@@ -59,16 +59,16 @@ class CorrectionBounds {
   using PerJoint = Eigen::Matrix<double, machine::kMaxAxes, machine::kMaxAxes>;
   struct Sampled {
     double tool_length_mm;
-    std::array<double, machine::kMaxAxes> slope;  // k_j
-    PerJoint curvature;                            // M_ij
+    std::array<double, machine::kMaxAxes> slope;      // k_j
+    PerJoint curvature;                               // M_ij
     std::array<double, machine::kMaxAxes> slope_rad;  // the same for the tool direction
     PerJoint curvature_rad;
   };
   // Kinks along one joint from one grid variable: node positions (all nodes of a linear
   // table, the ends of a cubic one), repeating every `period` deg on a periodic grid.
   struct Kinks {
-    double period;               // 0 if not periodic
-    std::vector<double> at;      // sorted
+    double period;           // 0 if not periodic
+    std::vector<double> at;  // sorted
     // The answer of the last search: the first node after the last interval asked about.
     // Pieces come along a path, so the next search mostly ends there again.
     mutable std::size_t hint = 0;

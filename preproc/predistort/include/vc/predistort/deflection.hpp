@@ -51,13 +51,13 @@ class Deflection {
   // Mean force on the tool (N, part frame) of a cutting move at feed direction `feed` (unit,
   // part frame) and tool axis `tool_axis`; zero for rapids, a stopped spindle, a tool
   // without cutting conditions, or a move along the tool axis.
-  Eigen::Vector3d force(const interpreter::Move& move, const Eigen::Vector3d& feed,
-                        const Eigen::Vector3d& tool_axis, double path_length_mm) const;
+  Eigen::Vector3d force(const interpreter::Move& move, const Eigen::Vector3d& feed, const Eigen::Vector3d& tool_axis,
+                        double path_length_mm) const;
 
   // Deflection (part frame, mm) under `force` at nominal joints, and the joint shift that
   // takes it off (target = nominal - shift).
-  void at(const machine::Joints& nominal, double tool_length_mm, const Eigen::Vector3d& force,
-          machine::Joints& shift, Eigen::Vector3d& deflection_mm) const;
+  void at(const machine::Joints& nominal, double tool_length_mm, const Eigen::Vector3d& force, machine::Joints& shift,
+          Eigen::Vector3d& deflection_mm) const;
 
   const CuttingProcess& process() const { return process_; }
 

@@ -40,7 +40,8 @@ struct MissingOffsetError {
 
 class MissingOffsetCheck {
  public:
-  MissingOffsetCheck(const machine::Model& model, const machine::Conditions& conditions, const interpreter::ToolTable* tools)
+  MissingOffsetCheck(const machine::Model& model, const machine::Conditions& conditions,
+                     const interpreter::ToolTable* tools)
       : model_(model), conditions_(conditions), tools_(tools) {}
   // At a point of `move` (no tool length offset in force): `target` the nominal joints (less
   // the deflection), `corrected` their correction for L = correction_length(0). The error left

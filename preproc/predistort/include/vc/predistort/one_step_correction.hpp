@@ -48,7 +48,9 @@ class OneStepCorrection {
   // The band of a pole angle (x [1, 1.5), [1.5, 2), [2, 3), [3, ...) the full-correction
   // angle), and of the pole angle at nominal joints, -1 below full correction (tests: the two
   // agree).
-  int band_of(double pole_angle_rad, double tool_length_mm) { return for_tool(tool_length_mm).bound.band_of(pole_angle_rad); }
+  int band_of(double pole_angle_rad, double tool_length_mm) {
+    return for_tool(tool_length_mm).bound.band_of(pole_angle_rad);
+  }
   int band_at(const machine::Joints& target, double tool_length_mm) {
     machine::PoseDerivatives d;
     const machine::ToolPose ideal = machine::tool_pose(model_, machine::Machine::Ideal, target, tool_length_mm, d);
@@ -58,9 +60,9 @@ class OneStepCorrection {
  private:
   struct PerTool {
     double tool_length_mm;
-    machine::ContractionBound bound;  // kappa per band of the pole angle
-    Eigen::Matrix3d jacobian;     // A (three linear axes)
-    Eigen::Vector3d tip_at_zero;  // b
+    machine::ContractionBound bound;                // kappa per band of the pole angle
+    Eigen::Matrix3d jacobian;                       // A (three linear axes)
+    Eigen::Vector3d tip_at_zero;                    // b
     Eigen::PartialPivLU<machine::SquareMatrix> lu;  // of A
   };
   // The equations at `target`, the ideal machine's derivatives there (B's columns) and the band

@@ -59,10 +59,10 @@ struct Piece {
 
 struct CorrectorStats {
   long moves = 0, pieces = 0, corrections = 0, checks = 0;
-  long tolerance_misses = 0;      // moves where max_depth was reached
-  GridExcursions grids;           // corrected points outside a table's grid
-  MissingOffsetError missing_offset;  // moves without G43: the error left at the likely tool
-  double max_checked_error_mm = 0.0;  // largest error at an accepted piece's check points
+  long tolerance_misses = 0;           // moves where max_depth was reached
+  GridExcursions grids;                // corrected points outside a table's grid
+  MissingOffsetError missing_offset;   // moves without G43: the error left at the likely tool
+  double max_checked_error_mm = 0.0;   // largest error at an accepted piece's check points
   double max_checked_error_rad = 0.0;  // largest tool direction error there
   double max_deflection_mm = 0.0;
 
@@ -73,8 +73,7 @@ class PathCorrector {
  public:
   // `shared`: the sampling of the correction bounds shared with correctors on other threads.
   PathCorrector(const machine::Model& model, const machine::Conditions& conditions, CorrectorOptions options,
-                const Deflection* deflection,
-                CorrectionBounds::Shared* shared = nullptr);
+                const Deflection* deflection, CorrectionBounds::Shared* shared = nullptr);
 
   // Appends the pieces of `move` to `pieces` (cleared first). The first piece starts where
   // the previous corrected move ended; if the machine is elsewhere (the previous move was
@@ -130,13 +129,13 @@ class PathCorrector {
   machine::Conditions conditions_;  // the machine's temperatures and pole fade
   CorrectorOptions options_;
   const Deflection* deflection_;
-  bool checks_direction_;              // rotary axes and a direction tolerance
+  bool checks_direction_;  // rotary axes and a direction tolerance
   JointAxes axes_;
   CorrectorStats stats_;
   bool have_last_ = false;
-  Node last_;                          // end of the previous corrected move
+  Node last_;  // end of the previous corrected move
   double last_tool_length_ = 0.0;
-  bool last_loaded_ = false;           // a cutting force acted at last_
+  bool last_loaded_ = false;  // a cutting force acted at last_
   // The last two corrections (any move, in the order made): the seed of the next one is
   // extrapolated from them. Only the Newton iterations depend on it, never the answer.
   struct Solved {

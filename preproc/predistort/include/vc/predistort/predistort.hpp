@@ -17,10 +17,10 @@ namespace vc::predistort {
 struct Job {
   const machine::Model* model = nullptr;
   const machine::Conditions* conditions = nullptr;  // the temperatures the program is made for (null: the file's)
-  interpreter::Setup setup;       // file, axes, tool table, parameters, world convention
+  interpreter::Setup setup;                         // file, axes, tool table, parameters, world convention
   CorrectorOptions corrector;
   const Deflection* deflection = nullptr;
-  Provenance provenance;          // for the header comment
+  Provenance provenance;  // for the header comment
   // Threads correcting moves, each taking every other batch of lines; 0: as the machine
   // needs (two with rotary axes on two cores or more, else one).
   int correcting_threads = 0;

@@ -70,15 +70,15 @@ class Writer {
   std::ostream& out_;
   unsigned axes_;
   double tolerance_mm_;
-  int motion_ = -1;            // motion mode LinuxCNC is in (G code x10), -1 unknown
+  int motion_ = -1;             // motion mode LinuxCNC is in (G code x10), -1 unknown
   interpreter::Position at_{};  // where the written program leaves the machine, program coordinates
   interpreter::Frame frame_;    // the frame `at_` is in
   std::string pending_;         // written, not yet handed to out_
   long lines_ = 0;
-  std::string line_;            // reused buffers
+  std::string line_;  // reused buffers
   std::vector<Edit> edits_;
-  std::string edit_text_;       // the texts of edits_
-  std::vector<int> removed_;    // words a translated line loses
+  std::string edit_text_;     // the texts of edits_
+  std::vector<int> removed_;  // words a translated line loses
 };
 
 }  // namespace vc::predistort

@@ -20,11 +20,11 @@ namespace vc::report {
 
 struct Measurement {
   std::string path;
-  std::string kind;   // "laser" (ISO 230-2) or "circle" (ISO 230-4)
-  std::string title;  // e.g. "EXX positioning of axis X (ISO 230-2)"
+  std::string kind;                                          // "laser" (ISO 230-2) or "circle" (ISO 230-4)
+  std::string title;                                         // e.g. "EXX positioning of axis X (ISO 230-2)"
   std::vector<std::pair<std::string, std::string>> figures;  // name (with its symbol), value with unit
-  std::vector<std::string> notes;  // the file's metadata, runs left out
-  plot::Figure figure;             // its plot (the image path: the caller's, set by image_path)
+  std::vector<std::string> notes;                            // the file's metadata, runs left out
+  plot::Figure figure;  // its plot (the image path: the caller's, set by image_path)
 };
 
 struct Measurements {

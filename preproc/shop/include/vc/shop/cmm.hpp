@@ -48,8 +48,7 @@ struct ReportFormat {
 // to check: which column is what, the units). Throws vc::LoadError with file:line:column.
 std::vector<CmmPoint> read_cmm_points(const std::string& path, bool report, const ReportFormat& format = {},
                                       std::string* layout = nullptr);
-void write_cmm_report(std::ostream& out, const std::vector<CmmPoint>& points,
-                      const std::vector<std::string>& comments);
+void write_cmm_report(std::ostream& out, const std::vector<CmmPoint>& points, const std::vector<std::string>& comments);
 
 struct CmmOptions {
   double noise_um = 0.0;         // standard deviation of the gaussian noise added to each reading

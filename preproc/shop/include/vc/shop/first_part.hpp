@@ -25,13 +25,13 @@
 namespace vc::shop {
 
 struct FirstPartOptions {
-  SimulationOptions simulation;      // how the program ran (world, module compensation, tools)
+  SimulationOptions simulation;  // how the program ran (world, module compensation, tools)
   SurfaceOptions surface;
-  double cutoff_mm = 10.0;           // wavelengths shorter than this are not tuned
-  double outlier_reach_mm = 25.0;    // a point is compared with its face's points within this
-  double outlier_sigmas = 4.0;       // ... and is an outlier beyond this many robust sigmas
-  double outlier_floor_mm = 0.003;   // ... and beyond this (noise alone is never an outlier)
-  double largest_deviation_mm = 1.0; // a larger deviation means a wrong unit, not a machine
+  double cutoff_mm = 10.0;            // wavelengths shorter than this are not tuned
+  double outlier_reach_mm = 25.0;     // a point is compared with its face's points within this
+  double outlier_sigmas = 4.0;        // ... and is an outlier beyond this many robust sigmas
+  double outlier_floor_mm = 0.003;    // ... and beyond this (noise alone is never an outlier)
+  double largest_deviation_mm = 1.0;  // a larger deviation means a wrong unit, not a machine
   // Points on no cut surface are left out; fewer matched than this share of the report, or
   // than this count, and the report is refused (it does not belong to the program).
   double minimum_matched_share = 0.8;
@@ -53,7 +53,7 @@ struct MatchedPoint {
 };
 
 struct FirstPart {
-  ToolPath path;               // the program's path as the model predicts it
+  ToolPath path;  // the program's path as the model predicts it
   std::vector<MatchedPoint> points;
   std::vector<LeftOutPoint> left_out;  // on no cut surface (edges, uncut faces), with the reason
   int outliers = 0;

@@ -42,7 +42,7 @@ struct Anchor {
   double height_mm = 0.0;  // the point's position along the cut's tool axis, from the tip
   double deviation_mm = 0.0;
   Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();  // the cut's tool frame in the part frame
-  int point = 0;           // the measured point (one point may have several cuts, in a row)
+  int point = 0;  // the measured point (one point may have several cuts, in a row)
 };
 
 enum class TiltFit {
@@ -57,17 +57,17 @@ struct LocalFit {
   Eigen::Vector3d shift_mm = Eigen::Vector3d::Zero();  // v, tool frame
   Eigen::Vector3d tilt_rad = Eigen::Vector3d::Zero();  // w, tool frame (z = 0)
   TiltFit tilt = TiltFit::NotAsked;
-  int tilt_components = 0;                             // of w estimated (0, 1, 2)
-  double support = 0.0;  // effective number of measured points in the fit, (sum W)^2 / sum W^2,
-                         // W a point's weight (its cuts' summed): their noises are independent
+  int tilt_components = 0;  // of w estimated (0, 1, 2)
+  double support = 0.0;     // effective number of measured points in the fit, (sum W)^2 / sum W^2,
+                            // W a point's weight (its cuts' summed): their noises are independent
 };
 
 struct LocalFitOptions {
   double radius_mm = 40.0;
-  double angle_rad = 0.0;       // > 0: weights over the turn between tool frames, as above
-  bool with_tilt = false;       // estimate w too (where the points tell it)
-  double min_spread_mm = 1.0;   // heights' spread that tells a tilt from a shift
-  double noise_mm = 0.0;        // standard deviation of a point's deviation (0: no noise test)
+  double angle_rad = 0.0;      // > 0: weights over the turn between tool frames, as above
+  bool with_tilt = false;      // estimate w too (where the points tell it)
+  double min_spread_mm = 1.0;  // heights' spread that tells a tilt from a shift
+  double noise_mm = 0.0;       // standard deviation of a point's deviation (0: no noise test)
   Eigen::Vector3d known_tilt_rad = Eigen::Vector3d::Zero();  // w taken off the deviations first (not with_tilt)
 };
 

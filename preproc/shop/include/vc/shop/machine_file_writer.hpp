@@ -15,9 +15,9 @@
 namespace vc::shop {
 
 struct ExtraTable {
-  int joint = 0;             // the axis whose section lists it
-  std::string file_name;     // written in the output folder, e.g. "selftune_x.csv"
-  tables::ErrorTable table;  // core units (mm, rad)
+  int joint = 0;                           // the axis whose section lists it
+  std::string file_name;                   // written in the output folder, e.g. "selftune_x.csv"
+  tables::ErrorTable table;                // core units (mm, rad)
   std::vector<std::string> comments = {};  // written after the standard ones (e.g. a measurement's metadata)
   std::string text = {};  // if not empty: the file as it is to be written (an edited copy of a table), not `table`
 };

@@ -55,15 +55,15 @@ struct TiltSummary {
 
 struct LocalSummary {
   long lines = 0, moves_shifted = 0, pieces = 0;
-  double cutting_length_mm = 0.0;  // of the tool tip on the part (part frame), feed moves with the spindle on
-  double covered_fraction = 0.0;   // of that length, within radius_mm of a measured cut
+  double cutting_length_mm = 0.0;      // of the tool tip on the part (part frame), feed moves with the spindle on
+  double covered_fraction = 0.0;       // of that length, within radius_mm of a measured cut
   double largest_tip_shift_mm = 0.0;   // of the tool tip on the part: what the measured deviations ask for
   double largest_axis_shift_mm = 0.0;  // of the linear axes' words: the tip's shift plus the tilts' lever arms
   TiltSummary tilt;
 };
 
 LocalSummary shift_program(const machine::Model& model, const FirstPart& part, std::istream& program,
-                           const interpreter::Setup& setup, const predistort::Provenance& provenance,
-                           std::ostream& out, const LocalOptions& options);
+                           const interpreter::Setup& setup, const predistort::Provenance& provenance, std::ostream& out,
+                           const LocalOptions& options);
 
 }  // namespace vc::shop

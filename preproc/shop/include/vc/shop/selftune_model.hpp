@@ -73,7 +73,7 @@ struct ModelFit {
 // points of another part matched to its program's cuts (analyse_first_part of its plan), for
 // the noise the tuned tables carry there.
 ModelFit fit_model(const machine::Model& model, const FirstPart& part, const ModelOptions& options,
-                    const FirstPart* next = nullptr);
+                   const FirstPart* next = nullptr);
 
 // The file name of an axis's tuning table.
 std::string tuning_table_name(char axis);

@@ -20,21 +20,21 @@ namespace vc::shop {
 enum class ToolEnd { Flat, Ball };
 
 struct PathSample {
-  int move = 0;           // moves numbered from 1 in program order; the samples of one move are
-                          // joined by straight segments (its arcs are sampled finely enough)
-  int line = 0;           // program line of the move
-  double s = 0.0;         // fraction of the move
+  int move = 0;    // moves numbered from 1 in program order; the samples of one move are
+                   // joined by straight segments (its arcs are sampled finely enough)
+  int line = 0;    // program line of the move
+  double s = 0.0;  // fraction of the move
   int tool = 0;
   double radius_mm = 0.0;  // from the tool table's diameter (0: unknown)
   ToolEnd end = ToolEnd::Flat;
-  bool cutting = false;   // a feed move with the spindle on (rapids never cut)
+  bool cutting = false;                                // a feed move with the spindle on (rapids never cut)
   Eigen::Vector3d tip = Eigen::Vector3d::Zero();       // actual tool tip, part frame, mm
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();     // actual tool axis: tip into the spindle
   Eigen::Vector3d error_mm = Eigen::Vector3d::Zero();  // tip - ideal machine's tip at the commanded point
   // Not written to the path file: what produced the sample.
-  machine::Joints joints;                     // joint positions the machine was at
+  machine::Joints joints;  // joint positions the machine was at
   double tool_length_mm = 0.0;
-  interpreter::Position program{};            // commanded point, program coordinates
+  interpreter::Position program{};  // commanded point, program coordinates
 };
 using ToolPath = std::vector<PathSample>;
 
@@ -47,7 +47,7 @@ struct SimulationOptions {
   // program's joints as they are (an uncompensated machine, or a pre-distorted program).
   const machine::Model* compensation = nullptr;
   const predistort::Deflection* deflection = nullptr;  // cutting-force deflection, or none
-  std::set<int> ball_end_tools;      // tools with a ball end (the others are flat)
+  std::set<int> ball_end_tools;                        // tools with a ball end (the others are flat)
 };
 
 // Runs `program` on `machine` (its real kinematics, all errors) and passes every sample to

@@ -26,7 +26,7 @@ struct SessionTrace {
   std::vector<double> tool_offset_mm;   // motion.tooloffset.z: the tool length offset (L by Model::correction_length)
   std::vector<double> correction_length_mm;  // volkins.correction-length: the L applied (the offset's,
                                              // slewed); empty in a trace without the column
-  std::vector<double> controller_ticks; // motion-controller.time (CPU clock ticks)
+  std::vector<double> controller_ticks;      // motion-controller.time (CPU clock ticks)
   // The world's tool-axis coordinate (Model::tool_axis_coordinate, e.g. column "w"), per sample;
   // empty for a machine without one or a trace without the column (0 throughout).
   std::vector<double> tool_axis_mm;
@@ -77,7 +77,6 @@ struct TraceSummary {
 // `convention` as the module was loaded (TCP: world Z includes the tool length, as G43 adds it),
 // for the samples whose own convention the trace does not record (switchable kinematics: its
 // tcp column).
-TraceSummary check_trace(const machine::Model& model, machine::WorldConvention convention,
-                         const SessionTrace& trace);
+TraceSummary check_trace(const machine::Model& model, machine::WorldConvention convention, const SessionTrace& trace);
 
 }  // namespace vc::trace
