@@ -17,10 +17,24 @@ VolkinsParameters read_volkins_parameters(const LinuxcncIni& ini) {
     throw LoadError(kins ? kins->where() : ini.where_missing("KINS"),
                     "[KINS]KINEMATICS does not load volkins (a stock configuration: apply volcomp init's patch first)");
   VolkinsParameters p;
+  std::string units = "mm";
   while (words >> word) {
     if (word.rfind("coordinates=", 0) == 0) p.coordinates = word.substr(12);
     if (word == "world=tcp") p.world = machine::WorldConvention::Tcp;
+    if (word.rfind("units=", 0) == 0) units = word.substr(6);
   }
+  if (units != "mm" && units != "inch")
+    throw LoadError(kins->where(), "volkins' units=" + units + " is neither mm nor inch");
+  p.units.mm_per_unit = units == "inch" ? 25.4 : 1.0;
+  p.units.from = ini.cite(*kins);
+  const LinearUnits linuxcnc = read_linear_units(ini);
+  if (linuxcnc.mm_per_unit != p.units.mm_per_unit)
+    throw LoadError(
+        kins->where(),
+        std::string("volkins is loaded with units=") + p.units.name() + " (" +
+            (units == "mm" && kins->value.find("units=") == std::string::npos ? "its default" : "as written") +
+            "), but LinuxCNC runs in " + linuxcnc.name() + " (" + linuxcnc.from + "): add units=" + linuxcnc.name() +
+            " to the KINEMATICS line");
   return p;
 }
 

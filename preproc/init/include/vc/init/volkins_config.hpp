@@ -6,17 +6,21 @@
 #include <string_view>
 
 #include "vc/init/linuxcnc_ini.hpp"
+#include "vc/init/linuxcnc_units.hpp"
 #include "vc/machine/kinematics.hpp"
 
 namespace vc::init {
 
 // What [KINS]KINEMATICS asks of volkins: coordinates= (LinuxCNC's axis letters, one per joint;
-// empty: the machine's own order) and world= (type 0's convention).
+// empty: the machine's own order), world= (type 0's convention) and units= (LinuxCNC's length
+// unit: the joints, the world and the tool length offset motion passes; the machine file is in mm).
 struct VolkinsParameters {
   std::string coordinates;
   machine::WorldConvention world = machine::WorldConvention::Axes;
+  LinearUnits units;  // from units=mm|inch (default mm), cited as the KINEMATICS line
 };
-// Throws vc::LoadError where KINEMATICS does not load volkins.
+// Throws vc::LoadError where KINEMATICS does not load volkins, or where its units= is not the
+// INI's [TRAJ]LINEAR_UNITS (volkins would read every joint 25.4 times off).
 VolkinsParameters read_volkins_parameters(const LinuxcncIni& ini);
 
 // LinuxCNC's joint of the machine file's joint `j`: the first of its letter in coordinates=.
