@@ -23,7 +23,7 @@ std::string lower(std::string s) {
 }  // namespace
 
 ModuleSettings settings_from_parameters(const char* machine, const char* coordinates, const char* world,
-                                        const char* sparm) {
+                                        const char* sparm, const char* units) {
   if (!machine || !*machine) refuse("no machine file: load it as `loadrt volkins machine=/path/to/machine.toml`");
   ModuleSettings s;
   // A relative path is taken from rtapi_app's working directory (LinuxCNC starts it in the
@@ -92,7 +92,16 @@ ModuleSettings settings_from_parameters(const char* machine, const char* coordin
   if (s.kinematics_types[0] == machine::WorldConvention::Tcp && s.z_joint < 0)
     refuse("world=tcp needs a Z axis (the tool length is taken along it); " + s.model.path + " has none");
 
-  for (int j = 0; j < s.model.joint_count(); ++j) s.pose_field[j] = field_of(axes[j]);
+  const std::string unit = units && *units ? lower(units) : "mm";
+  if (unit != "mm" && unit != "inch")
+    refuse("units=" + std::string(units) +
+           " is not a length unit of LinuxCNC: units=mm (default) or units=inch, "
+           "as [TRAJ]LINEAR_UNITS");
+  s.mm_per_unit = unit == "inch" ? 25.4 : 1.0;
+  for (int j = 0; j < s.model.joint_count(); ++j) {
+    s.pose_field[j] = field_of(axes[j]);
+    s.linear_scale[j] = s.model.axes[j].type == machine::AxisType::Linear ? s.mm_per_unit : 1.0;
+  }
   s.contraction.emplace(s.model, std::vector<double>(kBoundToolLengthsMm.begin(), kBoundToolLengthsMm.end()), true);
   return s;
 }

@@ -1,4 +1,4 @@
-// What `loadrt volkins machine=... coordinates=... world=... sparm=...` asks for, checked at load time.
+// What `loadrt volkins machine=... coordinates=... world=... sparm=... units=...` asks for, checked at load time.
 //
 // Pure C++ (no LinuxCNC headers) so the rules are unit-tested without a running HAL. Throws
 // vc::LoadError (machine file and tables: file, line, problem) or std::runtime_error (the
@@ -50,6 +50,12 @@ struct ModuleSettings {
   // at kBoundToolLengthsMm (the correction length between the first and the last, else every
   // step is evaluated) with the temperatures drawn over their inputs' ranges.
   std::optional<machine::ContractionBound> contraction;
+  // LinuxCNC's length unit in mm (units=: 1 or 25.4). Motion hands the kinematics joints, world
+  // positions and the tool length offset in it; the model is in mm. The module converts them
+  // where they cross (linear_scale) and nowhere else.
+  double mm_per_unit = 1.0;
+  // Per joint of the machine file: mm per LinuxCNC unit for a linear axis, 1 for a rotary one (deg).
+  std::array<double, machine::kMaxAxes> linear_scale{};
 };
 
 inline constexpr std::array<double, 6> kBoundToolLengthsMm{0.0, 100.0, 200.0, 300.0, 400.0, 500.0};
@@ -59,8 +65,8 @@ inline constexpr std::array<double, 6> kBoundToolLengthsMm{0.0, 100.0, 200.0, 30
 // once, no other letter but its tool_axis_coordinate; a letter twice gives two joints the same
 // command. world: the world of kinematics type 0, "axes" (default) or "tcp" (needs a Z axis).
 // sparm: LinuxCNC's switchable modules' parameter; "identityfirst" makes type 0 the identity
-// (axes) world, as world=axes.
+// (axes) world, as world=axes. units: LinuxCNC's [TRAJ]LINEAR_UNITS, "mm" (default) or "inch".
 ModuleSettings settings_from_parameters(const char* machine, const char* coordinates, const char* world,
-                                        const char* sparm = nullptr);
+                                        const char* sparm = nullptr, const char* units = nullptr);
 
 }  // namespace vc::kins

@@ -1,7 +1,7 @@
 // volkins: LinuxCNC 2.9 kinematics with full volumetric correction (linear and angular).
 //
 //   [KINS] KINEMATICS = volkins machine=/path/machine.toml [coordinates=xyzbc] [world=axes|tcp]
-//                      [sparm=identityfirst]
+//                      [sparm=identityfirst] [units=mm|inch]
 //
 // The thin shell over vc_machine: rtapi_app_main reads and validates the machine file and its
 // tables (any problem fails loadrt with file:line:problem, before anything is created in HAL);
@@ -54,12 +54,12 @@ constexpr int kMaxTemperatures = vc::kins::kMaxTemperatureInputs;
 
 struct HalData {
   // Pins.
-  hal_bit_t* enable;                                    // in: correction wanted
-  hal_float_t* tool_offset;                             // in: tool length offset (mm), net to motion.tooloffset.z
-  hal_float_t* gain;                                    // out: fraction applied now (ramp, 0..1)
-  hal_bit_t* active;                                    // out: a correction is applied (gain > 0)
-  hal_bit_t* update_missing;                            // out: the kinematics ran before volkins.update ever did
-  hal_float_t* correction_length;                       // out: L the correction is computed for now (mm)
+  hal_bit_t* enable;               // in: correction wanted
+  hal_float_t* tool_offset;        // in: tool length offset (LinuxCNC's unit), net to motion.tooloffset.z
+  hal_float_t* gain;               // out: fraction applied now (ramp, 0..1)
+  hal_bit_t* active;               // out: a correction is applied (gain > 0)
+  hal_bit_t* update_missing;       // out: the kinematics ran before volkins.update ever did
+  hal_float_t* correction_length;  // out: L the correction is computed for now (LinuxCNC's unit)
   hal_float_t* correction[vc::kins::kMaxJoints];        // out: LinuxCNC joint - its nominal value, last inverse
   hal_s32_t* iterations;                                // out: Newton steps of the last inverse
   hal_s32_t* forward_iterations;                        // out: Newton steps (and band corrections) of the last forward
@@ -89,7 +89,8 @@ struct HalData {
   // The tool length offset the correction follows (volkins.update slews it to volkins.tool-offset
   // with a bounded rate and change of rate, so that a G43 does not step the joints by angular
   // error x change of L, nor a second one during the slew their velocity).
-  vc::kins::ToolLengthSlew offset;
+  vc::kins::ToolLengthSlew offset;  // mm
+  double correction_length_mm;      // the correction's L (volkins.correction-length in mm)
   // What the correction is evaluated at, beside the model: each temperature input low-passed
   // (from its reference at load, held while it is faulty) and the pole fade of the pins.
   vm::Conditions conditions;
@@ -149,6 +150,7 @@ char* machine = nullptr;
 char* coordinates = nullptr;
 char* world = nullptr;
 char* sparm = nullptr;
+char* units = nullptr;
 
 // A field of LinuxCNC's EmcPose by its index in x y z a b c u v w (const or not).
 template <class Pose>
@@ -177,23 +179,39 @@ auto& pose_field(Pose& pose, int field) {
 
 vm::WorldConvention current_world() { return settings->kinematics_types[kinematics.type]; }
 
+// Where LinuxCNC's numbers cross into the model and back: motion works in its LINEAR_UNITS
+// (units=; mm or inch) and degrees, the model in mm and degrees.
+double mm_of(double length) { return length * settings->mm_per_unit; }
+double linuxcnc_length(double mm) { return mm / settings->mm_per_unit; }
+
+// LinuxCNC's tool length offset (volkins.tool-offset, G43), mm.
+double tool_offset_mm() { return mm_of(*hal->tool_offset); }
+
 // LinuxCNC's world position as the core's world (TCP: less the tool length G43 added to Z).
 Joints world_of(const EmcPose& pose, double tool_length_mm) {
   Joints w(settings->model.joint_count());
-  for (int j = 0; j < w.size(); ++j) w[j] = pose_field(pose, settings->pose_field[j]);
+  for (int j = 0; j < w.size(); ++j) w[j] = pose_field(pose, settings->pose_field[j]) * settings->linear_scale[j];
   if (current_world() == vm::WorldConvention::Tcp) w[settings->z_joint] -= tool_length_mm;
   return w;
 }
 
 void set_world(EmcPose& pose, Joints w, double tool_length_mm) {
   if (current_world() == vm::WorldConvention::Tcp) w[settings->z_joint] += tool_length_mm;
-  for (int j = 0; j < w.size(); ++j) pose_field(pose, settings->pose_field[j]) = w[j];
+  for (int j = 0; j < w.size(); ++j) pose_field(pose, settings->pose_field[j]) = w[j] / settings->linear_scale[j];
 }
 
-// The tool-axis coordinate's value (5axiskins' W; 0 without one): the nominal TCP kinematics
+// The machine file's joints from LinuxCNC's (each axis's principal joint), and back.
+Joints model_joints(const double* joints) {
+  Joints q(settings->model.joint_count());
+  for (int j = 0; j < q.size(); ++j) q[j] = joints[settings->principal_joint[j]] * settings->linear_scale[j];
+  return q;
+}
+double linuxcnc_joint(const Joints& q, int j) { return q[j] / settings->linear_scale[j]; }
+
+// The tool-axis coordinate's value (5axiskins' W; 0 without one), mm: the nominal TCP kinematics
 // place the tip of a tool this much longer than the real one on the world point.
 double tool_axis_of(const EmcPose& pose) {
-  return settings->tool_axis_field >= 0 ? pose_field(pose, settings->tool_axis_field) : 0.0;
+  return settings->tool_axis_field >= 0 ? mm_of(pose_field(pose, settings->tool_axis_field)) : 0.0;
 }
 
 bool same_pose(const EmcPose& a, const EmcPose& b) {
@@ -217,7 +235,7 @@ void update(void*, long period_ns) {
     hal->update_ran = true;
     *hal->update_missing = 0;
     if (hal->kinematics_before_update) hal->ramp = {target, 0.0};  // where the kinematics were
-    hal->offset.reset(*hal->tool_offset);
+    hal->offset.reset(tool_offset_mm());
   }
   hal->ramp.step(target, period_ns * 1e-9, hal->ramp_time);
   kinematics.moving = kinematics.pose_known && !same_pose(kinematics.last_inverse_pose, kinematics.pose_at_update);
@@ -226,8 +244,9 @@ void update(void*, long period_ns) {
   *hal->gain = hal->ramp.gain;
   *hal->active = *hal->gain > 0.0;
 
-  hal->offset.step(*hal->tool_offset, period_ns * 1e-9, hal->tool_offset_slew_time);
-  *hal->correction_length = settings->model.correction_length(hal->offset.length.value);
+  hal->offset.step(tool_offset_mm(), period_ns * 1e-9, hal->tool_offset_slew_time);
+  hal->correction_length_mm = settings->model.correction_length(hal->offset.length.value);
+  *hal->correction_length = linuxcnc_length(hal->correction_length_mm);
 
   // Temperatures: a first-order low-pass (sensor noise never reaches the joints); a reading
   // that is not a number or lies outside the model's range is not taken: the last good value
@@ -262,8 +281,11 @@ int refuse() {
 // The L the correction is computed for: the slewed tool length, or, while volkins.update has
 // never run, LinuxCNC's offset as it is.
 double correction_length() {
-  if (hal->update_ran) return *hal->correction_length;
-  return *hal->correction_length = settings->model.correction_length(*hal->tool_offset);
+  if (!hal->update_ran) {
+    hal->correction_length_mm = settings->model.correction_length(tool_offset_mm());
+    *hal->correction_length = linuxcnc_length(hal->correction_length_mm);
+  }
+  return hal->correction_length_mm;
 }
 
 // The fraction of the correction the kinematics apply: the ramp's, or, while volkins.update has
@@ -288,11 +310,10 @@ double applied_gain() {
 int inverse(const EmcPose* pose, double* joints) {
   const vm::Model& model = settings->model;
   const int n = model.joint_count();
-  const double offset = *hal->tool_offset;  // LinuxCNC's tool length offset (G43)
-  const double L = correction_length();     // the tool-length rule, slewed
+  const double offset = tool_offset_mm();  // LinuxCNC's tool length offset (G43)
+  const double L = correction_length();    // the tool-length rule, slewed
   const double w = tool_axis_of(*pose);
-  Joints previous(n);  // LinuxCNC's seed: its principal joints
-  for (int j = 0; j < n; ++j) previous[j] = joints[settings->principal_joint[j]];
+  const Joints previous = model_joints(joints);  // LinuxCNC's seed: its principal joints
   kinematics.last_inverse_pose = *pose;
   Joints extrapolated, extrapolated_full;
   const vm::Applied applied{applied_gain(),
@@ -324,14 +345,14 @@ int inverse(const EmcPose* pose, double* joints) {
   }
   for (int k = 0; k < settings->joint_count; ++k) {
     const int j = settings->model_joint[k];
-    *hal->correction[k] = j >= 0 ? q[j] - report.nominal[j] : 0.0;
+    *hal->correction[k] = j >= 0 ? (q[j] - report.nominal[j]) / settings->linear_scale[j] : 0.0;
   }
   *hal->out_of_table = vm::outside_tables(model, q);
   *hal->limit_exceeded = too_large;
   if (too_large) return refuse();
   for (int k = 0; k < settings->joint_count; ++k) {
     const int j = settings->model_joint[k];
-    joints[k] = j >= 0 ? q[j] : w;  // the tool-axis joint: the world's coordinate
+    joints[k] = j >= 0 ? linuxcnc_joint(q, j) : linuxcnc_length(w);  // the tool-axis joint: the world's coordinate
   }
   return 0;
 }
@@ -351,11 +372,10 @@ int kinematicsInverse(const EmcPose* pose, double* joints, const KINEMATICS_INVE
 
 int kinematicsForward(const double* joints, EmcPose* pose, const KINEMATICS_FORWARD_FLAGS*, KINEMATICS_INVERSE_FLAGS*) {
   const vm::Model& model = settings->model;
-  Joints q(model.joint_count());  // the principal joint of each axis, as LinuxCNC's modules read them
-  for (int j = 0; j < q.size(); ++j) q[j] = joints[settings->principal_joint[j]];
-  const double offset = *hal->tool_offset;
+  const Joints q = model_joints(joints);  // the principal joint of each axis, as LinuxCNC's modules read them
+  const double offset = tool_offset_mm();
   const double L = correction_length();
-  const double tool_axis = settings->tool_axis_joint >= 0 ? joints[settings->tool_axis_joint] : 0.0;
+  const double tool_axis = settings->tool_axis_joint >= 0 ? mm_of(joints[settings->tool_axis_joint]) : 0.0;
   const Joints seed = world_of(*pose, offset);  // LinuxCNC passes the previous position (or home)
   Joints w, way_point, way_point_full;
   int iterations = 0;
@@ -370,7 +390,7 @@ int kinematicsForward(const double* joints, EmcPose* pose, const KINEMATICS_FORW
   *hal->forward_iterations = iterations;
   if (s != vm::Status::Ok) return refuse();
   set_world(*pose, w, offset);
-  if (settings->tool_axis_field >= 0) pose_field(*pose, settings->tool_axis_field) = tool_axis;
+  if (settings->tool_axis_field >= 0) pose_field(*pose, settings->tool_axis_field) = linuxcnc_length(tool_axis);
   return 0;
 }
 
@@ -420,6 +440,7 @@ RTAPI_MP_STRING(machine, "machine description file (TOML)");
 RTAPI_MP_STRING(coordinates, "axis letter of each joint (default: the machine file's axes in its order)");
 RTAPI_MP_STRING(world, "world convention of kinematics type 0: axes (default) or tcp");
 RTAPI_MP_STRING(sparm, "identityfirst: kinematics type 0 is the identity (as LinuxCNC's trt modules)");
+RTAPI_MP_STRING(units, "LinuxCNC's [TRAJ]LINEAR_UNITS: mm (default) or inch");
 
 }  // extern "C"
 
@@ -472,7 +493,7 @@ bool export_hal(const vm::Model& model) {
   // Defaults: correction on (after the ramp), the machine file's tool length and pole fade.
   *hal->enable = 1;
   // Not netted: the typical tool's offset, so that L = the machine file's tool_length_mm.
-  *hal->tool_offset = model.tool_length_mm - model.tool_length_reference_mm;
+  *hal->tool_offset = linuxcnc_length(model.tool_length_mm - model.tool_length_reference_mm);
   *hal->gain = 0.0;
   *hal->active = 0;
   *hal->update_missing = 0;
@@ -480,8 +501,9 @@ bool export_hal(const vm::Model& model) {
   hal->update_ran = false;
   hal->kinematics_before_update = false;
   hal->tool_offset_slew_time = 0.25;
-  hal->offset.reset(*hal->tool_offset);
-  *hal->correction_length = model.correction_length(*hal->tool_offset);
+  hal->offset.reset(tool_offset_mm());
+  hal->correction_length_mm = model.correction_length(tool_offset_mm());
+  *hal->correction_length = linuxcnc_length(hal->correction_length_mm);
   hal->conditions = model.reference_conditions();  // until a sensor says otherwise
   for (std::size_t i = 0; i < model.temperatures.size(); ++i)
     *hal->temperature[i] = *hal->temperature_filtered[i] = hal->conditions.temperature_degC[i];
@@ -503,7 +525,8 @@ extern "C" int rtapi_app_main(void) {
   // Everything that can fail on the user's files happens before HAL sees the component, so a
   // refused machine file leaves nothing loaded.
   try {
-    settings = new vc::kins::ModuleSettings(vc::kins::settings_from_parameters(machine, coordinates, world, sparm));
+    settings =
+        new vc::kins::ModuleSettings(vc::kins::settings_from_parameters(machine, coordinates, world, sparm, units));
   } catch (const std::exception& e) {
     rtapi_print_msg(RTAPI_MSG_ERR, "volkins: %s\n", e.what());
     return -EINVAL;
@@ -527,8 +550,9 @@ extern "C" int rtapi_app_main(void) {
     settings = nullptr;
     return -ENOMEM;
   }
-  rtapi_print_msg(RTAPI_MSG_INFO, "volkins: %s (%s, %d tables), joints %s, kinematics type 0 %s\n", model.path.c_str(),
-                  model.info.name.c_str(), static_cast<int>(model.tables.size()), model.coordinates().c_str(),
+  rtapi_print_msg(RTAPI_MSG_INFO, "volkins: %s (%s, %d tables), joints %s in %s, kinematics type 0 %s\n",
+                  model.path.c_str(), model.info.name.c_str(), static_cast<int>(model.tables.size()),
+                  model.coordinates().c_str(), settings->mm_per_unit == 1.0 ? "mm" : "inch",
                   settings->kinematics_types[0] == vm::WorldConvention::Tcp ? "tcp" : "identity (axes)");
   hal_ready(comp_id);
   return 0;

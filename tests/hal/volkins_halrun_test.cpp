@@ -195,6 +195,27 @@ TEST(Volkins, CorrectionLengthIsTheReferencePlusTheOffset) {
   EXPECT_DOUBLE_EQ(L[2], 77.5) << r.out;
 }
 
+// units=inch: volkins.tool-offset and volkins.correction-length are in LinuxCNC's inches (motion
+// nets the offset in them), the machine file's lengths in mm: 100 mm by default, 90 mm + 1 inch.
+TEST(Volkins, InchConfigurationsTakeTheOffsetAndShowTheLengthInInches) {
+  const std::string script = loadrt("tests/hal/data/mill3_reference.toml", "units=inch") +
+                             "loadrt threads name1=servo period1=1000000\n"
+                             "addf volkins.update servo\n"
+                             "setp volkins.tool-offset-slew-time 0\n"
+                             "start\n"
+                             "loadusr -w sleep 0.05\n"
+                             "show pin volkins.correction-length\n"
+                             "setp volkins.tool-offset 1\n"
+                             "loadusr -w sleep 0.05\n"
+                             "show pin volkins.correction-length\n";
+  const test::CommandResult r = test::halrun("inch", script);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const std::vector<double> L = shown_values(r.out, "volkins.correction-length");
+  ASSERT_EQ(L.size(), 2u) << r.out;
+  EXPECT_NEAR(L[0], 100.0 / 25.4, 1e-6) << r.out;  // halcmd shows 7 significant digits
+  EXPECT_NEAR(L[1], 115.4 / 25.4, 1e-6) << r.out;
+}
+
 // Every golden bad machine file is refused by loadrt with the loader's message (the .expect
 // twin, with absolute paths), and afterwards no volkins component exists and a good machine
 // loads in the same HAL session.
@@ -235,6 +256,7 @@ TEST(Volkins, BadModuleParametersFailLoadrt) {
       {loadrt(mc300, "coordinates=xyzba"), "joint 4's axis A is not in it (its axes are \"xyzbc\""},
       {loadrt(mc300, "world=tool"), "volkins: error: world=tool is not a world convention"},
       {loadrt(mc300, "world=tcp sparm=identityfirst"), "volkins: error: world=tcp and sparm=identityfirst contradict"},
+      {loadrt(mc300, "units=cm"), "volkins: error: units=cm is not a length unit of LinuxCNC"},
       {"loadrt volkins machine=/nonexistent/machine.toml\n", "volkins: /nonexistent/machine.toml: error:"},
   };
   for (const Case& c : cases) {

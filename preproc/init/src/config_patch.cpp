@@ -1,6 +1,7 @@
 #include "vc/init/config_patch.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -96,7 +97,8 @@ class Patcher {
                                              "` has a blank, and LinuxCNC splits KINEMATICS at blanks: choose "
                                              "another -o");
     return "volkins machine=" + machine_path + " coordinates=" + m_.coordinates +
-           (m_.world.empty() ? "" : " world=" + m_.world) + (m_.identity_first ? " sparm=identityfirst" : "");
+           (m_.world.empty() ? "" : " world=" + m_.world) + (m_.identity_first ? " sparm=identityfirst" : "") +
+           (m_.units.inch() ? " units=inch" : "");
   }
 
   void replace_kinematics(const std::string& value) {
@@ -207,7 +209,7 @@ class Patcher {
     std::multiset<std::string> here(c.words.begin() + 1, c.words.end()), ini;
     std::istringstream words(k_.entry->value);
     for (std::string w; words >> w;) ini.insert(w);
-    if (here != ini)
+    if (here != ini && !same_trivkins(c))
       throw LoadError(c.where(), "`" + c.text + "` loads " + k_.module +
                                      " with other parameters than [KINS]KINEMATICS (" + ini_.cite(*k_.entry) +
                                      "): make them the same (`loadrt [KINS]KINEMATICS`)");
@@ -218,6 +220,37 @@ class Patcher {
     // A HALCMD is run without INI references: it gets volkins' line written out.
     const std::string value = c.in_ini ? kinematics_ : std::string("[KINS]KINEMATICS");
     f.replace(c.line, line.substr(0, first.offset) + value + line.substr(last.offset + last.length));
+  }
+
+  // trivkins loaded as written here and as [KINS]KINEMATICS says are the same kinematics when
+  // they map the same letters to the joints (trivkins' default coordinates=XYZABCUVW maps joint n
+  // to the n-th letter; the letters' case does not matter) and have the same kinstype (trivkins.c:
+  // B, F or I by its first letter, any other the identity).
+  bool same_trivkins(const HalCommand& c) const {
+    if (k_.kind != StockModule::Trivkins) return false;
+    std::string coordinates, kinstype;
+    for (std::size_t w = 2; w < c.words.size(); ++w) {
+      const std::string& word = c.words[w];
+      if (word.rfind("coordinates=", 0) == 0)
+        coordinates = word.substr(12);
+      else if (word.rfind("kinstype=", 0) == 0)
+        kinstype = word.substr(9);
+      else
+        return false;
+    }
+    const auto upper = [](std::string s) {
+      for (char& ch : s) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+      return s;
+    };
+    const auto type = [&](const std::string* t) {
+      const char first = t && !t->empty() ? upper(*t)[0] : '1';
+      return first == 'B' || first == 'F' || first == 'I' ? first : '1';
+    };
+    const std::string joints = upper(m_.coordinates);
+    const std::string loaded =
+        coordinates.empty() ? std::string("XYZABCUVW").substr(0, joints.size()) : upper(coordinates);
+    const std::string* ini_type = k_.parameter("kinstype");
+    return loaded == joints && type(kinstype.empty() ? nullptr : &kinstype) == type(ini_type);
   }
 
   // A `sets` of a signal whose nets were all deleted would fail: deleted too.

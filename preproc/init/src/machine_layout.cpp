@@ -6,13 +6,15 @@
 #include <cstring>
 #include <sstream>
 
+#include "vc/init/linuxcnc_units.hpp"
 #include "vc/init/number.hpp"
 
 namespace vc::init {
 namespace {
 
 constexpr const char* kLetters = "XYZABCUVW";
-constexpr int kMaxJoints = 16;  // EMCMOT_MAX_JOINTS
+constexpr int kMaxJoints = 16;     // EMCMOT_MAX_JOINTS
+constexpr double kNoLimit = 1e98;  // LinuxCNC's "no limit" is 1e99 (inijoint.cc's defaults)
 
 std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -22,26 +24,6 @@ std::string lower(std::string s) {
 char upper(char c) { return static_cast<char>(std::toupper(static_cast<unsigned char>(c))); }
 
 bool is_rotary(char letter) { return letter == 'A' || letter == 'B' || letter == 'C'; }
-
-// volkins computes in mm and deg, as the machine file is written.
-void check_units(const LinuxcncIni& ini, MachineLayout& layout) {
-  const IniEntry* linear = ini.find("TRAJ", "LINEAR_UNITS");
-  if (!linear)
-    throw LoadError(ini.where_missing("TRAJ"),
-                    "no [TRAJ]LINEAR_UNITS (LinuxCNC needs it): volkins works in mm; set LINEAR_UNITS = mm");
-  const std::string u = lower(linear->value);
-  double per_mm = 0.0;
-  const bool number = parse_number(u, per_mm);
-  if (u == "in" || u == "inch" || u == "imperial" || (number && std::abs(per_mm * 25.4 - 1.0) < 1e-6))
-    throw LoadError(
-        linear->where(),
-        "LINEAR_UNITS = " + linear->value +
-            ": this LinuxCNC is set up in inches, and volkins works in mm (its machine file, tables, joints "
-            "and the tool length offset it takes from motion): set the configuration up in mm first");
-  if (!(u == "mm" || u == "metric" || (number && per_mm == 1.0)))
-    throw LoadError(linear->where(), "LINEAR_UNITS = " + linear->value + " is not mm: volkins works in mm");
-  layout.units_from = ini.cite(*linear);
-}
 
 void check_angular_units(const LinuxcncIni& ini) {
   const IniEntry* angular = ini.find("TRAJ", "ANGULAR_UNITS");
@@ -198,7 +180,8 @@ void check_model_axes(const KinematicsLine& k, const MachineLayout& layout) {
     throw LoadError(k.entry->where(), named + " has three rotary axes A, B, C: the model has at most two");
 }
 
-LayoutAxis read_axis(const LinuxcncIni& ini, const IniEntry& joints_entry, char letter, int joint) {
+LayoutAxis read_axis(const LinuxcncIni& ini, const IniEntry& joints_entry, const LinearUnits& units, char letter,
+                     int joint) {
   LayoutAxis axis;
   axis.letter = letter;
   axis.joint = joint;
@@ -223,20 +206,38 @@ LayoutAxis read_axis(const LinuxcncIni& ini, const IniEntry& joints_entry, char 
   }
   const IniEntry* low = ini.find(name, "MIN_LIMIT");
   const IniEntry* high = ini.find(name, "MAX_LIMIT");
+  // A rotary joint without limits (LinuxCNC's default, +-1e99) turns without end: a rotary
+  // table, continuous. The machine file's travel is then one turn: its tables are periodic
+  // over it, and volkins corrects the axis at any angle.
+  const auto no_limit = [](const IniEntry* e, double sign) {
+    double v = 0.0;
+    return !e || (parse_number(e->value, v) && v * sign >= kNoLimit);
+  };
+  if (axis.rotary && no_limit(low, -1.0) && no_limit(high, 1.0)) {
+    axis.continuous = true;
+    axis.travel_min = 0.0;
+    axis.travel_max = 360.0;
+    axis.travel_from = "[" + name + "] " + (low || high ? "limits beyond +-1e98" : "gives no MIN_LIMIT, MAX_LIMIT") +
+                       ": a rotary table without stops (LinuxCNC's default limits +-1e99); the travel is one turn";
+    return axis;
+  }
   for (const auto& [entry, key] : {std::pair{low, "MIN_LIMIT"}, std::pair{high, "MAX_LIMIT"}})
     if (!entry)
       throw LoadError({section->path, section->line},
                       "[" + name + "] has no " + key + ": the limits of joint " + std::to_string(joint) + " (" +
                           std::string(1, letter) + ") are the axis's travel in the machine file" +
-                          (axis.rotary ? " (a rotary table without stops: MIN_LIMIT = -36000 and MAX_LIMIT = 36000, "
-                                         "as LinuxCNC's 5-axis samples)"
-                                       : ""));
+                          (axis.rotary ? " (a rotary table without stops: give neither limit)" : ""));
   axis.travel_min = limit(*low);
   axis.travel_max = limit(*high);
   if (!(axis.travel_min < axis.travel_max))
     throw LoadError(low->where(), "MIN_LIMIT = " + low->value + " is not below MAX_LIMIT = " + high->value + " (" +
                                       ini.cite(*high) + ")");
   axis.travel_from = "[" + name + "] " + ini.cite(*low) + ", " + ini.cite(*high);
+  if (!axis.rotary && units.inch()) {
+    axis.travel_min = units.to_mm(axis.travel_min);
+    axis.travel_max = units.to_mm(axis.travel_max);
+    axis.travel_from += " (inch, x 25.4)";
+  }
   return axis;
 }
 
@@ -250,7 +251,7 @@ const LayoutAxis* MachineLayout::axis(char letter) const {
 
 MachineLayout read_layout(const LinuxcncIni& ini, const KinematicsLine& k) {
   MachineLayout layout;
-  check_units(ini, layout);
+  layout.units = read_linear_units(ini);
   const IniEntry* joints = ini.find("KINS", "JOINTS");
   if (!joints)
     throw LoadError(ini.where_missing("KINS"),
@@ -270,7 +271,8 @@ MachineLayout read_layout(const LinuxcncIni& ini, const KinematicsLine& k) {
   for (const char* l = kLetters; *l; ++l) {
     if (*l == layout.tool_axis) continue;  // no axis of the model: its joint's limits are LinuxCNC's
     const std::size_t first = layout.coordinates.find_first_of(std::string{*l, static_cast<char>(std::tolower(*l))});
-    if (first != std::string::npos) layout.axes.push_back(read_axis(ini, *joints, *l, static_cast<int>(first)));
+    if (first != std::string::npos)
+      layout.axes.push_back(read_axis(ini, *joints, layout.units, *l, static_cast<int>(first)));
   }
   if (std::any_of(layout.axes.begin(), layout.axes.end(), [](const LayoutAxis& a) { return a.rotary; }))
     check_angular_units(ini);

@@ -3,6 +3,7 @@
 #include <cctype>
 #include <filesystem>
 
+#include "vc/init/linuxcnc_units.hpp"
 #include "vc/init/machine_layout.hpp"
 #include "vc/init/number.hpp"
 #include "vc/init/pin_value.hpp"
@@ -32,6 +33,10 @@ NominalAxis axis_from(const LayoutAxis& a, const MachineLayout& layout, const st
   axis.travel_min = a.travel_min;
   axis.travel_max = a.travel_max;
   axis.about = {joint_text(a, layout), what};
+  if (a.continuous)
+    axis.about.push_back(
+        "without stops (a continuous rotary table): the travel is one turn, and its error tables "
+        "are periodic (0 .. 360 deg, first and last rows equal)");
   axis.type_from = a.type_from;
   axis.travel_from = a.travel_from;
   return axis;
@@ -86,7 +91,11 @@ Pin geometry_pin(const HalConfig& hal, const LinuxcncIni& ini, const std::string
     throw LoadError(v.net->where(), pin + " follows " + v.driver + " at run time (both are on signal " + v.signal +
                                         ", which no sets gives a value); volkins takes the geometry from the machine "
                                         "file: set it with setp");
-  Pin p{name, v.value, name + " = " + format_number(v.value) + ": "};
+  // The pins are in LinuxCNC's length unit; the machine file in mm.
+  const LinearUnits units = read_linear_units(ini);
+  Pin p{name, units.to_mm(v.value),
+        name + " = " + format_number(v.value) +
+            (units.inch() ? " inch (" + format_number(units.to_mm(v.value)) + " mm)" : "") + ": "};
   if (v.source == PinValue::Source::Default)
     p.from += "not set in the HAL files read (the module's default)";
   else
@@ -164,7 +173,7 @@ void five_axis(const LinuxcncIni& ini, const HalConfig& hal, const KinematicsLin
   linear_axes(layout, mod, " (the world is the tool tip)", m);
   m.pins = {"pivot-length"};
   const PivotLength pivot = pivot_length(ini, hal, k);
-  const double pm = pivot.mechanical_mm;
+  const double pm = layout.units.to_mm(pivot.mechanical_mm);  // the sum2's numbers are in LinuxCNC's unit
 
   NominalAxis c = axis_from(*layout.axis('C'), layout, "the head's vertical axis, carrying B");
   c.direction_from = mod + " turns the head about +z (s2r's azimuth C, 5axiskins.c)";
@@ -208,6 +217,11 @@ NominalMachine nominal_machine(const LinuxcncIni& ini, const HalConfig& hal, con
   NominalMachine m;
   m.module = k.module;
   m.coordinates = layout.coordinates;
+  m.units = layout.units;
+  if (m.units.inch())
+    m.remarks.push_back("LinuxCNC runs in inches (" + m.units.from +
+                        "): this file is in mm, as it declares (every length converted, x 25.4); volkins is loaded "
+                        "with units=inch and converts the joints, the world and the tool length offset it gets.");
   if (const IniEntry* name = ini.find("EMC", "MACHINE"); name && !name->value.empty()) {
     m.name = name->value;
     m.name_from = "[EMC] " + ini.cite(*name);
@@ -215,7 +229,7 @@ NominalMachine nominal_machine(const LinuxcncIni& ini, const HalConfig& hal, con
     m.name = std::filesystem::path(ini.path()).stem().string();
     m.name_from = "the INI file's name: it has no [EMC]MACHINE";
   }
-  const TypicalTool tool = longest_tool(ini);
+  const TypicalTool tool = longest_tool(ini, layout.units);
   m.tool_length_mm = tool.length_mm;
   m.tool_length_from = tool.from;
   if (tool.unreadable) m.remarks.push_back("tool_length_mm is 0: " + tool.from);

@@ -25,7 +25,7 @@ int line_of_tool(const TextFile& table, int number) {
 
 }  // namespace
 
-TypicalTool longest_tool(const LinuxcncIni& ini) {
+TypicalTool longest_tool(const LinuxcncIni& ini, const LinearUnits& units) {
   const IniEntry* entry = ini.find("EMCIO", "TOOL_TABLE");
   if (!entry) return {0.0, "no [EMCIO]TOOL_TABLE: no typical tool (L = the G43 offset alone)"};
   const std::filesystem::path file = std::filesystem::path(ini.folder()) / entry->value;
@@ -34,8 +34,8 @@ TypicalTool longest_tool(const LinuxcncIni& ini) {
   const std::string path = absolute_path(file.string());
   interpreter::ToolTable tools;
   try {
-    tools = interpreter::read_tool_table(path, 1.0);  // mm: inches are refused before
-  } catch (const LoadError& e) {                      // the typical tool is not worth a refusal
+    tools = interpreter::read_tool_table(path, units.mm_per_unit);  // the lengths in mm
+  } catch (const LoadError& e) {                                    // the typical tool is not worth a refusal
     return {0.0, "no typical tool: the tool table cannot be read: " + std::string(e.what()), true};
   }
   const interpreter::Tool* longest = nullptr;
@@ -45,7 +45,8 @@ TypicalTool longest_tool(const LinuxcncIni& ini) {
   const TextFile table = read_text_file(path, "tool table");
   const int line = line_of_tool(table, longest->number);
   const std::string text = line ? trim(table.line(line).text) : "";
-  return {longest->z_offset(), "the longest tool of the tool table, T" + std::to_string(longest->number) + ": " +
+  return {longest->z_offset(), "the longest tool of the tool table, T" + std::to_string(longest->number) +
+                                   (units.inch() ? " (inch, x 25.4)" : "") + ": " +
                                    cite(path, line, text, ini.folder())};
 }
 

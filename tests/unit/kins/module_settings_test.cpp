@@ -1,4 +1,4 @@
-// The module parameters' rules (machine, coordinates, world, sparm), without a HAL.
+// The module parameters' rules (machine, coordinates, world, sparm, units), without a HAL.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -40,6 +40,20 @@ TEST(ModuleSettings, SparmIdentityfirstMakesTypeZeroTheIdentity) {
   }
   EXPECT_THROW(settings_from_parameters(mc300.c_str(), "xyzbc", "tcp", "identityfirst"), std::runtime_error);
   EXPECT_THROW(settings_from_parameters(mc300.c_str(), "xyzbc", nullptr, "tcpfirst"), std::runtime_error);
+}
+
+// units=: LinuxCNC's LINEAR_UNITS. Inch scales the linear axes' joints and world only (mm per
+// unit 25.4), rotary ones stay in degrees; mm is the default; anything else is refused.
+TEST(ModuleSettings, UnitsInchScalesTheLinearAxesOnly) {
+  const std::string mc300 = test::machine_path("mc300");
+  const ModuleSettings mm = settings_from_parameters(mc300.c_str(), nullptr, nullptr);
+  EXPECT_EQ(mm.mm_per_unit, 1.0);
+  const ModuleSettings inch = settings_from_parameters(mc300.c_str(), nullptr, nullptr, nullptr, "INCH");
+  EXPECT_EQ(inch.mm_per_unit, 25.4);
+  const std::array<double, 5> scale{25.4, 25.4, 25.4, 1.0, 1.0};  // x y z b c
+  for (int j = 0; j < 5; ++j) EXPECT_EQ(inch.linear_scale[j], scale[j]) << j;
+  EXPECT_EQ(settings_from_parameters(mc300.c_str(), nullptr, nullptr, nullptr, "mm").linear_scale[0], 1.0);
+  EXPECT_THROW(settings_from_parameters(mc300.c_str(), nullptr, nullptr, nullptr, "cm"), std::runtime_error);
 }
 
 // LinuxCNC's coordinates=: a letter per joint, in any order, a letter twice for two joints

@@ -2,7 +2,7 @@
 // the kinematics module's coordinates, [KINS]JOINTS, [TRAJ]COORDINATES, [TRAJ]LINEAR_UNITS
 // and ANGULAR_UNITS, [JOINT_n] TYPE, MIN_LIMIT and MAX_LIMIT, checked against each other and
 // against what the model takes (exactly three linear axes X Y Z, at most two rotary ones,
-// mm and deg). 5axiskins' W is no axis of the model but its tool-axis coordinate (the X, Y, Z
+// mm or inch, deg). 5axiskins' W is no axis of the model but its tool-axis coordinate (the X, Y, Z
 // joints move the tool along its own axis; machines/README.md, tool_axis_coordinate).
 #pragma once
 
@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "vc/init/kinematics_line.hpp"
+#include "vc/init/linuxcnc_units.hpp"
 
 namespace vc::init {
 
@@ -17,7 +18,8 @@ struct LayoutAxis {
   char letter = 'X';  // upper case
   int joint = 0;      // the first joint of this letter (the one the travel is read from)
   bool rotary = false;
-  double travel_min = 0.0, travel_max = 0.0;  // mm or deg
+  bool continuous = false;                    // a rotary joint without limits: travel one turn, 0 .. 360 deg
+  double travel_min = 0.0, travel_max = 0.0;  // mm or deg (converted from an inch configuration's)
   std::string type_from;                      // where its TYPE is written, or that it is not
   std::string travel_from;
 };
@@ -28,7 +30,7 @@ struct MachineLayout {
   std::vector<LayoutAxis> axes;  // one per letter, in XYZABC order (not the tool-axis coordinate)
   char tool_axis = 0;            // 5axiskins: 'W', the tool-axis coordinate; else 0
   int tool_axis_joint = -1;      // its first joint
-  std::string units_from;        // the LINEAR_UNITS line
+  LinearUnits units;             // LinuxCNC's length unit: the travel above is converted to mm
 
   const LayoutAxis* axis(char letter) const;
 };

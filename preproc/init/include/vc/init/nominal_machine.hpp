@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "vc/init/linuxcnc_units.hpp"
+
 namespace vc::init {
 
 using Vector3 = std::array<double, 3>;
@@ -39,6 +41,7 @@ struct NominalMachine {
 
   // What volkins' KINEMATICS line takes over from the stock one.
   std::string coordinates;      // the joints' letters, as LinuxCNC maps them (duplicates kept)
+  LinearUnits units;            // LinuxCNC's length unit (units=inch: volkins converts)
   std::string world;            // "tcp", or "" (volkins' default: the world is the axes)
   bool identity_first = false;  // sparm=identityfirst: kinematics type 0 is the identity
   // The stock module's HAL pins (without the "module." prefix), and the one that takes

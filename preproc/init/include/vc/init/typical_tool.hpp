@@ -6,6 +6,7 @@
 #include <string>
 
 #include "vc/init/linuxcnc_ini.hpp"
+#include "vc/init/linuxcnc_units.hpp"
 
 namespace vc::init {
 
@@ -15,7 +16,8 @@ struct TypicalTool {
   bool unreadable = false;  // the tool table could not be read (`from` says why)
 };
 
-// A tool table that cannot be read gives 0 and says why (in `from`).
-TypicalTool longest_tool(const LinuxcncIni& ini);
+// A tool table that cannot be read gives 0 and says why (in `from`). The table is in LinuxCNC's
+// length unit; the length returned in mm.
+TypicalTool longest_tool(const LinuxcncIni& ini, const LinearUnits& units);
 
 }  // namespace vc::init
