@@ -5,7 +5,8 @@
 #   HAL's and NML's shared memory (fixed SysV keys) and semaphores, the process list (the soak
 #   test samples "the" rtapi_app), and a private /tmp (LinuxCNC's /tmp/linuxcnc.lock, its
 #   print and debug files, the default rtapi FIFO) are the command's own; the source and build
-#   folders stay where they are even when they live under /tmp;
+#   folders stay where they are even when they live under /tmp; the modules VC_MODULES names
+#   (this build's volkins.so, simsphere.so) are bound over the installed ones;
 # - otherwise: one at a time, under flock /tmp/vc-linuxcnc.lock (the developer's lock, as
 #   the READMEs use it).
 # A GoogleTest listing (--gtest_list_tests: CTest's discovery at build time) runs as it is.
@@ -45,6 +46,12 @@ rebind() {
   bound+=("/tmp/$top")
 }
 bound=()
+# The modules of this build (VC_MODULES: .so files, set by tests/CMakeLists.txt) in place of the
+# installed ones, in this namespace only: two checkouts testing side by side each run their own.
+for module in ${VC_MODULES:-}; do
+  target=/usr/lib/linuxcnc/modules/$(basename "$module")
+  [ -f "$module" ] && [ -f "$target" ] && mount --bind "$module" "$target" && bound+=("$target")
+done
 rebind "$(pwd -P)"
 for arg in "$@"; do rebind "$(realpath -m -- "$arg" 2>/dev/null || echo "$arg")"; done
 set +e
