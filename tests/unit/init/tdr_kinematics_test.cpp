@@ -200,7 +200,8 @@ TEST(StockKinematics, RandomTdrGeometriesMatchXyzabTdrKins) {
 }
 
 // A pyvcp slider of the configuration's own panel: its start held within min_ .. max_ as pyvcp
-// holds it, and one whose value comes from outside the panel (param_pin) refused.
+// holds it; one whose value comes from outside the panel (param_pin) and one whose start is off
+// its resolution refused.
 TEST(StockKinematics, TdrGeometryFromAPyvcpSlider) {
   const Tdr p{10, 20, 30, 0, 5};
   const fs::path ini = tdr_configuration("tdr_slider", p);
@@ -232,6 +233,19 @@ TEST(StockKinematics, TdrGeometryFromAPyvcpSlider) {
   } catch (const LoadError& e) {
     EXPECT_EQ(e.where().line, 3);
     EXPECT_NE(e.message().find("the pyvcp slider dz has a <param_pin>: its value is set from outside the panel"),
+              std::string::npos)
+        << e.what();
+  }
+  // A start off the slider's resolution (Tk would round it).
+  std::string off = panel;
+  off.replace(off.find("<initval>12</initval>"), 21, "<initval>-10.3</initval>");
+  test::write_file(ini.parent_path() / "panel.xml", off);
+  try {
+    run_init({ini.string(), (ini.parent_path() / "never.toml").string(), "2026-01-01"});
+    ADD_FAILURE() << "a start off the resolution was accepted";
+  } catch (const LoadError& e) {
+    EXPECT_EQ(e.where().line, 3);
+    EXPECT_NE(e.message().find("the pyvcp slider dz starts at -10.3, not a multiple of its resolution 0.5"),
               std::string::npos)
         << e.what();
   }
