@@ -114,14 +114,20 @@ const Sample kXyzbc{kSamples / "table-rotary-tilting",
                     "xyzbc-trt.toml",
                     xyzbc_inverse,
                     "",
-                    8};
+                    8,
+                    10000,
+                    {},
+                    ""};
 const Sample kXyzac{kSamples / "table-rotary-tilting",
                     "xyzac-trt.ini",
                     "demos/xyzac_switchkins.ngc",
                     "xyzac-trt.toml",
                     xyzac_inverse,
                     "",
-                    8};
+                    8,
+                    10000,
+                    {},
+                    ""};
 // Its kinematics type 0 is 5axiskins (no sparm=identityfirst); the vismach model 5axisgui, which
 // needs X, gave the pivot's mechanical length (its default pivot_len): the headless copy sets it.
 const Sample kBridgemill{kSamples / "bridgemill",
@@ -130,7 +136,10 @@ const Sample kBridgemill{kSamples / "bridgemill",
                          "5axis.toml",
                          bridgemill_inverse,
                          " --tcp-type 0 --sets :gui-pivot-len=250",
-                         0};
+                         0,
+                         10000,
+                         {},
+                         ""};
 // xyzab_tdr_kins: type 0 the identity, type 1 TCP. Headless, its pyvcp sliders are gone: the
 // stock run gets their start values on their signals (the patched one has no stock pin on them).
 const Sample kTdr{kSamples / "table-dual-rotary",

@@ -199,6 +199,23 @@ TEST(StockKinematics, RandomTdrGeometriesMatchXyzabTdrKins) {
   record_largest_difference(worst);
 }
 
+// An inch configuration: the pins in inches, the machine file in mm (x 25.4, cited), the stock
+// equations in inches scaled to mm.
+TEST(StockKinematics, InchTdrPinsAreConvertedToMm) {
+  const Tdr inch{2, -3, 4.5, 1, -0.75};
+  const fs::path ini = tdr_configuration("tdr_inch", inch);
+  std::string text = test::file_text(ini);
+  text.replace(text.find("LINEAR_UNITS = mm"), 17, "LINEAR_UNITS = inch");
+  test::write_file(ini, text);
+  const Generated g = generate(ini, "tdr_inch_machine");
+  expect_vector(g.model.axes[4].pole_mm, {50.8, -76.2, 114.3}, "B pole");
+  expect_vector(g.model.axes[3].pole_mm, {0, 0, -0.75 * 25.4}, "A pole");
+  EXPECT_NE(g.result.machine_text.find("z-offset = -0.75 inch (-19.0"), std::string::npos)
+      << g.result.machine_text;
+  const Tdr mm{50.8, -76.2, 114.3, 25.4, -19.05};
+  record_largest_difference(expect_tdr_kinematics(g.model, mm, 400, 7));
+}
+
 // A pyvcp slider of the configuration's own panel: its start held within min_ .. max_ as pyvcp
 // holds it; one whose value comes from outside the panel (param_pin) and one whose start is off
 // its resolution refused.
