@@ -1,19 +1,21 @@
 // A LinuxCNC user's own configuration retrofitted with volkins: LinuxCNC's 5-axis samples as
 // installed. table-rotary-tilting's xyzbc-trt.ini and xyzac-trt.ini (table-table, switchable
-// kinematics, M428/M429, the pivot on the stock module's HAL pins) and bridgemill's 5axis.ini
-// (a head-head bridge mill, 5axiskins: X Y Z carry the C-B head, W moves the tool along its own
-// axis, two Y joints, the pivot length from a sum2 of the mechanical length and the tool length
-// offset). `volcomp init` writes the machine file and the patch, the patch is applied with
-// `patch`, and the configuration's own demo program (demos/xyzbc_switchkins.ngc: helices at
-// B 20 C 45 in TCP, moves in identity, 16 switches; the xyzac one at A 20 C 45; 5axisgui.ngc:
-// 128 holes drilled with W around a sphere, B -90..-34, C all round, tool 100 with G43) runs
-// headless (tests/session/headless_sample.py) with the stock module and with volkins. The
-// joints of both are checked against an independent transcription of the stock inverse
-// (trtfuncs.c, 5axiskins.c) evaluated on the recorded world commands, in each sample's
+// kinematics, M428/M429, the pivot on the stock module's HAL pins) and bridgemill's 5axis.ini (a
+// head-head bridge mill, 5axiskins: X Y Z carry the C-B head, W moves the tool along its own axis,
+// two Y joints, the pivot length from a sum2 of the mechanical length and the tool length offset),
+// and table-dual-rotary's xyzab-tdr.ini (xyzab_tdr_kins: B carrying the rotary table A, the
+// geometry from pyvcp sliders). `volcomp init` writes the machine file and the patch, the patch is
+// applied with `patch`, and the configuration's own demo program (demos/xyzbc_switchkins.ngc:
+// helices at B 20 C 45 in TCP, moves in identity, 16 switches; the xyzac one at A 20 C 45;
+// 5axisgui.ngc: 128 holes drilled with W around a sphere, B -90..-34, C all round, tool 100 with
+// G43; for the tdr sample, whose demo reads stock pins, the test's tdr_switchkins.ngc) runs
+// headless (tests/session/headless_sample.py) with the stock module and with volkins. The joints
+// of both are checked against an independent transcription of the stock inverse (trtfuncs.c,
+// 5axiskins.c, xyzab_tdr_kins.comp) evaluated on the recorded world commands, in each sample's
 // kinematics type, through LinuxCNC's joint interpolation: the stock run validates the
-// transcription, the volkins run with zero errors must give the same joints to 1e-9 mm / deg.
-// Then xyzbc and the bridge mill with errors (a perturbed copy of the machine file): the module
-// against the core and the real tool tip against the ideal one, as on the MC-300.
+// transcription, the volkins run with zero errors must give the same joints to 1e-9 mm / deg. Then
+// xyzbc and the bridge mill with errors (a perturbed copy of the machine file): the module against
+// the core and the real tool tip against the ideal one, as on the MC-300.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -77,6 +79,22 @@ Joints bridgemill_inverse(const Joints& world, double tool_offset, double w) {
   return q;
 }
 
+// xyzab_tdr_kins' inverse of type 1 (LinuxCNC 2.9 xyzab_tdr_kins.comp, kinematicsInverse),
+// written out here from its equations, for the xyzab-tdr sample's geometry (its pyvcp sliders'
+// start values: x/y/z-rot-point -50, -50, -100, x-offset -20, z-offset -10): TCP world (x y z a
+// b, tool offset on z) to joints.
+Joints tdr_inverse(const Joints& w, double tool_offset, double) {
+  const double xr = -50, yr = -50, zr = -100, dx = -20, dz = -10, dt = tool_offset;
+  const double sa = std::sin(w[3] * M_PI / 180.0), ca = std::cos(w[3] * M_PI / 180.0);
+  const double sb = std::sin(w[4] * M_PI / 180.0), cb = std::cos(w[4] * M_PI / 180.0);
+  const double qx = w[0] - xr - dx, qy = w[1] - yr, qz = w[2] - zr - dz - dt;
+  Joints q = w;
+  q[0] = cb * qx + sa * sb * qy - ca * sb * qz + cb * dx - sb * dz + xr;
+  q[1] = ca * qy + sa * qz + yr;
+  q[2] = sb * qx - sa * cb * qy + ca * cb * qz + sb * dx + cb * dz + zr + dt;
+  return q;
+}
+
 // trivkins' inverse: the joints are the world.
 Joints trivkins_inverse(const Joints& w, double, double) { return w; }
 
@@ -87,11 +105,12 @@ struct Sample {
   Joints (*stock_tcp_inverse)(const Joints& world, double tool_offset, double tool_axis);
   std::string headless_options;  // headless_sample.py's: the TCP kinematics type, values of GUI pins
   std::size_t min_switches;      // kinematics switches the demo makes
-  // trivkins samples: no TCP type; the program is the test's own (tests/session/programs/<program>,
-  // copied into the configuration); LinuxCNC's length unit, in mm (the trace is in it).
-  bool switchkins = true;
-  bool own_program = false;
-  double mm_per_unit = 1.0;
+  std::size_t min_tcp = 10000;   // samples in the TCP type
+  // The test's own program (copied into the run, `program` its name) where the sample's cannot
+  // run with volkins, and headless options of the stock run alone (signals its pyvcp sliders drove).
+  fs::path own_program;
+  std::string stock_options;
+  double mm_per_unit = 1.0;  // LinuxCNC's length unit, in mm: the trace is in it
 };
 const Sample kXyzbc{kSamples / "table-rotary-tilting",
                     "xyzbc-trt.ini",
@@ -99,19 +118,26 @@ const Sample kXyzbc{kSamples / "table-rotary-tilting",
                     "xyzbc-trt.toml",
                     xyzbc_inverse,
                     "",
-                    8};
+                    8,
+                    10000,
+                    {},
+                    ""};
 const Sample kXyzac{kSamples / "table-rotary-tilting",
                     "xyzac-trt.ini",
                     "demos/xyzac_switchkins.ngc",
                     "xyzac-trt.toml",
                     xyzac_inverse,
                     "",
-                    8};
+                    8,
+                    10000,
+                    {},
+                    ""};
 // Its kinematics type 0 is 5axiskins (no sparm=identityfirst); the vismach model 5axisgui, which
 // needs X, gave the pivot's mechanical length (its default pivot_len): the headless copy sets it.
-// trivkins samples. ja_tests/xyzb_locking_indexer: inches, B a locking indexer without limits
-// (a continuous rotary table; its program moves B alone, as LinuxCNC requires of an indexer).
-// wrapped_rotary: A a wrapped rotary table without limits, turned with X, Y, Z, across 0/360.
+// trivkins samples, with programs of the test's own. ja_tests/xyzb_locking_indexer: inches, B a
+// locking indexer without limits (a continuous rotary table; the program moves B alone, as LinuxCNC
+// requires of an indexer). wrapped_rotary: A a wrapped rotary table without limits, turned with
+// X, Y, Z and across 0/360.
 const fs::path kAxisSamples = "/usr/share/doc/linuxcnc/examples/sample-configs/sim/axis";
 const Sample kXyzbInch{kAxisSamples / "ja_tests/xyzb_locking_indexer",
                        "xyzb.ini",
@@ -120,8 +146,9 @@ const Sample kXyzbInch{kAxisSamples / "ja_tests/xyzb_locking_indexer",
                        trivkins_inverse,
                        "",
                        0,
-                       false,
-                       true,
+                       0,
+                       test::source_path("tests/session/programs/xyzb_inch.ngc"),
+                       "",
                        25.4};
 const Sample kWrappedRotary{kAxisSamples / "wrapped_rotary",
                             "wrapped_rotary.ini",
@@ -130,15 +157,32 @@ const Sample kWrappedRotary{kAxisSamples / "wrapped_rotary",
                             trivkins_inverse,
                             "",
                             0,
-                            false,
-                            true};
+                            0,
+                            test::source_path("tests/session/programs/xyza_wrapped.ngc"),
+                            ""};
 const Sample kBridgemill{kSamples / "bridgemill",
                          "5axis.ini",
                          "5axisgui.ngc",
                          "5axis.toml",
                          bridgemill_inverse,
                          " --tcp-type 0 --sets :gui-pivot-len=250",
-                         0};
+                         0,
+                         10000,
+                         {},
+                         ""};
+// xyzab_tdr_kins: type 0 the identity, type 1 TCP. Headless, its pyvcp sliders are gone: the
+// stock run gets their start values on their signals (the patched one has no stock pin on them).
+const Sample kTdr{kSamples / "table-dual-rotary",
+                  "xyzab-tdr.ini",
+                  "tdr_switchkins.ngc",
+                  "xyzab-tdr.toml",
+                  tdr_inverse,
+                  "",
+                  4,
+                  5000,
+                  test::source_path("tests/session/programs/tdr_switchkins.ngc"),
+                  " --sets :x-rot-point=-50 --sets :y-rot-point=-50 --sets :z-rot-point=-100"
+                  " --sets :x-offset=-20 --sets :z-offset=-10"};
 
 struct StockComparison {
   double largest = 0;  // joints against the stock kinematics (mm or deg)
@@ -183,8 +227,6 @@ class SampleConfig : public ::testing::Test {
     const fs::path dir = test::run_folder(name);
     const fs::path user = dir / "user";
     fs::copy(sample.folder, user, fs::copy_options::recursive);
-    if (sample.own_program)
-      fs::copy_file(test::source_path("tests/session/programs/" + sample.program), user / sample.program);
     retrofit(sample, dir, user);
     return {dir, user};
   }
@@ -203,12 +245,15 @@ class SampleConfig : public ::testing::Test {
   // The configuration made headless in dir/run (the `extra` files copied into it, over its own),
   // run; its trace, read for `model`.
   static trace::SessionTrace run(const Sample& sample, const fs::path& dir, const fs::path& config,
-                                 const machine::Model& model, const std::vector<fs::path>& extra = {}) {
+                                 const machine::Model& model, std::vector<fs::path> extra = {},
+                                 const std::string& options = "") {
     const fs::path run_dir = dir / "run";
-    const test::CommandResult h = test::run_in(
-        dir, "python3 " + test::source_path("tests/session/headless_sample.py") + " " + config.string() + " " +
-                 sample.ini + " " + run_dir.string() + " --program " + sample.program + sample.headless_options);
+    const test::CommandResult h =
+        test::run_in(dir, "python3 " + test::source_path("tests/session/headless_sample.py") + " " + config.string() +
+                              " " + sample.ini + " " + run_dir.string() + " --program " + sample.program +
+                              sample.headless_options + options);
     EXPECT_EQ(h.exit_code, 0) << h.out;
+    if (!sample.own_program.empty()) extra.push_back(sample.own_program);
     for (const fs::path& f : extra) {
       fs::copy_file(f, run_dir / f.filename(), fs::copy_options::overwrite_existing);
       fs::permissions(run_dir / f.filename(), fs::perms::all);
@@ -242,13 +287,13 @@ class SampleConfig : public ::testing::Test {
   static void expect_stock_transcribed(const Sample& sample, const std::string& name) {
     const auto [dir, user] = retrofitted(sample, name);
     const machine::Model model = machine::load_machine((user / sample.machine).string());
-    const trace::SessionTrace t = run(sample, dir, sample.folder, model);
+    const trace::SessionTrace t = run(sample, dir, sample.folder, model, {}, sample.stock_options);
     const StockComparison c = compare_with_stock(sample, t);
     // The same equations; the compilers may round a product differently (fused multiply-add).
     EXPECT_LT(c.largest, 1e-12) << "the transcription is not LinuxCNC's " << sample.ini;
     EXPECT_EQ(std::count(t.gain.begin(), t.gain.end(), 0.0), static_cast<long>(t.size())) << "volkins was loaded";
     EXPECT_GE(c.switches, sample.min_switches);
-    EXPECT_GT(c.tcp, 10000u);
+    EXPECT_GE(c.tcp, sample.min_tcp);
     std::cout << sample.ini << " stock: " << t.size() << " samples, " << c.tcp << " in TCP, " << c.switches
               << " switches; joints against the transcription: " << c.largest << "\n";
   }
@@ -262,7 +307,7 @@ class SampleConfig : public ::testing::Test {
     const StockComparison c = compare_with_stock(sample, t);
     EXPECT_LT(c.largest, 1e-9) << "volkins' joints differ from the stock module's";
     EXPECT_GE(c.switches, sample.min_switches);
-    if (sample.switchkins) EXPECT_GT(c.tcp, 10000u);
+    EXPECT_GE(c.tcp, sample.min_tcp);
     const trace::TraceSummary s = trace::check_trace(model, machine::WorldConvention::Axes, t);
     EXPECT_LT(test::extremes(s).mismatch, 1e-9);
     std::cout << sample.ini << " volkins, zero errors: " << t.size() << " samples, " << c.tcp << " in TCP, "
@@ -349,6 +394,12 @@ TEST_F(SampleConfig, XyzbcRetrofittedWithErrorsVolkinsPutsTheRealToolOnTheComman
   expect_corrected(kXyzbc, "sample_xyzbc_errors",
                    "--location EX0C=15um --location EY0C=-10um --location EA0C=-6arcsec --location EC0B=8arcsec"
                    " --location EC0Y=-5arcsec --location EB0Z=5arcsec");
+}
+
+TEST_F(SampleConfig, TdrStockKinematicsAreTheTranscribedOnes) { expect_stock_transcribed(kTdr, "sample_tdr_stock"); }
+
+TEST_F(SampleConfig, TdrRetrofittedWithZeroErrorsVolkinsGivesTheStockJoints) {
+  expect_stock_joints(kTdr, "sample_tdr_volkins");
 }
 
 TEST_F(SampleConfig, BridgemillStockKinematicsAreTheTranscribedOnes) {

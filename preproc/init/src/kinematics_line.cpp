@@ -5,7 +5,7 @@
 namespace vc::init {
 namespace {
 
-constexpr const char* kKnown = "init knows trivkins, xyzbc-trt-kins, xyzac-trt-kins and 5axiskins; ";
+constexpr const char* kKnown = "init knows trivkins, xyzbc-trt-kins, xyzac-trt-kins, xyzab_tdr_kins and 5axiskins; ";
 constexpr const char* kNotASerialChain =
     ": not a serial chain of linear axes plus a rotary table or head, which is what the model expresses";
 
@@ -25,6 +25,12 @@ std::string why_not(const std::string& module) {
     return module + " is a parallel machine (struts of variable length: tripod, hexapod, pentapod)" + kNotASerialChain;
   if (module == "corexykins") return module + " drives X and Y together by two belts" + kNotASerialChain;
   if (module == "rosekins") return module + " is a rose engine (a radius and an angle)" + kNotASerialChain;
+  if (module == "millturn")
+    return "millturn is refused: its kinematics type 1 (turning, millturn.comp) turns the world against the joints (x = "
+           "the Z joint, y = minus the Y joint, z = the X joint) and passes A through as the work spindle: a world "
+           "that is neither the joints (volkins' identity) nor the tool tip in the part frame, which A turns "
+           "(volkins' TCP). Its type 0 alone is trivkins': a configuration that never switches (no M428/M429) can "
+           "load trivkins coordinates=xyza and then run volcomp init";
   return module +
          " is not one of them: describe the machine by hand (machines/README.md) and load volkins yourself "
          "(kins/README.md)";
@@ -55,10 +61,22 @@ KinematicsLine read_kinematics_line(const LinuxcncIni& ini) {
     k.kind = StockModule::XyzacTrt;
   else if (k.module == "5axiskins")
     k.kind = StockModule::FiveAxis;
+  else if (k.module == "xyzab_tdr_kins")
+    k.kind = StockModule::XyzabTdr;
   else
     throw LoadError(k.entry->where(), kKnown + why_not(k.module));
 
   // trivkins: coordinates, kinstype; the trt modules and 5axiskins (switchkins): coordinates, sparm.
+  // xyzab_tdr_kins (a halcompile comp) maps joints 0-4 to X Y Z A B and has no parameter of
+  // its own: only halcompile's count= and names=, which make instances of its unused dummy pin.
+  if (k.kind == StockModule::XyzabTdr) {
+    for (std::string word; words >> word;)
+      throw LoadError(k.entry->where(), "`" + word +
+                                            "`: xyzab_tdr_kins has no parameter of its own (its joints are "
+                                            "X Y Z A B, fixed; halcompile's count= and names= only make instances of "
+                                            "its unused dummy pin): write the module alone for init to take it");
+    return k;
+  }
   const std::string second = k.kind == StockModule::Trivkins ? "kinstype" : "sparm";
   for (std::string word; words >> word;) {
     const std::size_t equals = word.find('=');

@@ -70,6 +70,8 @@ std::string required_coordinates(StockModule kind) {
       return "xyzbc";
     case StockModule::XyzacTrt:
       return "xyzac";
+    case StockModule::XyzabTdr:  // joints 0-4, fixed (no coordinates=)
+      return "xyzab";
     case StockModule::FiveAxis:
       return "xyzbcw";
     case StockModule::Trivkins:

@@ -2,12 +2,15 @@
 
 #include <cctype>
 #include <filesystem>
+#include <optional>
+#include <utility>
 
 #include "vc/init/linuxcnc_units.hpp"
 #include "vc/init/machine_layout.hpp"
 #include "vc/init/number.hpp"
 #include "vc/init/pin_value.hpp"
 #include "vc/init/pivot_length.hpp"
+#include "vc/init/pyvcp_panel.hpp"
 #include "vc/init/typical_tool.hpp"
 
 namespace vc::init {
@@ -76,32 +79,87 @@ void trivkins(const MachineLayout& layout, NominalMachine& m) {
   m.fixture_from = {"trivkins: the part frame is the bed frame"};
 }
 
-// A geometry pin of the trt modules, with where its value comes from.
+// A geometry pin of the trt and tdr modules, with where its value comes from.
 struct Pin {
   std::string name;
   double value = 0.0;
   std::string from;
 };
 
-Pin geometry_pin(const HalConfig& hal, const LinuxcncIni& ini, const std::string& module, const std::string& name) {
-  const std::string pin = module + "." + name;
-  const PinValue v = pin_value(hal, pin, 0.0);
-  auto at = [&](const HalCommand& c) { return cite(c.path, c.line, c.text, ini.folder()); };
-  if (v.source == PinValue::Source::Live)
-    throw LoadError(v.net->where(), pin + " follows " + v.driver + " at run time (both are on signal " + v.signal +
-                                        ", which no sets gives a value); volkins takes the geometry from the machine "
-                                        "file: set it with setp");
-  // The pins are in LinuxCNC's length unit; the machine file in mm.
-  const LinearUnits units = read_linear_units(ini);
-  Pin p{name, units.to_mm(v.value),
-        name + " = " + format_number(v.value) +
-            (units.inch() ? " inch (" + format_number(units.to_mm(v.value)) + " mm)" : "") + ": "};
-  if (v.source == PinValue::Source::Default)
-    p.from += "not set in the HAL files read (the module's default)";
-  else
-    p.from += at(*v.command);
-  if (v.source == PinValue::Source::Sets) p.from += " (its signal, " + at(*v.net) + ")";
-  return p;
+// A stock module's geometry pins as LinuxCNC holds them once the HAL files ran (pin_value.hpp),
+// or as a pyvcp slider on the pin's signal drives it from the start (pyvcp_panel.hpp: the
+// xyzab-tdr sample's sliders; the panel is read only if a pyvcp pin is on such a signal).
+class GeometryPins {
+ public:
+  GeometryPins(const LinuxcncIni& ini, const HalConfig& hal, const std::string& module)
+      : ini_(ini), hal_(hal), module_(module), units_(read_linear_units(ini)) {}
+
+  Pin read(const std::string& name) {
+    const std::string pin = module_ + "." + name;
+    const PinValue v = pin_value(hal_, pin, 0.0);
+    auto at = [&](const HalCommand& c) { return cite(c.path, c.line, c.text, ini_.folder()); };
+    if (const auto slider = slider_on(v.signal)) {
+      const auto& [s, net] = *slider;
+      sliders_.push_back(s->halpin);
+      return {name, units_.to_mm(s->initial),
+              value_text(name, s->initial) + "the pyvcp slider " + s->halpin + "'s start, " + s->from + " (pyvcp." +
+                  s->halpin + "-f drives " + v.signal + ", " + at(*net) + ")"};
+    }
+    if (v.source == PinValue::Source::Live)
+      throw LoadError(v.net->where(), pin + " follows " + v.driver + " at run time (both are on signal " + v.signal +
+                                          ", which no sets gives a value); volkins takes the geometry from the "
+                                          "machine file: set it with setp");
+    Pin p{name, units_.to_mm(v.value), value_text(name, v.value)};
+    if (v.source == PinValue::Source::Default)
+      p.from += "not set in the HAL files read (the module's default)";
+    else
+      p.from += at(*v.command);
+    if (v.source == PinValue::Source::Sets) p.from += " (its signal, " + at(*v.net) + ")";
+    return p;
+  }
+
+  // The sliders read, for the remark that they no longer move the geometry.
+  const std::vector<std::string>& sliders() const { return sliders_; }
+
+ private:
+  // "name = v: ", or "name = v inch (w mm): ": the pins are in LinuxCNC's length unit, the
+  // machine file in mm.
+  std::string value_text(const std::string& name, double v) const {
+    return name + " = " + format_number(v) +
+           (units_.inch() ? " inch (" + format_number(units_.to_mm(v)) + " mm)" : "") + ": ";
+  }
+
+  // The pyvcp slider driving `signal` and the net that puts it there, if any.
+  std::optional<std::pair<const PyvcpSlider*, const HalCommand*>> slider_on(const std::string& signal) {
+    if (signal.empty()) return std::nullopt;
+    for (const HalCommand& c : hal_.commands) {
+      const auto net = net_of(c);
+      if (!net || net->signal != signal) continue;
+      for (const NetPin& p : net->pins) {
+        if (p.name.rfind("pyvcp.", 0) != 0) continue;
+        if (!panel_) panel_ = pyvcp_sliders(ini_);
+        if (const PyvcpSlider* s = slider_of_pin(*panel_, p.name)) return std::make_pair(s, &c);
+      }
+    }
+    return std::nullopt;
+  }
+
+  const LinuxcncIni& ini_;
+  const HalConfig& hal_;
+  const std::string module_;
+  const LinearUnits units_;
+  std::optional<std::vector<PyvcpSlider>> panel_;
+  std::vector<std::string> sliders_;
+};
+
+// The remark for geometry pins that pyvcp sliders set.
+void slider_remark(const GeometryPins& pins, const std::string& module, NominalMachine& m) {
+  if (pins.sliders().empty()) return;
+  std::string names;
+  for (const std::string& s : pins.sliders()) names += (names.empty() ? "" : ", ") + s;
+  m.remarks.push_back("The pyvcp sliders " + names + " set " + module +
+                      "'s geometry at run time; volkins takes it from this file, at the sliders' start values: "
+                      "moving a slider no longer changes the kinematics (change the poles here instead).");
 }
 
 // The switchable modules (switchkins.c): sparm=identityfirst makes type 0 the identity
@@ -120,9 +178,10 @@ void trt(const LinuxcncIni& ini, const HalConfig& hal, const KinematicsLine& k, 
   linear_axes(layout, mod, " (the world is the tool tip relative to the table)", m);
   m.pins = {"x-rot-point", "y-rot-point", "z-rot-point", "x-offset", "y-offset", "z-offset", "tool-offset"};
   m.tool_offset_pin = "tool-offset";
-  const Pin xr = geometry_pin(hal, ini, mod, "x-rot-point"), yr = geometry_pin(hal, ini, mod, "y-rot-point"),
-            zr = geometry_pin(hal, ini, mod, "z-rot-point"), dx = geometry_pin(hal, ini, mod, "x-offset"),
-            dy = geometry_pin(hal, ini, mod, "y-offset"), dz = geometry_pin(hal, ini, mod, "z-offset");
+  GeometryPins pins(ini, hal, mod);
+  const Pin xr = pins.read("x-rot-point"), yr = pins.read("y-rot-point"), zr = pins.read("z-rot-point"),
+            dx = pins.read("x-offset"), dy = pins.read("y-offset"), dz = pins.read("z-offset");
+  slider_remark(pins, mod, m);
   const Pin& unused = bc ? dy : dx;
   m.remarks.push_back(mod + " does not use its " + unused.name + " pin (trtfuncs.c): " + unused.from + ".");
 
@@ -158,6 +217,60 @@ void trt(const LinuxcncIni& ini, const HalConfig& hal, const KinematicsLine& k, 
       "L = the active G43 offset (motion.tooloffset.z), exactly as the tool-offset pin of " + mod;
 
   switchkins_types(k, m);
+}
+
+// xyzab_tdr_kins (xyzab_tdr_kins.comp), type 1: with r = (xr, yr, zr) its rot-point pins and dz
+// its z-offset, the joints (the spindle point, the tool dt = tool-offset-z long below it) of
+// LinuxCNC's world w (the tool tip relative to the table, dt added to Z) are
+//   j = r + Ry(-b) ((0, 0, dz) + Rx(-a) (w - dt ez - r - (0, 0, dz))) + dt ez,
+// its forward the exact inverse; its x-offset cancels out of both (A's line runs along x). Bed
+// outward: B about -y with its pole at r, carrying A about -x with its pole at (0, 0, dz) in B's
+// frame; the part frame at [-xr, -yr, -zr - dz] in A's, the bed frame at A = B = 0. Type 0 is
+// the identity, type 1 TCP: volkins' default types.
+void tdr(const LinuxcncIni& ini, const HalConfig& hal, const KinematicsLine& k, const MachineLayout& layout,
+         NominalMachine& m) {
+  const std::string& mod = k.module;
+  linear_axes(layout, mod, " (the world is the tool tip relative to the table)", m);
+  m.pins = {"x-rot-point", "y-rot-point", "z-rot-point", "x-offset", "z-offset", "tool-offset-z"};
+  m.tool_offset_pin = "tool-offset-z";
+  GeometryPins pins(ini, hal, mod);
+  const Pin xr = pins.read("x-rot-point"), yr = pins.read("y-rot-point"), zr = pins.read("z-rot-point"),
+            dx = pins.read("x-offset"), dz = pins.read("z-offset");
+  slider_remark(pins, mod, m);
+  m.remarks.push_back(mod + "'s x-offset cancels out of its equations (A's line runs along x): " + dx.from + ".");
+
+  NominalAxis b =
+      axis_from(*layout.axis('B'), layout, "the rotary assembly's axis along y, carrying the rotary table A");
+  b.direction = {0.0, -1.0, 0.0};
+  b.direction_from = mod + " turns the table by Ry(-B) (xyzab_tdr_kins.comp): about -y";
+  b.pole_mm = {xr.value, yr.value, zr.value};
+  b.pole_from = {
+      "[x-rot-point, y-rot-point, z-rot-point]: B's line passes through the rotation point "
+      "(xyzab_tdr_kins.comp), with"};
+  for (const Pin* p : {&xr, &yr, &zr}) b.pole_from.push_back("  " + p->from);
+  m.workpiece_chain.push_back(b);
+
+  NominalAxis a = axis_from(*layout.axis('A'), layout, "the rotary table, on B");
+  a.direction = {-1.0, 0.0, 0.0};
+  a.direction_from = mod + " turns the table by Rx(-A) (xyzab_tdr_kins.comp): about -x";
+  a.pole_mm = {0.0, 0.0, dz.value};
+  a.pole_from = {
+      "[0, 0, z-offset] in B's frame: A's line is z-offset above the rotation point "
+      "(xyzab_tdr_kins.comp), " +
+      dz.from};
+  m.workpiece_chain.push_back(a);
+
+  m.fixture_origin_mm = {-xr.value, -yr.value, -zr.value - dz.value};
+  m.fixture_from = {
+      "[-x-rot-point, -y-rot-point, -z-rot-point - z-offset] in A's frame: the part frame is the bed "
+      "frame at A = B = 0, as the world of " +
+      mod + " (the tool tip relative to the table)"};
+  m.gauge_point_from = "the tool tip of " + mod + " is tool-offset-z below the spindle point, the Z frame's origin";
+  m.tool_length_reference_from =
+      "L = the active G43 offset (motion.tooloffset.z), exactly as the tool-offset-z pin of " + mod;
+  // Type 0 the identity, type 1 TCP: volkins' default (no world=, no sparm).
+  m.world = "";
+  m.identity_first = false;
 }
 
 // 5axiskins (5axiskins.c): the controlled point is (x, y, z + P) + (P + w) d, with d = (sin B
@@ -238,6 +351,8 @@ NominalMachine nominal_machine(const LinuxcncIni& ini, const HalConfig& hal, con
     trivkins(layout, m);
   else if (k.kind == StockModule::FiveAxis)
     five_axis(ini, hal, k, layout, m);
+  else if (k.kind == StockModule::XyzabTdr)
+    tdr(ini, hal, k, layout, m);
   else
     trt(ini, hal, k, layout, m);
   return m;

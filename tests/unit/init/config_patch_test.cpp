@@ -1,5 +1,5 @@
 // The patch `volcomp init` writes, applied with the real `patch -p1` to a copy of the
-// configuration (LinuxCNC's xyzbc-trt and bridgemill samples, and one of our own): volkins'
+// configuration (LinuxCNC's xyzbc-trt, xyzab-tdr and bridgemill samples, and one of our own): volkins'
 // KINEMATICS line, no stock pin left, volkins.tool-offset on the tool-offset signal,
 // volkins.update first in the servo thread, every other byte unchanged (CRLF and trailing
 // blanks too); what it cannot rewrite is refused with its line.
@@ -137,6 +137,44 @@ TEST(ConfigPatch, PutsVolkinsInTheBridgemillSample) {
     if (!entry.is_regular_file()) continue;
     const std::string name = entry.path().filename().string();
     if (name != "5axis.ini" && name != "5axisgui.hal" && name != "5axis.toml") {
+      EXPECT_EQ(test::file_text(entry.path()), test::file_text(original / fs::relative(entry.path(), copy)))
+          << entry.path();
+    }
+  }
+}
+
+// The xyzab-tdr sample (xyzab_tdr_kins): its six net lines of stock pins in HALCMDs, five
+// deleted (their signals stay on the vismach GUI's and the pyvcp sliders' pins, the sets kept),
+// the tool offset's on :tool-offset to volkins; no sparm (type 0 the identity, as volkins').
+TEST(ConfigPatch, PutsVolkinsInTheTdrSample) {
+  if (!test::samples_installed())
+    GTEST_SKIP() << "LinuxCNC's sample configurations are not installed (" << test::kSampleConfigs << ")";
+  const fs::path original = test::kSampleConfigs / "table-dual-rotary";
+  const fs::path copy = test::scratch_folder("tdr_patch") / "table-dual-rotary";
+  fs::copy(original, copy, fs::copy_options::recursive);
+  const InitResult r = init_and_patch(copy / "xyzab-tdr.ini", "xyzab-tdr.toml");
+  EXPECT_EQ(r.patch.kinematics, "volkins machine=xyzab-tdr.toml coordinates=xyzab");
+
+  const std::vector<std::string> before = lines_of(test::file_text(original / "xyzab-tdr.ini"));
+  const std::vector<std::string> after = lines_of(test::file_text(copy / "xyzab-tdr.ini"));
+  EXPECT_EQ(added_lines(before, after,
+                        [](const std::string& line) {
+                          return line.find("xyzab_tdr_kins.") != std::string::npos || line.rfind("KINEMATICS", 0) == 0;
+                        }),
+            (std::set<std::string>{"KINEMATICS = volkins machine=xyzab-tdr.toml coordinates=xyzab",
+                                   "HALCMD = net  :tool-offset  volkins.tool-offset",
+                                   "# volkins (volcomp init): its update function runs first in the servo thread",
+                                   "HALCMD = addf volkins.update servo-thread 1"}));
+  EXPECT_EQ(after.size() + 3, before.size());  // 6 stock nets out (one of them replaced), 2 lines in
+  for (const char* kept : {"HALCMD = sets :x-offset     -20", "HALCMD = sets :z-offset     -10"})
+    EXPECT_NE(std::find(after.begin(), after.end(), kept), after.end()) << kept;
+  expect_no_stock_pin(copy, "xyzab_tdr_kins.");
+  // Every other file unchanged (its demos/xyzab-tdr-demo.ngc reads four stock pins: init
+  // patches no G-code).
+  for (const auto& entry : fs::recursive_directory_iterator(copy)) {
+    if (!entry.is_regular_file()) continue;
+    const std::string name = entry.path().filename().string();
+    if (name != "xyzab-tdr.ini" && name != "xyzab-tdr.toml") {
       EXPECT_EQ(test::file_text(entry.path()), test::file_text(original / fs::relative(entry.path(), copy)))
           << entry.path();
     }

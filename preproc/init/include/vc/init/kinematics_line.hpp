@@ -11,7 +11,13 @@
 
 namespace vc::init {
 
-enum class StockModule { Trivkins, XyzbcTrt, XyzacTrt, FiveAxis };  // FiveAxis: 5axiskins
+enum class StockModule {
+  Trivkins,
+  XyzbcTrt,
+  XyzacTrt,
+  XyzabTdr,
+  FiveAxis
+};  // XyzabTdr: xyzab_tdr_kins; FiveAxis: 5axiskins
 
 struct KinematicsLine {
   const IniEntry* entry = nullptr;

@@ -13,6 +13,13 @@
 //   (xyzac); fixture origin [-xr, -yr, -zr]. In volkins' TCP world, LinuxCNC's Z is the tool
 //   tip's plus the tool length offset, as the stock module's (tests/unit/init checks both
 //   directions against trtfuncs.c's equations).
+// - xyzab_tdr_kins (xyzab_tdr_kins.comp, a dual rotary table): type 0 the identity, type 1 the
+//   tool tip relative to the table (TCP), volkins' default types. With xr, yr, zr its
+//   x/y/z-rot-point pins and dz its z-offset (its x-offset cancels out): tool chain X, Y, Z as
+//   the trt modules'; workpiece chain B about -y with its pole at [xr, yr, zr], carrying A
+//   about -x with its pole at [0, 0, dz]; fixture origin [-xr, -yr, -zr - dz]; L the G43
+//   offset, as its tool-offset-z pin. A pin on a signal that a pyvcp slider drives (the
+//   sample's) takes the slider's start value (pyvcp_panel.hpp), a remark says so.
 // - 5axiskins (5axiskins.c, a bridge mill: head B on C): the world is the tool tip (TCP), its
 //   pivot-length Pm plus the tool length offset (pivot_length.hpp). Tool chain X, Y, Z, then C
 //   about +z with its pole (the pivot) at [0, 0, Pm], carrying B about -y at [0, 0, 0]; gauge
