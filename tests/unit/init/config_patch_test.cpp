@@ -383,6 +383,18 @@ TEST(ConfigPatch, CopiesAHalFileAnotherConfigurationUses) {
   EXPECT_NE(after.at("a.ini").find("HALFILE = shared.volkins-2.hal\nHALFILE = own.hal\n"), std::string::npos);
   EXPECT_EQ(after.at("a.ini").find("xyzbc-trt-kins."), std::string::npos);
   EXPECT_EQ(after.size(), before.size() + 2);  // the two copies
+
+  // --edit-shared: the same folder as it was, edited in place, no copy.
+  const fs::path again = test::scratch_folder("shared_hal_in_place");
+  for (const auto& [name, text] : before) test::write_file(again / name, text);
+  const InitResult e = run_init({(again / "a.ini").string(), (again / "machine.toml").string(), "2026-01-01", true});
+  test::write_file(again.parent_path() / "in_place.diff", e.patch.diff);
+  ASSERT_EQ(test::apply_patch(again, again.parent_path() / "in_place.diff"), 0) << e.patch.diff;
+  EXPECT_TRUE(e.patch.created.empty());
+  EXPECT_EQ(folder_files(again).size(), before.size());
+  EXPECT_EQ(test::file_text(again / "shared.hal"), "loadrt [KINS]KINEMATICS\n");
+  EXPECT_EQ(test::file_text(again / "geo.hal"), "");
+  EXPECT_EQ(test::file_text(again / "own.hal"), "source geo.hal\n");
 }
 
 }  // namespace
