@@ -16,6 +16,7 @@
 #include "vc/tables/atomic_file.hpp"
 #include "commands.hpp"
 #include "vc/init/init.hpp"
+#include "vc/init/text_file.hpp"
 #include "vc/machine/load_machine.hpp"
 
 namespace vc::cli {
@@ -25,6 +26,7 @@ struct InitArgs {
   std::string ini;     // the LinuxCNC configuration's INI file
   std::string output;  // the machine file to write
   std::string patch;   // the patch's file; "" or "-": stdout
+  bool edit_shared = false;
 };
 
 namespace fs = std::filesystem;
@@ -60,8 +62,36 @@ void check_folder(const std::string& file, const char* what) {
   if (!fs::is_directory(folder)) throw std::runtime_error(std::string(what) + ": no folder " + folder.string());
 }
 
+// The outputs against each other and against every file init reads (the inputs are known once
+// read), before anything is written.
+void check_outputs(const InitArgs& args, const std::vector<init::InputFile>& inputs) {
+  const bool patch_to_file = !args.patch.empty() && args.patch != "-";
+  init::refuse_input_as_output(inputs, "-o", args.output);
+  if (patch_to_file) init::refuse_input_as_output(inputs, "--patch", args.patch);
+}
+
+init::InitResult read_configuration(const InitArgs& args) {
+  if (args.output == "-")
+    throw std::runtime_error(
+        "error: -o -: the machine file needs a name (volkins' machine= names it in the INI); it is the patch that "
+        "goes to stdout (no --patch, or --patch -)");
+  if (!args.patch.empty() && args.patch != "-" && init::same_file(args.output, args.patch))
+    throw std::runtime_error("error: -o " + init::printable(args.output) + " and --patch " +
+                             init::printable(args.patch) + " are the same file: give them two (nothing was written)");
+  try {
+    return init::run_init({args.ini, args.output, today(), args.edit_shared});
+  } catch (const std::exception& e) {
+    // A message quotes lines of the user's files: no raw control bytes into the terminal.
+    throw std::runtime_error(init::printable(e.what()));
+  }
+}
+
 int run_init(const InitArgs& args, std::ostream& patch_out, std::ostream& report) {
-  const init::InitResult r = init::run_init({args.ini, args.output, today()});
+  const init::InitResult r = read_configuration(args);
+  check_outputs(args, r.inputs);
+  std::vector<init::InputFile> created;
+  for (const std::string& file : r.patch.created) created.push_back({file, "a file the patch creates"});
+  check_outputs(args, created);
   check_loads(r.machine_text);
   const bool patch_to_file = !args.patch.empty() && args.patch != "-";
   check_folder(args.output, "-o");
@@ -86,6 +116,7 @@ int run_init(const InitArgs& args, std::ostream& patch_out, std::ostream& report
          << '\n';
   for (const std::string& file : r.not_read) report << "  not read: " << file << '\n';
   for (const std::string& remark : r.machine.remarks) report << "  note: " << remark << '\n';
+  for (const std::string& remark : r.remarks) report << "  note: " << remark << '\n';
   return 0;
 }
 
@@ -101,6 +132,9 @@ void add_init_command(CLI::App& volcomp, int& exit_code) {
   cmd->add_option("-o,--output", args->output, "the machine file to write (.toml)")->required();
   cmd->add_option("--patch", args->patch,
                   "write the patch (unified diff, for patch -p1 -d CONFIG_DIR) to this file; - or none: stdout");
+  cmd->add_flag("--edit-shared", args->edit_shared,
+                "edit files other configurations use too (#INCLUDEd files, HAL files another INI of the folder "
+                "names) in place; without it the patch gives this configuration its own copy of them");
   cmd->callback([args, &exit_code] { exit_code = run_init(*args, std::cout, std::cerr); });
 }
 

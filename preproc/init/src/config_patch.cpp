@@ -14,15 +14,22 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The edits of every file, created on first use; only files inside the configuration folder.
+// The edits of every file, created on first use; only files inside the configuration folder,
+// and the #INCLUDEd files when they are copied (a copy goes into the folder).
 class Edits {
  public:
-  Edits(const LinuxcncIni& ini, const HalConfig& hal) : ini_(ini), hal_(hal) {}
+  Edits(const LinuxcncIni& ini, const HalConfig& hal, bool copy_includes)
+      : ini_(ini), hal_(hal), copy_includes_(copy_includes) {}
 
   bool patchable(const std::string& path) const { return display_path(path, ini_.folder()) != path; }
+  bool included(const std::string& path) const {
+    for (const IniInclude& include : ini_.includes())
+      if (include.path == path) return true;
+    return false;
+  }
 
   FileEdits& of(const std::string& path, const SourceLocation& where, const std::string& what) {
-    if (!patchable(path))
+    if (!patchable(path) && !(copy_includes_ && included(path)))
       throw LoadError(where, what + ", in a file outside the configuration folder " + ini_.folder() +
                                  ": init patches the configuration's own files only (copy the file into the folder "
                                  "and name it from the INI)");
@@ -48,6 +55,7 @@ class Edits {
  private:
   const LinuxcncIni& ini_;
   const HalConfig& hal_;
+  const bool copy_includes_;
   std::map<std::string, FileEdits> edits_;
 };
 
@@ -70,8 +78,15 @@ std::string rewritten(const HalCommand& c, const std::string& line, std::map<int
 
 class Patcher {
  public:
-  Patcher(const LinuxcncIni& ini, const HalConfig& hal, const KinematicsLine& k, const NominalMachine& m)
-      : ini_(ini), hal_(hal), k_(k), m_(m), edits_(ini, hal), prefix_(k.module + ".") {}
+  Patcher(const LinuxcncIni& ini, const HalConfig& hal, const KinematicsLine& k, const NominalMachine& m,
+          const PatchOptions& options)
+      : ini_(ini),
+        hal_(hal),
+        k_(k),
+        m_(m),
+        options_(options),
+        edits_(ini, hal, !options.edit_shared),
+        prefix_(k.module + ".") {}
 
   ConfigPatch run(const std::string& machine_path) {
     ConfigPatch patch;
@@ -80,17 +95,129 @@ class Patcher {
     for (const HalCommand& c : hal_.commands) rewrite(c);
     remove_sets_of_emptied_signals();
     append_to_hal_section();
+    copy_shared_files();
     for (const FileEdits* e : edits_.files()) {
       const std::string name = display_path(e->file().path, ini_.folder());
-      patch.diff += e->unified_diff(name);
       const FileEdits::Counts n = e->counts();
-      patch.changes.push_back(name + ": " + std::to_string(n.removed) + " line(s) out, " + std::to_string(n.added) +
-                              " in");
+      const auto copy = copies_.find(e->file().path);
+      if (copy == copies_.end()) {
+        patch.diff += e->unified_diff(name);
+        patch.changes.push_back(name + ": " + std::to_string(n.removed) + " line(s) out, " + std::to_string(n.added) +
+                                " in");
+        continue;
+      }
+      const std::string copy_name = display_path(copy->second.path, ini_.folder());
+      // A first line says what the copy is (and keeps a copy whose every line went from being empty).
+      std::vector<TextLine> lines = e->result();
+      lines.insert(lines.begin(),
+                   TextLine{"# volcomp init: " + ini_.path().substr(ini_.folder().size() + 1) + "'s copy of " + name +
+                                " (other configurations use that one), " + "volkins in place of " + k_.module,
+                            lines.empty() || lines.front().end.empty() ? "\n" : lines.front().end});
+      patch.diff += creation_diff(copy_name, lines);
+      patch.created.push_back(copy->second.path);
+      patch.changes.push_back(copy_name + ": new, a copy of " + name + " for this configuration with its " +
+                              std::to_string(n.removed) + " line(s) out, " + std::to_string(n.added) + " in");
+      patch.remarks.push_back(name + " is left as it is: " + copy->second.why + "; its edits go to the new " +
+                              copy_name + ", which " + copy->second.named_by +
+                              " now names (volcomp init --edit-shared edits it in place instead, which changes "
+                              "every configuration that uses it)");
     }
     return patch;
   }
 
  private:
+  // A file this configuration shares with others, and the copy the patch makes of it.
+  struct Copy {
+    std::string path;      // the copy, absolute
+    std::string why;       // why it is shared
+    std::string named_by;  // the lines that name the copy
+  };
+
+  // Why `path` is shared, or "" if it is this configuration's own.
+  std::string shared(const std::string& path) const {
+    if (options_.edit_shared || path == ini_.path()) return "";
+    if (edits_.included(path)) return "an #INCLUDEd file, which other configurations may include too";
+    const auto it = options_.shared_hal_files.find(path);
+    return it == options_.shared_hal_files.end() ? "" : it->second;
+  }
+
+  // Shared files stay as they are; their edits go to a copy, which this configuration's lines
+  // then name. Naming it is an edit of another file, which may be shared in turn.
+  void copy_shared_files() {
+    for (bool more = true; more;) {
+      more = false;
+      for (const FileEdits* e : edits_.files()) {
+        const std::string path = e->file().path;
+        const std::string why = shared(path);
+        if (why.empty() || copies_.count(path)) continue;
+        Copy& copy = copies_[path];
+        copy.path = free_copy_name(path);
+        copy.why = why;
+        copy.named_by = name_the_copy(path, display_path(copy.path, ini_.folder()));
+        more = true;
+        break;  // edits_ has changed
+      }
+    }
+  }
+
+  // `<name>.volkins<ext>` beside the file (in the configuration folder if the file is outside
+  // it), `<name>.volkins-2<ext>` ... if that exists.
+  std::string free_copy_name(const std::string& path) const {
+    const fs::path file = path;
+    const fs::path folder = edits_.patchable(path) ? file.parent_path() : fs::path(ini_.folder());
+    for (int n = 1;; ++n) {
+      const fs::path candidate = folder / (file.stem().string() + ".volkins" + (n == 1 ? "" : "-" + std::to_string(n)) +
+                                           file.extension().string());
+      bool taken = fs::exists(fs::symlink_status(candidate));
+      for (const auto& [original, copy] : copies_) taken = taken || copy.path == candidate.string();
+      if (!taken) return candidate.string();
+    }
+  }
+
+  // Every line of this configuration that names `path` names `name` instead (the copy, relative
+  // to the configuration folder: LinuxCNC looks #INCLUDEs, HALFILEs and sourced files up from
+  // there); which lines, for the summary.
+  std::string name_the_copy(const std::string& path, const std::string& name) {
+    std::vector<std::string> lines;
+    for (const IniInclude& include : ini_.includes()) {
+      if (include.path != path) continue;
+      FileEdits& f = edits_.of(ini_.path(), {ini_.path(), include.line}, "#INCLUDE");
+      const std::string& text = f.file().line(include.line).text;
+      f.replace(include.line,
+                text.substr(0, include.name_offset) + name + text.substr(include.name_offset + include.written.size()));
+      lines.push_back(display_path(ini_.path(), ini_.folder()) + ":" + std::to_string(include.line));
+    }
+    for (const HalFileUse& use : hal_.uses) {
+      if (use.path != path || !use.entry) continue;
+      const IniEntry& e = *use.entry;
+      if (e.line != e.last_line)
+        throw LoadError(e.where(), e.key +
+                                       " continues on the next line ('\\'): write it on one line for init to "
+                                       "name the copy of " +
+                                       display_path(path, ini_.folder()) + " there");
+      FileEdits& f = edits_.of(e.path, e.where(), "[HAL]" + e.key);
+      const std::string& text = f.file().line(e.line).text;
+      const std::size_t end = text.find_first_of(" \t", e.value_offset);
+      f.replace(e.line, text.substr(0, e.value_offset) + name + (end == std::string::npos ? "" : text.substr(end)));
+      lines.push_back(display_path(e.path, ini_.folder()) + ":" + std::to_string(e.line));
+    }
+    for (const HalSource& source : hal_.sources) {
+      if (source.path != path) continue;
+      const HalCommand& c = hal_.commands[source.command];
+      if (!c.word_is_token(1))
+        throw LoadError(c.where(), "the file of " + quoted_line(c.text) +
+                                       " comes from an INI reference: write "
+                                       "its name for init to name the copy of " +
+                                       display_path(path, ini_.folder()));
+      FileEdits& f = edits_for(c, "sources a file the patch copies");
+      f.replace(c.line, rewritten(c, f.file().line(c.line).text, {{c.word_token[1], name}}));
+      lines.push_back(display_path(c.path, ini_.folder()) + ":" + std::to_string(c.line));
+    }
+    std::string text;
+    for (const std::string& line : lines) text += (text.empty() ? "" : ", ") + line;
+    return text;
+  }
+
   std::string kinematics_value(const std::string& machine_path) const {
     if (machine_path.find_first_of(" \t") != std::string::npos)
       throw LoadError(k_.entry->where(), "the machine file's path `" + machine_path +
@@ -113,9 +240,9 @@ class Patcher {
   bool is_stock_pin(const std::string& word) const { return word.rfind(prefix_, 0) == 0; }
 
   FileEdits& edits_for(const HalCommand& c, const std::string& what) {
-    FileEdits& f = edits_.of(c.path, c.where(), "`" + c.text + "` " + what);
+    FileEdits& f = edits_.of(c.path, c.where(), quoted_line(c.text) + " " + what);
     if (c.line != c.last_line)
-      throw LoadError(c.where(), "`" + c.text + "` " + what +
+      throw LoadError(c.where(), quoted_line(c.text) + " " + what +
                                      " and continues on the next line ('\\'): write it on one "
                                      "line for init to rewrite it");
     return f;
@@ -126,8 +253,8 @@ class Patcher {
     if (std::find(m_.pins.begin(), m_.pins.end(), name) == m_.pins.end())
       throw LoadError(c.where(), k_.module + " has no pin " + pin + (m_.pins.empty() ? " (it has none)" : ""));
     if (!c.word_is_token(word))
-      throw LoadError(c.where(), pin + " comes from an INI reference in `" + c.text +
-                                     "`: write the pin's name for init to rewrite the line");
+      throw LoadError(c.where(), pin + " comes from an INI reference in " + quoted_line(c.text) +
+                                     ": write the pin's name for init to rewrite the line");
   }
 
   void rewrite(const HalCommand& c) {
@@ -175,7 +302,7 @@ class Patcher {
     }
     for (std::size_t w = 0; w < c.words.size(); ++w)
       if (is_stock_pin(c.words[w]))
-        throw LoadError(c.where(), "`" + c.text + "` names " + c.words[w] +
+        throw LoadError(c.where(), quoted_line(c.text) + " names " + c.words[w] +
                                        ": init rewrites the setp and net lines of " + k_.module +
                                        " pins only; change this one by hand (volkins has no such pin)");
   }
@@ -210,7 +337,7 @@ class Patcher {
     std::istringstream words(k_.entry->value);
     for (std::string w; words >> w;) ini.insert(w);
     if (here != ini && !same_trivkins(c))
-      throw LoadError(c.where(), "`" + c.text + "` loads " + k_.module +
+      throw LoadError(c.where(), quoted_line(c.text) + " loads " + k_.module +
                                      " with other parameters than [KINS]KINEMATICS (" + ini_.cite(*k_.entry) +
                                      "): make them the same (`loadrt [KINS]KINEMATICS`)");
     FileEdits& f = edits_for(c, "loads " + k_.module);
@@ -293,7 +420,9 @@ class Patcher {
   const HalConfig& hal_;
   const KinematicsLine& k_;
   const NominalMachine& m_;
+  const PatchOptions& options_;
   Edits edits_;
+  std::map<std::string, Copy> copies_;  // original -> its copy
   const std::string prefix_;
   std::string kinematics_;
   bool tool_offset_replaced_ = false;
@@ -303,8 +432,8 @@ class Patcher {
 }  // namespace
 
 ConfigPatch patch_config(const LinuxcncIni& ini, const HalConfig& hal, const KinematicsLine& kinematics,
-                         const NominalMachine& machine, const std::string& machine_path) {
-  return Patcher(ini, hal, kinematics, machine).run(machine_path);
+                         const NominalMachine& machine, const std::string& machine_path, const PatchOptions& options) {
+  return Patcher(ini, hal, kinematics, machine, options).run(machine_path);
 }
 
 }  // namespace vc::init

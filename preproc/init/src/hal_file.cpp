@@ -1,5 +1,6 @@
 #include "vc/init/hal_file.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdlib>
 #include <cstring>
@@ -61,13 +62,14 @@ std::string replace_references(const std::string& token, const LinuxcncIni& ini,
       continue;
     }
     const std::size_t close = token.find(']', i);
-    if (close == std::string::npos) throw LoadError(where, "'[' without ']' in `" + token + "` (halcmd stops here)");
+    if (close == std::string::npos)
+      throw LoadError(where, "'[' without ']' in " + quoted_line(token) + " (halcmd stops here)");
     const std::string section = token.substr(i + 1, close - i - 1);
     std::size_t key_start = close + 1, key_end;
     if (key_start < token.size() && token[key_start] == '(') {
       key_end = token.find(')', ++key_start);
       if (key_end == std::string::npos)
-        throw LoadError(where, "'(' without ')' in `" + token + "` (halcmd stops here)");
+        throw LoadError(where, "'(' without ')' in " + quoted_line(token) + " (halcmd stops here)");
       i = key_end + 1;
     } else {
       key_end = key_start;
@@ -76,18 +78,23 @@ std::string replace_references(const std::string& token, const LinuxcncIni& ini,
     }
     const std::string key = token.substr(key_start, key_end - key_start);
     const std::string reference = "[" + section + "]" + key;
-    if (key.empty()) throw LoadError(where, "`" + reference + "` names no INI key (halcmd stops here)");
+    if (key.empty()) throw LoadError(where, quoted_line(reference) + " names no INI key (halcmd stops here)");
     const IniEntry* value = ini.find(section, key);  // []KEY: any section, as halcmd
     if (!value)
-      throw LoadError(where, reference + " is not defined in " + display_path(ini.path(), ini.folder()) +
+      throw LoadError(where, printable(reference) + " is not defined in " + display_path(ini.path(), ini.folder()) +
                                  ": halcmd stops at this line (LinuxCNC would not start)");
     out += value->value;
   }
   return out;
 }
 
+// How a command's INI references are taken: replaced (halcmd -i INI), left as written (a
+// HALCMD: halcmd gets it as arguments), or refused (a file sourced from a HALCMD: halcmd has no
+// INI file to look them up in).
+enum class References { kReplace, kAsWritten, kRefuse };
+
 HalCommand command_from(const std::string& path, int line, int last_line, bool in_ini, const std::string& text,
-                        std::size_t from, const LinuxcncIni* ini) {
+                        std::size_t from, const LinuxcncIni& ini, References references) {
   HalCommand c;
   c.path = path;
   c.line = line;
@@ -97,7 +104,13 @@ HalCommand command_from(const std::string& path, int line, int last_line, bool i
   c.tokens = split(text, from, comment_start(text, from));
   for (std::size_t t = 0; t < c.tokens.size(); ++t) {
     const std::string written = text.substr(c.tokens[t].offset, c.tokens[t].length);
-    const std::string expanded = ini ? replace_references(written, *ini, c.where()) : written;
+    if (references == References::kRefuse && written.find('[') != std::string::npos)
+      throw LoadError(c.where(), quoted_line(written) +
+                                     " in a file sourced from a [HAL]HALCMD: LinuxCNC runs HALCMDs "
+                                     "without the INI file (no halcmd -i), so halcmd cannot replace "
+                                     "an INI reference there and stops at this line");
+    const std::string expanded =
+        references == References::kReplace ? replace_references(written, ini, c.where()) : written;
     for (const HalToken& w : split(expanded, 0, expanded.size())) {
       c.words.push_back(unquoted(expanded.substr(w.offset, w.length)));
       c.word_token.push_back(expanded == written ? static_cast<int>(t) : -1 - static_cast<int>(t));
@@ -134,21 +147,65 @@ std::string find_hal_file(std::string name, const IniEntry& entry, const Linuxcn
 
 bool is_tcl(const std::string& path) { return fs::path(path).extension() == ".tcl"; }
 
-void read_hal_file(const HalFileUse& use, const LinuxcncIni& ini, HalConfig& hal) {
-  hal.files.push_back(read_text_file(use.path, "HAL file"));
-  const TextFile& file = hal.files.back();
-  const int count = static_cast<int>(file.lines.size());
-  for (int n = 1; n <= count; ++n) {
-    std::string text = file.line(n).text;
-    const int first = n;
-    while (!text.empty() && text.back() == '\\' && n < count) {  // halcmd's line continuation
-      text.pop_back();
-      text += file.line(++n).text;
-    }
-    HalCommand c = command_from(file.path, first, n, false, text, 0, &ini);
-    if (!c.words.empty()) hal.commands.push_back(std::move(c));
+// Reads HAL files and the files their `source` commands run, in halcmd's order.
+class HalReader {
+ public:
+  HalReader(const LinuxcncIni& ini, HalConfig& hal) : ini_(ini), hal_(hal) {}
+
+  // A HALFILE's file (halcmd -f: lines continued with '\\', INI references replaced).
+  void read_file(const std::string& path) { read(path, true, References::kReplace); }
+
+  // A command just added to hal_.commands: if it is `source FILE`, FILE's commands follow it.
+  void follow_source(References references) {
+    const std::size_t index = hal_.commands.size() - 1;
+    const HalCommand& c = hal_.commands[index];
+    if (c.words.empty() || c.words[0] != "source") return;
+    if (c.words.size() != 2)
+      throw LoadError(c.where(), quoted_line(c.text) + ": source takes one file name (halcmd refuses this line)");
+    std::string written = c.words[1];
+    if (written.rfind("~/", 0) == 0)  // halcmd's A_TILDE
+      if (const char* home = std::getenv("HOME")) written = home + written.substr(1);
+    const fs::path name = written;
+    // halcmd opens the name as it is (no library), from LinuxCNC's working folder: the
+    // configuration folder.
+    const std::string path = absolute_path((name.is_absolute() ? name : fs::path(ini_.folder()) / name).string());
+    if (const std::string why = unreadable_reason(path); !why.empty())
+      throw LoadError(c.where(), "source " + printable(c.words[1]) + ": cannot read " + path + ": " + why +
+                                     " (halcmd opens it from the configuration folder; LinuxCNC would not start)");
+    if (std::find(stack_.begin(), stack_.end(), path) != stack_.end())
+      throw LoadError(c.where(), "source " + printable(c.words[1]) + ": a loop: " + display_path(path, ini_.folder()) +
+                                     " is running this file already (halcmd would source them in turn until it runs "
+                                     "out of open files)");
+    hal_.sources.push_back({index, path, cite(c.path, c.line, c.text, ini_.folder())});
+    read(path, false, references == References::kReplace ? References::kReplace : References::kRefuse);
   }
-}
+
+ private:
+  void read(const std::string& path, bool continued_lines, References references) {
+    const TextFile file = read_text_file(path, "HAL file");
+    hal_.files.push_back(file);
+    stack_.push_back(file.path);
+    const int count = static_cast<int>(file.lines.size());
+    for (int n = 1; n <= count; ++n) {
+      std::string text = file.line(n).text;
+      const int first = n;
+      // halcmd -f continues a line ending in '\\'; source (do_source_cmd) reads line by line.
+      while (continued_lines && !text.empty() && text.back() == '\\' && n < count) {
+        text.pop_back();
+        text += file.line(++n).text;
+      }
+      HalCommand c = command_from(file.path, first, n, false, text, 0, ini_, references);
+      if (c.words.empty()) continue;
+      hal_.commands.push_back(std::move(c));
+      follow_source(references);
+    }
+    stack_.pop_back();
+  }
+
+  const LinuxcncIni& ini_;
+  HalConfig& hal_;
+  std::vector<std::string> stack_;  // the files being read, outermost first
+};
 
 }  // namespace
 
@@ -174,7 +231,7 @@ HalConfig read_hal(const LinuxcncIni& ini) {
       const std::vector<HalToken> words = split(e->value, 0, e->value.size());
       if (words.empty()) continue;
       const std::string name = e->value.substr(words[0].offset, words[0].length);
-      HalFileUse use{key, e->value, find_hal_file(name, *e, ini), ini.cite(*e), false};
+      HalFileUse use{key, e->value, find_hal_file(name, *e, ini), ini.cite(*e), false, e};
       use.read = !is_tcl(use.path);
       uses.push_back(use);
     }
@@ -182,11 +239,11 @@ HalConfig read_hal(const LinuxcncIni& ini) {
   };
   const std::vector<HalFileUse> halfiles = uses_of("HALFILE"), posttask = uses_of("POSTTASK_HALFILE"),
                                 postgui = uses_of("POSTGUI_HALFILE");
-  hal.files.reserve(halfiles.size() + posttask.size() + postgui.size());
+  HalReader reader(ini, hal);
   auto run = [&](const std::vector<HalFileUse>& uses) {
     for (const HalFileUse& use : uses) {
       hal.uses.push_back(use);
-      if (use.read) read_hal_file(use, ini, hal);
+      if (use.read) reader.read_file(use.path);
     }
   };
   run(halfiles);
@@ -198,9 +255,11 @@ HalConfig read_hal(const LinuxcncIni& ini) {
     const bool one_line = e->line == e->last_line;
     // A HALCMD runs as written (no INI references): halcmd gets it as its arguments.
     HalCommand c = command_from(e->path, e->line, e->last_line, true, one_line ? file->line(e->line).text : e->value,
-                                one_line ? e->value_offset : 0, nullptr);
+                                one_line ? e->value_offset : 0, ini, References::kAsWritten);
     c.text = e->text;
-    if (!c.words.empty()) hal.commands.push_back(std::move(c));
+    if (c.words.empty()) continue;
+    hal.commands.push_back(std::move(c));
+    reader.follow_source(References::kAsWritten);
   }
   run(postgui);
   return hal;

@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 
 namespace vc::init {
 namespace {
@@ -17,18 +18,18 @@ struct SourceLine {
   const std::string& text() const { return file->line(number).text; }
 };
 
-// The file an #INCLUDE line names (the shell's `eval echo` of it: `~` expanded), or "" if the
-// line is not an #INCLUDE.
-std::string included_name(const std::string& text) {
+// The file an #INCLUDE line names (the shell's `eval echo` of it: `~` expanded) and where the
+// name starts; nullopt if the line is not an #INCLUDE, "" for a bare one.
+std::optional<std::pair<std::string, std::size_t>> included_name(const std::string& text) {
   const std::size_t first = text.find_first_not_of(" \t");
-  if (first == std::string::npos || text.compare(first, 8, "#INCLUDE") != 0) return "";
+  if (first == std::string::npos || text.compare(first, 8, "#INCLUDE") != 0) return std::nullopt;
   const std::size_t after = first + 8;
-  if (after < text.size() && text[after] != ' ' && text[after] != '\t') return "";
+  if (after < text.size() && text[after] != ' ' && text[after] != '\t') return std::nullopt;
+  const std::size_t start = std::min(text.size(), text.find_first_not_of(" \t", after));
   std::string name = trim(std::string_view(text).substr(after));
-  if (name.empty()) return "#INCLUDE";  // refused by the caller
-  if (name[0] == '~')
+  if (!name.empty() && name[0] == '~')
     if (const char* home = std::getenv("HOME")) name = home + name.substr(1);
-  return name;
+  return std::make_pair(name, start);
 }
 
 }  // namespace
@@ -40,24 +41,32 @@ LinuxcncIni LinuxcncIni::read(const std::string& path) {
   ini.files_.push_back(read_text_file(ini.path_, "INI file"));
 
   // Flatten #INCLUDEs first (files_ must not grow while lines point into it).
-  std::vector<std::pair<int, std::string>> includes;  // line of the #INCLUDE, file
   const TextFile& main = ini.files_.front();
   for (int n = 1; n <= static_cast<int>(main.lines.size()); ++n) {
-    const std::string name = included_name(main.line(n).text);
-    if (name == "#INCLUDE") throw LoadError({ini.path_, n}, "#INCLUDE without a file name");
-    if (!name.empty()) includes.emplace_back(n, name);
+    const auto name = included_name(main.line(n).text);
+    if (!name) continue;
+    if (name->first.empty()) {  // handle_includes warns and goes on; the line is a comment
+      ini.remarks_.push_back(init::cite(ini.path_, n, trim(main.line(n).text), ini.folder_) +
+                             ": #INCLUDE without a file name, skipped (LinuxCNC warns \"found #INCLUDE with no "
+                             "filename\" and goes on)");
+      continue;
+    }
+    const fs::path file =
+        fs::path(name->first).is_absolute() ? fs::path(name->first) : fs::path(ini.folder_) / name->first;
+    const std::string why = unreadable_reason(file.string());
+    if (!why.empty())
+      throw LoadError({ini.path_, n}, "#INCLUDE " + printable(name->first) + ": cannot read " +
+                                          absolute_path(file.string()) + ": " + why);
+    ini.includes_.push_back(
+        {n, main.line(n).text.substr(name->second, std::string::npos), name->second, absolute_path(file.string())});
+    ini.includes_.back().written = trim(ini.includes_.back().written);
   }
-  ini.files_.reserve(1 + includes.size());
-  for (const auto& [n, name] : includes) {
-    const fs::path file = fs::path(name).is_absolute() ? fs::path(name) : fs::path(ini.folder_) / name;
-    if (!fs::is_regular_file(file))
-      throw LoadError({ini.path_, n}, "#INCLUDE " + name + ": cannot read " + absolute_path(file.string()));
-    ini.files_.push_back(read_text_file(file.string(), "#INCLUDE file"));
-  }
+  ini.files_.reserve(1 + ini.includes_.size());
+  for (const IniInclude& include : ini.includes_) ini.files_.push_back(read_text_file(include.path, "#INCLUDE file"));
   std::vector<SourceLine> lines;
   std::size_t next_include = 0;
   for (int n = 1; n <= static_cast<int>(ini.files_.front().lines.size()); ++n) {
-    if (next_include < includes.size() && includes[next_include].first == n) {
+    if (next_include < ini.includes_.size() && ini.includes_[next_include].line == n) {
       const TextFile& included = ini.files_[++next_include];
       for (int k = 1; k <= static_cast<int>(included.lines.size()); ++k) lines.push_back({&included, k});
       continue;

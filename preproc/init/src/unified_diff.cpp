@@ -128,4 +128,14 @@ std::string FileEdits::unified_diff(const std::string& name, int context) const 
   return diff;
 }
 
+std::string creation_diff(const std::string& name, const std::vector<TextLine>& lines) {
+  std::string diff = "--- /dev/null\n+++ b/" + name + "\n@@ -0,0 +1" +
+                     (lines.size() == 1 ? "" : "," + std::to_string(lines.size())) + " @@\n";
+  for (const TextLine& line : lines) {
+    diff += "+" + line.text + line.end;
+    if (line.end.empty()) diff += "\n\\ No newline at end of file\n";
+  }
+  return diff;
+}
+
 }  // namespace vc::init

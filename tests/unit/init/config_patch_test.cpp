@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -287,6 +288,151 @@ TEST(ConfigPatch, RefusesWhatItCannotRewrite) {
                     0),
       0u)
       << outside;
+}
+
+// The golden xyzbc mill (tests/golden/bad_inis/good) in a scratch folder, its INI's HALFILE line
+// replaced by `halfiles`; the INI's path.
+fs::path golden_mill(const std::string& name, const std::string& halfiles, const std::string& ini_name = "m.ini") {
+  const fs::path dir = test::scratch_folder(name);
+  std::string ini = test::file_text(test::source_path("tests/golden/bad_inis/good/xyzbc.ini"));
+  ini.replace(ini.find("HALFILE = xyzbc.hal\n"), 20, halfiles);
+  test::write_file(dir / ini_name, ini);
+  return dir / ini_name;
+}
+
+constexpr const char* kGoldenGeometry =
+    "setp xyzbc-trt-kins.z-rot-point 50\nsetp xyzbc-trt-kins.x-offset -20\nsetp xyzbc-trt-kins.z-offset -15\n";
+
+// A stock pin set in a file run by `source` is seen (the machine file's poles) and patched as in
+// any HAL file of the folder; outside the folder it is refused.
+TEST(ConfigPatch, PatchesStockPinsInSourcedFiles) {
+  const fs::path ini = golden_mill("sourced", "HALFILE = kins.hal\n");
+  const fs::path dir = ini.parent_path();
+  test::write_file(dir / "kins.hal", "loadrt [KINS]KINEMATICS\nsource geometry.hal\n");
+  test::write_file(dir / "geometry.hal", std::string("# the geometry\n") + kGoldenGeometry + "setp other.pin 1\n");
+  const InitResult r = init_and_patch(ini);
+  EXPECT_EQ(r.machine.workpiece_chain[0].pole_mm, (Vector3{-20, 0, 35}));  // [xr + dx, yr, zr + dz]
+  EXPECT_EQ(r.machine.fixture_origin_mm, (Vector3{0, 0, -50}));
+  EXPECT_EQ(test::file_text(dir / "geometry.hal"), "# the geometry\nsetp other.pin 1\n");
+  EXPECT_EQ(test::file_text(dir / "kins.hal"), "loadrt [KINS]KINEMATICS\nsource geometry.hal\n");
+  expect_no_stock_pin(dir, "xyzbc-trt-kins.");
+
+  const fs::path outside = test::scratch_folder("sourced_outside") / "geometry.hal";
+  test::write_file(outside, kGoldenGeometry);
+  const fs::path second = golden_mill("sourced_from_outside", "HALFILE = kins.hal\n");
+  test::write_file(second.parent_path() / "kins.hal", "loadrt [KINS]KINEMATICS\nsource " + outside.string() + "\n");
+  try {
+    run_init({second.string(), (second.parent_path() / "m.toml").string(), "2026-01-01"});
+    ADD_FAILURE() << "a stock pin sourced from outside the folder was accepted";
+  } catch (const LoadError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(outside.string() +
+                                              ":1: error: `setp xyzbc-trt-kins.z-rot-point 50` sets a xyzbc-trt-kins "
+                                              "pin, in a file outside the configuration folder",
+                                          0),
+              0u)
+        << e.what();
+  }
+}
+
+// The files of a folder, by name: their bytes.
+std::map<std::string, std::string> folder_files(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.is_regular_file()) files[entry.path().filename().string()] = test::file_text(entry.path());
+  return files;
+}
+
+// LinuxCNC's qtplasmac samples include qtplasmac_metric_ini.inc from three INIs: the patch
+// leaves it as it is and gives this configuration a copy with the edits; --edit-shared edits it.
+TEST(ConfigPatch, CopiesTheQtplasmacIncludeRatherThanChangeItForEveryone) {
+  const fs::path original = "/usr/share/doc/linuxcnc/examples/sample-configs/sim/qtplasmac";
+  if (!fs::is_directory(original)) GTEST_SKIP() << "LinuxCNC's qtplasmac sample is not installed (" << original << ")";
+  const fs::path copy = test::scratch_folder("qtplasmac") / "qtplasmac";
+  fs::copy(original, copy, fs::copy_options::recursive);
+  const std::map<std::string, std::string> before = folder_files(copy);
+  const InitResult r = init_and_patch(copy / "qtplasmac_l_metric.ini");
+  const std::map<std::string, std::string> after = folder_files(copy);
+
+  EXPECT_EQ(after.at("qtplasmac_metric_ini.inc"), before.at("qtplasmac_metric_ini.inc"));  // byte for byte
+  const std::string& inc = after.at("qtplasmac_metric_ini.volkins.inc");
+  EXPECT_NE(inc.find("\nKINEMATICS              = volkins machine=machine.toml coordinates=xyyz\n"), std::string::npos);
+  EXPECT_NE(inc.find("\nHALCMD = addf volkins.update servo-thread 1\n"), std::string::npos);
+  EXPECT_EQ(inc.find("= trivkins"), std::string::npos);
+  std::string ini = before.at("qtplasmac_l_metric.ini");
+  ini.replace(ini.find("#INCLUDE qtplasmac_metric_ini.inc"), 33, "#INCLUDE qtplasmac_metric_ini.volkins.inc");
+  EXPECT_EQ(after.at("qtplasmac_l_metric.ini"), ini);
+  for (const auto& [name, text] : before) {  // the other configurations are unaffected
+    if (name != "qtplasmac_l_metric.ini") {
+      EXPECT_EQ(after.at(name), text) << name;
+    }
+  }
+  EXPECT_EQ(after.size(), before.size() + 1);  // the copy
+  EXPECT_EQ(r.patch.created, std::vector<std::string>{(copy / "qtplasmac_metric_ini.volkins.inc").string()});
+  ASSERT_EQ(r.remarks.size(), 1u);
+  EXPECT_NE(r.remarks[0].find("qtplasmac_metric_ini.inc is left as it is: an #INCLUDEd file"), std::string::npos);
+  EXPECT_NE(r.remarks[0].find("--edit-shared edits it in place"), std::string::npos);
+  // The copy read back as the configuration's include: volkins' line where trivkins was.
+  const LinuxcncIni patched = LinuxcncIni::read((copy / "qtplasmac_l_metric.ini").string());
+  EXPECT_EQ(patched.find("KINS", "KINEMATICS")->value, "volkins machine=machine.toml coordinates=xyyz");
+
+  // --edit-shared: the include edited in place, no copy.
+  const fs::path in_place = test::scratch_folder("qtplasmac_in_place") / "qtplasmac";
+  fs::copy(original, in_place, fs::copy_options::recursive);
+  const InitResult e = run_init(
+      {(in_place / "qtplasmac_l_metric.ini").string(), (in_place / "machine.toml").string(), "2026-01-01", true});
+  test::write_file(in_place.parent_path() / "edit.diff", e.patch.diff);
+  ASSERT_EQ(test::apply_patch(in_place, in_place.parent_path() / "edit.diff"), 0) << e.patch.diff;
+  EXPECT_TRUE(e.patch.created.empty());
+  EXPECT_EQ(
+      "# volcomp init: qtplasmac_l_metric.ini's copy of qtplasmac_metric_ini.inc (other configurations use "
+      "that one), volkins in place of trivkins\n" +
+          test::file_text(in_place / "qtplasmac_metric_ini.inc"),
+      inc);
+  EXPECT_EQ(test::file_text(in_place / "qtplasmac_l_metric.ini"), before.at("qtplasmac_l_metric.ini"));
+  EXPECT_FALSE(fs::exists(in_place / "qtplasmac_metric_ini.volkins.inc"));
+}
+
+// A HAL file another INI of the folder names (HALFILE, or a HALCMD's source) gets a copy; the
+// line of this configuration that names it (a HALFILE, a source in its own HAL file) names the
+// copy; a HAL file only this INI uses is edited in place.
+TEST(ConfigPatch, CopiesAHalFileAnotherConfigurationUses) {
+  const fs::path ini = golden_mill("shared_hal", "HALFILE = shared.hal\nHALFILE = own.hal\n", "a.ini");
+  const fs::path dir = ini.parent_path();
+  test::write_file(dir / "shared.hal", "loadrt [KINS]KINEMATICS\nsetp xyzbc-trt-kins.z-rot-point 50\n");
+  test::write_file(dir / "own.hal", "setp xyzbc-trt-kins.x-offset -20\nsource geo.hal\n");
+  test::write_file(dir / "geo.hal", "setp xyzbc-trt-kins.z-offset -15\n");
+  test::write_file(dir / "shared.volkins.hal", "# someone else's file of that name\n");
+  std::string other = test::file_text(ini);
+  other.replace(other.find("HALFILE = shared.hal\nHALFILE = own.hal\n"), 38,
+                "HALFILE = shared.hal\nHALCMD = source geo.hal\n");
+  test::write_file(dir / "b.ini", other);
+  const std::map<std::string, std::string> before = folder_files(dir);
+  const InitResult r = init_and_patch(ini);
+  const std::map<std::string, std::string> after = folder_files(dir);
+
+  EXPECT_EQ(r.machine.workpiece_chain[0].pole_mm, (Vector3{-20, 0, 35}));
+  for (const char* unchanged : {"shared.hal", "geo.hal", "b.ini", "shared.volkins.hal"})
+    EXPECT_EQ(after.at(unchanged), before.at(unchanged)) << unchanged;
+  const std::string header = "# volcomp init: a.ini's copy of ";
+  const std::string tail = " (other configurations use that one), volkins in place of xyzbc-trt-kins\n";
+  EXPECT_EQ(after.at("shared.volkins-2.hal"), header + "shared.hal" + tail + "loadrt [KINS]KINEMATICS\n");  // free name
+  EXPECT_EQ(after.at("geo.volkins.hal"), header + "geo.hal" + tail);  // every line went
+  EXPECT_EQ(after.at("own.hal"), "source geo.volkins.hal\n");         // this INI's only: in place
+  EXPECT_NE(after.at("a.ini").find("HALFILE = shared.volkins-2.hal\nHALFILE = own.hal\n"), std::string::npos);
+  EXPECT_EQ(after.at("a.ini").find("xyzbc-trt-kins."), std::string::npos);
+  EXPECT_EQ(after.size(), before.size() + 2);  // the two copies
+
+  // --edit-shared: the same folder as it was, edited in place, no copy.
+  const fs::path again = test::scratch_folder("shared_hal_in_place");
+  for (const auto& [name, text] : before) test::write_file(again / name, text);
+  const InitResult e = run_init({(again / "a.ini").string(), (again / "machine.toml").string(), "2026-01-01", true});
+  test::write_file(again.parent_path() / "in_place.diff", e.patch.diff);
+  ASSERT_EQ(test::apply_patch(again, again.parent_path() / "in_place.diff"), 0) << e.patch.diff;
+  EXPECT_TRUE(e.patch.created.empty());
+  EXPECT_EQ(folder_files(again).size(), before.size());
+  EXPECT_EQ(test::file_text(again / "shared.hal"), "loadrt [KINS]KINEMATICS\n");
+  EXPECT_EQ(test::file_text(again / "geo.hal"), "");
+  EXPECT_EQ(test::file_text(again / "own.hal"), "source geo.hal\n");
 }
 
 }  // namespace

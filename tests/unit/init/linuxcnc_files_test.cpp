@@ -214,5 +214,99 @@ TEST(PinValue, TheLastSettingInLinuxcncsOrderWins) {
   }
 }
 
+// halcmd's `source FILE` runs FILE's commands at that point (do_source_cmd): from the
+// configuration folder, INI references replaced in a chain that began in a HAL file, no line
+// continuation; the last setting wins in that order.
+TEST(HalFile, FollowsSourceWhereLinuxcncDoes) {
+  const fs::path ini = configuration("source", {{"m.ini",
+                                                 "[GEO]\nZ = 50\nFILE = geometry.hal\n"
+                                                 "[HAL]\nHALFILE = sub/m.hal\nHALCMD = source late.hal\n"},
+                                                {"geometry.hal", "setp k.z [GEO]Z\nsetp k.x 2 \\\nsetp k.y 3\n"},
+                                                {"late.hal", "setp k.y 9\n"}});
+  // m.hal lies in sub/, but halcmd opens a sourced name from the configuration folder.
+  fs::create_directories(ini.parent_path() / "sub");
+  write_file(ini.parent_path() / "sub/m.hal", "setp k.z 1\nsource [GEO]FILE\nsetp k.after 1\n");
+  const LinuxcncIni r = LinuxcncIni::read(ini.string());
+  const HalConfig hal = read_hal(r);
+  std::vector<std::string> order;
+  for (const HalCommand& c : hal.commands) order.push_back(c.words[0] + " " + (c.words.size() > 1 ? c.words[1] : ""));
+  EXPECT_EQ(order, (std::vector<std::string>{"setp k.z", "source geometry.hal", "setp k.z", "setp k.x", "setp k.y",
+                                             "setp k.after", "source late.hal", "setp k.y"}));
+  EXPECT_EQ(pin_value(hal, "k.z", 0.0).value, 50.0);  // the sourced setp comes after the HAL file's
+  EXPECT_EQ(pin_value(hal, "k.z", 0.0).command->path, (ini.parent_path() / "geometry.hal").string());
+  EXPECT_EQ(pin_value(hal, "k.z", 0.0).command->line, 1);
+  EXPECT_EQ(pin_value(hal, "k.y", 0.0).value, 9.0);  // the HALCMD's source runs after the HAL files
+  // No '\' continuation in a sourced file: `setp k.x 2 \` is its own command with the word `\`.
+  EXPECT_EQ(hal.commands[3].words, (std::vector<std::string>{"setp", "k.x", "2", "\\"}));
+  ASSERT_EQ(hal.sources.size(), 2u);
+  EXPECT_EQ(hal.sources[0].path, (ini.parent_path() / "geometry.hal").string());
+  EXPECT_EQ(hal.sources[0].cite, "sub/m.hal:2 `source [GEO]FILE`");
+  EXPECT_EQ(hal.sources[1].path, (ini.parent_path() / "late.hal").string());
+}
+
+TEST(HalFile, RefusesAMissingSourcedFileALoopAndAReferenceAfterAHalcmd) {
+  auto refusal = [](const std::string& name, const std::vector<std::pair<std::string, std::string>>& files) {
+    const fs::path ini = configuration(name, files);
+    try {
+      read_hal(LinuxcncIni::read(ini.string()));
+    } catch (const LoadError& e) {
+      return test::relative_message(std::string(e.what())).substr(ini.parent_path().string().size() + 1);
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(refusal("source_missing", {{"m.ini", "[HAL]\nHALFILE = m.hal\n"}, {"m.hal", "# x\nsource gone.hal\n"}}),
+            "m.hal:2: error: source gone.hal: cannot read " + (fs::temp_directory_path() / "").string() +
+                test::scratch_prefix() +
+                "source_missing/gone.hal: no such file (halcmd opens it from the configuration folder; LinuxCNC "
+                "would not start)");
+  EXPECT_EQ(refusal("source_loop", {{"m.ini", "[HAL]\nHALCMD = source a.hal\n"},
+                                    {"a.hal", "source b.hal\n"},
+                                    {"b.hal", "setp k.x 1\nsource a.hal\n"}}),
+            "b.hal:2: error: source a.hal: a loop: a.hal is running this file already (halcmd would source them in "
+            "turn until it runs out of open files)");
+  EXPECT_EQ(refusal("source_itself", {{"m.ini", "[HAL]\nHALFILE = m.hal\n"}, {"m.hal", "source m.hal\n"}}),
+            "m.hal:1: error: source m.hal: a loop: m.hal is running this file already (halcmd would source them in "
+            "turn until it runs out of open files)");
+  EXPECT_EQ(refusal("source_reference",
+                    {{"m.ini", "[A]\nB = 1\n[HAL]\nHALCMD = source r.hal\n"}, {"r.hal", "setp k.x [A]B\n"}}),
+            "r.hal:1: error: `[A]B` in a file sourced from a [HAL]HALCMD: LinuxCNC runs HALCMDs without the INI file "
+            "(no halcmd -i), so halcmd cannot replace an INI reference there and stops at this line");
+}
+
+// scripts/linuxcnc's handle_includes only warns about an #INCLUDE without a file name.
+TEST(LinuxcncIni, SkipsABareIncludeWithARemark) {
+  const fs::path ini = configuration("bare_include", {{"m.ini", "[KINS]\n#INCLUDE   \nJOINTS = 3\n"}});
+  const LinuxcncIni r = LinuxcncIni::read(ini.string());
+  EXPECT_EQ(r.find("KINS", "JOINTS")->value, "3");
+  EXPECT_TRUE(r.includes().empty());
+  ASSERT_EQ(r.remarks().size(), 1u);
+  EXPECT_EQ(r.remarks()[0],
+            "m.ini:2 `#INCLUDE`: #INCLUDE without a file name, skipped (LinuxCNC warns \"found #INCLUDE with no "
+            "filename\" and goes on)");
+}
+
+TEST(TextFile, SaysWhyAFileCannotBeReadAndEscapesWhatItQuotes) {
+  const fs::path dir = test::scratch_folder("unreadable");
+  auto message = [](const fs::path& path) {
+    try {
+      read_text_file(path.string(), "INI file");
+    } catch (const LoadError& e) {
+      return std::string(e.what());
+    }
+    return std::string("read");
+  };
+  EXPECT_EQ(message(dir / "none.ini"), (dir / "none.ini").string() + ": error: cannot read the INI file: no such file");
+  EXPECT_EQ(message(dir), dir.string() + ": error: cannot read the INI file: a directory, not a file");
+  write_file(dir / "nul.ini", std::string("[A]\nB = 1\0"
+                                          "2\n",
+                                          12));
+  EXPECT_EQ(message(dir / "nul.ini"), (dir / "nul.ini").string() +
+                                          ":2:6: error: a NUL byte in `B = 1\\x002`: LinuxCNC reads the line only up "
+                                          "to it (the INI file must be text: remove the byte)");
+  EXPECT_EQ(printable(std::string("a\0b\tc\x1b[0m\r\x7f\xff caf\xc3\xa9", 18)),
+            "a\\0b\tc\\x1b[0m\\r\\x7f\\xff caf\xc3\xa9");
+  EXPECT_EQ(cite("/c/m.hal", 3, "setp \x01", "/c"), "m.hal:3 `setp \\x01`");
+}
+
 }  // namespace
 }  // namespace vc::init

@@ -10,7 +10,13 @@
 //   (HalFileUse::read is false), the caller says so;
 // - in a HAL file '#' starts a comment (outside quotes), a line ending in '\' continues, and
 //   `[SECTION]KEY` / `[SECTION](KEY)` is replaced by the INI's value (an undefined one is
-//   refused with its line, as halcmd stops there); a HALCMD entry is run as it is written.
+//   refused with its line, as halcmd stops there); a HALCMD entry is run as it is written;
+// - `source FILE` (halcmd_commands.cc do_source_cmd) runs FILE's commands at that point: FILE
+//   is opened as written (after the line's INI references are replaced; `~/` expanded), from the
+//   configuration folder (LinuxCNC runs halcmd there); its lines are not continued with '\\';
+//   its INI references are replaced when the chain began in a HAL file (halcmd -i INI), and
+//   refused when it began in a HALCMD (LinuxCNC runs those without -i: halcmd stops there). A
+//   missing FILE and a file that sources itself (a loop) are refused at the source line.
 #pragma once
 
 #include <optional>
@@ -44,16 +50,25 @@ struct HalCommand {
 
 // A [HAL]HALFILE, POSTTASK_HALFILE or POSTGUI_HALFILE entry and the file LinuxCNC runs for it.
 struct HalFileUse {
-  std::string key;      // HALFILE, POSTTASK_HALFILE or POSTGUI_HALFILE
-  std::string written;  // the entry's value: file name and arguments
-  std::string path;     // the file found
-  std::string cite;     // the INI line naming it
-  bool read = false;    // false: a Tcl file, not read
+  std::string key;                  // HALFILE, POSTTASK_HALFILE or POSTGUI_HALFILE
+  std::string written;              // the entry's value: file name and arguments
+  std::string path;                 // the file found
+  std::string cite;                 // the INI line naming it
+  bool read = false;                // false: a Tcl file, not read
+  const IniEntry* entry = nullptr;  // the INI entry naming it
+};
+
+// A `source FILE` command and the file it runs.
+struct HalSource {
+  std::size_t command = 0;  // the source command, in HalConfig::commands
+  std::string path;         // the file, absolute
+  std::string cite;         // the source line
 };
 
 struct HalConfig {
   std::vector<TextFile> files;       // the HAL files read
   std::vector<HalFileUse> uses;      // every HAL file entry, in LinuxCNC's order
+  std::vector<HalSource> sources;    // every source command, in LinuxCNC's order
   std::vector<HalCommand> commands;  // in LinuxCNC's order
 
   const TextFile* file(const std::string& path) const;

@@ -9,6 +9,7 @@
 
 #include "vc/init/config_patch.hpp"
 #include "vc/init/nominal_machine.hpp"
+#include "vc/init/output_check.hpp"
 
 namespace vc::init {
 
@@ -16,6 +17,7 @@ struct InitRequest {
   std::string ini;           // the configuration's INI file
   std::string machine_file;  // where the machine file will be written (as given: -o)
   std::string date;          // YYYY-MM-DD, for the machine file's header
+  bool edit_shared = false;  // edit shared files in place (--edit-shared) instead of copying them
 };
 
 struct InitResult {
@@ -25,6 +27,8 @@ struct InitResult {
   std::string machine_path;  // the machine file as volkins' machine= names it
   ConfigPatch patch;
   std::vector<std::string> not_read;  // HAL files init could not read (Tcl), and where they are named
+  std::vector<InputFile> inputs;      // every file init read or looked for: never an output
+  std::vector<std::string> remarks;   // for the summary: the patch's copies of shared files, INIs not read
 };
 
 InitResult run_init(const InitRequest& request);

@@ -8,7 +8,8 @@
 // - Only the first section of a name is read, as LinuxCNC's lookups stop at the next '['.
 // - `#INCLUDE file` in the INI file itself inserts that file (relative to the INI's folder,
 //   `~` expanded); an #INCLUDE inside an included file is a comment, as LinuxCNC's expansion
-//   does not recurse.
+//   does not recurse. A bare `#INCLUDE` (no file) is skipped with a remark: handle_includes
+//   only warns about it.
 #pragma once
 
 #include <string>
@@ -38,6 +39,14 @@ struct IniSection {
   std::vector<IniEntry> entries;
 };
 
+// An `#INCLUDE file` line of the INI file and the file it inserts.
+struct IniInclude {
+  int line = 0;                 // in the INI file
+  std::string written;          // the name as written
+  std::size_t name_offset = 0;  // where the name starts in the line's text
+  std::string path;             // the file, absolute
+};
+
 class LinuxcncIni {
  public:
   // Throws vc::LoadError for a file (or an #INCLUDE) that cannot be read.
@@ -47,6 +56,9 @@ class LinuxcncIni {
   const std::string& folder() const { return folder_; }  // the configuration folder
   // The INI file and the files it includes, as read.
   const std::vector<TextFile>& files() const { return files_; }
+  const std::vector<IniInclude>& includes() const { return includes_; }
+  // What was read differently from how it is written, as LinuxCNC does (a bare #INCLUDE).
+  const std::vector<std::string>& remarks() const { return remarks_; }
 
   // The first section of this name (the one LinuxCNC reads), or nullptr.
   const IniSection* section(std::string_view name) const;
@@ -63,6 +75,8 @@ class LinuxcncIni {
  private:
   std::string path_, folder_;
   std::vector<TextFile> files_;
+  std::vector<IniInclude> includes_;
+  std::vector<std::string> remarks_;
   std::vector<IniSection> sections_;
 };
 

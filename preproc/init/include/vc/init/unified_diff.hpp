@@ -47,4 +47,7 @@ class FileEdits {
   std::map<int, std::vector<std::string>> inserted_;   // after line
 };
 
+// The diff that creates NAME with `lines` (`--- /dev/null`, `+++ b/NAME`, one hunk).
+std::string creation_diff(const std::string& name, const std::vector<TextLine>& lines);
+
 }  // namespace vc::init
