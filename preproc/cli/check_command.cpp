@@ -100,6 +100,7 @@ bool print_configuration(const Model& model, const std::string& ini_path, std::o
     return model.axes[model.joint_of(letter)].type == AxisType::Rotary ? " deg" : " mm";
   };
   out << "LinuxCNC configuration " << ini_path
+      << (volkins.units.inch() ? " (its inch lengths in mm here; the fixes in inch)" : "")
       << ":\n  after homing (each joint at its HOME, no tool length offset, world="
       << (home.convention == machine::WorldConvention::Tcp ? "tcp" : "axes") << "):\n";
   for (const init::HomedAxis& a : home.axes)

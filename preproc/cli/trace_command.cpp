@@ -15,7 +15,9 @@
 #include "program_files.hpp"
 #include "vc/fit_tables/comp_file.hpp"
 #include "vc/fit_tables/comp_file_replay.hpp"
+#include "vc/init/kinematics_line.hpp"
 #include "vc/init/linuxcnc_ini.hpp"
+#include "vc/init/linuxcnc_units.hpp"
 #include "vc/init/number.hpp"
 #include "vc/init/volkins_config.hpp"
 #include "vc/machine/load_machine.hpp"
@@ -28,11 +30,11 @@ namespace {
 struct TraceArgs {
   std::string machine;
   std::string trace;              // CSV recorded by kins/configs/common/headless_driver.py
-  std::string world = "axes";     // the module's world convention
+  std::string world;              // the module's world convention: axes or tcp ("": --ini's, else axes)
   std::string output;             // per-sample errors CSV (optional)
   double servo_period_s = 0.001;  // for the time column
   std::string comp_files;         // a folder of fit-tables' COMP_FILEs to replay on the trace (optional)
-  std::string ini;                // the configuration's INI: the joints' limits for the replay
+  std::string ini;                // the configuration's INI: joints, world, units; the joints' limits for the replay
   std::string replay_output;      // the replay's per-sample errors CSV (t_s,e_um; optional)
 };
 
@@ -94,12 +96,53 @@ void print_comp_file_replay(const TraceArgs& args, const machine::Model& model, 
       << " um, RMS " << fixed_text(rms_um, 3) << " um\n";
 }
 
+// How the configuration that recorded the trace maps it onto the machine file.
+struct RecordedBy {
+  trace::TraceLayout layout;
+  machine::WorldConvention convention = machine::WorldConvention::Axes;
+};
+
+// From the INI (volkins' [KINS]KINEMATICS line: coordinates=, world=, units=; a stock module's:
+// its coordinates= and [TRAJ]LINEAR_UNITS, the world as --world says), or, without --ini, the
+// machine file's own joint order in mm and --world.
+RecordedBy recorded_by(const TraceArgs& args, const machine::Model& model) {
+  RecordedBy r;
+  r.convention = world_convention(args.world.empty() ? "axes" : args.world);
+  if (args.ini.empty()) return r;
+  const init::LinuxcncIni ini = init::LinuxcncIni::read(args.ini);
+  const init::IniEntry* kins = ini.find("KINS", "KINEMATICS");
+  std::string coordinates;
+  double mm_per_unit = 1.0;
+  if (kins && kins->value.rfind("volkins", 0) == 0) {
+    const init::VolkinsParameters volkins = init::read_volkins_parameters(ini);
+    if (!args.world.empty() && r.convention != volkins.world)
+      throw LoadError(kins->where(), "--world " + args.world +
+                                         " contradicts the configuration: volkins is loaded with " +
+                                         (volkins.world == machine::WorldConvention::Tcp ? "world=tcp" : "world=axes") +
+                                         " (leave --world out with --ini)");
+    r.convention = volkins.world;
+    coordinates = volkins.coordinates;
+    mm_per_unit = volkins.units.mm_per_unit;
+  } else {  // a session with LinuxCNC's own module (--comp-files' replay)
+    const init::KinematicsLine line = init::read_kinematics_line(ini);
+    if (const std::string* c = line.parameter("coordinates")) coordinates = *c;
+    mm_per_unit = init::read_linear_units(ini).mm_per_unit;
+  }
+  try {
+    r.layout = trace::trace_layout(model, coordinates, mm_per_unit);
+  } catch (const std::invalid_argument& e) {
+    throw LoadError(kins->where(), std::string(e.what()) + " (" + model.path + ")");
+  }
+  return r;
+}
+
 int run_trace(const TraceArgs& args, std::ostream& out) {
-  if (args.comp_files.empty() && (!args.ini.empty() || !args.replay_output.empty()))
-    throw std::runtime_error("--ini and --replay-output go with --comp-files");
+  if (args.comp_files.empty() && !args.replay_output.empty())
+    throw std::runtime_error("--replay-output goes with --comp-files");
   const machine::Model model = machine::load_machine(args.machine);
-  const machine::WorldConvention convention = world_convention(args.world);
-  const trace::SessionTrace session = trace::read_session_trace(args.trace, model);
+  const RecordedBy recorded = recorded_by(args, model);
+  const machine::WorldConvention convention = recorded.convention;
+  const trace::SessionTrace session = trace::read_session_trace(args.trace, model, recorded.layout);
   const trace::TraceSummary summary = trace::check_trace(model, convention, session);
   if (summary.samples.empty()) throw std::runtime_error(args.trace + ": fewer than 4 usable samples");
 
@@ -147,6 +190,9 @@ int run_trace(const TraceArgs& args, std::ostream& out) {
     // LinuxCNC's COMP_FILEs act on the joints; the replay takes them to be the commanded axes.
     if (convention != machine::WorldConvention::Axes)
       throw std::runtime_error("--comp-files replays a session in the axes world (the joints are the commanded axes)");
+    if (recorded.layout.mm_per_unit != 1.0)
+      throw std::runtime_error("--comp-files replays the COMP_FILEs of a configuration in mm; " + args.ini +
+                               " runs in inch");
     print_comp_file_replay(args, model, session, summary, out);
   }
   if (!session.with_volkins) {
@@ -169,7 +215,8 @@ void add_trace_command(CLI::App& volcomp, int& exit_code) {
       "trace", "Tool-tip error along a recorded LinuxCNC session, and volkins checked against the core");
   cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
   cmd->add_option("TRACE", args->trace, "trace CSV written by the headless driver")->required();
-  cmd->add_option("--world", args->world, "the module's world convention: axes or tcp")->capture_default_str();
+  cmd->add_option("--world", args->world,
+                  "the module's world convention: axes (the default) or tcp; with --ini the configuration's");
   cmd->add_option("-o,--output", args->output, "write t_s,ex_um,ey_um,ez_um,e_um,ek_urad,gain per sample to this CSV");
   cmd->add_option("--comp-files", args->comp_files,
                   "a session without correction: also its tool-tip error with these COMP_FILEs (fit-tables' "
@@ -178,8 +225,11 @@ void add_trace_command(CLI::App& volcomp, int& exit_code) {
                   "with --comp-files: write t_s,e_um per sample of the "
                   "replay to this CSV");
   cmd->add_option("--ini", args->ini,
-                  "with --comp-files: the configuration's INI ([JOINT_n] MAX_VELOCITY, "
-                  "MAX_ACCELERATION: LinuxCNC's ramp of the correction)");
+                  "the configuration's INI that recorded the trace: volkins' coordinates= (which joint "
+                  "column drives each axis; a gantry's other motors checked equal), world= and units=; "
+                  "with --comp-files also [JOINT_n] MAX_VELOCITY, MAX_ACCELERATION (LinuxCNC's ramp of "
+                  "the correction)")
+      ->check(CLI::ExistingFile);
   cmd->callback([args, &exit_code] { exit_code = run_trace(*args, std::cout); });
 }
 

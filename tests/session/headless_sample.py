@@ -7,7 +7,8 @@ loadusr and their pins, hal_manualtoolchange), and a sampler records at servo ra
 command, the joint commands, volkins' gain (0 without volkins), the tool length offset,
 motion-controller's time, kinstype.is-N of the TCP type (the trace's "tcp" column: with
 sparm=identityfirst type 1 is the TCP kinematics, for LinuxCNC's trt modules and for volkins
-alike; without it, as in the bridgemill sample, type 0: --tcp-type 0) and, with volkins, the
+alike; without it, as in the bridgemill sample, type 0: --tcp-type 0; trivkins, which has no
+such pins: --tcp-type -1, the column 0) and, with volkins, the
 L its correction used (volkins.correction-length: it slews to a new G43 offset).
 
     headless_sample.py CONFIG_DIR INI RUN_DIR --program FILE [--compensation on|off]
@@ -132,7 +133,8 @@ def trace_lines(coordinates, joints, has_volkins, tool_signal, tcp_type, sets):
     n += 1
     lines.append("net :trace-time motion-controller.time => sampler.0.pin.%d" % n)
     n += 1
-    lines.append("net :trace-tcp kinstype.is-%d => sampler.0.pin.%d" % (tcp_type, n))
+    if tcp_type >= 0:  # trivkins has no kinstype.is-N pins (--tcp-type -1): the column stays 0
+        lines.append("net :trace-tcp kinstype.is-%d => sampler.0.pin.%d" % (tcp_type, n))
     if has_volkins:  # the L volkins' correction used (it slews to a new G43 offset)
         lines.append("net :trace-correction-length volkins.correction-length => sampler.0.pin.%d" % (n + 1))
     lines.append("addf sampler.0 servo-thread")

@@ -6,12 +6,6 @@
 #include "vc/init/number.hpp"
 
 namespace vc::init {
-namespace {
-
-// The suggested HOME is this far inside the limit (mm or deg), or a multiple of it.
-constexpr double kHomeStep = 0.1;
-
-}  // namespace
 
 HomeCheck check_home_position(const LinuxcncIni& ini, const machine::Model& model, const VolkinsParameters& volkins) {
   using machine::Joints;
@@ -20,16 +14,21 @@ HomeCheck check_home_position(const LinuxcncIni& ini, const machine::Model& mode
   HomeCheck check;
   check.convention = volkins.world;
   Joints home = Joints::Zero(n);
+  // The INI's lengths are in LinuxCNC's units (the rotary axes' deg as they are).
+  const auto per_unit = [&](int j) {
+    return model.axes[static_cast<std::size_t>(j)].type == machine::AxisType::Rotary ? 1.0 : volkins.units.mm_per_unit;
+  };
+  const auto to_mm = [&](int j, double v) { return no_limit(v) ? v : v * per_unit(j); };
   for (int j = 0; j < n; ++j) {
     HomedAxis a;
     a.letter = static_cast<char>(std::toupper(static_cast<unsigned char>(model.axes[j].letter)));
     a.joint = linuxcnc_joint(volkins, model, j);
     const std::string joint_section = "JOINT_" + std::to_string(a.joint);
     a.home_from = "[" + joint_section + "] gives no HOME (LinuxCNC homes it to 0)";
-    a.home = ini_number(ini, joint_section, "HOME", 0.0, &a.home_from);
+    a.home = to_mm(j, ini_number(ini, joint_section, "HOME", 0.0, &a.home_from));
     const std::string axis_section = std::string("AXIS_") + a.letter;
-    a.min_limit = ini_number(ini, axis_section, "MIN_LIMIT", a.min_limit);
-    a.max_limit = ini_number(ini, axis_section, "MAX_LIMIT", a.max_limit);
+    a.min_limit = to_mm(j, ini_number(ini, axis_section, "MIN_LIMIT", a.min_limit));
+    a.max_limit = to_mm(j, ini_number(ini, axis_section, "MAX_LIMIT", a.max_limit));
     home[j] = a.home;
     check.axes.push_back(a);
   }
@@ -53,17 +52,21 @@ HomeCheck check_home_position(const LinuxcncIni& ini, const machine::Model& mode
       const IniEntry* limit_entry = ini.find(std::string("AXIS_") + a.letter, above ? "MAX_LIMIT" : "MIN_LIMIT");
       if (beyond <= kLimitNoise || !limit_entry) continue;  // LinuxCNC's default limits are +-1e99
       // The correction shifts the world from the joints by about the same near the home: a HOME
-      // inside the limit by more than that shift, in whole steps of 0.1 mm (deg).
-      const double shift = above ? a.world - a.home : a.home - a.world;
-      const double inside = kHomeStep * std::max(1.0, std::ceil((shift + kLimitNoise) / kHomeStep));
-      const double suggested = above ? limit - inside : limit + inside;
-      check.problems.push_back(
-          std::string(1, a.letter) + " homes " + um_or_mdeg(beyond, rotary) + " beyond its " +
-          (above ? "MAX_LIMIT" : "MIN_LIMIT") + " (" + ini.cite(*limit_entry) + "): " + a.home_from +
-          " puts the corrected world " + a.letter + " at " + format_number(std::round(a.world * 1e6) / 1e6) +
-          ". LinuxCNC then refuses every move that leaves " + a.letter + " there (\"would exceed " + a.letter + "'s " +
-          (above ? "positive" : "negative") + " limit\") and notes a soft limit at each machine-on. Home " +
-          "inside: [JOINT_" + std::to_string(a.joint) + "]HOME = " + format_number(std::round(suggested * 1e6) / 1e6));
+      // inside the limit by more than that shift, in whole steps (0.1 mm or deg, 0.01 inch) of
+      // the INI's units, in which it is given back.
+      const double unit = per_unit(j);
+      const double step = limit_step(volkins, rotary);
+      const double shift = (above ? a.world - a.home : a.home - a.world) / unit;
+      const double inside = step * std::max(1.0, std::ceil((shift + kLimitNoise) / step));
+      const double suggested = above ? limit / unit - inside : limit / unit + inside;
+      check.problems.push_back(std::string(1, a.letter) + " homes " + um_or_mdeg(beyond, rotary) + " beyond its " +
+                               (above ? "MAX_LIMIT" : "MIN_LIMIT") + " (" + ini.cite(*limit_entry) +
+                               "): " + a.home_from + " puts the corrected world " + a.letter + " at " +
+                               format_number(std::round(a.world / unit * 1e6) / 1e6) + (unit == 1.0 ? "" : " inch") +
+                               ". LinuxCNC then refuses every move that leaves " + a.letter +
+                               " there (\"would exceed " + a.letter + "'s " + (above ? "positive" : "negative") +
+                               " limit\") and notes a soft limit at each machine-on. Home " + "inside: [JOINT_" +
+                               std::to_string(a.joint) + "]HOME = " + format_number(std::round(suggested * 1e6) / 1e6));
     }
   }
   return check;

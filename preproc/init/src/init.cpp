@@ -1,6 +1,7 @@
 #include "vc/init/init.hpp"
 
 #include <filesystem>
+#include <cctype>
 #include <sstream>
 
 #include "vc/init/hal_file.hpp"
@@ -35,6 +36,27 @@ std::vector<InputFile> inputs_of(const LinuxcncIni& ini, const HalConfig& hal, c
   return inputs;
 }
 
+// What becomes of trivkins' kinematics type (kinstype=, trivkins.c: KINEMATICS_IDENTITY unless it
+// starts with b/B: BOTH, f/F: FORWARD_ONLY, i/I: INVERSE_ONLY): volkins is always KINEMATICS_BOTH.
+// LinuxCNC's planner never reads the type; what it changes is kins/README.md's "The kinematics
+// type", with LinuxCNC's lines.
+std::string kinematics_type_remark(const KinematicsLine& kinematics) {
+  const std::string* type = kinematics.parameter("kinstype");
+  const std::string where = type ? kinematics.entry->where().to_string() + ": kinstype=" + *type
+                                 : std::string("no kinstype=: trivkins' default");
+  const char first = type && !type->empty() ? static_cast<char>(std::tolower((*type)[0])) : '1';
+  if (first == 'b')
+    return "the kinematics type stays KINEMATICS_BOTH (" + where + "), volkins' own: volkins' line needs no kinstype=.";
+  const std::string stock = first == 'f'   ? "KINEMATICS_FORWARD_ONLY"
+                            : first == 'i' ? "KINEMATICS_INVERSE_ONLY"
+                                           : "KINEMATICS_IDENTITY";
+  return "the kinematics type changes from " + stock + " (" + where +
+         ") to volkins' KINEMATICS_BOTH. The planned path stays the same (LinuxCNC's planner does not read the "
+         "type); what changes: MDI, programs and world jogs need every joint homed first (\"all joints must be "
+         "homed before going into coordinated mode\"), and the GUIs jog joints, not axes, in joint mode "
+         "(kins/README.md, \"The kinematics type\").";
+}
+
 }  // namespace
 
 InitResult run_init(const InitRequest& request) {
@@ -47,6 +69,7 @@ InitResult run_init(const InitRequest& request) {
   result.inputs = inputs_of(ini, hal, shared);
   result.machine = nominal_machine(ini, hal, kinematics);
   result.machine.remarks.insert(result.machine.remarks.end(), ini.remarks().begin(), ini.remarks().end());
+  if (kinematics.kind == StockModule::Trivkins) result.machine.remarks.push_back(kinematics_type_remark(kinematics));
   for (const HalFileUse& use : hal.uses)
     if (!use.read)
       result.not_read.push_back(use.path + " (" + use.cite + "): a Tcl file; check that it sets no " +

@@ -2,6 +2,8 @@
 
 #include <cctype>
 #include <cmath>
+#include <stdexcept>
+#include <utility>
 
 #include "vc/tables/csv.hpp"
 #include "vc/tables/source_error.hpp"
@@ -11,6 +13,10 @@ namespace {
 
 using machine::Joints;
 
+// Two joints of one letter differ by more than this (mm, deg): not driven alike. LinuxCNC
+// interpolates both from the same command with the same cubic: they are equal to the bit.
+constexpr double kTwinJointTolerance = 1e-9;
+
 // The world position LinuxCNC commanded, as the core's world (TCP: without G43's tool length).
 Joints core_world(const machine::Model& model, machine::WorldConvention convention, Joints world, double L) {
   if (convention == machine::WorldConvention::Tcp) world[model.joint_of('Z')] -= L;
@@ -19,15 +25,49 @@ Joints core_world(const machine::Model& model, machine::WorldConvention conventi
 
 }  // namespace
 
-SessionTrace read_session_trace(const std::string& path, const machine::Model& model) {
+TraceLayout trace_layout(const machine::Model& model, const std::string& coordinates, double mm_per_unit) {
+  TraceLayout layout;
+  layout.mm_per_unit = mm_per_unit;
+  layout.joints.resize(static_cast<std::size_t>(model.joint_count()));
+  const std::string letters = coordinates.empty() ? model.coordinates() : coordinates;
+  for (std::size_t k = 0; k < letters.size(); ++k) {
+    const int j = model.joint_of(static_cast<char>(std::toupper(static_cast<unsigned char>(letters[k]))));
+    if (j >= 0) layout.joints[static_cast<std::size_t>(j)].push_back(static_cast<int>(k));  // else a tool-axis joint
+  }
+  for (int j = 0; j < model.joint_count(); ++j)
+    if (layout.joints[static_cast<std::size_t>(j)].empty())
+      throw std::invalid_argument("coordinates=" + letters + " has no joint for the machine's axis " +
+                                  model.axes[static_cast<std::size_t>(j)].letter);
+  return layout;
+}
+
+SessionTrace read_session_trace(const std::string& path, const machine::Model& model, const TraceLayout& layout) {
   const std::vector<tables::CsvRow> rows = tables::read_csv_rows(path, "session trace");
   if (rows.empty()) throw LoadError({path, 1, 1}, "the trace is empty");
   const int n = model.joint_count();
   const std::string axes = model.coordinates();
+  // The LinuxCNC joints of each model joint, the principal one first.
+  std::vector<std::vector<int>> joints_of = layout.joints;
+  if (joints_of.empty())
+    for (int j = 0; j < n; ++j) joints_of.push_back({j});
+  if (joints_of.size() != static_cast<std::size_t>(n))
+    throw std::invalid_argument("the trace layout has " + std::to_string(joints_of.size()) + " joints, the machine " +
+                                std::to_string(n));
   std::vector<std::string> wanted;
   for (char a : axes) wanted.emplace_back(1, a);
-  for (int j = 0; j < n; ++j) wanted.push_back("j" + std::to_string(j));
+  for (int j = 0; j < n; ++j) wanted.push_back("j" + std::to_string(joints_of[static_cast<std::size_t>(j)].front()));
   for (const char* extra : {"tool_offset", "controller_time"}) wanted.emplace_back(extra);
+  // The other joints of a letter (a gantry's second motor): (model joint, column name).
+  std::vector<std::pair<int, std::string>> twins;
+  for (int j = 0; j < n; ++j)
+    for (std::size_t k = 1; k < joints_of[static_cast<std::size_t>(j)].size(); ++k)
+      twins.emplace_back(j, "j" + std::to_string(joints_of[static_cast<std::size_t>(j)][k]));
+  for (const auto& twin : twins) wanted.push_back(twin.second);
+  // LinuxCNC's units to mm: the linear axes (the rotary ones are deg either way).
+  std::vector<double> to_mm(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j)
+    to_mm[static_cast<std::size_t>(j)] =
+        model.axes[static_cast<std::size_t>(j)].type == machine::AxisType::Linear ? layout.mm_per_unit : 1.0;
 
   std::vector<int> column(wanted.size(), -1);
   const tables::CsvRow& header = rows.front();
@@ -41,7 +81,12 @@ SessionTrace read_session_trace(const std::string& path, const machine::Model& m
     if (header.cells[c].text == "tool_length") column[offset_column] = static_cast<int>(c);
   for (std::size_t w = 0; w < wanted.size(); ++w)
     if (column[w] < 0)
-      throw LoadError({path, header.line, 1}, "no column '" + wanted[w] + "' (the machine's axes are " + axes + ")");
+      throw LoadError({path, header.line, 1},
+                      "no column '" + wanted[w] + "' (the machine's axes are " + axes +
+                          (w >= static_cast<std::size_t>(n) && w < 2 * static_cast<std::size_t>(n)
+                               ? "; " + wanted[w] + " is LinuxCNC's joint of " + axes[w - n]
+                               : std::string()) +
+                          ")");
 
   int gain = -1;               // optional: a session without volkins (stock kinematics) has none
   int correction_length = -1;  // optional: traces recorded before volkins slewed the tool length
@@ -74,17 +119,30 @@ SessionTrace read_session_trace(const std::string& path, const machine::Model& m
     auto value = [&](std::size_t w) { return tables::csv_number(path, row.line, row.cells[column[w]]); };
     Joints world(n), joints(n);
     for (int j = 0; j < n; ++j) {
-      world[j] = value(j);
-      joints[j] = value(n + j);
+      world[j] = value(j) * to_mm[static_cast<std::size_t>(j)];
+      joints[j] = value(n + j) * to_mm[static_cast<std::size_t>(j)];
+    }
+    // A gantry's motors are driven alike (volkins gives every joint of a letter its principal's
+    // command, as LinuxCNC's identity kinematics do): one that is not is not this configuration.
+    for (std::size_t k = 0; k < twins.size(); ++k) {
+      const int j = twins[k].first;
+      const std::string letter(1, static_cast<char>(std::toupper(static_cast<unsigned char>(axes[j]))));
+      const double twin = value(2 * n + 2 + k) * to_mm[static_cast<std::size_t>(j)];
+      if (std::abs(twin - joints[j]) > kTwinJointTolerance)
+        throw LoadError({path, row.line, row.cells[column[2 * n + 2 + k]].column},
+                        twins[k].second + " = " + row.cells[column[2 * n + 2 + k]].text + " differs from " +
+                            wanted[n + j] + " = " + row.cells[column[n + j]].text + ", the principal joint of " +
+                            letter + ": both drive " + letter + " (coordinates=)");
     }
     t.world.push_back(world);
     t.joints.push_back(joints);
     t.gain.push_back(gain >= 0 ? tables::csv_number(path, row.line, row.cells[gain]) : 0.0);
-    t.tool_offset_mm.push_back(value(2 * n));
+    t.tool_offset_mm.push_back(value(2 * n) * layout.mm_per_unit);
     t.controller_ticks.push_back(value(2 * n + 1));
-    if (correction_length >= 0)
+    if (correction_length >= 0)  // volkins.correction-length is the core's L: mm already
       t.correction_length_mm.push_back(tables::csv_number(path, row.line, row.cells[correction_length]));
-    if (tool_axis >= 0) t.tool_axis_mm.push_back(tables::csv_number(path, row.line, row.cells[tool_axis]));
+    if (tool_axis >= 0)
+      t.tool_axis_mm.push_back(tables::csv_number(path, row.line, row.cells[tool_axis]) * layout.mm_per_unit);
     if (tcp >= 0)
       t.convention.push_back(tables::csv_number(path, row.line, row.cells[tcp]) != 0.0
                                  ? machine::WorldConvention::Tcp

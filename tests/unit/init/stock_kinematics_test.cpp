@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <regex>
 
 #include "init_test_files.hpp"
 #include "vc/init/init.hpp"
@@ -548,6 +549,12 @@ TEST(StockKinematics, GantryKeepsEachAxisOnceWithItsFirstJointsTravel) {
   EXPECT_TRUE(g.model.workpiece_chain.empty());
   EXPECT_EQ(g.result.machine.name, "gantry");  // no [EMC]MACHINE: the file's name
   EXPECT_EQ(g.result.patch.kinematics, "volkins machine=" + g.result.machine_path + " coordinates=XYYZ");
+  // kinstype=BOTH is volkins' own type: dropped, and said so.
+  ASSERT_EQ(g.result.machine.remarks.size(), 1u);
+  EXPECT_TRUE(
+      std::regex_search(g.result.machine.remarks[0],
+                        std::regex("^the kinematics type stays KINEMATICS_BOTH \\(.*gantry.ini:2: kinstype=BOTH\\)")))
+      << g.result.machine.remarks[0];
   // motion.tooloffset.z is on tool-length already: volkins joins that signal.
   EXPECT_NE(g.result.patch.diff.find("+HALCMD = net tool-length volkins.tool-offset\n"), std::string::npos)
       << g.result.patch.diff;
@@ -574,10 +581,17 @@ TEST(StockKinematics, TrivkinsRotaryAxesAreCarriedByTheTableWithAPlaceholderPole
   expect_vector(g.model.axes[4].direction, {0, 0, 1}, "C direction");
   EXPECT_NE(g.result.machine_text.find("A PLACEHOLDER: trivkins does not know where the rotary axes are"),
             std::string::npos);
-  ASSERT_EQ(g.result.machine.remarks.size(), 1u);
+  ASSERT_EQ(g.result.machine.remarks.size(), 2u);
   EXPECT_NE(g.result.machine.remarks[0].find(
                 "A and C are: their pole_mm are placeholders; measure them (volcomp identify sphere)"),
             std::string::npos);
+  // trivkins without kinstype= is KINEMATICS_IDENTITY; volkins is KINEMATICS_BOTH: said, with what changes.
+  EXPECT_NE(g.result.machine.remarks[1].find("the kinematics type changes from KINEMATICS_IDENTITY (no kinstype=: "
+                                             "trivkins' default) to volkins' KINEMATICS_BOTH. The planned path stays "
+                                             "the same"),
+            std::string::npos)
+      << g.result.machine.remarks[1];
+  EXPECT_NE(g.result.machine_text.find("KINEMATICS_IDENTITY"), std::string::npos);
   // The HALCMD loading trivkins itself becomes volkins' line, written out (a HALCMD has no
   // INI references).
   EXPECT_NE(g.result.patch.diff.find("+HALCMD = loadrt volkins machine="), std::string::npos) << g.result.patch.diff;

@@ -22,9 +22,11 @@
 namespace vc::init {
 
 struct HomedAxis {
-  char letter = 'X';                           // upper case
-  int joint = 0;                               // LinuxCNC's joint (the first of its letter)
-  double home = 0.0;                           // [JOINT_n]HOME, mm or deg
+  char letter = 'X';  // upper case
+  int joint = 0;      // LinuxCNC's joint (the first of its letter)
+  // In mm or deg: the INI's lengths are LinuxCNC's units (volkins' units=), converted; the
+  // HOME a problem suggests is given back in them.
+  double home = 0.0;                           // [JOINT_n]HOME
   double world = 0.0;                          // the world coordinate after homing
   double min_limit = -1e99, max_limit = 1e99;  // [AXIS_x] (LinuxCNC's defaults where missing)
   std::string home_from;                       // "file:line `HOME = 0`" or "[JOINT_0] gives no HOME (0)"

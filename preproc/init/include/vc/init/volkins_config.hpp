@@ -2,6 +2,7 @@
 // parameters, which LinuxCNC joint drives each axis of the machine file, and the INI's numbers.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <string_view>
 
@@ -34,6 +35,17 @@ double ini_number(const LinuxcncIni& ini, std::string_view section, std::string_
 // Beyond a limit by less than this (mm or deg) is the kinematics solvers' noise (their tolerance
 // is 1e-10 mm), not a finding of the limit checks.
 inline constexpr double kLimitNoise = 1e-9;
+
+// LinuxCNC's limits where the INI gives none are +-1e99: a limit this large is none (a
+// continuous rotary axis).
+inline constexpr double kNoLimit = 1e98;
+inline bool no_limit(double limit) { return !(std::abs(limit) < kNoLimit); }
+
+// A limit or HOME the checks suggest is a multiple of this, in the INI's units: 0.1 mm or deg,
+// 0.01 inch.
+inline double limit_step(const VolkinsParameters& volkins, bool rotary) {
+  return rotary || !volkins.units.inch() ? 0.1 : 0.01;
+}
 
 // A small length or angle for messages: "5.24 um", "1.20 mdeg" (v in mm or deg).
 std::string um_or_mdeg(double v, bool rotary);

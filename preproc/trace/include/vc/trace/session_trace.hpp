@@ -19,11 +19,12 @@ namespace vc::trace {
 
 struct SessionTrace {
   std::string path;
-  std::vector<machine::Joints> world;   // axis.<letter>.pos-cmd (mm, deg), joint order
-  std::vector<machine::Joints> joints;  // joint.<j>.motor-pos-cmd
+  std::vector<machine::Joints> world;   // axis.<letter>.pos-cmd (mm, deg), the model's joint order
+  std::vector<machine::Joints> joints;  // joint.<j>.pos-cmd of each model joint's principal joint (mm, deg)
   bool with_volkins = true;             // false: a session without volkins (no gain column)
   std::vector<double> gain;             // volkins.gain (0 throughout a session without volkins)
-  std::vector<double> tool_offset_mm;   // motion.tooloffset.z: the tool length offset (L by Model::correction_length)
+  std::vector<double>
+      tool_offset_mm;  // motion.tooloffset.z: the tool length offset (L by Model::correction_length), mm
   std::vector<double> correction_length_mm;  // volkins.correction-length: the L applied (the offset's,
                                              // slewed); empty in a trace without the column
   std::vector<double> controller_ticks;      // motion-controller.time (CPU clock ticks)
@@ -40,12 +41,31 @@ struct SessionTrace {
   std::size_t size() const { return world.size(); }
 };
 
+// How the trace's columns relate to the machine file: which of LinuxCNC's joint columns j<n>
+// drives each axis of the model, and LinuxCNC's length unit.
+struct TraceLayout {
+  // Per joint of the model (its order): LinuxCNC's joints of its letter, the principal one (the
+  // first of the letter in coordinates=, the one volkins reads: kins/src/module_settings.cpp)
+  // first, then the others (a gantry's second motor), which must equal it. Empty: the model's
+  // joint j is column j<j> (the layout of a configuration whose coordinates are the model's).
+  std::vector<std::vector<int>> joints;
+  // mm per LinuxCNC length unit (vc::init::LinearUnits; 25.4: inch): the linear axes' and
+  // joints' columns, the tool offset and the tool-axis coordinate are in LinuxCNC's units and
+  // are converted to mm where they are read. The rotary ones are deg in either.
+  double mm_per_unit = 1.0;
+};
+
+// The layout of LinuxCNC's coordinates= (one letter per joint, e.g. "xyyz"; empty: the model's
+// own order) for `model`. Throws std::invalid_argument where an axis of the model has no joint.
+TraceLayout trace_layout(const machine::Model& model, const std::string& coordinates, double mm_per_unit);
+
 // Reads a trace CSV: header with the machine's axis letters (x,y,z,b,c), joints j0..,
 // tool_length and controller_time; optional gain (volkins.gain; a session with LinuxCNC's own
 // kinematics has none), correction_length, tcp, temperature_<name> and the tool-axis coordinate's
-// letter (w). Throws
-// LoadError naming file, line and column.
-SessionTrace read_session_trace(const std::string& path, const machine::Model& model);
+// letter (w). `layout` maps the joint columns to the model's joints and gives the units (by
+// default j0.. in the model's order, mm). Throws LoadError naming file, line and column, also
+// where a joint of a letter differs from the principal joint of it.
+SessionTrace read_session_trace(const std::string& path, const machine::Model& model, const TraceLayout& layout = {});
 
 // LinuxCNC's joint interpolation of kinematics outputs p at sample n >= 3.
 machine::Joints interpolated(const std::vector<machine::Joints>& p, std::size_t n);
