@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "vc/init/linuxcnc_ini.hpp"
+#include "vc/init/linuxcnc_units.hpp"
 #include "vc/predistort/predistort.hpp"
 #include "vc/tables/source_error.hpp"
 
@@ -68,19 +69,12 @@ interpreter::Position start_position(const std::string& value, double unit_mm) {
   }
   // The INI, as LinuxCNC reads it (vc/init/linuxcnc_ini.hpp).
   const init::LinuxcncIni ini = init::LinuxcncIni::read(value);
-  // LinuxCNC's LINEAR_UNITS: mm, metric, in, inch, imperial (emcIniLoad's names).
-  double ini_unit_mm = 1.0;
-  if (const init::IniEntry* units = ini.find("TRAJ", "LINEAR_UNITS")) {
-    const std::string& u = units->value;
-    if (u == "in" || u == "inch" || u == "imperial")
-      ini_unit_mm = 25.4;
-    else if (u != "mm" && u != "metric")
-      throw LoadError(units->where(), "--start: LINEAR_UNITS " + u + " is not mm, metric, in, inch or imperial");
-    if (ini_unit_mm != unit_mm)
-      throw LoadError(units->where(), "--start: the INI's LINEAR_UNITS is " + u + ": give --machine-units " +
-                                          (ini_unit_mm == 1.0 ? "mm" : "inch") +
-                                          " (the .var file and the tool table are in it)");
-  }
+  // LinuxCNC's LINEAR_UNITS, read as init reads it (vc/init/linuxcnc_units.hpp).
+  const init::LinearUnits units = init::read_linear_units(ini);
+  if (units.mm_per_unit != unit_mm)
+    throw LoadError(ini.find("TRAJ", "LINEAR_UNITS")->where(),
+                    "--start: the INI's LINEAR_UNITS is " + std::string(units.name()) + ": give --machine-units " +
+                        units.name() + " (the .var file and the tool table are in it)");
   const init::IniEntry* coordinates = ini.find("TRAJ", "COORDINATES");
   if (!coordinates) throw LoadError({value}, "--start: no [TRAJ]COORDINATES in the INI file");
   int joint = 0;

@@ -139,8 +139,9 @@ SessionTrace read_session_trace(const std::string& path, const machine::Model& m
     t.gain.push_back(gain >= 0 ? tables::csv_number(path, row.line, row.cells[gain]) : 0.0);
     t.tool_offset_mm.push_back(value(2 * n) * layout.mm_per_unit);
     t.controller_ticks.push_back(value(2 * n + 1));
-    if (correction_length >= 0)  // volkins.correction-length is the core's L: mm already
-      t.correction_length_mm.push_back(tables::csv_number(path, row.line, row.cells[correction_length]));
+    if (correction_length >= 0)  // volkins.correction-length: the core's L, in LinuxCNC's unit as its other pins
+      t.correction_length_mm.push_back(tables::csv_number(path, row.line, row.cells[correction_length]) *
+                                       layout.mm_per_unit);
     if (tool_axis >= 0)
       t.tool_axis_mm.push_back(tables::csv_number(path, row.line, row.cells[tool_axis]) * layout.mm_per_unit);
     if (tcp >= 0)

@@ -69,14 +69,14 @@ TEST(TraceLayout, AnInchTracesLinearColumnsAreConvertedToMm) {
   const machine::Model model = machine::load_machine(test::source_path("machines/data/mill3.toml"));
   const fs::path path = fs::temp_directory_path() / "vc_trace_layout_inch.csv";
   std::ofstream(path) << "x,y,z,j0,j1,j2,gain,tool_offset,controller_time,tcp,correction_length\n"
-                      << "1,2,-3,1,2,-3,1,0.5,0,0,12.7\n";
+                      << "1,2,-3,1,2,-3,1,0.5,0,0,0.5\n";
   const SessionTrace t = read_session_trace(path.string(), model, trace_layout(model, "xyz", 25.4));
   ASSERT_EQ(t.size(), 1u);
   EXPECT_DOUBLE_EQ(t.world[0][0], 25.4);
   EXPECT_DOUBLE_EQ(t.world[0][2], -76.2);
   EXPECT_DOUBLE_EQ(t.joints[0][1], 50.8);
   EXPECT_DOUBLE_EQ(t.tool_offset_mm[0], 12.7);
-  EXPECT_DOUBLE_EQ(t.correction_length_mm[0], 12.7);  // volkins' own pin: the core's L, mm
+  EXPECT_DOUBLE_EQ(t.correction_length_mm[0], 12.7);  // volkins.correction-length: in inches, as its other pins
 }
 
 // The command takes the layout, the world and the units from the INI: a conflicting --world is
