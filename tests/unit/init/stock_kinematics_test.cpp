@@ -14,6 +14,7 @@
 #include <random>
 #include <regex>
 
+#include "generated_machine.hpp"
 #include "init_test_files.hpp"
 #include "vc/init/init.hpp"
 #include "vc/machine/kinematics.hpp"
@@ -24,6 +25,8 @@ namespace {
 
 namespace fs = std::filesystem;
 using machine::Joints;
+using test::Generated;
+using test::generate;
 
 // LinuxCNC 2.9's trtfuncs.c (commit f1270d6ed7), xyz?cKinematicsForward and -Inverse: xr, yr,
 // zr the x/y/z-rot-point pins, dx, dy, dz the x/y/z-offset pins, dt the tool-offset pin. The
@@ -65,20 +68,6 @@ Eigen::Vector3d stock_inverse(const Trt& p, double dt, const Joints& w) {
               std::sin(t) * dz + p.dy + p.yr,
           std::sin(c) * std::sin(t) * u + std::cos(c) * std::sin(t) * v + std::cos(t) * s - std::sin(t) * p.dy -
               std::cos(t) * dz + dz + p.zr};
-}
-
-struct Generated {
-  InitResult result;
-  machine::Model model;
-};
-
-// init on `ini`, its machine file written beside the scratch folder's and loaded.
-Generated generate(const fs::path& ini, const std::string& name) {
-  const fs::path dir = test::scratch_folder(name);
-  Generated g{run_init({ini.string(), (dir / "machine.toml").string(), "2026-01-01"}), {}};
-  test::write_file(dir / "machine.toml", g.result.machine_text);
-  g.model = machine::load_machine((dir / "machine.toml").string());
-  return g;
 }
 
 // volkins' TCP world (the model's tool tip in the part frame, LinuxCNC's Z = tip + the tool

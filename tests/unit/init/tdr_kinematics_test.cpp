@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <random>
 
+#include "generated_machine.hpp"
 #include "init_test_files.hpp"
 #include "vc/init/init.hpp"
 #include "vc/machine/kinematics.hpp"
@@ -22,6 +23,8 @@ namespace {
 
 namespace fs = std::filesystem;
 using machine::Joints;
+using test::Generated;
+using test::generate;
 
 constexpr double kRad = M_PI / 180.0;
 
@@ -47,20 +50,6 @@ Eigen::Vector3d tdr_inverse(const Tdr& p, double dt, const Joints& w) {
   const double qx = w[0] - p.xr - p.dx, qy = w[1] - p.yr, qz = w[2] - p.zr - p.dz - dt;
   return {cb * qx + sa * sb * qy - ca * sb * qz + cb * p.dx - sb * p.dz + p.xr,  //
           ca * qy + sa * qz + p.yr, sb * qx - sa * cb * qy + ca * cb * qz + sb * p.dx + cb * p.dz + p.zr + dt};
-}
-
-struct Generated {
-  InitResult result;
-  machine::Model model;
-};
-
-// init on `ini`, its machine file written in a scratch folder and loaded as every tool loads it.
-Generated generate(const fs::path& ini, const std::string& name) {
-  const fs::path dir = test::scratch_folder(name);
-  Generated g{run_init({ini.string(), (dir / "machine.toml").string(), "2026-01-01"}), {}};
-  test::write_file(dir / "machine.toml", g.result.machine_text);
-  g.model = machine::load_machine((dir / "machine.toml").string());
-  return g;
 }
 
 // volkins' TCP world (the model's tool tip in the part frame; LinuxCNC's Z is the tip's plus
