@@ -45,20 +45,22 @@ rebind() {
   mount --bind "$real/$top" "/tmp/$top"
   bound+=("/tmp/$top")
 }
-bound=()
+bound=() modules=()
+rebind "$(pwd -P)"
+for arg in "$@"; do rebind "$(realpath -m -- "$arg" 2>/dev/null || echo "$arg")"; done
 # The modules of this build (VC_MODULES: .so files, set by tests/CMakeLists.txt) in place of the
 # installed ones, in this namespace only: two checkouts testing side by side each run their own.
 for module in ${VC_MODULES:-}; do
+  rebind "$module"
   target=/usr/lib/linuxcnc/modules/$(basename "$module")
-  [ -f "$module" ] && [ -f "$target" ] && mount --bind "$module" "$target" && bound+=("$target")
+  if [ -f "$module" ] && [ -f "$target" ]; then mount --bind "$module" "$target" && modules+=("$target"); fi
 done
-rebind "$(pwd -P)"
-for arg in "$@"; do rebind "$(realpath -m -- "$arg" 2>/dev/null || echo "$arg")"; done
 set +e
 "$@"
 status=$?
 set -e
 cd /
+for m in "${modules[@]}"; do umount "$m" 2>/dev/null || true; done  # gone with the namespace anyway
 for b in "${bound[@]}"; do umount "$b"; done  # the checkout is not under what is removed next
 if ! findmnt -rn -o TARGET | grep -q "^/tmp/"; then rm -rf "${real:?}/$(basename "$private")"; fi
 umount "$real" && rmdir "$real"
