@@ -139,6 +139,43 @@ TEST(CompensationTypes, AcTrunnionProvidesEverythingAndTheSpindleLine) {
   expect_listing(t, l);
 }
 
+// The test machines of tests/unit/machines/data, on the ac_trunnion's linear tables.
+machine::Model load_test_machine(const std::string& name) {
+  return machine::load_machine(test::source_path("tests/unit/machines/data/" + name + ".toml"));
+}
+
+// xyza_table.toml: X, Y, Z as the ac_trunnion; one rotary axis A (a.csv, six columns; EY0A,
+// EZ0A, EB0A, EC0A); the spindle's EA0S, EB0S. One rotary axis: R-VOL, but no FOR.
+TEST(CompensationTypes, XyzaTableProvidesRotaryVolumetricWithoutOrientation) {
+  const CompensationTypes t = machine::compensation_types(load_test_machine("xyza_table"));
+  Listing l = linear_tables("Y: EC0Y", "Z: EA0Z, EB0Z");
+  l.push_back({"R-POS", {"A: EAA (a.csv)"}});
+  l.push_back({"R-RAX", {"A: EXA, EYA, EZA (a.csv)"}});
+  l.push_back({"R-POR", {"A: EY0A, EZ0A, EB0A, EC0A"}});
+  l.push_back({"R-ANG", {"A: EBA, ECA (a.csv)"}});
+  l.push_back({"R-VOL", kRotaryAll});
+  l.push_back({"L-SPEC", {"spindle: EA0S, EB0S"}});
+  expect_listing(t, l);
+  EXPECT_FALSE(t.orientation_possible);
+}
+
+// bc_head.toml: B in the tool chain (b_head.csv, six columns; EX0B, EZ0B, EA0B, EC0B), C on
+// the table (ac_trunnion's c.csv; EX0C, EY0C, EA0C, EB0C).
+TEST(CompensationTypes, BcHeadProvidesEverythingWithOrientation) {
+  const CompensationTypes t = machine::compensation_types(load_test_machine("bc_head"));
+  Listing l = linear_tables("Y: EC0Y", "Z: EA0Z, EB0Z");
+  l.push_back({"FOR", {"two rotary axes: volkins corrects the tool direction too, faded out near the pole"}});
+  l.push_back({"L-VOL+", with_for(kLinearAll)});
+  l.push_back({"R-POS", {"B: EBB (b_head.csv)", "C: ECC (c.csv)"}});
+  l.push_back({"R-RAX", {"B: EXB, EYB, EZB (b_head.csv)", "C: EXC, EYC, EZC (c.csv)"}});
+  l.push_back({"R-POR", {"B: EX0B, EZ0B, EA0B, EC0B", "C: EX0C, EY0C, EA0C, EB0C"}});
+  l.push_back({"R-ANG", {"B: EAB, ECB (b_head.csv)", "C: EAC, EBC (c.csv)"}});
+  l.push_back({"R-VOL", kRotaryAll});
+  l.push_back({"R-VOL+", with_for(kRotaryAll)});
+  l.push_back({"L-SPEC", {"spindle: EA0S, EB0S"}});
+  expect_listing(t, l);
+}
+
 TEST(CompensationTypes, EveryShippedMachineIsListedHere) {
   // The tests above cover these; a new machine file needs its listing here.
   EXPECT_EQ(test::shipped_machines(), (std::vector<std::string>{"mc300", "mill3", "ac_trunnion", "knee_mill"}));
