@@ -12,6 +12,7 @@
 #include "vc/identify/travel_survey.hpp"
 #include "vc/init/home_position.hpp"
 #include "vc/init/joint_room.hpp"
+#include "vc/machine/compensation_types.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/tables/slope.hpp"
 
@@ -89,6 +90,33 @@ double print_tables(const Model& model, std::ostream& out) {
   return worst;
 }
 
+// The ISO/TR 16907 Annex A types the file's non-zero terms provide, what provides each, and
+// thermal compensation beside them.
+void print_compensation_types(const Model& model, std::ostream& out) {
+  const machine::CompensationTypes types = machine::compensation_types(model);
+  out << "compensation types (ISO/TR 16907 Annex A):\n";
+  if (types.types.empty()) out << "  (none: the file has no non-zero error)\n";
+  for (const machine::CompensationType& t : types.types) {
+    const bool composite = t.code.find("VOL") != std::string::npos;
+    out << "  " << t.code << "  " << t.name;
+    if (!t.missing.empty()) {
+      out << ": partial, has";
+      for (std::size_t i = 0; i < t.sources.size(); ++i) out << (i ? ", " : " ") << t.sources[i];
+      out << "; lacks";
+      for (std::size_t i = 0; i < t.missing.size(); ++i) out << (i ? ", " : " ") << t.missing[i];
+    } else if (composite) {
+      out << ": complete";
+    }
+    out << '\n';
+    if (!composite)
+      for (const std::string& s : t.sources) out << "      " << s << '\n';
+  }
+  out << "  tool direction (FOR): " << (types.orientation_possible ? "possible, " : "not possible, ")
+      << types.orientation_reason << '\n';
+  out << "  thermal (not an Annex type):" << (types.thermal.empty() ? " none" : "") << '\n';
+  for (const std::string& s : types.thermal) out << "      " << s << '\n';
+}
+
 // The configuration's limits against the correction: where it leaves each axis after homing,
 // and the room its joint limits leave at the ends of the travel; false if either fails.
 bool print_configuration(const Model& model, const std::string& ini_path, std::ostream& out) {
@@ -143,6 +171,7 @@ int run_check(const CheckArgs& args, std::ostream& out) {
     out << '\n';
   }
   const double steepest = print_tables(model, out);
+  print_compensation_types(model, out);
   for (const Warning& w : model.warnings) out << w.to_string() << '\n';
 
   const identify::TravelSurvey s = identify::survey_travel(model, args.samples);

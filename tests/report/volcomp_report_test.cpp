@@ -102,9 +102,9 @@ constexpr int kFigures = 12;
 
 TEST_F(VolcompReport, PageHoldsEveryPartAndNeedsNothingElse) {
   ASSERT_EQ(output_->exit_code, 0) << output_->out;
-  EXPECT_NE(output_->out.find("(6 sections, 12 figures, 2 measurements"), std::string::npos) << output_->out;
+  EXPECT_NE(output_->out.find("(7 sections, 12 figures, 2 measurements"), std::string::npos) << output_->out;
   const std::string html = test::file_text(*page_);
-  for (const char* id : {"machine", "tables", "location", "balance", "volume", "measurements"})
+  for (const char* id : {"machine", "tables", "location", "compensation", "balance", "volume", "measurements"})
     EXPECT_NE(html.find("<section id=\"" + std::string(id) + "\">"), std::string::npos) << id;
   // Self-contained: no script, style sheet, font or frame from elsewhere, no address at all.
   for (const char* outside : {"http://", "https://", "<script", "<link", "@import", "url(", "<iframe", "//fonts"})
@@ -131,6 +131,18 @@ TEST_F(VolcompReport, PageHoldsEveryPartAndNeedsNothingElse) {
   // The location errors as the machine file has them (arcsec).
   EXPECT_NE(html.find("<td>EC0Y</td><td>squareness: the Y line turned about z</td><td>-5.000</td><td>arcsec</td>"),
             std::string::npos);
+  // The compensation types the MC-300 provides (ISO/TR 16907 Annex A), declared in the summary
+  // and in their section with what provides them.
+  EXPECT_NE(html.find("<td>compensation types (ISO/TR 16907 Annex A)</td><td>L-POS, L-STR, L-SQU, L-ANG, L-VOL, FOR, "
+                      "L-VOL+, R-POS, R-RAX, R-POR, R-ANG, R-VOL, R-VOL+</td>"),
+            std::string::npos);
+  EXPECT_NE(html.find("<td>R-POR</td><td>position and orientation of rotary axes (location errors)</td><td>B: EA0B, "
+                      "EC0B; C: EA0C, EC0C</td>"),
+            std::string::npos);
+  EXPECT_NE(html.find("<td>R-VOL+</td><td>R-VOL with the functional orientation (R-VOL + FOR)</td><td>complete: "
+                      "R-POS + R-RAX + R-POR + R-ANG + FOR</td>"),
+            std::string::npos);
+  EXPECT_NE(html.find("<td>thermal</td><td>not an Annex A type</td><td>none</td>"), std::string::npos);
   // The measurements: the ISO figures, the file that is neither named as skipped.
   EXPECT_NE(html.find("ISO 230-2: EXX positioning of axis X, MC-300"), std::string::npos);
   EXPECT_NE(html.find("Circular test (ISO 230-4), plane XY, radius 150.0 mm"), std::string::npos);
@@ -246,10 +258,10 @@ TEST(VolcompReportBrowser, ProbeSeesBrokenPicturesRequestsAndConsoleErrors) {
 
 // Printed to PDF on A4: the header and summary, the machine, 3 pages for the 5 axis plots (two
 // a page), the location errors (2 pages: 36 rows, the MC-300 file's comments on its non-zero
-// values as "where from"), the balance, the volume map's text and table and its 4 sheets (a
-// page each), and a page per measurement: 15. (Each section starts a page; a sheet or an axis
+// values as "where from"), the compensation types (a page), the balance, the volume map's text and table and its 4 sheets (a
+// page each), and a page per measurement: 16. (Each section starts a page; a sheet or an axis
 // plot that did not fit its page's share, or a section that did not break, would change it.)
-TEST_F(VolcompReport, PrintsToFifteenA4Pages) {
+TEST_F(VolcompReport, PrintsToSixteenA4Pages) {
   SKIP_WITHOUT_CHROMIUM();
   ASSERT_EQ(output_->exit_code, 0) << output_->out;
   const fs::path folder = scratch("pdf");
@@ -262,7 +274,7 @@ TEST_F(VolcompReport, PrintsToFifteenA4Pages) {
   const std::regex page_object("/Type\\s*/Page[^s]");
   const auto pages =
       std::distance(std::sregex_iterator(bytes.begin(), bytes.end(), page_object), std::sregex_iterator());
-  EXPECT_EQ(pages, 15);
+  EXPECT_EQ(pages, 16);
   // A4 is 595.28 x 841.89 pt; chromium writes its page size in its own rounding.
   const std::regex media_box("/MediaBox \\[0 0 (59[45]\\.[0-9]+) (84[12]\\.[0-9]+)\\]");
   EXPECT_EQ(std::distance(std::sregex_iterator(bytes.begin(), bytes.end(), media_box), std::sregex_iterator()), pages);

@@ -9,6 +9,7 @@
 
 #include "report_style.hpp"
 #include "vc/identify/balance.hpp"
+#include "vc/machine/compensation_types.hpp"
 #include "vc/plot/machine_plot.hpp"
 #include "vc/plot/volume_map.hpp"
 #include "vc/plot/volume_map_plot.hpp"
@@ -151,6 +152,38 @@ std::string location_section(const machine::Model& model) {
          "angles in arcsec; 0 means the error is not in the machine file. Where from: the machine file's comment on "
          "the value's line (an identification writes its source and standard uncertainty there).</p>\n" +
          html_table({"line", "symbol", "meaning", "value", "unit", "where from"}, rows, false);
+}
+
+// The ISO/TR 16907 Annex A types the machine file provides (compensation_types.hpp): one row
+// a type with what provides it, then the tool direction and thermal compensation; the codes
+// provided in full go to the summary.
+std::string compensation_section(const machine::Model& model, Summary& summary) {
+  const machine::CompensationTypes types = machine::compensation_types(model);
+  std::vector<std::vector<std::string>> rows;
+  std::string declared;
+  const auto joined = [](const std::vector<std::string>& parts, const char* between) {
+    std::string s;
+    for (const std::string& p : parts) s += (s.empty() ? "" : between) + p;
+    return s;
+  };
+  for (const machine::CompensationType& t : types.types) {
+    const bool composite = t.code.find("VOL") != std::string::npos;
+    std::string by =
+        composite ? (t.complete ? "complete: " : "partial: has ") + joined(t.sources, " + ") : joined(t.sources, "; ");
+    if (!t.missing.empty()) by += "; lacks " + joined(t.missing, ", ");
+    rows.push_back({t.code, t.name, by});
+    if (t.complete) declared += (declared.empty() ? "" : ", ") + t.code;
+  }
+  rows.push_back({"tool direction", "FOR " + std::string(types.orientation_possible ? "possible" : "not possible"),
+                  types.orientation_reason});
+  rows.push_back({"thermal", "not an Annex A type", types.thermal.empty() ? "none" : joined(types.thermal, "; ")});
+  summary.push_back({"compensation types (ISO/TR 16907 Annex A)", declared.empty() ? "none" : declared});
+  return "<p>The compensation types of ISO/TR 16907 Annex A that the machine file's non-zero terms provide, each "
+         "with the axis and the ISO 230-1 symbols that provide it (and their table); a composite type (L-VOL, "
+         "R-VOL and their + forms) is complete only with all its parts. L-SPEC and R-SPEC hold the file's terms "
+         "the Annex does not name. Thermal compensation is no Annex type; the TR asks that it be active while the "
+         "geometric errors are measured.</p>\n" +
+         html_table({"type", "what it compensates", "provided by"}, rows, false);
 }
 
 // The accuracy balance's largest effects: a table and a bar chart of M and RMS.
@@ -310,6 +343,7 @@ Report accuracy_report(const machine::Model& model, const ReportOptions& options
   page.section("tables", "Error tables", tables_section(model, drawings, report.figures, progress));
   page.section("location", "Location errors", location_section(model));
   Summary summary = {{"machine", model.info.name + " (" + absolute(model.path) + ")"}};
+  page.section("compensation", "Compensation types (ISO/TR 16907 Annex A)", compensation_section(model, summary));
   page.section("balance", "Accuracy balance", balance_section(model, drawings, report.figures, progress, summary));
   page.section("volume", "Volume map: the tool-tip error over the working volume",
                volume_section(model, options, drawings, report.figures, progress, summary));
