@@ -10,7 +10,9 @@
 //    offset of the line) are no squareness: L-SPEC.
 //  * R-RAX is radial and axial error motion: every translational column of a rotary axis's
 //    table (EXC, EYC, EZC). R-ANG is tilt: the rotational columns about the other two
-//    directions (EAC, EBC); the one about its own direction (ECC) is R-POS.
+//    directions (EAC, EBC); the one about its own direction (ECC) is R-POS, and so is the
+//    location error about it (EC0C, the zero position: an angular positioning error, which the
+//    digest tells from R-POR's location); its other location errors are R-POR.
 //  * A table over another axis's position too (EZZ(z, y)) is a cross-axis table, not named by
 //    the Annex (digest 7.3: implied by L-SPEC / R-SPEC); it is listed under the type of its
 //    column and under L-SPEC (R-SPEC for a rotary axis). A table over a temperature is
@@ -159,7 +161,7 @@ void gather_locations(const Axis& a, int joint, Gathered& g) {
     if (a.location_rad[k] != 0.0) {
       const std::string term = std::string("E") + "ABC"[k] + '0' + a.letter;
       if (!linear)
-        g.add(RPor, joint, who, term);
+        g.add(k == own ? RPos : RPor, joint, who, k == own ? term + " (zero position)" : term);
       else if (k != own)
         g.add(LSqu, joint, who, term);
       else

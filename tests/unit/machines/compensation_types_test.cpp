@@ -66,9 +66,10 @@ Listing mc300_listing() {
   Listing l = linear_tables("Y: EC0Y", "Z: EA0Z, EB0Z");
   l.push_back({"FOR", {"two rotary axes: volkins corrects the tool direction too, faded out near the pole"}});
   l.push_back({"L-VOL+", with_for(kLinearAll)});
-  l.push_back({"R-POS", {"B: EBB (b.csv)", "C: ECC (c.csv)"}});
+  // EC0C, C's zero position, is an angular positioning error (R-POS), not a location (R-POR).
+  l.push_back({"R-POS", {"B: EBB (b.csv)", "C: EC0C (zero position)", "C: ECC (c.csv)"}});
   l.push_back({"R-RAX", {"B: EXB, EYB, EZB (b.csv)", "C: EXC, EYC, EZC (c.csv)"}});
-  l.push_back({"R-POR", {"B: EA0B, EC0B", "C: EA0C, EC0C"}});
+  l.push_back({"R-POR", {"B: EA0B, EC0B", "C: EA0C"}});
   l.push_back({"R-ANG", {"B: EAB, ECB (b.csv)", "C: EAC, EBC (c.csv)"}});
   l.push_back({"R-VOL", kRotaryAll});
   l.push_back({"R-VOL+", with_for(kRotaryAll)});
