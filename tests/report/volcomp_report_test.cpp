@@ -137,7 +137,11 @@ TEST_F(VolcompReport, PageHoldsEveryPartAndNeedsNothingElse) {
                       "L-VOL+, R-POS, R-RAX, R-POR, R-ANG, R-VOL, R-VOL+</td>"),
             std::string::npos);
   EXPECT_NE(html.find("<td>R-POR</td><td>position and orientation of rotary axes (location errors)</td><td>B: EA0B, "
-                      "EC0B; C: EA0C, EC0C</td>"),
+                      "EC0B; C: EA0C</td>"),
+            std::string::npos);
+  // C's zero position EC0C is an angular positioning error.
+  EXPECT_NE(html.find("<td>R-POS</td><td>angular positioning of rotary axes</td><td>B: EBB (b.csv); C: EC0C (zero "
+                      "position); C: ECC (c.csv)</td>"),
             std::string::npos);
   EXPECT_NE(html.find("<td>R-VOL+</td><td>R-VOL with the functional orientation (R-VOL + FOR)</td><td>complete: "
                       "R-POS + R-RAX + R-POR + R-ANG + FOR</td>"),
