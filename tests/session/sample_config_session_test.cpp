@@ -264,22 +264,11 @@ class SampleConfig : public ::testing::Test {
     std::getline(result, first);
     EXPECT_EQ(first.rfind("ok", 0), 0u) << "session: " << first << "\n" << r.out;
     if (first.rfind("ok", 0) != 0) throw std::runtime_error("the session did not run cleanly");
-    trace::SessionTrace t = trace::read_session_trace((run_dir / "trace.csv").string(), model);
-    if (sample.mm_per_unit != 1.0) in_mm(t, model, sample.mm_per_unit);
-    return t;
-  }
-
-  // An inch configuration's trace in mm (its linear axes' columns, the tool offset and L).
-  static void in_mm(trace::SessionTrace& t, const machine::Model& model, double mm_per_unit) {
-    for (std::size_t k = 0; k < t.size(); ++k)
-      for (int j = 0; j < model.joint_count(); ++j)
-        if (model.axes[static_cast<std::size_t>(j)].type == machine::AxisType::Linear) {
-          t.world[k][j] *= mm_per_unit;
-          t.joints[k][j] *= mm_per_unit;
-        }
-    for (double& v : t.tool_offset_mm) v *= mm_per_unit;
-    for (double& v : t.correction_length_mm) v *= mm_per_unit;
-    for (double& v : t.tool_axis_mm) v *= mm_per_unit;
+    // An inch configuration's trace is in inches: the reader takes it to mm, as `volcomp trace --ini` does.
+    const trace::TraceLayout layout = sample.mm_per_unit != 1.0
+                                          ? trace::trace_layout(model, model.coordinates(), sample.mm_per_unit)
+                                          : trace::TraceLayout{};
+    return trace::read_session_trace((run_dir / "trace.csv").string(), model, layout);
   }
 
   // The stock module's session: the transcription must be its inverse. The trace is read for
