@@ -369,15 +369,11 @@ class Patcher {
       for (char& ch : s) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
       return s;
     };
-    const auto type = [&](const std::string* t) {
-      const char first = t && !t->empty() ? upper(*t)[0] : '1';
-      return first == 'B' || first == 'F' || first == 'I' ? first : '1';
-    };
     const std::string joints = upper(m_.coordinates);
     const std::string loaded =
         coordinates.empty() ? std::string("XYZABCUVW").substr(0, joints.size()) : upper(coordinates);
     const std::string* ini_type = k_.parameter("kinstype");
-    return loaded == joints && type(kinstype.empty() ? nullptr : &kinstype) == type(ini_type);
+    return loaded == joints && trivkins_type(kinstype.empty() ? nullptr : &kinstype) == trivkins_type(ini_type);
   }
 
   // A `sets` of a signal whose nets were all deleted would fail: deleted too.

@@ -44,7 +44,7 @@ std::string kinematics_type_remark(const KinematicsLine& kinematics) {
   const std::string* type = kinematics.parameter("kinstype");
   const std::string where = type ? kinematics.entry->where().to_string() + ": kinstype=" + *type
                                  : std::string("no kinstype=: trivkins' default");
-  const char first = type && !type->empty() ? static_cast<char>(std::tolower((*type)[0])) : '1';
+  const char first = trivkins_type(type);
   if (first == 'b')
     return "the kinematics type stays KINEMATICS_BOTH (" + where + "), volkins' own: volkins' line needs no kinstype=.";
   const std::string stock = first == 'f'   ? "KINEMATICS_FORWARD_ONLY"

@@ -1,5 +1,6 @@
 #include "vc/init/kinematics_line.hpp"
 
+#include <cctype>
 #include <sstream>
 
 namespace vc::init {
@@ -37,6 +38,13 @@ std::string why_not(const std::string& module) {
 }
 
 }  // namespace
+
+char trivkins_type(const std::string* kinstype) {
+  const char first = kinstype && !kinstype->empty()
+                         ? static_cast<char>(std::tolower(static_cast<unsigned char>((*kinstype)[0])))
+                         : '1';
+  return first == 'b' || first == 'f' || first == 'i' ? first : '1';
+}
 
 const std::string* KinematicsLine::parameter(const std::string& name) const {
   for (const auto& [key, value] : parameters)

@@ -29,6 +29,10 @@ struct KinematicsLine {
   const std::string* parameter(const std::string& name) const;
 };
 
+// trivkins' kinematics type of a kinstype= value (trivkins.c: by its first letter, any case):
+// 'b' KINEMATICS_BOTH, 'f' FORWARD_ONLY, 'i' INVERSE_ONLY, '1' the identity (any other, or none).
+char trivkins_type(const std::string* kinstype);
+
 // Throws vc::LoadError (file:line): no [KINS]KINEMATICS, a module init does not know (with the
 // reason), a parameter the module does not have (rtapi_app would refuse to load it).
 KinematicsLine read_kinematics_line(const LinuxcncIni& ini);
