@@ -29,6 +29,8 @@
 // the correction is always for the active tool length (model.hpp, the tool-length rule).
 #include "vc/machine/compensation_types.hpp"
 
+#include "vc/machine/term_types.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -63,12 +65,10 @@ constexpr TypeName kNames[kCodes] = {
     {"R-SPEC", "builder-specific, rotary axes (terms the Annex does not name)"},
 };
 
-// The component (0 X, 1 Y, 2 Z) an axis moves along or turns about: its direction's largest.
-int own_component(const Axis& a) {
-  int k = 0;
-  for (int i = 1; i < 3; ++i)
-    if (std::abs(a.direction[i]) > std::abs(a.direction[k])) k = i;
-  return k;
+// The report's order (Code) of a basic type (term_types.hpp sorts the terms).
+Code code_of(BasicType t) {
+  constexpr Code kOf[kBasicTypeCount] = {LPos, LStr, LSqu, LAng, RPos, RRax, RPor, RAng, LSpec, RSpec};
+  return kOf[static_cast<std::size_t>(t)];
 }
 
 std::string file_name(const std::string& path) {
@@ -114,27 +114,17 @@ class Gathered {
 void gather_tables(const Model& model, int joint, Gathered& g, std::map<int, std::vector<std::string>>& thermal) {
   const Axis& a = model.axes[static_cast<std::size_t>(joint)];
   const bool linear = a.type == AxisType::Linear;
-  const int own = own_component(a);
   const std::string who(1, a.letter);
   for (int index : a.tables) {
     const BoundTable& bound = model.tables[static_cast<std::size_t>(index)];
     const tables::ErrorTable& t = bound.table;
     const std::string file = file_name(t.path());
     std::string columns;  // the non-zero ones
-    bool cross_axis = false;
-    for (std::size_t v = 0; v < t.grid().size(); ++v)
-      if (!t.grid()[v].is_temperature() && t.grid()[v].axis != a.letter) cross_axis = true;
+    const bool cross_axis = crosses_axes(model, bound, a);
     for (int c = 0; c < static_cast<int>(t.columns().size()); ++c) {
       if (!column_nonzero(t, c)) continue;
       const tables::ErrorSymbol& s = t.columns()[static_cast<std::size_t>(c)].symbol;
-      const bool translation = s.component < 3;
-      const int direction = s.component % 3;
-      Code code;
-      if (linear)
-        code = !translation ? LAng : direction == own ? LPos : LStr;
-      else
-        code = translation ? RRax : direction == own ? RPos : RAng;
-      g.add(code, joint, who, s.name(), file);
+      g.add(code_of(column_type(a, s.component)), joint, who, s.name(), file);
       if (cross_axis) g.add(linear ? LSpec : RSpec, joint, who, s.name() + " over another axis", file);
       columns += (columns.empty() ? "" : ", ") + s.name();
     }
@@ -149,24 +139,16 @@ void gather_locations(const Axis& a, int joint, Gathered& g) {
   const bool linear = a.type == AxisType::Linear;
   const int own = own_component(a);
   const std::string who(1, a.letter);
-  for (int k = 0; k < 3; ++k)  // positions first, then orientations, as ISO 230-1 lists them
-    if (a.location_mm[k] != 0.0) {
-      const std::string term = std::string("E") + "XYZ"[k] + '0' + a.letter;
-      if (linear)
-        g.add(LSpec, joint, who, term + " (offset of the axis line)");
-      else
-        g.add(RPor, joint, who, term);
-    }
-  for (int k = 0; k < 3; ++k)
-    if (a.location_rad[k] != 0.0) {
-      const std::string term = std::string("E") + "ABC"[k] + '0' + a.letter;
-      if (!linear)
-        g.add(k == own ? RPos : RPor, joint, who, k == own ? term + " (zero position)" : term);
-      else if (k != own)
-        g.add(LSqu, joint, who, term);
-      else
-        g.add(LSpec, joint, who, term + " (roll of the axis line)");
-    }
+  for (int k = 0; k < 6; ++k) {  // positions first, then orientations, as ISO 230-1 lists them
+    const double value = k < 3 ? a.location_mm[k] : a.location_rad[k - 3];
+    if (value == 0.0) continue;
+    const std::string term = std::string("E") + "XYZABC"[k] + '0' + a.letter;
+    const char* why = k < 3          ? (linear ? " (offset of the axis line)" : "")
+                      : k - 3 != own ? ""
+                      : linear       ? " (roll of the axis line)"
+                                     : " (zero position)";
+    g.add(code_of(location_type(a, k)), joint, who, term + why);
+  }
 }
 
 bool any_angular(const Model& model, const Gathered& g) {

@@ -96,7 +96,7 @@ Status newton(const Model& model, const Conditions& conditions, const Correction
 
 double fade_factor(const PoleFade& fade, double phi) noexcept {
   const double s = std::clamp((phi - fade.start_rad) / (fade.full_rad - fade.start_rad), 0.0, 1.0);
-  return s * s * (3.0 - 2.0 * s);
+  return fade.orientation * (s * s * (3.0 - 2.0 * s));  // FOR switched off: 0 everywhere
 }
 
 double pole_angle(const Model& model, const Joints& nominal, double tool_length_mm) noexcept {

@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 
+#include "vc/machine/term_types.hpp"
 #include "vc/tables/units.hpp"
 
 namespace vc::machine {
@@ -42,6 +43,27 @@ Matrix3d rotation_about(const Vector3d& u, double angle_deg) {
 // it was written (a plain copy reads across its columns' stores and waits for them).
 void copy_by_columns(const Matrix3d& src, Matrix3d& dst) noexcept {
   for (int c = 0; c < 3; ++c) dst.col(c) = src.col(c);
+}
+
+// The real placement of an axis line, T(o + d0) R(e0), with each location error scaled by its
+// type's gain (term_types.hpp): the model's own where every type is on, else made in `scaled`.
+const Isometry3d& real_base(const Axis& axis, const Conditions& conditions, Isometry3d& scaled) noexcept {
+  if (conditions.all_types_on()) return axis.real_base;
+  Vector3d d0, e0;
+  for (int k = 0; k < 3; ++k) {
+    d0[k] = type_gain(conditions, location_type(axis, k)) * axis.location_mm[k];
+    e0[k] = type_gain(conditions, location_type(axis, k + 3)) * axis.location_rad[k];
+  }
+  scaled = line_placement(axis.pole_mm, d0, e0);
+  return scaled;
+}
+
+// The spindle line's, its location errors L-SPEC.
+const Isometry3d& real_spindle(const Spindle& spindle, const Conditions& conditions, Isometry3d& scaled) noexcept {
+  const double gain = type_gain(conditions, BasicType::LSpec);
+  if (gain == 1.0) return spindle.real;
+  scaled = line_placement(spindle.gauge_point_mm, gain * spindle.location_mm, gain * spindle.location_rad);
+  return scaled;
 }
 
 // A placement in the bed frame: bed_T_frame as rotation and origin (cheaper than 4x4 products).
@@ -93,7 +115,8 @@ Frame walk_real_chain(const Model& model, const Conditions& conditions, const st
     const Vector3d motion_origin = linear ? Vector3d(q[i] * axis.direction + delta) : delta;
     const Matrix3d motion_rotation = linear ? r_eps : Matrix3d(r_eps * rotation_about(axis.direction, q[i]));
     // Frame after `base` (the fixed placement of the axis line), then the child frame.
-    const Frame base = parent.then(axis.real_base);
+    Isometry3d scaled;
+    const Frame base = parent.then(real_base(axis, conditions, scaled));
     const Vector3d child_origin = base.origin + base.rotation * motion_origin;
     for (int j = 0; j < model.joint_count(); ++j) {
       if (!((axis.moved_by >> j) & 1u)) continue;
@@ -132,7 +155,9 @@ Frame walk_chain(const Model& model, const Conditions& conditions, Machine machi
 // bed_T_tool (tip) and bed_T_part.
 Frame tool_frame(const Model& model, const Conditions& conditions, Machine machine, const Joints& q,
                  double tool_length_mm, ChainMotion* motion) noexcept {
-  const Isometry3d& spindle = machine == Machine::Real ? model.spindle.real : model.spindle.ideal;
+  Isometry3d scaled;
+  const Isometry3d& spindle =
+      machine == Machine::Real ? real_spindle(model.spindle, conditions, scaled) : model.spindle.ideal;
   Frame tool = walk_chain(model, conditions, machine, model.tool_chain, q, motion).then(spindle);
   tool.origin += tool.rotation.col(2) * -tool_length_mm;  // the tip, L down the spindle's z
   return tool;
@@ -182,14 +207,16 @@ class CarriedPose {
         motion_rotation = turn;
       turns = true;
     }
-    const Vector3d& base_origin = real ? axis.real_base.translation() : axis.pole_mm;
+    Isometry3d scaled;
+    const Isometry3d& base = real ? real_base(axis, conditions, scaled) : axis.real_base;
+    const Vector3d& base_origin = real ? base.translation() : axis.pole_mm;
     const bool base_turns = real && !axis.location_rad.isZero(0.0);  // R(e0), else the identity
     if (inverse) {
-      to_child(base_origin, axis.real_base.linear(), base_turns);
+      to_child(base_origin, base.linear(), base_turns);
       to_child(motion_origin, motion_rotation, turns);
     } else {
       to_parent(motion_origin, motion_rotation, turns);
-      to_parent(base_origin, axis.real_base.linear(), base_turns);
+      to_parent(base_origin, base.linear(), base_turns);
     }
   }
   // p -> origin + rotation p (the child's point in the parent frame)
@@ -216,7 +243,9 @@ class CarriedPose {
 
 ToolPose carried_pose(const Model& model, const Conditions& conditions, Machine machine, const Joints& q,
                       double tool_length_mm) noexcept {
-  const Isometry3d& spindle = machine == Machine::Real ? model.spindle.real : model.spindle.ideal;
+  Isometry3d scaled;
+  const Isometry3d& spindle =
+      machine == Machine::Real ? real_spindle(model.spindle, conditions, scaled) : model.spindle.ideal;
   const Vector3d direction = spindle.linear().col(2);
   CarriedPose carried(spindle.translation() - tool_length_mm * direction, direction);
   for (auto i = model.tool_chain.rbegin(); i != model.tool_chain.rend(); ++i)
@@ -345,7 +374,9 @@ void axis_errors(const Model& model, const Conditions& conditions, int joint, co
   std::array<double, tables::ErrorTable::kMaxColumns> sum{};  // components X Y Z A B C
   if (with_slopes) out.slope.setZero();
   tables::ErrorTable::Sample sample;
-  for (int t : model.axes[joint].tables) {
+  const Axis& axis = model.axes[joint];
+  const bool switched = !conditions.all_types_on();  // some type off or ramping: columns scaled
+  for (int t : axis.tables) {
     const BoundTable& bound = model.tables[t];
     const auto& grid = bound.table.grid();
     // Grid variables: joint positions, or temperatures at their current (volkins: filtered) value.
@@ -353,26 +384,34 @@ void axis_errors(const Model& model, const Conditions& conditions, int joint, co
     for (std::size_t v = 0; v < grid.size(); ++v)
       at[v] = bound.joint[v] >= 0 ? q[bound.joint[v]]
                                   : conditions.temperature_degC[static_cast<std::size_t>(bound.input[v])];
-    if (!with_slopes) {  // the pose alone: the table adds its values by component
+    if (!with_slopes && !switched) {  // the pose alone: the table adds its values by component
       bound.table.add_components(at.data(), sum);
       continue;
     }
-    bound.table.evaluate(at.data(), sample, true);
+    bound.table.evaluate(at.data(), sample, with_slopes);
     const auto& columns = bound.table.columns();
-    for (std::size_t c = 0; c < columns.size(); ++c)
-      sum[static_cast<std::size_t>(columns[c].symbol.component)] += sample.value[c];
-    for (std::size_t c = 0; c < columns.size(); ++c)
-      for (std::size_t v = 0; v < grid.size(); ++v)
-        if (bound.joint[v] >= 0) out.slope(columns[c].symbol.component, bound.joint[v]) += sample.slope[c][v];
+    // A cross-axis table is switched by L-SPEC (R-SPEC) too (term_types.hpp).
+    const double cross =
+        switched && crosses_axes(model, bound, axis)
+            ? type_gain(conditions, axis.type == AxisType::Linear ? BasicType::LSpec : BasicType::RSpec)
+            : 1.0;
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      const int component = columns[c].symbol.component;
+      const double gain = switched ? cross * type_gain(conditions, column_type(axis, component)) : 1.0;
+      sum[static_cast<std::size_t>(component)] += gain * sample.value[c];
+      if (with_slopes)
+        for (std::size_t v = 0; v < grid.size(); ++v)
+          if (bound.joint[v] >= 0) out.slope(component, bound.joint[v]) += gain * sample.slope[c][v];
+    }
   }
   // Thermal expansion of a linear axis: it travels (1 + strain) times as far from its reference
   // point, along its own direction u (a table axis then carries the part the other way).
-  const LinearThermal& thermal = model.axes[joint].thermal;
+  const LinearThermal& thermal = axis.thermal;
   if (thermal.input >= 0) {
     const auto input = static_cast<std::size_t>(thermal.input);
     const double strain =
         thermal.expansion_per_K * (conditions.temperature_degC[input] - model.temperatures[input].reference_degC);
-    const Eigen::Vector3d& u = model.axes[joint].direction;
+    const Eigen::Vector3d& u = axis.direction;
     for (int c = 0; c < 3; ++c) {
       sum[static_cast<std::size_t>(c)] += strain * (q[joint] - thermal.reference_mm) * u[c];
       if (with_slopes) out.slope(c, joint) += strain * u[c];

@@ -30,6 +30,9 @@ inline constexpr int kMaxAxes = 6;
 // Most temperature inputs a machine file may declare ([temperatures]).
 inline constexpr int kMaxTemperatureInputs = 8;
 
+// The basic compensation types of ISO/TR 16907 Annex A a term is switched by (term_types.hpp).
+inline constexpr int kBasicTypeCount = 10;
+
 // Joint positions in joint order (mm for linear axes, deg for rotary ones). Dynamic size
 // with a static maximum: lives on the stack, never allocates.
 using Joints = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxAxes, 1>;
@@ -105,9 +108,12 @@ struct MachineInfo {
 
 // Pole fade (model.md, Correction): orientation correction fades out as the tool axis
 // approaches a rotary axis line, s = clamp((phi - phi0) / (phi1 - phi0)), f = s^2 (3 - 2 s).
+// FOR switched off (term_types.hpp) scales f by `orientation` 0: the tool position alone is
+// corrected everywhere, as at the pole (between 0 and 1 while volkins ramps the switch).
 struct PoleFade {
-  double start_rad;  // phi0: below it, f = 0 (position-only correction)
-  double full_rad;   // phi1: above it, f = 1 (full position and orientation correction)
+  double start_rad;          // phi0: below it, f = 0 (position-only correction)
+  double full_rad;           // phi1: above it, f = 1 (full position and orientation correction)
+  double orientation = 1.0;  // FOR's gain: f is this times the fade of the pole angle
 };
 
 // What varies while a machine runs, beside its Model, which does not (as Pinocchio keeps a
@@ -118,6 +124,15 @@ struct PoleFade {
 struct Conditions {
   std::array<double, kMaxTemperatureInputs> temperature_degC{};  // by index of Model::temperatures
   PoleFade fade{};
+  // The compensation types switched on (term_types.hpp: the basic types of ISO/TR 16907 Annex
+  // A): every error term is scaled by its type's gain, 1 (on) unless volkins' pins or volcomp's
+  // --types switch it off (0; between while volkins ramps the switch).
+  std::array<double, kBasicTypeCount> type_gain{1, 1, 1, 1, 1, 1, 1, 1, 1, 1};
+  bool all_types_on() const noexcept {
+    for (double g : type_gain)
+      if (g != 1.0) return false;
+    return true;
+  }
 };
 
 // Newton stopping rules (shared by the correction and its inverse).
