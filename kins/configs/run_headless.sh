@@ -8,6 +8,7 @@
 #                   [--allow-message TEXT] [--program FILE]
 #                   [--compensation on|off|toggle]
 #                   [--set SECTION.KEY=VALUE]... [--add SECTION.KEY=VALUE]... [--halfile FILE]...
+#                   [--replace-halfile NAME=FILE]...
 #
 # The configuration folder and kins/configs/common are copied to RUN_DIR/kins/configs, with with the
 # machine files and tables (machines/data, tables/data): rtapi_app runs as another user
@@ -16,14 +17,15 @@
 # writes its files (parameter file, tool table map via HOME) only inside RUN_DIR, and the trace
 # lands in RUN_DIR/kins/configs/<name>/trace.csv (--set DRIVER.TRACE=none: no trace). --halfile
 # copies FILE into the configuration folder and adds it to [HAL] after the others (e.g. a
-# simulated probe, kins/sim). --add appends KEY = VALUE to [SECTION] (a REMAP, a SUBROUTINE_PATH).
+# simulated probe, kins/sim); --replace-halfile copies FILE there in place of the HALFILE NAME
+# (a trace with other columns). --add appends KEY = VALUE to [SECTION] (a REMAP, a SUBROUTINE_PATH).
 # Exit 0 if the program ran cleanly.
 set -euo pipefail
 
-usage() { echo "usage: $0 CONFIG.ini RUN_DIR [--kinematics LINE] [--without-volkins] [--without-update] [--without-comp-files] [--expect-message TEXT] [--allow-message TEXT] [--program FILE] [--compensation on|off|toggle] [--set SECTION.KEY=VALUE]... [--add SECTION.KEY=VALUE]... [--halfile FILE]..." >&2; exit 2; }
+usage() { echo "usage: $0 CONFIG.ini RUN_DIR [--kinematics LINE] [--without-volkins] [--without-update] [--without-comp-files] [--expect-message TEXT] [--allow-message TEXT] [--program FILE] [--compensation on|off|toggle] [--set SECTION.KEY=VALUE]... [--add SECTION.KEY=VALUE]... [--halfile FILE]... [--replace-halfile NAME=FILE]..." >&2; exit 2; }
 [ $# -ge 2 ] || usage
 ini_src=$(realpath "$1"); run_dir=$2; shift 2
-kinematics="" ; without_volkins=0; without_update=0; without_comp_files=0; program=""; compensation=""; settings=(); additions=(); halfiles=()
+kinematics="" ; without_volkins=0; without_update=0; without_comp_files=0; program=""; compensation=""; settings=(); additions=(); halfiles=(); replacements=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --kinematics) kinematics=$2; shift 2 ;;
@@ -37,6 +39,7 @@ while [ $# -gt 0 ]; do
     --set) settings+=("$2"); shift 2 ;;
     --add) additions+=("$2"); shift 2 ;;
     --halfile) halfiles+=("$(realpath "$2")"); shift 2 ;;
+    --replace-halfile) replacements+=("${2%%=*}=$(realpath "${2#*=}")"); shift 2 ;;
     *) usage ;;
   esac
 done
@@ -79,6 +82,12 @@ for halfile in "${halfiles[@]}"; do  # after the [HAL] section's last HALFILE
     { if (in_hal && !done && $0 ~ /^[[:space:]]*$/) { print "HALFILE = " f; done = 1 } print }
     END { if (in_hal && !done) print "HALFILE = " f }' "$ini" > "$ini.new"
   mv "$ini.new" "$ini"
+done
+for replacement in "${replacements[@]}"; do  # NAME=FILE: HALFILE = NAME becomes FILE's copy
+  name=${replacement%%=*}; file=${replacement#*=}
+  grep -qx "HALFILE = $name" "$ini" || { echo "run_headless.sh: no HALFILE = $name in $ini" >&2; exit 1; }
+  cp "$file" "$(dirname "$ini")/"
+  sed -i "s|^HALFILE = $name\$|HALFILE = $(basename "$file")|" "$ini"
 done
 if [ "$without_volkins" = 1 ]; then
   sed -i '/^HALFILE = ..\/common\/volkins.hal/d' "$ini"

@@ -17,7 +17,9 @@
 // and volkins.update-missing, and print once how to fix the HAL file. Temperature inputs of
 // the machine file are HAL pins volkins.temperature.<name>, low-passed in volkins.update;
 // a missing or out-of-range reading holds the last good value and raises
-// volkins.temperature-fault.
+// volkins.temperature-fault. Each compensation type of ISO/TR 16907 Annex A (and FOR, thermal)
+// has a pin of its own, volkins.type.<code>.enable, ramped as volkins.enable is: the correction
+// is then the model's with only the types on (term_types.hpp).
 // coordinates= maps LinuxCNC's joints to the machine file's axes (a letter twice: two joints
 // driven alike, a gantry). Switchable kinematics (LinuxCNC 2.9, motion.switchkins-type): type 0
 // is the world= convention (or the identity with sparm=identityfirst), type 1 the other one;
@@ -30,10 +32,13 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <exception>
+#include <string_view>
 
 #include "gain_ramp.hpp"
 #include "module_settings.hpp"
+#include "vc/machine/term_types.hpp"
 
 #include "rtapi.h"  // rtapi.h and hal.h declare C linkage themselves
 #include "hal.h"
@@ -51,6 +56,11 @@ namespace vm = vc::machine;
 
 constexpr double kDegPerRad = 57.295779513082320876798154814105;
 constexpr int kMaxTemperatures = vc::kins::kMaxTemperatureInputs;
+
+// The compensation types switched by pins of their own (volkins.type.<code>.enable): ISO/TR
+// 16907 Annex A's basic types (term_types.hpp), then FOR (the tool direction) and thermal.
+constexpr int kBasicTypes = vm::kBasicTypeCount;
+constexpr int kForSwitch = kBasicTypes, kThermalSwitch = kBasicTypes + 1, kSwitches = kBasicTypes + 2;
 
 struct HalData {
   // Pins.
@@ -72,6 +82,8 @@ struct HalData {
   hal_bit_t* temperature_fault;                         // out: an input is missing or out of its range (held)
   hal_bit_t* kinstype_is[3];                            // out: kinstype.is-N, as LinuxCNC's switchable modules
   hal_bit_t* tcp;                                       // out: the world is the tool tip (TCP kinematics type)
+  hal_bit_t* switch_enable[kSwitches];                  // in: volkins.type.<code>.enable, thermal.enable
+  hal_float_t* switch_gain[kSwitches];                  // out: its ramp, 0..1
   // Parameters.
   hal_float_t ramp_time;                  // s: 0 -> 1 (and back) takes this long
   hal_float_t max_correction_mm;          // largest linear joint correction allowed
@@ -80,8 +92,12 @@ struct HalData {
   hal_float_t pole_fade_full_deg;         // phi1: full orientation correction above
   hal_float_t tool_offset_slew_time;      // s: a tool length offset change reaches the correction in this time
   hal_float_t temperature_time_constant;  // s: of the low-pass on every temperature input
-  // State of the ramp (only volkins.update writes it).
+  // State of the ramp (only volkins.update writes it), and of each type's (ramp-time too).
   vc::kins::GainRamp ramp;
+  vc::kins::GainRamp switch_ramp[kSwitches];
+  // Each temperature input low-passed; the correction takes reference + thermal gain x (this -
+  // reference).
+  double temperature_state[kMaxTemperatures];
   // Whether volkins.update has run, and whether the kinematics ran before it did (then it
   // applied the full correction, and the ramp starts there: no step when update starts).
   bool update_ran;
@@ -225,6 +241,24 @@ void show_kinematics_type() {
   *hal->tcp = current_world() == vm::WorldConvention::Tcp;
 }
 
+// The switches' gains into the conditions the correction is evaluated at: each basic type's
+// scales its terms, FOR's the pole fade, thermal's takes each temperature from its reference
+// (0) to its filtered reading (1).
+void set_switched_conditions() {
+  vm::Conditions& c = hal->conditions;
+  for (int t = 0; t < kBasicTypes; ++t) c.type_gain[t] = *hal->switch_gain[t];
+  c.fade.orientation = *hal->switch_gain[kForSwitch];
+  const double thermal = *hal->switch_gain[kThermalSwitch];
+  for (std::size_t i = 0; i < settings->model.temperatures.size(); ++i) {
+    const double reference = settings->model.temperatures[i].reference_degC;
+    c.temperature_degC[i] = reference + thermal * (hal->temperature_state[i] - reference);
+  }
+}
+
+// All of the machine file is applied (no type off or on its way): the contraction bound, made
+// for the whole model, holds.
+bool everything_switched_on() { return hal->conditions.all_types_on() && hal->conditions.fade.orientation == 1.0; }
+
 // Servo thread, before motion-controller: moves the ramp one period towards volkins.enable and
 // the correction's tool length towards volkins.tool-offset (gain_ramp.hpp: bounded rate and
 // change of rate, so joint velocity stays continuous, also when either changes on the way),
@@ -235,9 +269,16 @@ void update(void*, long period_ns) {
     hal->update_ran = true;
     *hal->update_missing = 0;
     if (hal->kinematics_before_update) hal->ramp = {target, 0.0};  // where the kinematics were
+    // The types start where their pins are: the correction is still off (or, after the
+    // kinematics ran without update, the pins applied at once), so nothing moves.
+    for (int k = 0; k < kSwitches; ++k) hal->switch_ramp[k] = {*hal->switch_enable[k] ? 1.0 : 0.0, 0.0};
     hal->offset.reset(tool_offset_mm());
   }
   hal->ramp.step(target, period_ns * 1e-9, hal->ramp_time);
+  for (int k = 0; k < kSwitches; ++k) {
+    hal->switch_ramp[k].step(*hal->switch_enable[k] ? 1.0 : 0.0, period_ns * 1e-9, hal->ramp_time);
+    *hal->switch_gain[k] = hal->switch_ramp[k].gain;
+  }
   kinematics.moving = kinematics.pose_known && !same_pose(kinematics.last_inverse_pose, kinematics.pose_at_update);
   kinematics.pose_at_update = kinematics.last_inverse_pose;
   kinematics.pose_known = true;
@@ -256,7 +297,7 @@ void update(void*, long period_ns) {
   for (std::size_t i = 0; i < settings->model.temperatures.size(); ++i) {
     const vm::TemperatureInput& input = settings->model.temperatures[i];
     const double reading = *hal->temperature[i];
-    double& state = hal->conditions.temperature_degC[i];
+    double& state = hal->temperature_state[i];
     if (std::isfinite(reading) && reading >= input.min_degC && reading <= input.max_degC) {
       state += (reading - state) * dt / (tau + dt);
     } else {
@@ -265,6 +306,7 @@ void update(void*, long period_ns) {
     *hal->temperature_filtered[i] = state;
   }
   *hal->temperature_fault = fault;
+  set_switched_conditions();
 
   const double start = hal->pole_fade_start_deg, full = hal->pole_fade_full_deg;
   if (start >= 0.0 && full > start && full <= 90.0) {
@@ -296,6 +338,8 @@ double applied_gain() {
   *hal->gain = gain;
   *hal->active = gain > 0.0;
   *hal->update_missing = 1;
+  for (int k = 0; k < kSwitches; ++k) *hal->switch_gain[k] = *hal->switch_enable[k] ? 1.0 : 0.0;
+  set_switched_conditions();
   if (!hal->kinematics_before_update) {  // once: the first call
     hal->kinematics_before_update = true;
     rtapi_print_msg(RTAPI_MSG_ERR,
@@ -319,7 +363,7 @@ int inverse(const EmcPose* pose, double* joints) {
   const vm::Applied applied{applied_gain(),
                             &previous,
                             applied_corrections.for_inverse(extrapolated),
-                            &*settings->contraction,
+                            everything_switched_on() && settings->contraction ? &*settings->contraction : nullptr,
                             full_corrections.for_inverse(extrapolated_full),
                             model.correction_length(offset) + w,
                             &hal->conditions};
@@ -487,6 +531,20 @@ bool export_hal(const vm::Model& model) {
   // LinuxCNC's switchable modules' pins, under their names (GUIs and programs read them).
   for (int t = 0; t < 3; ++t) r |= hal_pin_bit_newf(HAL_OUT, &hal->kinstype_is[t], comp_id, "kinstype.is-%d", t);
   r |= hal_pin_bit_newf(HAL_OUT, &hal->tcp, comp_id, "volkins.tcp");
+  // One switch per compensation type, named by its Annex A code in lower case
+  // (volkins.type.l-pos.enable), FOR's volkins.type.for.enable, and volkins.thermal.enable.
+  for (int k = 0; k < kSwitches; ++k) {
+    char name[32];
+    if (k == kThermalSwitch) {
+      std::snprintf(name, sizeof name, "thermal");
+    } else {
+      const std::string_view code = k == kForSwitch ? "FOR" : vm::basic_type_code(static_cast<vm::BasicType>(k));
+      std::snprintf(name, sizeof name, "type.%.*s", static_cast<int>(code.size()), code.data());
+      for (char* c = name; *c; ++c) *c = static_cast<char>(*c >= 'A' && *c <= 'Z' ? *c - 'A' + 'a' : *c);
+    }
+    r |= hal_pin_bit_newf(HAL_IN, &hal->switch_enable[k], comp_id, "volkins.%s.enable", name);
+    r |= hal_pin_float_newf(HAL_OUT, &hal->switch_gain[k], comp_id, "volkins.%s.gain", name);
+  }
   r |= hal_export_funct("volkins.update", update, nullptr, 1 /* uses floating point */, 0, comp_id);
   if (r) return false;
 
@@ -506,7 +564,13 @@ bool export_hal(const vm::Model& model) {
   *hal->correction_length = linuxcnc_length(hal->correction_length_mm);
   hal->conditions = model.reference_conditions();  // until a sensor says otherwise
   for (std::size_t i = 0; i < model.temperatures.size(); ++i)
-    *hal->temperature[i] = *hal->temperature_filtered[i] = hal->conditions.temperature_degC[i];
+    *hal->temperature[i] = *hal->temperature_filtered[i] = hal->temperature_state[i] =
+        hal->conditions.temperature_degC[i];
+  for (int k = 0; k < kSwitches; ++k) {  // every type on
+    *hal->switch_enable[k] = 1;
+    *hal->switch_gain[k] = 1.0;
+    hal->switch_ramp[k] = {1.0, 0.0};
+  }
   *hal->temperature_fault = 0;
   hal->temperature_time_constant = 10.0;
   hal->ramp_time = 1.0;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <cmath>
 #include <random>
 
@@ -15,6 +16,7 @@
 #include "vc/machine/contraction_bound.hpp"
 #include "vc/machine/kinematics.hpp"
 #include "vc/machine/load_machine.hpp"
+#include "vc/machine/term_types.hpp"
 
 namespace vc::machine {
 namespace {
@@ -208,7 +210,8 @@ void BM_ForwardSeeded(benchmark::State& state, const std::string& machine) {
 // proves it): the pair the 2.5 us target is for. Without `correction_seeds`, the seeds
 // LinuxCNC gives alone (volkins before it kept corrections); without `bound`, every step
 // checked (volkins before the bound).
-double servo_pair(const Fixture& f, const ServoCycle& c, bool correction_seeds, bool bound) {
+double servo_pair(const Fixture& f, const ServoCycle& c, bool correction_seeds, bool bound,
+                  const Conditions* conditions = nullptr) {
   const double L = f.model.tool_length_mm;
   const Joints* forward_seed = !correction_seeds   ? nullptr
                                : c.feedback.size() ? &c.feedback_correction
@@ -218,11 +221,19 @@ double servo_pair(const Fixture& f, const ServoCycle& c, bool correction_seeds, 
     return correction_seeds && kept.size() ? &kept : nullptr;
   };
   Joints world, joints;
-  world_from_joints(f.model, WorldConvention::Axes, c.feedback.size() ? c.feedback : c.previous_joints, L,
-                    Applied{1.0, &c.before_before, forward_seed, nullptr, full(c.feedback_full)}, world);
-  joints_from_world(
-      f.model, WorldConvention::Axes, c.world, L,
-      Applied{1.0, &c.previous_joints, inverse_seed, bound ? &f.bound : nullptr, full(c.extrapolated_full)}, joints);
+  const Applied forward{1.0,       &c.before_before,      forward_seed,
+                        nullptr,   full(c.feedback_full), std::numeric_limits<double>::quiet_NaN(),
+                        conditions};
+  world_from_joints(f.model, WorldConvention::Axes, c.feedback.size() ? c.feedback : c.previous_joints, L, forward,
+                    world);
+  const Applied inverse{1.0,
+                        &c.previous_joints,
+                        inverse_seed,
+                        bound ? &f.bound : nullptr,
+                        full(c.extrapolated_full),
+                        std::numeric_limits<double>::quiet_NaN(),
+                        conditions};
+  joints_from_world(f.model, WorldConvention::Axes, c.world, L, inverse, joints);
   return world[0] + joints[0];
 }
 
@@ -236,6 +247,17 @@ void BM_ServoCycle(benchmark::State& state, const std::string& machine, bool cor
         return servo_pair(f, contour ? along_contour[i] : f.cycles[i], correction_seeds, bound);
       },
       contour ? along_contour.size() : 0);
+}
+
+// The pair with L-ANG and R-POR switched off (volkins.type.*.enable 0, ramped to 0): every
+// term scaled by its type's gain, every step evaluated (the contraction bound holds for the
+// whole model only), seeded with the whole model's corrections as in the cycles after a switch.
+void BM_ServoCycleTypesOff(benchmark::State& state, const std::string& machine) {
+  static Conditions off;
+  off = fixture(machine).model.reference_conditions();
+  off.type_gain[static_cast<std::size_t>(BasicType::LAng)] = 0.0;
+  off.type_gain[static_cast<std::size_t>(BasicType::RPor)] = 0.0;
+  run(state, machine, [](const Fixture& f, std::size_t i) { return servo_pair(f, f.cycles[i], true, false, &off); });
 }
 
 // The same pair along the contour with cold caches: before each call a buffer larger than the
@@ -275,6 +297,7 @@ BENCHMARK_CAPTURE(BM_ServoCycle, mc300_every_step_checked, std::string("mc300"),
 BENCHMARK_CAPTURE(BM_ServoCycle, mc300_joint_seeds, std::string("mc300"), false, false);
 BENCHMARK_CAPTURE(BM_ServoCycle, mc300_contour, std::string("mc300"), true, true, true);
 BENCHMARK_CAPTURE(BM_ServoCycle, mc300_contour_every_step_checked, std::string("mc300"), true, false, true);
+BENCHMARK_CAPTURE(BM_ServoCycleTypesOff, mc300, std::string("mc300"));
 BENCHMARK_CAPTURE(BM_ServoCycleColdCaches, mc300_contour, std::string("mc300"))->UseManualTime()->Iterations(1000);
 BENCHMARK_CAPTURE(BM_ServoCycle, ac_trunnion, std::string("ac_trunnion"), true, true);
 BENCHMARK_CAPTURE(BM_Correct, mill3, std::string("mill3"));

@@ -45,12 +45,28 @@ TEST_P(ShippedMachine, LoadsAndExposesItsPins) {
   const test::CommandResult r =
       test::halrun("load_" + GetParam(), loadrt(shipped(GetParam())) + "show pin volkins\nshow param volkins\n");
   ASSERT_EQ(r.exit_code, 0) << r.out;
-  for (const char* pin :
-       {"volkins.enable", "volkins.tool-offset", "volkins.tool-offset-slew-time", "volkins.gain", "volkins.active",
-        "volkins.update-missing", "volkins.iterations", "volkins.forward-iterations", "volkins.out-of-table",
-        "volkins.limit-exceeded", "volkins.failures", "volkins.ramp-time", "volkins.max-correction-mm",
-        "volkins.max-correction-deg", "volkins.pole-fade-start-deg", "volkins.pole-fade-full-deg",
-        "volkins.update.time"})
+  for (const char* pin : {"volkins.enable",
+                          "volkins.tool-offset",
+                          "volkins.tool-offset-slew-time",
+                          "volkins.gain",
+                          "volkins.active",
+                          "volkins.update-missing",
+                          "volkins.iterations",
+                          "volkins.forward-iterations",
+                          "volkins.out-of-table",
+                          "volkins.limit-exceeded",
+                          "volkins.failures",
+                          "volkins.ramp-time",
+                          "volkins.max-correction-mm",
+                          "volkins.max-correction-deg",
+                          "volkins.pole-fade-start-deg",
+                          "volkins.pole-fade-full-deg",
+                          "volkins.update.time",
+                          "volkins.type.l-pos.enable",
+                          "volkins.type.r-spec.gain",
+                          "volkins.type.for.enable",
+                          "volkins.thermal.enable",
+                          "volkins.thermal.gain"})
     EXPECT_NE(r.out.find(pin), std::string::npos) << pin << " missing:\n" << r.out;
   for (int j = 0; j < 6; ++j) {
     const std::string pin = "volkins.joint." + std::to_string(j) + ".correction";
@@ -126,6 +142,40 @@ TEST(Volkins, EnableRampsTheGainInRampTime) {
     states.push_back((*it)[1]);
   EXPECT_EQ(states, (std::vector<std::string>{"TRUE", "FALSE"})) << r.out;
   EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(bit\s+OUT\s+FALSE\s+volkins\.update-missing)"))) << r.out;
+}
+
+// Each compensation type's switch (volkins.type.<code>.enable, and FOR's and thermal's) ramps its
+// own gain in ramp-time, the others staying on; a switch set before the thread starts is taken
+// at once (the correction is not applied yet).
+TEST(Volkins, EachTypesSwitchRampsItsOwnGain) {
+  const std::string script = loadrt(shipped("mc300")) +
+                             "loadrt threads name1=servo period1=1000000\n"
+                             "addf volkins.update servo\n"
+                             "setp volkins.ramp-time 0.5\n"
+                             "setp volkins.type.r-por.enable 0\n"
+                             "start\n"
+                             "loadusr -w sleep 0.05\n"
+                             "show pin volkins.type.r-por.gain\n"
+                             "loadusr -w sleep 0.75\n"
+                             "setp volkins.type.l-ang.enable 0\n"
+                             "setp volkins.thermal.enable 0\n"
+                             "loadusr -w sleep 0.15\n"
+                             "show pin volkins.type.l-ang.gain\n"
+                             "loadusr -w sleep 0.8\n"
+                             "show pin volkins.type\n"
+                             "show pin volkins.thermal.gain\n";
+  const test::CommandResult r = test::halrun("type_ramp", script);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const std::vector<double> l_ang = shown_values(r.out, "volkins.type.l-ang.gain");
+  ASSERT_EQ(l_ang.size(), 2u) << r.out;
+  EXPECT_GT(l_ang[0], 0.0) << "on its way: " << r.out;
+  EXPECT_LT(l_ang[0], 1.0) << "on its way: " << r.out;
+  EXPECT_EQ(l_ang[1], 0.0) << r.out;
+  EXPECT_EQ(shown_values(r.out, "volkins.type.r-por.gain"), (std::vector<double>{0.0, 0.0})) << "at once: " << r.out;
+  EXPECT_EQ(shown_values(r.out, "volkins.thermal.gain"), std::vector<double>{0.0}) << r.out;
+  for (const char* on : {"l-pos", "l-str", "l-squ", "r-pos", "r-rax", "r-ang", "l-spec", "r-spec", "for"})
+    EXPECT_EQ(shown_values(r.out, std::string("volkins.type.") + on + ".gain"), std::vector<double>{1.0})
+        << on << ": " << r.out;
 }
 
 // A temperature input of the machine file is a pin volkins.temperature.<name>: low-passed with

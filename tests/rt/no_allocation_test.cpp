@@ -35,6 +35,10 @@ TEST_P(NoAllocation, RealTimeFunctionsNeverCallMalloc) {
   Conditions at = model.reference_conditions();  // as volkins keeps them: the temperatures set
   for (std::size_t i = 0; i < model.temperatures.size(); ++i)
     at.temperature_degC[i] = 0.5 * (model.temperatures[i].min_degC + model.temperatures[i].max_degC);
+  // Some compensation types off or on their way (volkins.type.*: the scaled terms' paths).
+  Conditions switched = at;
+  for (std::size_t t = 0; t < switched.type_gain.size(); ++t) switched.type_gain[t] = t % 3 == 0 ? 0.0 : 0.5;
+  switched.fade.orientation = 0.5;
   std::mt19937_64 rng(7);
   std::vector<Joints> poses;
   for (int k = 0; k < 500; ++k) {
@@ -62,6 +66,9 @@ TEST_P(NoAllocation, RealTimeFunctionsNeverCallMalloc) {
     const Correction c = correct(model, at, q, L);
     sink += c.residual_mm;
     sink += uncorrect(model, at, c.joints, L, 1.0, c.joints).nominal.sum();
+    const Correction s = correct(model, switched, q, L);
+    sink += s.residual_mm + uncorrect(model, switched, s.joints, L, 1.0, s.joints).nominal.sum();
+    sink += volumetric_error(model, switched, q, L).position_mm.norm();
     for (WorldConvention w : {WorldConvention::Axes, WorldConvention::Tcp}) {
       Joints joints, world;
       sink += static_cast<double>(joints_from_world(model, w, q, L, joints));
@@ -83,6 +90,10 @@ TEST_P(NoAllocation, RealTimeFunctionsNeverCallMalloc) {
       sink += static_cast<double>(joints_from_world(model, w, q, L, kept_inverse, joints));
       sink += static_cast<double>(world_from_joints(model, w, joints, L, kept_forward, world));
       sink += outside_tables(model, joints);
+      Applied switched_inverse{1.0, &joints}, switched_forward{1.0, &world};
+      switched_inverse.conditions = switched_forward.conditions = &switched;
+      sink += static_cast<double>(joints_from_world(model, w, q, L, switched_inverse, joints));
+      sink += static_cast<double>(world_from_joints(model, w, joints, L, switched_forward, world));
     }
   }
   counting = false;

@@ -8,15 +8,19 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <regex>
+#include <set>
 #include <sstream>
 
 #include "linuxcnc_run.hpp"
+#include "vc/machine/compensation_types.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "session_checks.hpp"
+#include "types_by_name.hpp"
 #include "vc/trace/session_trace.hpp"
 
 namespace vc {
@@ -388,6 +392,101 @@ std::vector<double> trace_column(const fs::path& path, const std::string& name) 
     values.push_back(std::stod(cell));
   }
   return values;
+}
+
+// Each compensation type switched off alone while the MC-300 runs, one after another
+// (volkins.type.<code>.enable from the driver's schedule, ramp-time 0.3 s, 0.6 s off each; the
+// program's moves of ~1 s and dwells of 0.5 s put switches into motion and into rest). Wherever
+// the switches have been still for four cycles (gains 0 or 1: LinuxCNC's interpolation reaches
+// back that far), the joints are the core's correction of the model with only the types that are
+// on (its other terms zeroed by keep_only, the terms sorted from their names: types_by_name.hpp,
+// not the module's code path) and put that model's tool on the commanded pose; with FOR off the
+// tip is still on it and the tool direction keeps the machine's error. At every sample, the
+// ramps included, joint velocity and acceleration within the INI's limits.
+TEST_F(Mc300Session, EachCompensationTypeSwitchesAloneWithinTheJointLimits) {
+  // The types the MC-300's file provides (it has no L-SPEC or R-SPEC terms), in the order of
+  // trace_types.hal's types_off column, and FOR.
+  const std::vector<std::string> codes{"L-POS", "L-STR", "L-SQU", "L-ANG", "R-POS", "R-RAX", "R-POR", "R-ANG", "FOR"};
+  const machine::CompensationTypes provided = machine::compensation_types(*model_);
+  std::string schedule;
+  for (std::size_t k = 0; k < codes.size(); ++k) {
+    ASSERT_TRUE(provided.has(codes[k])) << codes[k];
+    std::string pin = codes[k];
+    for (char& c : pin) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    std::ostringstream entries;
+    entries << " --add 'DRIVER.SCHEDULE=" << 1.0 + 1.2 * k << ":volkins.type." << pin << ".enable=0 " << 1.6 + 1.2 * k
+            << ":volkins.type." << pin << ".enable=1'";  // a line each: INI lines end at 255
+    schedule += entries.str();
+  }
+  const trace::SessionTrace t = run_session(
+      "mc300_types", kMc300Ini, *model_,
+      "--program " + test::source_path("tests/session/programs/mc300_types.ngc") +
+          " --replace-halfile trace.hal=" + test::source_path("tests/session/trace_types.hal") +
+          " --set 'DRIVER.TRACE_COLUMNS=x y z b c j0 j1 j2 j3 j4 gain tool_offset controller_time correction_length "
+          "tcp types_off'" +
+          schedule);
+  ASSERT_GT(t.size(), 15000u);
+  const std::vector<double> types_off = trace_column(t.path, "types_off");
+
+  // Which switch is off at each sample, steadily: types_off a power of two 2^k (or 0: all on),
+  // the same for five samples (a ramp moves it every cycle) and the enable ramp at 1. -1: all
+  // on; -2: a switch on its way or not yet still.
+  std::vector<int> off(t.size(), -2);
+  std::size_t ramping_moving = 0, ramping_at_rest = 0;
+  for (std::size_t n = 4; n + 1 < t.size(); ++n) {
+    bool still = t.gain[n] == 1.0;
+    for (std::size_t back = 1; back <= 4; ++back) still &= types_off[n - back] == types_off[n];
+    int which = -2;
+    for (int k = -1; k < static_cast<int>(codes.size()); ++k)
+      if (types_off[n] == (k < 0 ? 0.0 : std::ldexp(1.0, k))) which = k;
+    if (still && which > -2) off[n] = which;
+    if (types_off[n] != types_off[n - 1])
+      ++((t.world[n] - t.world[n - 1]).norm() > 0 ? ramping_moving : ramping_at_rest);
+  }
+  EXPECT_GT(ramping_moving, 200u) << "switches while moving";
+  EXPECT_GT(ramping_at_rest, 200u) << "switches at rest";
+
+  for (int j = 0; j < model_->joint_count(); ++j) {
+    const std::string section = "JOINT_" + std::to_string(j);
+    const auto [v, a] = joint_peaks(t.joints, j);
+    EXPECT_LE(v, test::ini_value(kMc300Ini, section, "MAX_VELOCITY")) << section;
+    EXPECT_LE(a, test::ini_value(kMc300Ini, section, "MAX_ACCELERATION")) << section;
+    std::cout << section << ": peak velocity " << v << ", peak acceleration " << a << "\n";
+  }
+
+  const trace::TraceSummary all = trace::check_trace(*model_, WorldConvention::Axes, t);
+  for (int k = -1; k < static_cast<int>(codes.size()); ++k) {
+    const std::string what = k < 0 ? "every type on" : codes[static_cast<std::size_t>(k)] + " off";
+    std::set<std::string> on;
+    for (const char* code : test::kBasicCodes)
+      if (k < 0 || codes[static_cast<std::size_t>(k)] != code) on.insert(code);
+    const bool for_off = k == static_cast<int>(codes.size()) - 1;
+    const machine::Model only = test::with_only(*model_, on);
+    const trace::TraceSummary s = for_off ? all : trace::check_trace(only, WorldConvention::Axes, t);
+    std::size_t samples = 0;
+    double mismatch = 0, tip = 0, tip_full_model = 0, direction = 0;
+    for (std::size_t i = 0; i < s.samples.size(); ++i) {
+      const trace::SampleCheck& c = s.samples[i];
+      if (off[c.sample] != k) continue;
+      ++samples;
+      mismatch = std::max(mismatch, c.module_mismatch);
+      tip = std::max(tip, c.tip_error_mm.norm());
+      direction = std::max(direction, c.direction_error_rad);
+      tip_full_model = std::max(tip_full_model, all.samples[i].tip_error_mm.norm());
+    }
+    ASSERT_EQ(s.samples.size(), all.samples.size());
+    EXPECT_GT(samples, k < 0 ? 2000u : 150u) << what;
+    if (!for_off) {
+      EXPECT_LT(mismatch, 1e-9) << what << ": the module's joints are not the core's of the model with only the others";
+    }
+    EXPECT_LT(tip, 1e-4) << what << ": the tool tip of the model with the types on";
+    if (for_off) {
+      EXPECT_GT(direction, 1e-6) << what << ": the tool direction keeps the machine's error";
+    }
+    std::cout << what << ": " << samples << " samples, module-core max " << mismatch << ", tip max " << tip * 1e3
+              << " um (against the whole file " << tip_full_model * 1e3 << " um), direction max " << direction
+              << " rad\n";
+  }
 }
 
 // The thermal example (machines/data/mc300_thermal.toml) in a session whose HAL ramps both

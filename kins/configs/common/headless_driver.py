@@ -94,9 +94,13 @@ class Session:
         self.wait_for(lambda: hal.get_value("volkins.gain") == target, "the compensation ramp")
 
     def schedule(self):
-        """SCHEDULE as a list of (seconds after the program starts, pin, value), in time order."""
+        """SCHEDULE as a list of (seconds after the program starts, pin, value), in time order: the
+        entries of every SCHEDULE line of [DRIVER] (LinuxCNC's INI reader cuts a line at 255
+        characters), or of VOLKINS_SCHEDULE."""
         entries = []
-        for entry in setting(self.ini, "SCHEDULE", "").split():
+        lines = [os.environ["VOLKINS_SCHEDULE"]] if os.environ.get("VOLKINS_SCHEDULE") else \
+            (self.ini.findall("DRIVER", "SCHEDULE") or [])
+        for entry in " ".join(lines).split():
             when, _, assignment = entry.partition(":")
             pin, _, value = assignment.partition("=")
             if not pin or not value:
