@@ -38,6 +38,7 @@
 
 #include "gain_ramp.hpp"
 #include "module_settings.hpp"
+#include "vc/machine/held_rotary.hpp"
 #include "vc/machine/term_types.hpp"
 
 #include "rtapi.h"  // rtapi.h and hal.h declare C linkage themselves
@@ -83,7 +84,13 @@ struct HalData {
   hal_bit_t* kinstype_is[3];                            // out: kinstype.is-N, as LinuxCNC's switchable modules
   hal_bit_t* tcp;                                       // out: the world is the tool tip (TCP kinematics type)
   hal_bit_t* switch_enable[kSwitches];                  // in: volkins.type.<code>.enable, thermal.enable
-  hal_float_t* switch_gain[kSwitches];                  // out: its ramp, 0..1
+  // Rotary joints only (else null), by LinuxCNC joint: a clamp (held_rotary.hpp).
+  hal_bit_t* unlock[vc::kins::kMaxJoints];  // in: volkins.joint.N.unlock, LinuxCNC's locking indexer (joint.N.unlock)
+  hal_bit_t* is_unlocked[vc::kins::kMaxJoints];  // in: volkins.joint.N.is-unlocked, its joint.N.is-unlocked
+  hal_bit_t* locked[vc::kins::kMaxJoints];       // in: volkins.joint.N.locked, a clamp LinuxCNC does not manage
+  hal_bit_t* held[vc::kins::kMaxJoints];         // out: volkins.joint.N.held, its correction held or on its way back
+  hal_float_t* direction_error;                  // out: volkins.direction-error-urad, tool direction error left
+  hal_float_t* switch_gain[kSwitches];           // out: its ramp, 0..1
   // Parameters.
   hal_float_t ramp_time;                  // s: 0 -> 1 (and back) takes this long
   hal_float_t max_correction_mm;          // largest linear joint correction allowed
@@ -98,6 +105,13 @@ struct HalData {
   // Each temperature input low-passed; the correction takes reference + thermal gain x (this -
   // reference).
   double temperature_state[kMaxTemperatures];
+  // Clamped rotary joints, by model joint (only volkins.update writes it): what each holds and
+  // how far it is released, its release ramp, whether it was clamped in the last cycle, and the
+  // last inverse's correction of every joint (what a joint clamped now keeps).
+  vm::HeldRotary holding;
+  vc::kins::GainRamp release_ramp[vm::kMaxAxes];
+  bool was_clamped[vm::kMaxAxes];
+  double last_correction[vm::kMaxAxes];
   // Whether volkins.update has run, and whether the kinematics ran before it did (then it
   // applied the full correction, and the ramp starts there: no step when update starts).
   bool update_ran;
@@ -259,6 +273,30 @@ void set_switched_conditions() {
 // for the whole model, holds.
 bool everything_switched_on() { return hal->conditions.all_types_on() && hal->conditions.fade.orientation == 1.0; }
 
+// Clamped rotary joints (held_rotary.hpp): a rotary joint is clamped unless motion asks it
+// unlocked and the clamp says it is (LinuxCNC's locking indexer: volkins.joint.N.unlock and
+// .is-unlocked netted to the signals of joint.N.unlock and joint.N.is-unlocked; motion moves the
+// joint only then), and while volkins.joint.N.locked is set (a clamp LinuxCNC does not manage).
+// Clamped, it keeps the correction the
+// last inverse gave it; unclamped, its release ramps to 1 in ramp-time (the enable's follower),
+// taking it back to its free correction.
+void update_clamps(double period_s) {
+  for (int j = 0; j < settings->model.joint_count(); ++j) {
+    if (settings->model.axes[j].type != vm::AxisType::Rotary) continue;
+    const int k = settings->principal_joint[j];
+    const bool clamped = *hal->locked[k] || !*hal->unlock[k] || !*hal->is_unlocked[k];
+    if (clamped) {
+      if (!hal->was_clamped[j]) hal->holding.offset_deg[j] = hal->last_correction[j];
+      hal->release_ramp[j] = {0.0, 0.0};
+    } else {
+      hal->release_ramp[j].step(1.0, period_s, hal->ramp_time);
+    }
+    hal->holding.release[j] = hal->release_ramp[j].gain;
+    hal->was_clamped[j] = clamped;
+    *hal->held[k] = hal->holding.release[j] < 1.0;
+  }
+}
+
 // Servo thread, before motion-controller: moves the ramp one period towards volkins.enable and
 // the correction's tool length towards volkins.tool-offset (gain_ramp.hpp: bounded rate and
 // change of rate, so joint velocity stays continuous, also when either changes on the way),
@@ -307,6 +345,7 @@ void update(void*, long period_ns) {
   }
   *hal->temperature_fault = fault;
   set_switched_conditions();
+  update_clamps(dt);
 
   const double start = hal->pole_fade_start_deg, full = hal->pole_fade_full_deg;
   if (start >= 0.0 && full > start && full <= 90.0) {
@@ -360,19 +399,27 @@ int inverse(const EmcPose* pose, double* joints) {
   const Joints previous = model_joints(joints);  // LinuxCNC's seed: its principal joints
   kinematics.last_inverse_pose = *pose;
   Joints extrapolated, extrapolated_full;
-  const vm::Applied applied{applied_gain(),
-                            &previous,
-                            applied_corrections.for_inverse(extrapolated),
-                            everything_switched_on() && settings->contraction ? &*settings->contraction : nullptr,
-                            full_corrections.for_inverse(extrapolated_full),
-                            model.correction_length(offset) + w,
-                            &hal->conditions};
+  const bool holding = hal->holding.any(model);  // a rotary joint clamped: the held path, unseeded
+  const vm::Applied applied{
+      applied_gain(),
+      &previous,
+      holding ? nullptr : applied_corrections.for_inverse(extrapolated),
+      !holding && everything_switched_on() && settings->contraction ? &*settings->contraction : nullptr,
+      holding ? nullptr : full_corrections.for_inverse(extrapolated_full),
+      model.correction_length(offset) + w,
+      &hal->conditions,
+      &hal->holding};
   Joints q;
   vm::Correction report;
   const vm::Status s = vm::joints_from_world(model, current_world(), world_of(*pose, offset), L, applied, q, &report);
   *hal->iterations = report.iterations;
   if (s != vm::Status::Ok) return refuse();
-  if (applied.gain > 0.0) {
+  for (int j = 0; j < n; ++j) hal->last_correction[j] = q[j] - report.nominal[j];
+  *hal->direction_error = report.residual_rad * 1e6;
+  if (holding) {  // the kept corrections are the free ones': none while a joint is held
+    applied_corrections.forget();
+    full_corrections.forget();
+  } else if (applied.gain > 0.0) {
     const Joints correction = report.joints - report.nominal;
     applied_corrections.keep(correction);
     if (report.full_joints.size() > 0)
@@ -429,7 +476,8 @@ int kinematicsForward(const double* joints, EmcPose* pose, const KINEMATICS_FORW
                             nullptr,
                             full_corrections.for_forward(way_point_full),
                             model.correction_length(offset) + tool_axis,
-                            &hal->conditions};
+                            &hal->conditions,
+                            &hal->holding};
   const vm::Status s = vm::world_from_joints(model, current_world(), q, L, applied, w, &iterations);
   *hal->forward_iterations = iterations;
   if (s != vm::Status::Ok) return refuse();
@@ -531,6 +579,16 @@ bool export_hal(const vm::Model& model) {
   // LinuxCNC's switchable modules' pins, under their names (GUIs and programs read them).
   for (int t = 0; t < 3; ++t) r |= hal_pin_bit_newf(HAL_OUT, &hal->kinstype_is[t], comp_id, "kinstype.is-%d", t);
   r |= hal_pin_bit_newf(HAL_OUT, &hal->tcp, comp_id, "volkins.tcp");
+  r |= hal_pin_float_newf(HAL_OUT, &hal->direction_error, comp_id, "volkins.direction-error-urad");
+  for (int k = 0; k < settings->joint_count; ++k) {
+    hal->unlock[k] = hal->is_unlocked[k] = hal->locked[k] = hal->held[k] = nullptr;
+    const int j = settings->model_joint[k];
+    if (j < 0 || model.axes[j].type != vm::AxisType::Rotary || settings->principal_joint[j] != k) continue;
+    r |= hal_pin_bit_newf(HAL_IN, &hal->unlock[k], comp_id, "volkins.joint.%d.unlock", k);
+    r |= hal_pin_bit_newf(HAL_IN, &hal->is_unlocked[k], comp_id, "volkins.joint.%d.is-unlocked", k);
+    r |= hal_pin_bit_newf(HAL_IN, &hal->locked[k], comp_id, "volkins.joint.%d.locked", k);
+    r |= hal_pin_bit_newf(HAL_OUT, &hal->held[k], comp_id, "volkins.joint.%d.held", k);
+  }
   // One switch per compensation type, named by its Annex A code in lower case
   // (volkins.type.l-pos.enable), FOR's volkins.type.for.enable, and volkins.thermal.enable.
   for (int k = 0; k < kSwitches; ++k) {
@@ -566,6 +624,19 @@ bool export_hal(const vm::Model& model) {
   for (std::size_t i = 0; i < model.temperatures.size(); ++i)
     *hal->temperature[i] = *hal->temperature_filtered[i] = hal->temperature_state[i] =
         hal->conditions.temperature_degC[i];
+  hal->holding = vm::HeldRotary{};  // every joint free
+  for (int j = 0; j < vm::kMaxAxes; ++j) {
+    hal->release_ramp[j] = {1.0, 0.0};
+    hal->was_clamped[j] = false;
+    hal->last_correction[j] = 0.0;
+  }
+  for (int k = 0; k < settings->joint_count; ++k)
+    if (hal->is_unlocked[k]) {
+      *hal->unlock[k] = *hal->is_unlocked[k] = 1;
+      *hal->locked[k] = 0;
+      *hal->held[k] = 0;
+    }
+  *hal->direction_error = 0.0;
   for (int k = 0; k < kSwitches; ++k) {  // every type on
     *hal->switch_enable[k] = 1;
     *hal->switch_gain[k] = 1.0;

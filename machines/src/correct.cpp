@@ -239,6 +239,22 @@ Correction correct(const Model& model, const Conditions& conditions, const Joint
   return out;
 }
 
+Status correct_position(const Model& model, const Conditions& conditions, const Joints& nominal, double tool_length_mm,
+                        Joints& joints, int& iterations, double& direction_error_rad) noexcept {
+  direction_error_rad = 0.0;
+  if (!nominal.allFinite() || !joints.allFinite()) return Status::NonFinite;
+  PoseDerivatives d;
+  const ToolPose ideal = tool_pose(model, Machine::Ideal, nominal, tool_length_mm, d);
+  FreeJoints linear{};
+  for (int j = 0; j < model.joint_count(); ++j) linear[j] = model.axes[j].type == AxisType::Linear;
+  ToolPose real;
+  double unchecked = -1.0;
+  const Status s =
+      newton(model, conditions, position_target(ideal), tool_length_mm, linear, d, joints, iterations, real, unchecked);
+  direction_error_rad = ideal.direction.cross(real.direction).norm();
+  return s;
+}
+
 Uncorrection uncorrect(const Model& model, const Conditions& conditions, const Joints& corrected, double tool_length_mm,
                        double gain, const Joints& nominal_seed) noexcept {
   Uncorrection out;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "vc/machine/held_rotary.hpp"
 #include "vc/machine/ideal_jacobian_solver.hpp"
 
 namespace vc::machine {
@@ -73,6 +74,15 @@ Status joints_from_world(const Model& model, WorldConvention convention, const J
   Joints nominal;
   const Status s = nominal_inverse(model, convention, world, nominal_length(applied, tool_length_mm), nominal);
   if (s != Status::Ok) return s;
+  const Conditions& conditions = applied.conditions ? *applied.conditions : model.reference_conditions();
+  if (applied.held && applied.held->any(model)) {  // a clamped rotary joint keeps its correction
+    const Correction c = correct_held(model, conditions, nominal, tool_length_mm, applied.gain, *applied.held,
+                                      near(applied.seed, nominal) ? *applied.seed : nominal);
+    if (report) *report = c;
+    if (c.status != Status::Ok) return c.status;
+    joints = c.joints;
+    return Status::Ok;
+  }
   if (applied.gain == 0.0) {
     joints = nominal;
     if (report) {
@@ -86,8 +96,8 @@ Status joints_from_world(const Model& model, WorldConvention convention, const J
                                                                      : nominal;
   const bool full_seeded = usable_correction(applied.full_correction, nominal);
   const Joints full_seed = full_seeded ? Joints(nominal + *applied.full_correction) : Joints();
-  const Correction c = correct(model, applied.conditions ? *applied.conditions : model.reference_conditions(), nominal,
-                               tool_length_mm, seed, applied.contraction, full_seeded ? &full_seed : nullptr);
+  const Correction c = correct(model, conditions, nominal, tool_length_mm, seed, applied.contraction,
+                               full_seeded ? &full_seed : nullptr);
   if (report) *report = c;
   if (c.status != Status::Ok) return c.status;
   joints = nominal + applied.gain * (c.joints - nominal);
@@ -106,9 +116,12 @@ Status world_from_joints(const Model& model, WorldConvention convention, const J
         near(&from_seed, joints))
       nominal_seed = from_seed;
   }
+  const Conditions& conditions = applied.conditions ? *applied.conditions : model.reference_conditions();
   const Uncorrection u =
-      invert_correction(model, applied.conditions ? *applied.conditions : model.reference_conditions(), joints,
-                        tool_length_mm, applied.gain, nominal_seed, applied.full_correction);
+      applied.held && applied.held->any(model)
+          ? uncorrect_held(model, conditions, joints, tool_length_mm, applied.gain, *applied.held, nominal_seed)
+          : invert_correction(model, conditions, joints, tool_length_mm, applied.gain, nominal_seed,
+                              applied.full_correction);
   if (iterations) *iterations = u.iterations;
   if (u.status != Status::Ok) return u.status;
   world = nominal_forward(model, convention, u.nominal, nominal_length(applied, tool_length_mm));

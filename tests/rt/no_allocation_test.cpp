@@ -9,6 +9,7 @@
 
 #include "test_support.hpp"
 #include "vc/machine/contraction_bound.hpp"
+#include "vc/machine/held_rotary.hpp"
 #include "vc/machine/kinematics.hpp"
 #include "vc/machine/load_machine.hpp"
 
@@ -90,6 +91,18 @@ TEST_P(NoAllocation, RealTimeFunctionsNeverCallMalloc) {
       sink += static_cast<double>(joints_from_world(model, w, q, L, kept_inverse, joints));
       sink += static_cast<double>(world_from_joints(model, w, joints, L, kept_forward, world));
       sink += outside_tables(model, joints);
+      // A clamped rotary joint (held_rotary.hpp): the held path.
+      HeldRotary held;
+      for (int j = 0; j < model.joint_count(); ++j)
+        if (model.axes[j].type == AxisType::Rotary) {
+          held.offset_deg[j] = 0.003;
+          held.release[j] = 0.0;
+          break;
+        }
+      Applied held_inverse{1.0, &joints}, held_forward{1.0, &world};
+      held_inverse.held = held_forward.held = &held;
+      sink += static_cast<double>(joints_from_world(model, w, q, L, held_inverse, joints));
+      sink += static_cast<double>(world_from_joints(model, w, joints, L, held_forward, world));
       Applied switched_inverse{1.0, &joints}, switched_forward{1.0, &world};
       switched_inverse.conditions = switched_forward.conditions = &switched;
       sink += static_cast<double>(joints_from_world(model, w, q, L, switched_inverse, joints));

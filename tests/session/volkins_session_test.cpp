@@ -18,6 +18,7 @@
 
 #include "linuxcnc_run.hpp"
 #include "vc/machine/compensation_types.hpp"
+#include "vc/machine/held_rotary.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "session_checks.hpp"
 #include "types_by_name.hpp"
@@ -487,6 +488,117 @@ TEST_F(Mc300Session, EachCompensationTypeSwitchesAloneWithinTheJointLimits) {
               << " um (against the whole file " << tip_full_model * 1e3 << " um), direction max " << direction
               << " rad\n";
   }
+}
+
+// 3+2 on the MC-300 with B and C as LinuxCNC's locking indexers (mc300_indexer.hal, as LinuxCNC's
+// xyzb_locking_indexer sample simulates one: motion unlocks each for its indexing move, the clamp
+// releases 0.3 s later and engages 0.2 s after the move; volkins follows the indexer's pins).
+// While a clamp is engaged (the clamp's own signal, recorded) and the commanded B and C stand
+// still, their joints do not move at all, although X, Y and Z move and the correction of a free
+// B or C would; the tool tip is on the commanded point for the held rotary values (the trace's
+// real tip at the recorded joints); the tool direction error is the one the core predicts for
+// the joints held where they are (correct_held at the offsets the trace shows); what volkins
+// adds to the joints' acceleration (beyond the commanded axes' own) stays within 5 % of the
+// INI's limits, as the clamps engage and release too.
+// LinuxCNC 2.9 itself starts an indexing move 4 cycles before it asks for the unlock, then waits
+// for the clamp: the commanded B moves 0.0075 deg with the clamp engaged and stops at once (its
+// acceleration ~2,700 deg/s^2, with trivkins as with volkins). Those cycles are LinuxCNC's.
+TEST_F(Mc300Session, ThreePlusTwoWithClampedRotaryAxesHoldsThemAndPutsTheTipOnThePoint) {
+  const trace::SessionTrace t = run_session(
+      "mc300_3plus2", kMc300Ini, *model_,
+      "--program " + test::source_path("tests/session/programs/mc300_3plus2.ngc") + " --halfile " +
+          test::source_path("tests/session/mc300_indexer.hal") +
+          " --replace-halfile trace.hal=" + test::source_path("tests/session/trace_indexer.hal") +
+          " --set 'DRIVER.TRACE_COLUMNS=x y z b c j0 j1 j2 j3 j4 gain tool_offset controller_time correction_length "
+          "tcp b_is_unlocked c_is_unlocked' --set 'EMCMOT.EMCMOT=motmod unlock_joints_mask=0x18'"
+          " --add AXIS_B.LOCKING_INDEXER_JOINT=3 --add JOINT_3.LOCKING_INDEXER=1"
+          " --add AXIS_C.LOCKING_INDEXER_JOINT=4 --add JOINT_4.LOCKING_INDEXER=1");
+  ASSERT_GT(t.size(), 5000u);
+  const int rotary[2] = {model_->joint_of('B'), model_->joint_of('C')};
+  const std::vector<double> unlocked[2] = {trace_column(t.path, "b_is_unlocked"),
+                                           trace_column(t.path, "c_is_unlocked")};
+  // Clamped for the last five samples, the commanded B and C still as long.
+  auto held_still = [&](std::size_t n) {
+    if (n < 4) return false;
+    for (std::size_t k = n - 4; k <= n; ++k)
+      for (int r = 0; r < 2; ++r)
+        if (unlocked[r][k] != 0.0 || t.world[k][rotary[r]] != t.world[n][rotary[r]]) return false;
+    return true;
+  };
+  std::size_t held = 0, releases[2] = {0, 0};
+  double moved = 0;
+  for (std::size_t n = 1; n < t.size(); ++n) {
+    for (int r = 0; r < 2; ++r) releases[r] += unlocked[r][n] == 1.0 && unlocked[r][n - 1] == 0.0;
+    if (!held_still(n)) continue;
+    ++held;
+    for (int j : rotary) moved = std::max(moved, std::abs(t.joints[n][j] - t.joints[n - 1][j]));
+  }
+  EXPECT_GE(releases[0], 4u) << "B's indexing moves";
+  EXPECT_GE(releases[1], 4u) << "C's indexing moves";
+  EXPECT_GT(held, t.size() / 3);
+  EXPECT_EQ(moved, 0.0) << "a clamped joint moved";
+
+  const trace::TraceSummary s = trace::check_trace(*model_, WorldConvention::Axes, t);
+  double tip = 0, predicted = 0, predicted_at_rest = 0, direction = 0;
+  std::size_t at_rest = 0;
+  for (const trace::SampleCheck& check : s.samples) {
+    const std::size_t n = check.sample;
+    tip = std::max(tip, check.tip_error_mm.norm());
+    if (!held_still(n)) continue;
+    machine::HeldRotary holding;
+    for (int j : rotary) {
+      holding.offset_deg[static_cast<std::size_t>(j)] = t.joints[n][j] - t.world[n][j];
+      holding.release[static_cast<std::size_t>(j)] = 0.0;
+    }
+    const machine::Correction core = machine::correct_held(*model_, model_->reference_conditions(), t.world[n],
+                                                           t.correction_length_mm[n], 1.0, holding, t.joints[n]);
+    ASSERT_EQ(core.status, machine::Status::Ok) << n;
+    // At rest (the whole command still for five cycles) LinuxCNC's interpolation is the command.
+    bool rest = true;
+    for (std::size_t k = n - 4; k < n; ++k) rest &= t.world[k] == t.world[n];
+    (rest ? predicted_at_rest : predicted) =
+        std::max(rest ? predicted_at_rest : predicted, std::abs(core.residual_rad - check.direction_error_rad));
+    at_rest += rest;
+    direction = std::max(direction, check.direction_error_rad);
+  }
+  EXPECT_LT(tip, 1e-4) << "the tool tip";
+  EXPECT_GT(at_rest, 500u);
+  EXPECT_LT(predicted_at_rest, 1e-10) << "the direction error left at rest, against the core's prediction";
+  EXPECT_LT(predicted, 1e-6) << "the same while X, Y, Z move (LinuxCNC's interpolation of the joints)";
+  EXPECT_GT(direction, 1e-6) << "held joints leave a direction error";
+  // Joint velocity and acceleration within the INI's limits, but for the cycles around LinuxCNC's
+  // own step of a commanded rotary axis (its acceleration beyond the axis's limit).
+  const double dt = 1e-3;
+  std::vector<bool> linuxcncs(t.size(), false);
+  std::size_t excluded = 0;
+  const double axis_limit[2] = {test::ini_value(kMc300Ini, "AXIS_B", "MAX_ACCELERATION"),
+                                test::ini_value(kMc300Ini, "AXIS_C", "MAX_ACCELERATION")};
+  for (std::size_t n = 1; n + 1 < t.size(); ++n)
+    for (int r = 0; r < 2; ++r) {
+      const int j = rotary[r];
+      const double a = std::abs(t.world[n + 1][j] - 2 * t.world[n][j] + t.world[n - 1][j]) / (dt * dt);
+      if (a > 1.05 * axis_limit[r])
+        for (std::size_t k = n > 6 ? n - 6 : 0; k < std::min(t.size(), n + 7); ++k) linuxcncs[k] = true;
+    }
+  for (bool b : linuxcncs) excluded += b;
+  EXPECT_LT(excluded, 200u) << "LinuxCNC's steps are a few cycles at each indexing move";
+  for (int j = 0; j < model_->joint_count(); ++j) {
+    const std::string section = "JOINT_" + std::to_string(j);
+    double v = 0, a = 0;
+    for (std::size_t n = 9; n + 1 < t.size(); ++n) {
+      if (linuxcncs[n]) continue;
+      v = std::max(v, std::abs(t.joints[n + 1][j] - t.joints[n][j]) / dt);
+      a = std::max(a, std::abs(t.joints[n + 1][j] - 2 * t.joints[n][j] + t.joints[n - 1][j]) / (dt * dt));
+    }
+    EXPECT_LE(v, test::ini_value(kMc300Ini, section, "MAX_VELOCITY")) << section;
+    EXPECT_LE(a, test::ini_value(kMc300Ini, section, "MAX_ACCELERATION")) << section;
+    std::cout << section << ": peak velocity " << v << ", peak acceleration " << a << "\n";
+  }
+  std::cout << "3+2, B and C clamped and still in " << held << " of " << t.size()
+            << " samples, largest joint step there " << moved << " deg; tool tip after LinuxCNC's interpolation max "
+            << tip * 1e3 << " um; direction error left max " << direction * 1e6
+            << " urad, against the core's prediction " << predicted_at_rest << " rad at rest (" << at_rest
+            << " samples), " << predicted << " rad moving\n";
 }
 
 // The thermal example (machines/data/mc300_thermal.toml) in a session whose HAL ramps both

@@ -59,6 +59,13 @@ inline Correction correct(const Model& model, const Joints& nominal, double tool
   return correct(model, model.reference_conditions(), nominal, tool_length_mm, seed, bound, full_seed);
 }
 
+// The position alone: the linear joints of `joints` (in: their seed) moved so that the real
+// machine puts the tool tip where the ideal machine puts it at `nominal`, the rotary joints
+// staying as `joints` has them (a clamped rotary axis: held_rotary.hpp). `direction_error_rad`
+// receives |k'(q_n) x k(joints)|, the tool direction error left.
+Status correct_position(const Model& model, const Conditions& conditions, const Joints& nominal, double tool_length_mm,
+                        Joints& joints, int& iterations, double& direction_error_rad) noexcept;
+
 // The full correction (position and tool direction, no pole fade) at `nominal`, seeded at
 // `seed`: what correct() fades near a pole (without rotary joints, correct() itself); `fade`
 // reports the f that correct() would apply.

@@ -38,6 +38,8 @@ Status world_from_joints(const Model& model, WorldConvention convention, const J
 // ~1e-5 mm of this cycle's joints (the previous joints are a whole step, ~0.1 mm, away), and
 // the joints less it within slope x following error of this cycle's nominal joints. Where
 // given, it takes the place of `seed`.
+struct HeldRotary;  // held_rotary.hpp
+
 struct Applied {
   double gain = 1.0;                   // 0: nominal kinematics, 1: full correction
   const Joints* seed = nullptr;        // joints (inverse) or world position (forward), or none
@@ -61,6 +63,9 @@ struct Applied {
   double nominal_tool_length_mm = std::numeric_limits<double>::quiet_NaN();
   // The machine's conditions (temperatures, pole fade: model.hpp), or none: the file's.
   const Conditions* conditions = nullptr;
+  // Rotary joints clamped or on their way back from a clamp (held_rotary.hpp), or none. Where
+  // any is, the held path solves (the seeds above but `seed` and the contraction are not used).
+  const HeldRotary* held = nullptr;
   static constexpr double kSeedRadius = machine::kSeedRadius;
 };
 // q = q_n + gain * (correct(q_n) - q_n).
