@@ -155,6 +155,39 @@ TEST(VolcompTypes, PredistortOfLPosEqualsTheMachineWithTheOtherErrorsZeroed) {
   EXPECT_NE(selected, all);
 }
 
+// The selection is applied after --temperature: with thermal off, a program made for 27 degC is
+// the one made at the references (the header says the temperature is not compensated), with
+// thermal on it is another.
+TEST(VolcompTypes, PredistortWithoutThermalTakesTheTemperaturesBackToTheirReferences) {
+  const std::string machine = test::machine_path("mc300_thermal");
+  const std::string program = test::source_path("tests/programs/mc300_swarf.ngc");
+  const std::string files = " --var " + test::source_path("tests/programs/mc300.var") + " --tool-table " +
+                            test::source_path("tests/programs/mc300.tbl") + " -q";
+  const std::string no_thermal = " --types L-VOL+,R-VOL+,L-SPEC,R-SPEC";
+  const auto run = [&](const std::string& name, const std::string& options) {
+    const std::string out = (fs::temp_directory_path() / ("volcomp_types_" + name + ".ngc")).string();
+    fs::remove(out);
+    const auto r = test::run_volcomp("predistort " + machine + " " + program + " -o " + out + files + options);
+    EXPECT_EQ(r.exit_code, 0) << r.out;
+    std::string body;
+    for (const std::string& line : split(test::file_text(out), '\n'))
+      if (line.empty() || line[0] != '(') body += line + '\n';
+    return std::make_pair(body, test::file_text(out));
+  };
+  const auto at_reference = run("reference", no_thermal);
+  const auto warm_off = run("warm_off", no_thermal + " --temperature spindle=27");
+  const auto warm_on = run("warm_on", " --temperature spindle=27");
+  EXPECT_GT(at_reference.first.size(), 10000u);
+  EXPECT_EQ(warm_off.first, at_reference.first);
+  EXPECT_NE(warm_on.first, at_reference.first);
+  EXPECT_NE(warm_off.second.find("spindle 27 degC [not compensated: thermal is off]"), std::string::npos)
+      << warm_off.second.substr(0, 600);
+  EXPECT_NE(warm_off.second.find("compensation types: L-POS, L-STR, L-SQU, L-ANG, R-POS, R-RAX, R-POR, R-ANG, "
+                                 "L-SPEC, R-SPEC, FOR)"),
+            std::string::npos)
+      << warm_off.second.substr(0, 600);
+}
+
 // A trace of a session whose volkins corrected L-POS only (its joints made by the core with the
 // L-POS-only machine file, through LinuxCNC's joint interpolation): `trace --types L-POS` finds
 // the module equal to the core; with every type the core's joints differ by the squareness.
