@@ -19,6 +19,7 @@
 #include "commands.hpp"
 #include "vc/tables/number_text.hpp"
 #include "program_files.hpp"
+#include "types_option.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/predistort/deflection.hpp"
 #include "vc/predistort/predistort.hpp"
@@ -42,6 +43,7 @@ struct PredistortArgs {
   double tolerance_mm = 0.0005;
   double tolerance_rad = 2e-5;            // tool direction between written points (rotary axes)
   std::vector<std::string> temperatures;  // NAME=VALUE (degC) of the machine file's [temperatures]
+  TypesOption types;                      // the compensation types the program is pre-distorted for
   bool quiet = false;
 };
 
@@ -77,6 +79,7 @@ class Progress {
 };
 
 int run_predistort(const PredistortArgs& args, std::ostream& report) {
+  const machine::TypeSelection types = args.types.selection();
   if (!(args.tolerance_mm > 0.0 && args.tolerance_mm <= 0.1))
     throw std::runtime_error("--tolerance must be in (0, 0.1] mm");
   if (!(args.tolerance_rad > 0.0 && args.tolerance_rad <= 0.01))
@@ -97,6 +100,9 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
     model.set_temperature(temperatures, t.substr(0, eq), value);
     conditions += ", " + t.substr(0, eq) + " " + t.substr(eq + 1) + " degC";
   }
+  // After --temperature: without thermal the temperatures go back to their references.
+  machine::apply_selection(model, types, temperatures);
+  if (!types.thermal && !args.temperatures.empty()) conditions += " (not compensated: thermal is off)";
   const ProgramFiles files(args.tool_table, args.var_file, args.machine_units);
   const std::optional<predistort::Deflection> deflection = files.deflection(args.process, model);
 
@@ -113,6 +119,7 @@ int run_predistort(const PredistortArgs& args, std::ostream& report) {
   job.provenance = {{},           args.machine,  model.info.name + conditions,
                     {},           args.var_file, args.tool_table,
                     args.process, args.world,    args.tolerance_mm};
+  job.provenance.types = types.to_string();
   for (const auto& t : model.tables) job.provenance.tables.push_back(t.table.path());
 
   // Read in 1 MiB pieces, not the stream's default 8 KiB: a million-line program is then
@@ -197,6 +204,7 @@ void add_predistort_command(CLI::App& volcomp, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--temperature", args->temperatures,
                   "NAME=VALUE: a temperature input of the machine file, degC (repeatable; default: its reference)");
+  add_types_option(*cmd, args->types, "the compensation types the program is pre-distorted for (named in its header)");
   cmd->add_option("--tolerance-rad", args->tolerance_rad,
                   "largest tool direction deviation from the exact correction between the written points, "
                   "rad (machines with rotary axes)")

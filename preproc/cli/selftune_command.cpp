@@ -14,6 +14,7 @@
 #include "commands.hpp"
 #include "vc/tables/number_text.hpp"
 #include "program_files.hpp"
+#include "types_option.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/predistort/missing_tool_offset.hpp"
 #include "vc/predistort/predistort.hpp"
@@ -40,6 +41,9 @@ struct SelftuneArgs {
   std::string var_file, tool_table, world = "axes";
   std::string machine_units = "mm";
   bool compensated = false;  // Pi ran with volkins correcting with MACHINE
+  // The types volkins corrected Pi with (--compensated), and the types the model strategy's
+  // next program is pre-distorted for (or volkins corrects it with): the same shop setting.
+  TypesOption types;
   std::vector<int> ball_end_tools;
   double flute_length_mm = 30.0;
   double cutoff_mm = 10.0, outlier_sigmas = 4.0;
@@ -134,6 +138,11 @@ std::string tool_length_cause(const predistort::ToolLengthLog& log, const machin
 }
 
 int run_selftune(const SelftuneArgs& args, std::ostream& report) {
+  const machine::TypeSelection types = args.types.selection();
+  if (!types.is_all() && !args.compensated && args.strategy != "model")
+    throw std::runtime_error("--types " + args.types.list +
+                             " changes nothing here: Pi was pre-distorted (the types are in its numbers) and the local "
+                             "strategy shifts it; give --compensated if volkins corrected Pi with these types");
   if (args.strategy != "local" && args.strategy != "model")
     throw std::runtime_error("--strategy must be local or model, not " + args.strategy);
   if (args.strategy == "model" && args.tables_out.empty())
@@ -159,6 +168,9 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
   shop::FirstPartOptions options;
   options.simulation.world = world;
   options.simulation.compensation = args.compensated ? &model : nullptr;
+  machine::Conditions compensation_conditions = model.reference_conditions();
+  machine::apply_selection(model, types, compensation_conditions);
+  options.simulation.compensation_conditions = &compensation_conditions;
   options.simulation.ball_end_tools.insert(args.ball_end_tools.begin(), args.ball_end_tools.end());
   options.surface.flute_length_mm = args.flute_length_mm;
   options.cutoff_mm = args.cutoff_mm;
@@ -194,6 +206,8 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
 
   predistort::Provenance provenance{"", args.machine, model.info.name,  {}, args.var_file, args.tool_table,
                                     "", args.world,   args.tolerance_mm};
+  // Local: P(i+1) keeps Pi's correction, volkins' (--compensated) or the one in Pi's numbers.
+  provenance.types = args.compensated ? types.to_string() : "those " + args.input + " was pre-distorted for";
   if (args.strategy == "local") {
     provenance.title = "volcomp selftune (local): " + args.input + " shifted against the deviations of " + args.report +
                        " (gain " + number_text(args.gain) + ", radius " + number_text(args.radius_mm) + " mm, angle " +
@@ -287,17 +301,24 @@ int run_selftune(const SelftuneArgs& args, std::ostream& report) {
   report << "  updated machine file: " << machine_out << "\n";
   const machine::Model tuned = machine::load_machine(machine_out);  // as the module will read it
   if (args.compensated) {
-    report << "  load it in volkins; the program stays as it is\n";
+    report << "  load it in volkins";
+    if (!types.is_all()) report << " with the same compensation types on (" << types.to_string() << ")";
+    report << "; the program stays as it is\n";
     return 0;
   }
   const std::string nominal = args.nominal.empty() ? args.input : args.nominal;
+  // P0 pre-distorted with the tuned model for the types given (as --types in predistort).
+  machine::Conditions next_conditions = tuned.reference_conditions();
+  machine::apply_selection(tuned, types, next_conditions);
   predistort::Job job;
   job.model = &tuned;
+  job.conditions = &next_conditions;
   job.setup = files.setup(nominal, tuned, tcp);
   job.corrector.tolerance_mm = args.tolerance_mm;
   job.corrector.world = world;
   job.provenance = provenance;
   job.provenance.machine = machine_out;
+  job.provenance.types = types.to_string();
   for (const auto& t : tuned.tables) job.provenance.tables.push_back(t.table.path());
   std::ifstream in = open_program(nominal);
   predistort::Summary summary;
@@ -337,6 +358,10 @@ void add_selftune_command(CLI::App& volcomp, int& exit_code) {
   cmd->add_option("--world", args->world, "world convention: axes or tcp")->capture_default_str();
   cmd->add_flag("--compensated", args->compensated,
                 "PROGRAM ran with volkins correcting with MACHINE (not pre-distorted)");
+  add_types_option(*cmd, args->types,
+                   "with --compensated, the compensation types volkins corrected PROGRAM with (its type pins); with "
+                   "--strategy model also the types the next program is pre-distorted for (or volkins corrects it "
+                   "with). A pre-distorted PROGRAM carries its types in its numbers");
   cmd->add_option("--ball-end", args->ball_end_tools, "tools with a ball end")->delimiter(',');
   cmd->add_option("--flute-length", args->flute_length_mm, "cutting length of the tools, mm")->capture_default_str();
   cmd->add_option("--cutoff", args->cutoff_mm, "shorter wavelengths are not tuned (low-pass), mm")

@@ -13,6 +13,7 @@
 #include "commands.hpp"
 #include "vc/tables/number_text.hpp"
 #include "program_files.hpp"
+#include "types_option.hpp"
 #include "vc/fit_tables/comp_file.hpp"
 #include "vc/fit_tables/comp_file_replay.hpp"
 #include "vc/init/kinematics_line.hpp"
@@ -36,6 +37,7 @@ struct TraceArgs {
   std::string comp_files;         // a folder of fit-tables' COMP_FILEs to replay on the trace (optional)
   std::string ini;                // the configuration's INI: joints, world, units; the joints' limits for the replay
   std::string replay_output;      // the replay's per-sample errors CSV (t_s,e_um; optional)
+  TypesOption types;              // the compensation types volkins corrected with (its type pins)
 };
 
 // The COMP_FILEs of args.comp_files replayed on the session (fit_tables::replay_comp_files):
@@ -137,17 +139,22 @@ RecordedBy recorded_by(const TraceArgs& args, const machine::Model& model) {
 }
 
 int run_trace(const TraceArgs& args, std::ostream& out) {
+  const machine::TypeSelection types = args.types.selection();
   if (args.comp_files.empty() && !args.replay_output.empty())
     throw std::runtime_error("--replay-output goes with --comp-files");
   const machine::Model model = machine::load_machine(args.machine);
   const RecordedBy recorded = recorded_by(args, model);
   const machine::WorldConvention convention = recorded.convention;
   const trace::SessionTrace session = trace::read_session_trace(args.trace, model, recorded.layout);
-  const trace::TraceSummary summary = trace::check_trace(model, convention, session);
+  if (!types.is_all() && !session.with_volkins)
+    throw std::runtime_error("--types " + args.types.list + ": " + args.trace +
+                             " is a session without volkins (no gain column): no compensation types to switch");
+  const trace::TraceSummary summary = trace::check_trace(model, convention, session, types);
   if (summary.samples.empty()) throw std::runtime_error(args.trace + ": fewer than 4 usable samples");
 
   double max_tip = 0, sum_sq = 0, max_dir = 0, max_mismatch = 0, max_pose_mm = 0, max_pose_rad = 0;
-  double max_dir_corrected = 0;  // where volkins corrects the tool direction too
+  double max_dir_corrected = 0;                  // where volkins corrects the tool direction too
+  double max_selected = 0, sum_sq_selected = 0;  // of the selected types' errors (--types)
   std::size_t corrected = 0;
   for (const trace::SampleCheck& s : summary.samples) {
     const double e = s.tip_error_mm.norm();
@@ -155,6 +162,9 @@ int run_trace(const TraceArgs& args, std::ostream& out) {
     sum_sq += e * e;
     max_dir = std::max(max_dir, s.direction_error_rad);
     max_mismatch = std::max(max_mismatch, s.module_mismatch);
+    const double e_selected = s.selected_tip_error_mm.norm();
+    max_selected = std::max(max_selected, e_selected);
+    sum_sq_selected += e_selected * e_selected;
     if (s.full_correction) {
       ++corrected;
       max_dir_corrected = std::max(max_dir_corrected, s.direction_error_rad);
@@ -186,6 +196,11 @@ int run_trace(const TraceArgs& args, std::ostream& out) {
         << fixed_text(100.0 * static_cast<double>(corrected) / static_cast<double>(summary.samples.size()), 1)
         << " % of the samples): tool direction error max " << fixed_text(max_dir_corrected * 1e6, 2)
         << " urad; elsewhere the tip only\n";
+  if (!types.is_all())
+    // The machine keeps the errors of the types switched off: the tip error above has them.
+    out << "  of the compensation types corrected (" << types.to_string() << "; the others' errors left out): "
+        << "tool tip error max " << fixed_text(max_selected * 1e3, 3) << " um, RMS "
+        << fixed_text(std::sqrt(sum_sq_selected / static_cast<double>(summary.samples.size())) * 1e3, 3) << " um\n";
   if (!args.comp_files.empty()) {
     // LinuxCNC's COMP_FILEs act on the joints; the replay takes them to be the commanded axes.
     if (convention != machine::WorldConvention::Axes)
@@ -201,7 +216,9 @@ int run_trace(const TraceArgs& args, std::ostream& out) {
         << '\n';
     return 0;
   }
-  out << "module against the core (joints, mm or deg): max " << number_text(max_mismatch) << '\n'
+  out << "module against the core (joints, mm or deg"
+      << (types.is_all() ? std::string() : "; the core with the types " + types.to_string()) << "): max "
+      << number_text(max_mismatch) << '\n'
       << "commanded pose residual where fully corrected: max " << number_text(max_pose_mm) << " mm, "
       << number_text(max_pose_rad) << " rad\n";
   return 0;
@@ -230,6 +247,9 @@ void add_trace_command(CLI::App& volcomp, int& exit_code) {
                   "with --comp-files also [JOINT_n] MAX_VELOCITY, MAX_ACCELERATION (LinuxCNC's ramp of "
                   "the correction)")
       ->check(CLI::ExistingFile);
+  add_types_option(*cmd, args->types,
+                   "the compensation types volkins corrected with (its type pins): the module is checked against "
+                   "the core with these, and the tip error of these types' errors is reported too");
   cmd->callback([args, &exit_code] { exit_code = run_trace(*args, std::cout); });
 }
 

@@ -76,7 +76,7 @@ void Writer::header(const Provenance& p) {
   files << "tolerance: " << p.tolerance_mm << " mm; world: " << p.world
         << "; parameters: " << (p.parameters.empty() ? "none" : p.parameters)
         << "; tool table: " << (p.tool_table.empty() ? "none" : p.tool_table)
-        << "; cutting process: " << (p.process.empty() ? "none" : p.process);
+        << "; cutting process: " << (p.process.empty() ? "none" : p.process) << "; compensation types: " << p.types;
   h << '(' << commented(files.str()) << ")\n";
   emit(h.str());
   line_.clear();

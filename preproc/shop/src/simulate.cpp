@@ -40,9 +40,11 @@ class Simulator {
       const machine::Joints nominal = points_.nominal(m, world);
       sample.joints = nominal;
       if (options_.compensation) {
-        const machine::Status status =
-            machine::joints_from_world(*options_.compensation, options_.world, world,
-                                       options_.compensation->correction_length(m.tool_offset_mm), sample.joints);
+        machine::Applied applied;
+        applied.conditions = options_.compensation_conditions;
+        const machine::Status status = machine::joints_from_world(
+            *options_.compensation, options_.world, world, options_.compensation->correction_length(m.tool_offset_mm),
+            applied, sample.joints);
         if (status != machine::Status::Ok)
           throw LoadError({setup_.file, m.line}, "the compensation does not converge at this move");
       }

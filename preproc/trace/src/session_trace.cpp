@@ -160,17 +160,22 @@ Joints interpolated(const std::vector<Joints>& p, std::size_t n) {
 }
 
 TraceSummary check_trace(const machine::Model& machine_model, machine::WorldConvention loaded_convention,
-                         const SessionTrace& trace) {
+                         const SessionTrace& trace, const machine::TypeSelection& types) {
   using machine::Machine;
   TraceSummary out;
   const std::size_t count = trace.size();
   // The machine at each sample's temperatures (as the module filtered them; the reference where
   // the trace has no column).
   const machine::Model& model = machine_model;
+  // `conditions`: the real machine; `selected`: what volkins corrected, the same with only the
+  // selected types (set after the temperatures: without thermal they are at their references).
   machine::Conditions conditions = model.reference_conditions();
+  machine::Conditions selected = conditions;
   const auto at_temperatures_of = [&](std::size_t k) {
     for (std::size_t i = 0; i < trace.temperature_degC.size(); ++i)
       if (trace.temperature_degC[i].size() == count) conditions.temperature_degC[i] = trace.temperature_degC[i][k];
+    selected = conditions;
+    machine::apply_selection(model, types, selected);
   };
   // Kinematics outputs per sample. Cycle k's inverse ran with that cycle's gain and L (volkins.update
   // runs first) and the tool length of cycle k-1 (motion writes tooloffset.z at its end).
@@ -191,7 +196,7 @@ TraceSummary check_trace(const machine::Model& machine_model, machine::WorldConv
     // The nominal (TCP) kinematics take the offset at once, the correction its slewed L; the
     // tool-axis coordinate lengthens the nominal tool only.
     machine::Applied applied{trace.gain[k], nullptr};
-    applied.conditions = &conditions;
+    applied.conditions = &selected;
     applied.nominal_tool_length_mm =
         model.correction_length(offset) + (trace.tool_axis_mm.size() == count ? trace.tool_axis_mm[k] : 0.0);
     machine::nominal_inverse(model, convention, world, applied.nominal_tool_length_mm, nominal[k]);
@@ -216,14 +221,17 @@ TraceSummary check_trace(const machine::Model& machine_model, machine::WorldConv
     const machine::ToolPose real = machine::tool_pose(model, conditions, Machine::Real, trace.joints[n], L);
     const machine::ToolPose ideal = machine::tool_pose(model, Machine::Ideal, interpolated(nominal, n), L);
     s.tip_error_mm = real.tip_mm - ideal.tip_mm;
+    s.selected_tip_error_mm =
+        machine::tool_pose(model, selected, Machine::Real, trace.joints[n], L).tip_mm - ideal.tip_mm;
     s.direction_error_rad = ideal.direction.cross(real.direction).norm();
     s.module_mismatch = (trace.joints[n] - interpolated(expected, n)).cwiseAbs().maxCoeff();
 
     const machine::ToolPose commanded = machine::tool_pose(model, Machine::Ideal, nominal[n], L);
-    const machine::ToolPose achieved = machine::tool_pose(model, conditions, Machine::Real, expected[n], L);
+    const machine::ToolPose achieved = machine::tool_pose(model, selected, Machine::Real, expected[n], L);
     s.command_pose_mm = (achieved.tip_mm - commanded.tip_mm).norm();
     s.command_pose_rad = commanded.direction.cross(achieved.direction).norm();
-    s.full_correction = trace.gain[n] == 1.0 && corrections[n].fade == 1.0 && model.rotary_count() == 2;
+    s.full_correction =
+        trace.gain[n] == 1.0 && corrections[n].fade == 1.0 && types.orientation && model.rotary_count() == 2;
     out.samples.push_back(s);
   }
   return out;

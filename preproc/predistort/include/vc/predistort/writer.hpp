@@ -23,6 +23,7 @@ struct Provenance {
   std::vector<std::string> tables;
   std::string parameters, tool_table, process, world;
   double tolerance_mm = 0.0;
+  std::string types = "all";  // the compensation types pre-distorted for (TypeSelection::to_string)
 };
 
 class Writer {

@@ -46,6 +46,9 @@ struct SimulationOptions {
   // The model a kinematics module (volkins) corrects with, or none: the machine runs the
   // program's joints as they are (an uncompensated machine, or a pre-distorted program).
   const machine::Model* compensation = nullptr;
+  // The conditions it corrects with (the compensation types switched on, temperatures: set by
+  // machine::apply_selection), or none: the compensation model's own, every type on.
+  const machine::Conditions* compensation_conditions = nullptr;
   const predistort::Deflection* deflection = nullptr;  // cutting-force deflection, or none
   std::set<int> ball_end_tools;                        // tools with a ball end (the others are flat)
 };

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "vc/machine/kinematics.hpp"
+#include "vc/machine/term_types.hpp"
 
 namespace vc::trace {
 
@@ -77,15 +78,20 @@ struct SampleCheck {
   // tool direction error |k' x k| (rad).
   Eigen::Vector3d tip_error_mm;
   double direction_error_rad;
+  // The same of the machine with the selected compensation types' errors only (the model under
+  // the selection's conditions): what volkins, correcting those, should take to zero.
+  Eigen::Vector3d selected_tip_error_mm;
   // The module: recorded joints minus LinuxCNC's interpolation of the joints the core computes
-  // for the recorded commands with the recorded gain (largest over joints, mm or deg).
+  // for the recorded commands with the recorded gain and the selection (largest over joints, mm
+  // or deg).
   double module_mismatch;
-  // The correction: at the joints the core computes for this sample's command, real pose minus
-  // the commanded ideal pose (where the gain is 1; mm, and rad where the pole fade is 1).
+  // The correction: at the joints the core computes for this sample's command, the real pose of
+  // the selected types' machine minus the commanded ideal pose (where the gain is 1; mm, and rad
+  // where the pole fade is 1).
   double command_pose_mm;
   double command_pose_rad;
-  // Gain 1, fade 1 and two rotary axes: position and tool direction are both corrected (a
-  // machine without two rotary axes cannot turn its tool: only the position is).
+  // Gain 1, fade 1, FOR selected and two rotary axes: position and tool direction are both
+  // corrected (a machine without two rotary axes cannot turn its tool: only the position is).
   bool full_correction;
 };
 
@@ -96,7 +102,9 @@ struct TraceSummary {
 
 // `convention` as the module was loaded (TCP: world Z includes the tool length, as G43 adds it),
 // for the samples whose own convention the trace does not record (switchable kinematics: its
-// tcp column).
-TraceSummary check_trace(const machine::Model& model, machine::WorldConvention convention, const SessionTrace& trace);
+// tcp column). `types`: the compensation types volkins corrected with (its type pins); the real
+// machine (tip_error_mm, direction_error_rad) has every error, whichever types are on.
+TraceSummary check_trace(const machine::Model& model, machine::WorldConvention convention, const SessionTrace& trace,
+                         const machine::TypeSelection& types = machine::TypeSelection::all());
 
 }  // namespace vc::trace
