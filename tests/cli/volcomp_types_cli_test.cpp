@@ -75,8 +75,9 @@ void write_one_column_table(const fs::path& to, const std::string& name, const s
 
 // mill3 with its L-POS errors only: the squarenesses (L-SQU) 0, the cross-axis table EZZ(z, y)
 // (L-POS and L-SPEC) left out, the tables of x, y and z with their positioning column alone.
-std::string write_mill3_l_pos_only() {
-  const fs::path dir = fs::temp_directory_path() / "volcomp_types_mill3_l_pos";
+std::string write_mill3_l_pos_only(const std::string& test) {
+  // A folder per test: CTest runs them side by side, and each rewrites its folder.
+  const fs::path dir = fs::temp_directory_path() / ("volcomp_types_mill3_l_pos_" + test);
   fs::remove_all(dir);
   fs::create_directories(dir);
   write_one_column_table(dir, "x.csv", "EXX");
@@ -144,7 +145,7 @@ std::string predistort(const std::string& machine, const std::string& output, co
 // predistort --types L-POS on mill3 writes the program predistort writes for the machine with the
 // other types' errors zeroed; its header names the types; all types give another program.
 TEST(VolcompTypes, PredistortOfLPosEqualsTheMachineWithTheOtherErrorsZeroed) {
-  const std::string l_pos_only = write_mill3_l_pos_only();
+  const std::string l_pos_only = write_mill3_l_pos_only("predistort");
   const fs::path dir = fs::temp_directory_path();
   const std::string selected = predistort(kMill3, (dir / "volcomp_types_selected.ngc").string(), " --types L-POS");
   const std::string zeroed = predistort(l_pos_only, (dir / "volcomp_types_zeroed.ngc").string(), "");
@@ -192,7 +193,7 @@ TEST(VolcompTypes, PredistortWithoutThermalTakesTheTemperaturesBackToTheirRefere
 // L-POS-only machine file, through LinuxCNC's joint interpolation): `trace --types L-POS` finds
 // the module equal to the core; with every type the core's joints differ by the squareness.
 TEST(VolcompTypes, TraceWithTheSessionsTypesChecksTheModuleAgainstTheSameSelection) {
-  const machine::Model zeroed = machine::load_machine(write_mill3_l_pos_only());
+  const machine::Model zeroed = machine::load_machine(write_mill3_l_pos_only("trace"));
   const double offset_mm = 100.0;
   const double L = zeroed.correction_length(offset_mm);
   std::vector<machine::Joints> world, p;
@@ -241,7 +242,7 @@ TEST(VolcompTypes, TraceWithTheSessionsTypesChecksTheModuleAgainstTheSameSelecti
 // squarenesses. Pre-distorted, the model strategy's next program is made for the types given;
 // with the local strategy --types would change nothing: refused.
 TEST(VolcompTypes, SelftuneTakesThePartAsCutWithTheTypesGiven) {
-  const std::string l_pos_only = write_mill3_l_pos_only();
+  const std::string l_pos_only = write_mill3_l_pos_only("selftune");
   const fs::path dir = fs::temp_directory_path() / "volcomp_types_selftune";
   fs::remove_all(dir);
   fs::create_directories(dir);

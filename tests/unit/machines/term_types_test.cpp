@@ -45,60 +45,61 @@ std::vector<std::string> machines_tested() {
   return names;
 }
 
-TEST(TermTypes, EachTypeAloneIsTheModelWithOnlyItsTerms) {
-  int compared = 0;
+// Calls `check(model, switched, only)` for every machine tested and every selection: the
+// machine, its conditions with the selection applied, and the model with only those terms.
+template <class Check>
+void for_every_selection(const Check& check) {
   for (const std::string& name : machines_tested()) {
     const Model model = machine::load_machine(test::machine_path(name));
     for (const auto& types : selections()) {
       SCOPED_TRACE(name + ": " + selection_of(types).to_string());
       machine::Conditions switched = model.reference_conditions();
       machine::apply_selection(model, selection_of(types), switched);
-      const Model only = with_only(model, types);
-      const machine::Conditions reference = only.reference_conditions();
-      machine::TravelSamples samples(model);
-      double worst_tip = 0.0, worst_direction = 0.0, worst_rate = 0.0;
-      for (int i = 0; i < 100; ++i) {
-        const machine::Joints q = samples.next();
-        const double L = samples.uniform(0.0, 250.0);
-        machine::PoseDerivatives d_switched, d_only;
-        const auto a = machine::tool_pose(model, switched, machine::Machine::Real, q, L, d_switched);
-        const auto b = machine::tool_pose(only, reference, machine::Machine::Real, q, L, d_only);
-        const auto c = machine::tool_pose(model, switched, machine::Machine::Real, q, L);  // the carried pose
-        worst_tip = std::max({worst_tip, (a.tip_mm - b.tip_mm).norm(), (c.tip_mm - b.tip_mm).norm()});
-        worst_direction =
-            std::max({worst_direction, (a.direction - b.direction).norm(), (c.direction - b.direction).norm()});
-        worst_rate = std::max({worst_rate, (d_switched.tip - d_only.tip).cwiseAbs().maxCoeff(),
-                               (d_switched.direction - d_only.direction).cwiseAbs().maxCoeff()});
-        ++compared;
-      }
-      EXPECT_LT(worst_tip, 1e-11);
-      EXPECT_LT(worst_direction, 1e-14);
-      EXPECT_LT(worst_rate, 1e-13);
+      check(model, switched, with_only(model, types));
     }
   }
+}
+
+TEST(TermTypes, EachTypeAloneIsTheModelWithOnlyItsTerms) {
+  int compared = 0;
+  for_every_selection([&](const Model& model, const machine::Conditions& switched, const Model& only) {
+    const machine::Conditions reference = only.reference_conditions();
+    machine::TravelSamples samples(model);
+    double worst_tip = 0.0, worst_direction = 0.0, worst_rate = 0.0;
+    for (int i = 0; i < 100; ++i) {
+      const machine::Joints q = samples.next();
+      const double L = samples.uniform(0.0, 250.0);
+      machine::PoseDerivatives d_switched, d_only;
+      const auto a = machine::tool_pose(model, switched, machine::Machine::Real, q, L, d_switched);
+      const auto b = machine::tool_pose(only, reference, machine::Machine::Real, q, L, d_only);
+      const auto c = machine::tool_pose(model, switched, machine::Machine::Real, q, L);  // the carried pose
+      worst_tip = std::max({worst_tip, (a.tip_mm - b.tip_mm).norm(), (c.tip_mm - b.tip_mm).norm()});
+      worst_direction =
+          std::max({worst_direction, (a.direction - b.direction).norm(), (c.direction - b.direction).norm()});
+      worst_rate = std::max({worst_rate, (d_switched.tip - d_only.tip).cwiseAbs().maxCoeff(),
+                             (d_switched.direction - d_only.direction).cwiseAbs().maxCoeff()});
+      ++compared;
+    }
+    EXPECT_LT(worst_tip, 1e-11);
+    EXPECT_LT(worst_direction, 1e-14);
+    EXPECT_LT(worst_rate, 1e-13);
+  });
   EXPECT_EQ(compared, 5 * 13 * 100);
 }
 
 TEST(TermTypes, TheCorrectionWithSomeTypesIsTheCorrectionOfTheirModel) {
-  for (const std::string& name : machines_tested()) {
-    const Model model = machine::load_machine(test::machine_path(name));
-    for (const auto& types : selections()) {
-      SCOPED_TRACE(name + ": " + selection_of(types).to_string());
-      machine::Conditions switched = model.reference_conditions();
-      machine::apply_selection(model, selection_of(types), switched);
-      const Model only = with_only(model, types);
-      machine::TravelSamples samples(model);
-      double worst = 0.0;
-      for (int i = 0; i < 50; ++i) {
-        const machine::Joints q = samples.next();
-        const auto a = machine::correct(model, switched, q, model.tool_length_mm);
-        const auto b = machine::correct(only, only.reference_conditions(), q, model.tool_length_mm);
-        ASSERT_EQ(a.status, b.status);
-        worst = std::max(worst, (a.joints - b.joints).cwiseAbs().maxCoeff());
-      }
-      EXPECT_LT(worst, 1e-9);
+  for_every_selection([](const Model& model, const machine::Conditions& switched, const Model& only) {
+    machine::TravelSamples samples(model);
+    double worst = 0.0;
+    for (int i = 0; i < 50; ++i) {
+      const machine::Joints q = samples.next();
+      const auto a = machine::correct(model, switched, q, model.tool_length_mm);
+      const auto b = machine::correct(only, only.reference_conditions(), q, model.tool_length_mm);
+      ASSERT_EQ(a.status, b.status);
+      worst = std::max(worst, (a.joints - b.joints).cwiseAbs().maxCoeff());
     }
-  }
+    EXPECT_LT(worst, 1e-9);
+  });
 }
 
 // A selection that is all of them is the machine as its file holds it, bit for bit.
