@@ -91,13 +91,18 @@ Status joints_from_world(const Model& model, WorldConvention convention, const J
     }
     return Status::Ok;
   }
-  const Joints seed = usable_correction(applied.correction, nominal) ? Joints(nominal + *applied.correction)
-                      : near(applied.seed, nominal)                  ? *applied.seed
-                                                                     : nominal;
+  const bool extrapolated = usable_correction(applied.correction, nominal);
+  const Joints seed = extrapolated               ? Joints(nominal + *applied.correction)
+                      : near(applied.seed, nominal) ? *applied.seed
+                                                    : nominal;
   const bool full_seeded = usable_correction(applied.full_correction, nominal);
   const Joints full_seed = full_seeded ? Joints(nominal + *applied.full_correction) : Joints();
-  const Correction c = correct(model, conditions, nominal, tool_length_mm, seed, applied.contraction,
-                               full_seeded ? &full_seed : nullptr);
+  // The contraction bound describes steps from next to the answer (the extrapolation of the
+  // last corrections): from LinuxCNC's last joints, a servo period of motion away, the nominal
+  // machine's own curvature is in no sampled kappa, and where kappa is ~0 (a machine with small
+  // errors) one unevaluated step would stop micrometres short. Every step is evaluated then.
+  const Correction c = correct(model, conditions, nominal, tool_length_mm, seed,
+                               extrapolated ? applied.contraction : nullptr, full_seeded ? &full_seed : nullptr);
   if (report) *report = c;
   if (c.status != Status::Ok) return c.status;
   joints = nominal + applied.gain * (c.joints - nominal);
