@@ -3,6 +3,7 @@
 // --patch may not be the same file, -o - is refused; each exits 2 naming the option, the file
 // and which input it is, and changes nothing (bytes and mtimes). And the reasons a missing INI
 // or a directory cannot be read, and the summary's remarks (a bare #INCLUDE, a copied include).
+// Locking indexers: volkins' pins netted to motion's signals.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -122,6 +123,30 @@ TEST(VolcompInit, RemarksOnABareIncludeAndOnTheCopyOfAnInclude) {
   // The patched INI now loads volkins from the copy (line 3, after its header): init refuses it there.
   EXPECT_EQ(shared.exit_code, 2) << shared.out;
   EXPECT_NE(shared.out.find("kins.volkins.inc:3: error:"), std::string::npos) << shared.out;
+  fs::remove_all(dir);
+}
+
+// B a locking indexer whose clamp the HAL file simulates (its pins on signals, as LinuxCNC's
+// xyzb_locking_indexer sample has them), C one whose pins are on no signal yet: volkins' pins
+// join B's signals, C's get signals of their own; X, Y, Z and a not-indexer stay as they are.
+TEST(VolcompInit, NetsVolkinsToEveryLockingIndexersUnlockAndIsUnlocked) {
+  const fs::path dir = configuration("indexers");
+  std::string ini = test::file_text(dir / "xyzbc.ini");
+  ini.replace(ini.find("[JOINT_3]\n"), 10, "[JOINT_3]\nLOCKING_INDEXER = 1\n");
+  ini.replace(ini.find("[JOINT_4]\n"), 10, "[JOINT_4]\nLOCKING_INDEXER = yes\n");
+  std::ofstream(dir / "xyzbc.ini") << ini;
+  std::ofstream(dir / "xyzbc.hal", std::ios::app) << "net B-unlock joint.3.unlock\nnet B-is-unlocked joint.3.is-unlocked\n";
+  const auto r = test::run_volcomp("init " + (dir / "xyzbc.ini").string() + " -o " + (dir / "m.toml").string() +
+                                   " --patch " + (dir / "p.diff").string());
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const std::string diff = test::file_text(dir / "p.diff");
+  for (const char* line : {"+HALCMD = net B-unlock volkins.joint.3.unlock\n",
+                           "+HALCMD = net B-is-unlocked volkins.joint.3.is-unlocked\n",
+                           "+HALCMD = net :volkins-joint-4-unlock joint.4.unlock volkins.joint.4.unlock\n",
+                           "+HALCMD = net :volkins-joint-4-is-unlocked joint.4.is-unlocked volkins.joint.4.is-unlocked\n"})
+    EXPECT_NE(diff.find(line), std::string::npos) << line << diff;
+  EXPECT_EQ(diff.find("joint.2."), std::string::npos) << diff;
+  EXPECT_NE(r.out.find("note: joint 3 is a locking indexer (xyzbc.ini:"), std::string::npos) << r.out;
   fs::remove_all(dir);
 }
 

@@ -12,7 +12,10 @@ such pins: --tcp-type -1, the column 0) and, with volkins, the
 L its correction used (volkins.correction-length: it slews to a new G43 offset).
 
     headless_sample.py CONFIG_DIR INI RUN_DIR --program FILE [--compensation on|off]
-                       [--tcp-type N] [--sets SIGNAL=VALUE]...
+                       [--tcp-type N] [--sets SIGNAL=VALUE]... [--bit-column NAME=SOURCE]...
+
+--bit-column records one more column NAME (after the others) of a bit pin (SOURCE with a dot) or
+of a signal (without one: the xyzb sample's B-is-unlocked).
 
 CONFIG_DIR is copied to RUN_DIR (its INI keeps its name); the program path is relative to it.
 The INI's HALCMDs and the HAL files in the folder are filtered alike. A signal that only
@@ -79,7 +82,7 @@ def filter_hal_file(path, hal_filter):
         f.writelines(out)
 
 
-def headless_lines(lines, folder, coordinates, joints, has_volkins, tcp_type, sets):
+def headless_lines(lines, folder, coordinates, joints, has_volkins, tcp_type, sets, bits):
     out, section, hal_filter = [], None, HalFilter()
     # The configuration's own HAL files first (LinuxCNC runs them before the HALCMDs).
     for line in lines:
@@ -91,7 +94,7 @@ def headless_lines(lines, folder, coordinates, joints, has_volkins, tcp_type, se
         stripped = line.strip()
         if stripped.startswith("["):
             if section == "HAL":
-                out.extend(trace_lines(coordinates, joints, has_volkins, hal_filter.tool_signal, tcp_type, sets))
+                out.extend(trace_lines(coordinates, joints, has_volkins, hal_filter.tool_signal, tcp_type, sets, bits))
             section = stripped.strip("[]")
         key, _, value = stripped.partition("=")
         key, value = key.strip(), value.strip()
@@ -110,12 +113,12 @@ def headless_lines(lines, folder, coordinates, joints, has_volkins, tcp_type, se
                 line = "HALFILE = " + value + " -no_use_hal_manualtoolchange\n"
         out.append(line)
     if section == "HAL":
-        out.extend(trace_lines(coordinates, joints, has_volkins, hal_filter.tool_signal, tcp_type, sets))
+        out.extend(trace_lines(coordinates, joints, has_volkins, hal_filter.tool_signal, tcp_type, sets, bits))
     return out
 
 
-def trace_lines(coordinates, joints, has_volkins, tool_signal, tcp_type, sets):
-    cfg = "f" * (len(coordinates) + joints + 2) + "s" + "b" + ("f" if has_volkins else "")
+def trace_lines(coordinates, joints, has_volkins, tool_signal, tcp_type, sets, bits):
+    cfg = "f" * (len(coordinates) + joints + 2) + "s" + "b" + ("f" if has_volkins else "") + "b" * len(bits)
     pins = ["axis.%s.pos-cmd" % c for c in coordinates]
     pins += ["joint.%d.pos-cmd" % j for j in range(joints)]
     lines = ["sets %s %s" % tuple(s.split("=", 1)) for s in sets]
@@ -137,6 +140,11 @@ def trace_lines(coordinates, joints, has_volkins, tool_signal, tcp_type, sets):
         lines.append("net :trace-tcp kinstype.is-%d => sampler.0.pin.%d" % (tcp_type, n))
     if has_volkins:  # the L volkins' correction used (it slews to a new G43 offset)
         lines.append("net :trace-correction-length volkins.correction-length => sampler.0.pin.%d" % (n + 1))
+    n += 2 if has_volkins else 1
+    for name, source in (b.split("=", 1) for b in bits):
+        lines.append(("net :trace-%s %s" % (name, source) if "." in source else "net " + source) +
+                     " => sampler.0.pin.%d" % n)
+        n += 1
     lines.append("addf sampler.0 servo-thread")
     return ["HALCMD = " + l + "\n" for l in lines]
 
@@ -161,6 +169,7 @@ def main():
     p.add_argument("--compensation", default="on")
     p.add_argument("--tcp-type", type=int, default=1)
     p.add_argument("--sets", action="append", default=[])
+    p.add_argument("--bit-column", action="append", default=[])
     a = p.parse_args()
     shutil.rmtree(a.run_dir, ignore_errors=True)
     shutil.copytree(a.config_dir, a.run_dir, symlinks=False)
@@ -171,9 +180,10 @@ def main():
     coordinates = "".join(dict.fromkeys(ini_value(lines, "TRAJ", "COORDINATES").replace(" ", "").lower()))
     joints = int(ini_value(lines, "KINS", "JOINTS"))
     has_volkins = ini_value(lines, "KINS", "KINEMATICS").split()[0] == "volkins"
-    out = headless_lines(lines, a.run_dir, coordinates, joints, has_volkins, a.tcp_type, a.sets)
+    out = headless_lines(lines, a.run_dir, coordinates, joints, has_volkins, a.tcp_type, a.sets, a.bit_column)
     columns = list(coordinates) + ["j%d" % j for j in range(joints)]
     columns += ["gain", "tool_offset", "controller_time", "tcp"] + (["correction_length"] if has_volkins else [])
+    columns += [b.split("=", 1)[0] for b in a.bit_column]
     out.append("\n[DRIVER]\nPROGRAM = %s\nCOMPENSATION = %s\nTRACE = trace.csv\nTRACE_COLUMNS = %s\nRESULT = result.txt\n"
                % (a.program, a.compensation, " ".join(columns)))
     with open(ini, "w") as f:

@@ -25,6 +25,7 @@
 
 #include "linuxcnc_run.hpp"
 #include "session_checks.hpp"
+#include "vc/machine/held_rotary.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/tables/csv.hpp"
 #include "vc/trace/session_trace.hpp"
@@ -144,7 +145,7 @@ const Sample kXyzbInch{kAxisSamples / "ja_tests/xyzb_locking_indexer",
                        "xyzb_inch.ngc",
                        "xyzb.toml",
                        trivkins_inverse,
-                       "",
+                       " --bit-column b_is_unlocked=B-is-unlocked --bit-column b_held=volkins.joint.3.held",
                        0,
                        0,
                        test::source_path("tests/session/programs/xyzb_inch.ngc"),
@@ -308,6 +309,31 @@ class SampleConfig : public ::testing::Test {
   // X): the tool is corrected along the demo program as on the MC-300.
   static trace::SessionTrace expect_corrected(const Sample& sample, const std::string& name,
                                               const std::string& locations) {
+    const auto [model, t] = run_perturbed(sample, name, locations);
+    const trace::TraceSummary s = trace::check_trace(model, machine::WorldConvention::Axes, t);
+    int rotaries = 0;
+    for (const machine::Axis& axis : model.axes) rotaries += axis.type == machine::AxisType::Rotary;
+    test::expect_compensated(s, rotaries, "sample " + sample.ini + " with errors");
+    expect_uncorrected_error(model, t);
+    return t;
+  }
+
+  // What the correction removed: the model's error along the path (no tool length offset).
+  static void expect_uncorrected_error(const machine::Model& model, const trace::SessionTrace& t) {
+    double uncorrected = 0.0;
+    for (const Joints& q : t.joints)
+      uncorrected = std::max(uncorrected, machine::volumetric_error(model, q, 0.0).position_mm.norm());
+    EXPECT_GT(uncorrected, 0.005);
+    std::cout << "the same path uncompensated: tool tip error up to " << uncorrected * 1e3 << " um\n";
+  }
+
+  // Retrofitted, the machine file perturbed (volcomp perturb with `locations` and a table on X),
+  // run: the perturbed file and the trace.
+  struct PerturbedRun {
+    machine::Model model;
+    trace::SessionTrace trace;
+  };
+  static PerturbedRun run_perturbed(const Sample& sample, const std::string& name, const std::string& locations) {
     const auto [dir, user] = retrofitted(sample, name);
     std::ofstream table(dir / "x_errors.csv");
     table
@@ -320,19 +346,9 @@ class SampleConfig : public ::testing::Test {
     EXPECT_EQ(perturb.exit_code, 0) << perturb.out;
     const fs::path measured = dir / "measured" / sample.machine;
     const machine::Model model = machine::load_machine(measured.string());
-    const trace::SessionTrace t = run(sample, dir, user, model, {measured, dir / "measured/x_errors.csv"});
+    trace::SessionTrace t = run(sample, dir, user, model, {measured, dir / "measured/x_errors.csv"});
     expect_volkins_applied(t);
-    const trace::TraceSummary s = trace::check_trace(model, machine::WorldConvention::Axes, t);
-    int rotaries = 0;
-    for (const machine::Axis& axis : model.axes) rotaries += axis.type == machine::AxisType::Rotary;
-    test::expect_compensated(s, rotaries, "sample " + sample.ini + " with errors");
-    // What the correction removed: the model's error along the path (no tool length offset).
-    double uncorrected = 0.0;
-    for (const Joints& q : t.joints)
-      uncorrected = std::max(uncorrected, machine::volumetric_error(model, q, 0.0).position_mm.norm());
-    EXPECT_GT(uncorrected, 0.005);
-    std::cout << "the same path uncompensated: tool tip error up to " << uncorrected * 1e3 << " um\n";
-    return t;
+    return {model, std::move(t)};
   }
 
   // The bridge mill's joints beyond the model's (x y z b c): joint 5 is W's (volkins passes the
@@ -418,9 +434,65 @@ TEST_F(SampleConfig, InchXyzbRetrofittedWithZeroErrorsVolkinsGivesTheStockJoints
   expect_stock_joints(kXyzbInch, "sample_xyzb_inch_volkins");
 }
 
-TEST_F(SampleConfig, InchXyzbRetrofittedWithErrorsVolkinsPutsTheRealToolOnTheCommandedPoint) {
-  expect_corrected(kXyzbInch, "sample_xyzb_inch_errors",
-                   "--location EC0Y=-8arcsec --location EB0Z=6arcsec --location EA0Z=-5arcsec");
+// The sample's B is a locking indexer, and init netted volkins to its clamp (B-unlock,
+// B-is-unlocked): while clamped, B keeps its correction and X, Y, Z put the tip on the point for
+// it; released, B follows its free correction again. The table on X tilts B's axis (EBX) along X,
+// so the free correction of B changes as X moves: a clamped B that followed it would move.
+TEST_F(SampleConfig, InchXyzbRetrofittedWithErrorsHoldsTheClampedIndexerAndPutsTheRealToolOnThePoint) {
+  const auto [model, t] = run_perturbed(kXyzbInch, "sample_xyzb_inch_errors",
+                                        "--location EC0Y=-8arcsec --location EB0Z=6arcsec --location EA0Z=-5arcsec");
+  const int b = model.joint_of('B');
+  const std::vector<double> unlocked = test::trace_column(t.path, "b_is_unlocked");
+  const std::vector<double> held = test::trace_column(t.path, "b_held");
+  ASSERT_EQ(unlocked.size(), t.size());
+  // The last five samples clamped (or, for `free`, B's correction not held) and the commanded B
+  // still as long.
+  const auto steady = [&](std::size_t n, const std::vector<double>& flag, double value, bool b_still) {
+    if (n < 4) return false;
+    for (std::size_t k = n - 4; k <= n; ++k)
+      if (flag[k] != value || (b_still && t.world[k][b] != t.world[n][b])) return false;
+    return true;
+  };
+  std::size_t releases = 0, clamped = 0, free = 0;
+  double moved = 0, mismatch_free = 0, tip = 0, held_joints = 0, direction = 0;
+  for (std::size_t n = 1; n < t.size(); ++n) releases += unlocked[n] == 1.0 && unlocked[n - 1] == 0.0;
+  const trace::TraceSummary s = trace::check_trace(model, machine::WorldConvention::Axes, t);
+  for (const trace::SampleCheck& check : s.samples) {
+    const std::size_t n = check.sample;
+    tip = std::max(tip, check.tip_error_mm.norm());
+    if (steady(n, held, 0.0, false)) {  // free: the module is the core's free correction
+      ++free;
+      mismatch_free = std::max(mismatch_free, check.module_mismatch);
+    }
+    if (!steady(n, unlocked, 0.0, true)) continue;
+    ++clamped;
+    moved = std::max(moved, std::abs(t.joints[n][b] - t.joints[n - 1][b]));
+    direction = std::max(direction, check.direction_error_rad);
+    // At rest (the command still for five cycles), the joints are the core's for the held B.
+    bool rest = true;
+    for (std::size_t k = n - 4; k < n; ++k) rest &= t.world[k] == t.world[n];
+    if (!rest) continue;
+    machine::HeldRotary holding;
+    holding.offset_deg[static_cast<std::size_t>(b)] = t.joints[n][b] - t.world[n][b];
+    holding.release[static_cast<std::size_t>(b)] = 0.0;
+    const machine::Correction core = machine::correct_held(model, model.reference_conditions(), t.world[n],
+                                                           t.correction_length_mm[n], 1.0, holding, t.joints[n]);
+    ASSERT_EQ(core.status, machine::Status::Ok) << n;
+    held_joints = std::max(held_joints, (core.joints - t.joints[n]).cwiseAbs().maxCoeff());
+  }
+  EXPECT_GE(releases, 3u) << "the program's three indexing moves";
+  EXPECT_GT(clamped, t.size() / 2);
+  EXPECT_GT(free, 1000u);
+  EXPECT_EQ(moved, 0.0) << "the clamped indexer's joint moved";
+  EXPECT_LT(held_joints, 1e-9) << "the joints at rest against the core's for the held B";
+  EXPECT_LT(mismatch_free, 1e-9) << "the joints against the core's free correction where B is not held";
+  EXPECT_LT(tip, 1e-4) << "the tool tip after LinuxCNC's interpolation";
+  EXPECT_GT(direction, 1e-7) << "a held B leaves the tilt of its axis along X";
+  std::cout << "xyzb, B a locking indexer: " << releases << " releases, " << clamped << " clamped samples (B moved "
+            << moved << " deg), " << free << " free; joints at rest against the held core " << held_joints
+            << ", free against the core " << mismatch_free << "; tool tip max " << tip * 1e3
+            << " um; direction error left while clamped up to " << direction * 1e6 << " urad\n";
+  expect_uncorrected_error(model, t);
 }
 
 // A rotary table without stops: its travel one turn in the machine file, the joint past 360.

@@ -5,8 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "vc/trace/session_trace.hpp"
 
@@ -29,6 +34,27 @@ inline Extremes extremes(const trace::TraceSummary& s) {
     }
   }
   return e;
+}
+
+// Column `name` of a trace CSV (std::stod: a sensor's "nan" included).
+inline std::vector<double> trace_column(const std::filesystem::path& path, const std::string& name) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> header;
+  std::stringstream h(line);
+  for (std::string cell; std::getline(h, cell, ',');) header.push_back(cell);
+  const auto at = std::find(header.begin(), header.end(), name);
+  if (at == header.end()) throw std::runtime_error("no column " + name + " in " + path.string());
+  const std::size_t column = static_cast<std::size_t>(at - header.begin());
+  std::vector<double> values;
+  while (std::getline(in, line)) {
+    std::stringstream s(line);
+    std::string cell;
+    for (std::size_t c = 0; c <= column; ++c) std::getline(s, cell, ',');
+    values.push_back(std::stod(cell));
+  }
+  return values;
 }
 
 // The claims of a compensated session, at every sample.

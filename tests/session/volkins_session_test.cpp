@@ -374,27 +374,6 @@ TEST_F(Mc300Session, AJointLimitWithoutRoomForTheCorrectionIsRefusedByTheCheckAn
             << " samples\n";
 }
 
-// Column `name` of a trace CSV (std::stod: a sensor's "nan" included).
-std::vector<double> trace_column(const fs::path& path, const std::string& name) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> header;
-  std::stringstream h(line);
-  for (std::string cell; std::getline(h, cell, ',');) header.push_back(cell);
-  const auto at = std::find(header.begin(), header.end(), name);
-  if (at == header.end()) throw std::runtime_error("no column " + name + " in " + path.string());
-  const std::size_t column = static_cast<std::size_t>(at - header.begin());
-  std::vector<double> values;
-  while (std::getline(in, line)) {
-    std::stringstream s(line);
-    std::string cell;
-    for (std::size_t c = 0; c <= column; ++c) std::getline(s, cell, ',');
-    values.push_back(std::stod(cell));
-  }
-  return values;
-}
-
 // Each compensation type switched off alone while the MC-300 runs, one after another
 // (volkins.type.<code>.enable from the driver's schedule, ramp-time 0.3 s, 0.6 s off each; the
 // program's moves of ~1 s and dwells of 0.5 s put switches into motion and into rest). Wherever
@@ -427,7 +406,7 @@ TEST_F(Mc300Session, EachCompensationTypeSwitchesAloneWithinTheJointLimits) {
           "tcp types_off'" +
           schedule);
   ASSERT_GT(t.size(), 15000u);
-  const std::vector<double> types_off = trace_column(t.path, "types_off");
+  const std::vector<double> types_off = test::trace_column(t.path, "types_off");
 
   // Which switch is off at each sample, steadily: types_off a power of two 2^k (or 0: all on),
   // the same for five samples (a ramp moves it every cycle) and the enable ramp at 1. -1: all
@@ -515,8 +494,8 @@ TEST_F(Mc300Session, ThreePlusTwoWithClampedRotaryAxesHoldsThemAndPutsTheTipOnTh
           " --add AXIS_C.LOCKING_INDEXER_JOINT=4 --add JOINT_4.LOCKING_INDEXER=1");
   ASSERT_GT(t.size(), 5000u);
   const int rotary[2] = {model_->joint_of('B'), model_->joint_of('C')};
-  const std::vector<double> unlocked[2] = {trace_column(t.path, "b_is_unlocked"),
-                                           trace_column(t.path, "c_is_unlocked")};
+  const std::vector<double> unlocked[2] = {test::trace_column(t.path, "b_is_unlocked"),
+                                           test::trace_column(t.path, "c_is_unlocked")};
   // Clamped for the last five samples, the commanded B and C still as long.
   auto held_still = [&](std::size_t n) {
     if (n < 4) return false;
@@ -619,9 +598,9 @@ TEST(Mc300ThermalSession, JointsFollowTheRampedTemperaturesAndAFaultySensorIsHel
   const std::vector<double>& spindle_filtered = t.temperature_degC[static_cast<std::size_t>(spindle)];
   ASSERT_EQ(coolant_filtered.size(), count);
   ASSERT_EQ(spindle_filtered.size(), count);
-  const std::vector<double> coolant_read = trace_column(csv, "coolant_sensor");
-  const std::vector<double> spindle_read = trace_column(csv, "spindle_sensor");
-  const std::vector<double> fault = trace_column(csv, "temperature_fault");
+  const std::vector<double> coolant_read = test::trace_column(csv, "coolant_sensor");
+  const std::vector<double> spindle_read = test::trace_column(csv, "spindle_sensor");
+  const std::vector<double> fault = test::trace_column(csv, "temperature_fault");
   ASSERT_EQ(spindle_read.size(), count);
 
   // The filter, replicated: first order, dt = 1 ms, tau = 0.5 s (thermal.hal); a reading that is
@@ -718,7 +697,7 @@ TEST(Mill3Session, AGantrysTwoYJointsBothGetTheCorrectedY) {
   const trace::SessionTrace t = run_session("mill3_gantry", ini, model, "");
   expect_compensated(trace::check_trace(model, WorldConvention::Axes, t), 0, "mill3 gantry, compensation on");
   const std::vector<double> y2 =
-      trace_column(fs::temp_directory_path() / "volcomp-test-runs/mill3_gantry/run/kins/configs/mill3/trace.csv", "y2");
+      test::trace_column(fs::temp_directory_path() / "volcomp-test-runs/mill3_gantry/run/kins/configs/mill3/trace.csv", "y2");
   ASSERT_EQ(y2.size(), t.size());
   for (std::size_t n = 0; n < t.size(); ++n) ASSERT_EQ(y2[n], t.joints[n][1]) << "sample " << n;
 }

@@ -95,6 +95,7 @@ class Patcher {
     for (const HalCommand& c : hal_.commands) rewrite(c);
     remove_sets_of_emptied_signals();
     append_to_hal_section();
+    patch.remarks = remarks_;
     copy_shared_files();
     for (const FileEdits* e : edits_.files()) {
       const std::string name = display_path(e->file().path, ini_.folder());
@@ -409,7 +410,57 @@ class Patcher {
       lines.push_back(signal.empty() ? "HALCMD = net :volkins-tool-offset motion.tooloffset.z volkins.tool-offset"
                                      : "HALCMD = net " + signal + " volkins.tool-offset");
     }
+    net_locking_indexers(lines);
     edits_.of(path, {path, after}, "the [HAL] section").insert_after(after, lines);
+  }
+
+  // A joint LinuxCNC runs as a locking indexer ([JOINT_n]LOCKING_INDEXER, a boolean as its
+  // inifile reads one): volkins reads the indexer's unlock request and the clamp's answer on the
+  // same signals as motion (its volkins.joint.N.unlock and .is-unlocked), so that it holds the
+  // joint's correction while the clamp is engaged and corrects the tip with the other joints.
+  void net_locking_indexers(std::vector<std::string>& lines) {
+    for (std::size_t k = 0; k < m_.coordinates.size(); ++k) {
+      const std::string section = "JOINT_" + std::to_string(k);
+      const IniEntry* e = ini_.find(section, "LOCKING_INDEXER");
+      if (!e || !ini_true(*e)) continue;
+      const char letter = static_cast<char>(std::tolower(static_cast<unsigned char>(m_.coordinates[k])));
+      const std::size_t principal = std::min(m_.coordinates.find(letter),
+                                             m_.coordinates.find(static_cast<char>(std::toupper(letter))));
+      if (letter < 'a' || letter > 'c')
+        throw LoadError(e->where(), "joint " + std::to_string(k) + " (" +
+                                        std::string(1, static_cast<char>(std::toupper(letter))) +
+                                        ") is a locking indexer, and volkins holds rotary joints only (a clamped "
+                                        "linear joint could not take its correction): make it a rotary axis's "
+                                        "joint or remove LOCKING_INDEXER");
+      if (principal != k)
+        throw LoadError(e->where(), "joint " + std::to_string(k) + " is a locking indexer and the second joint of " +
+                                        std::string(1, m_.coordinates[k]) +
+                                        ": volkins follows the clamp of an axis's first joint only");
+      const std::string joint = "joint." + std::to_string(k) + ".", volkins = "volkins." + joint;
+      lines.push_back("# joint " + std::to_string(k) + " is a locking indexer (" + ini_.cite(*e) +
+                      "): volkins holds its correction while it is clamped");
+      remarks_.push_back("joint " + std::to_string(k) + " is a locking indexer (" + ini_.cite(*e) +
+                         "): volkins reads its unlock and is-unlocked and, while the clamp holds it, keeps its "
+                         "correction and corrects the tip's position with the other joints (kins/README.md, "
+                         "\"Clamped rotary axes\")");
+      for (const char* pin : {"unlock", "is-unlocked"}) {
+        std::string signal;  // motion's pin on a signal of its own, or on a new one
+        net_of_pin(hal_, joint + pin, &signal);
+        lines.push_back("HALCMD = net " +
+                        (signal.empty() ? ":volkins-joint-" + std::to_string(k) + "-" + pin + " " + joint + pin
+                                        : signal) +
+                        " " + volkins + pin);
+      }
+    }
+  }
+
+  // LinuxCNC's inifile reads a boolean as 1/0, TRUE/FALSE, YES/NO, ON/OFF (any case).
+  static bool ini_true(const IniEntry& e) {
+    std::string v = e.value;
+    for (char& ch : v) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+    if (v == "1" || v == "TRUE" || v == "YES" || v == "ON") return true;
+    if (v == "0" || v == "FALSE" || v == "NO" || v == "OFF") return false;
+    throw LoadError(e.where(), e.key + " = " + e.value + ": LinuxCNC reads a boolean there (1 or 0, TRUE or FALSE)");
   }
 
   const LinuxcncIni& ini_;
@@ -422,6 +473,7 @@ class Patcher {
   const std::string prefix_;
   std::string kinematics_;
   bool tool_offset_replaced_ = false;
+  std::vector<std::string> remarks_;  // for the summary
   std::map<std::string, int> nets_;  // signal -> nets kept on it
 };
 
