@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cstdlib>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -24,6 +25,7 @@
 #include "vc/identify/sphere_centres.hpp"
 #include "vc/identify/squareness_choice.hpp"
 #include "vc/identify/laser_into_machine.hpp"
+#include "vc/identify/laser_line.hpp"
 #include "vc/identify/laser_runs.hpp"
 #include "vc/identify/laser_table.hpp"
 #include "vc/machine/load_machine.hpp"
@@ -62,6 +64,8 @@ struct IdentifyCircleArgs {
   std::string machine_out;          // folder for the machine file with the squareness set
   std::string symbol;               // which term takes it (default: the one the file uses)
   std::string plot;                 // the polar plot, .png or .svg (optional, gnuplot; its data: .csv beside it)
+  std::optional<double> tool_length_mm;  // the ball's offset from the gauge point (default: "# tool_length_mm:")
+  std::string centre;                    // the joints at the circle's centre (default: "# centre:")
 };
 
 struct IdentifySphereArgs {
@@ -350,6 +354,55 @@ int run_identify_laser(const IdentifyLaserArgs& args, std::ostream& out) {
   return 0;
 }
 
+// Where the circle ran and the ball's offset (identify::CircleSetup): the options, else the
+// run file's "# centre:" and "# tool_length_mm:", else the middle of the travel and the machine
+// file's tool length, said so (the standard wants the offset declared).
+identify::CircleSetup circle_setup(const IdentifyCircleArgs& args, const identify::CircularTest& test,
+                                   const machine::Model& model, std::ostream& out) {
+  identify::CircleSetup setup = identify::default_circle_setup(model);
+  const auto metadata = [&](const std::string& key) -> const std::string* {
+    for (const auto& [k, v] : test.metadata)
+      if (k == key) return &v;
+    return nullptr;
+  };
+  std::string length_from = "--tool-length", centre_from = "--centre";
+  if (args.tool_length_mm) {
+    setup.tool_length_mm = *args.tool_length_mm;
+  } else if (const std::string* v = metadata("tool_length_mm")) {
+    char* end = nullptr;
+    setup.tool_length_mm = std::strtod(v->c_str(), &end);
+    if (v->empty() || *end != '\0' || !std::isfinite(setup.tool_length_mm))
+      throw std::runtime_error(test.path + ": '# tool_length_mm: " + *v + "' is not a length in mm");
+    length_from = "the run's '# tool_length_mm:'";
+  } else {
+    length_from = "not declared: the machine file's tool_length_mm";
+  }
+  const std::string* centre_text = args.centre.empty() ? metadata("centre") : &args.centre;
+  if (centre_text) {
+    try {
+      setup.centre = identify::parse_axis_positions(model, -1, *centre_text);
+    } catch (const std::exception& e) {
+      throw std::runtime_error((args.centre.empty() ? test.path + ": '# centre:'" : std::string("--centre")) + ": " +
+                               e.what());
+    }
+    if (args.centre.empty()) centre_from = "the run's '# centre:'";
+  } else {
+    centre_from = "not given: the middle of the travel";
+  }
+  std::string at;
+  for (int j = 0; j < model.joint_count(); ++j)
+    at += std::string(j ? ", " : "") +
+          static_cast<char>(std::tolower(static_cast<unsigned char>(model.axes[static_cast<std::size_t>(j)].letter))) +
+          "=" + number_text(setup.centre[j]);
+  out << "the circle simulated on the file about " << at << " (" << centre_from << "), the ball "
+      << number_text(setup.tool_length_mm) << " mm from the gauge point (" << length_from << ")\n";
+  if (length_from.rfind("not declared", 0) == 0)
+    out << "  note: declare the tool-side ball's offset (--tool-length, the active tool length when the circle "
+           "ran): an angular error moves the ball by its Abbe arm, so the file's share of the squareness depends on "
+           "it (ISO/TR 16907 asks for it wherever L-ANG, R-ANG, L-VOL or R-VOL is on)\n";
+  return setup;
+}
+
 int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
   if (!args.plot.empty()) refuse_plot_over(args.plot, {args.run});
   identify::CircularTest test = identify::read_circular_test(args.run);
@@ -412,8 +465,9 @@ int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
     out << "plot written: " << args.plot << " (its data: " << plot::data_path(args.plot) << ")\n";
   }
   if (!model) return 0;
+  const identify::CircleSetup setup = circle_setup(args, test, *model, out);
   const std::vector<identify::SquarenessTerm> terms =
-      identify::squareness_terms(*model, test.plane, test.radius_mm, e.squareness_rad);
+      identify::squareness_terms(*model, test.plane, test.radius_mm, e.squareness_rad, setup);
   out << "in " << args.machine
       << "'s terms (measured with the compensation off: the machine's own squareness): the file "
       << "shows " << arcsec(terms.empty() ? 0.0 : terms.front().file_squareness_rad)
@@ -432,7 +486,7 @@ int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
                                       {{model->joint_of(s->axis), s->component, chosen->value_rad}});
   // The self-check: the written file shows the measured squareness.
   const std::vector<identify::SquarenessTerm> after =
-      identify::squareness_terms(machine::load_machine(written), test.plane, test.radius_mm, e.squareness_rad);
+      identify::squareness_terms(machine::load_machine(written), test.plane, test.radius_mm, e.squareness_rad, setup);
   if (after.empty() || std::abs(after.front().file_squareness_rad - e.squareness_rad) > 0.005 * M_PI / 648000) {
     std::filesystem::remove(written);
     throw std::runtime_error("the written file shows a squareness of " +
@@ -549,6 +603,12 @@ void add_circle_command(CLI::App* identify, int& exit_code) {
   cmd->add_option("--machine", args->machine, "machine file: the squareness in its location errors");
   cmd->add_option("--machine-out", args->machine_out, "folder: a copy of the machine file with the squareness set");
   cmd->add_option("--symbol", args->symbol, "the location error that takes it (default: the one the file uses)");
+  cmd->add_option("--tool-length", args->tool_length_mm,
+                  "mm: the tool-side ball's offset from the spindle's gauge point, the active tool length while the "
+                  "circle ran (default: the file's '# tool_length_mm:', else the machine file's tool length)");
+  cmd->add_option("--centre", args->centre,
+                  "the joints at the circle's centre, e.g. \"x=0, y=0, z=-200\" (default: the file's '# centre:', else "
+                  "the middle of the travel, rotary axes at 0)");
   cmd->add_option("--plot", args->plot,
                   "the ballbar polar plot, .png or .svg (gnuplot); the data it draws goes to a .csv beside it");
   cmd->callback([args, &exit_code] { exit_code = run_identify_circle(*args, std::cout); });

@@ -211,19 +211,26 @@ CircularEvaluation evaluate_circular_test(const CircularTest& test) {
   return e;
 }
 
+CircleSetup default_circle_setup(const machine::Model& model) {
+  CircleSetup setup{machine::Joints(model.joint_count()), model.tool_length_mm};
+  for (int j = 0; j < model.joint_count(); ++j) {
+    const machine::Axis& a = model.axes[static_cast<std::size_t>(j)];
+    setup.centre[j] = a.type == machine::AxisType::Rotary ? 0.0 : (a.travel_min + a.travel_max) / 2;
+  }
+  return setup;
+}
+
 std::vector<SquarenessTerm> squareness_terms(const machine::Model& model, const std::string& plane, double radius_mm,
-                                             double squareness_rad) {
+                                             double squareness_rad, const CircleSetup& setup) {
   const std::string axes = plane == "XY" ? "XY" : plane == "YZ" ? "YZ" : "ZX";
   const char normal = plane == "XY" ? 'Z' : plane == "YZ" ? 'X' : 'Y';
   const int component = normal == 'X' ? 3 : normal == 'Y' ? 4 : 5;  // rotation about the plane's normal
   const int first = model.joint_of(axes[0]), second = model.joint_of(axes[1]);
   if (first < 0 || second < 0) throw std::runtime_error("the machine has no " + axes + " plane");
   const machine::Model zero = machine::keep_only(model, {});
-  machine::Joints centre(model.joint_count());
-  for (int j = 0; j < model.joint_count(); ++j) {
-    const machine::Axis& a = model.axes[static_cast<std::size_t>(j)];
-    centre[j] = a.type == machine::AxisType::Rotary ? 0.0 : (a.travel_min + a.travel_max) / 2;
-  }
+  if (setup.centre.size() != model.joint_count() || !setup.centre.allFinite() || !std::isfinite(setup.tool_length_mm))
+    throw std::runtime_error("the circle's centre or tool length is not known");
+  const machine::Joints& centre = setup.centre;
   const double r = std::min({radius_mm,
                              (model.axes[static_cast<std::size_t>(first)].travel_max -
                               model.axes[static_cast<std::size_t>(first)].travel_min) /
@@ -242,8 +249,8 @@ std::vector<SquarenessTerm> squareness_terms(const machine::Model& model, const 
       machine::Joints q = centre;
       q[first] += r * std::cos(phi);
       q[second] += r * std::sin(phi);
-      const Eigen::Vector3d e = machine::tool_pose(m, machine::Machine::Real, q, model.tool_length_mm).tip_mm -
-                                machine::tool_pose(m, machine::Machine::Ideal, q, model.tool_length_mm).tip_mm;
+      const Eigen::Vector3d e = machine::tool_pose(m, machine::Machine::Real, q, setup.tool_length_mm).tip_mm -
+                                machine::tool_pose(m, machine::Machine::Ideal, q, setup.tool_length_mm).tip_mm;
       a.row(k) << 1, std::cos(phi), std::sin(phi), std::cos(2 * phi), std::sin(2 * phi);
       d[k] = std::cos(phi) * e[index(axes[0])] + std::sin(phi) * e[index(axes[1])];
     }

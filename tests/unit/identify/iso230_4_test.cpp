@@ -61,18 +61,26 @@ TEST(CircularTest, FitsTheFirstOrderModelBack) {
 
 // The circle of a model, simulated through its forward kinematics (the tip error's radial part
 // at 360 points about the middle of the travel), as a run file.
-std::string circle_of(const machine::Model& model, double radius_mm) {
+// Elsewhere than the middle, or with a ball `tool_length_mm` from the gauge point: about
+// `centre` (x, y, z), said in the file's metadata when `declared`.
+std::string circle_of(const machine::Model& model, double radius_mm, const Eigen::Vector3d* centre = nullptr,
+                      double tool_length_mm = std::nan(""), bool declared = false) {
   const int x = model.joint_of('X'), y = model.joint_of('Y'), z = model.joint_of('Z');
+  const double L = std::isnan(tool_length_mm) ? model.tool_length_mm : tool_length_mm;
+  const auto middle = [&](int j) { return (model.axes[j].travel_min + model.axes[j].travel_max) / 2; };
+  const Eigen::Vector3d c = centre ? *centre : Eigen::Vector3d(middle(x), middle(y), middle(z));
   std::ostringstream csv;
-  csv << "# plane: XY\n# radius_mm: " << radius_mm << "\nangle[deg],direction,deviation[um]\n";
+  csv << "# plane: XY\n# radius_mm: " << radius_mm << "\n";
+  if (declared) csv << "# tool_length_mm: " << L << "\n# centre: x=" << c.x() << ", y=" << c.y() << ", z=" << c.z() << "\n";
+  csv << "angle[deg],direction,deviation[um]\n";
   for (int k = 0; k < 360; ++k) {
     const double phi = k * M_PI / 180;
     machine::Joints q = machine::Joints::Zero(model.joint_count());
-    q[x] = (model.axes[x].travel_min + model.axes[x].travel_max) / 2 + radius_mm * std::cos(phi);
-    q[y] = (model.axes[y].travel_min + model.axes[y].travel_max) / 2 + radius_mm * std::sin(phi);
-    q[z] = (model.axes[z].travel_min + model.axes[z].travel_max) / 2;
-    const Eigen::Vector3d e = machine::tool_pose(model, machine::Machine::Real, q, model.tool_length_mm).tip_mm -
-                              machine::tool_pose(model, machine::Machine::Ideal, q, model.tool_length_mm).tip_mm;
+    q[x] = c.x() + radius_mm * std::cos(phi);
+    q[y] = c.y() + radius_mm * std::sin(phi);
+    q[z] = c.z();
+    const Eigen::Vector3d e = machine::tool_pose(model, machine::Machine::Real, q, L).tip_mm -
+                              machine::tool_pose(model, machine::Machine::Ideal, q, L).tip_mm;
     csv << k << ",ccw," << (std::cos(phi) * e.x() + std::sin(phi) * e.y()) * 1e3 << '\n';
   }
   return csv.str();
@@ -93,7 +101,7 @@ TEST(CircularTest, SquarenessComesBackInTheMachineFilesTerms) {
   const double R = 100;
   const std::string run = write("mill3.csv", circle_of(truth, R));
   const CircularEvaluation e = evaluate_circular_test(read_circular_test(run));
-  const std::vector<SquarenessTerm> terms = squareness_terms(model, "XY", R, e.squareness_rad);
+  const std::vector<SquarenessTerm> terms = squareness_terms(model, "XY", R, e.squareness_rad, default_circle_setup(model));
   // Only EC0X: in mill3's chain Y carries X, so turning Y's line turns X with it (no squareness).
   ASSERT_EQ(terms.size(), 1u);
   EXPECT_EQ(terms[0].symbol, "EC0X");
@@ -102,7 +110,7 @@ TEST(CircularTest, SquarenessComesBackInTheMachineFilesTerms) {
   EXPECT_GT(std::abs(e.squareness_rad - terms[0].value_rad) / kArcsec, 0.3);  // the tables carry a squareness too
   const CircularEvaluation own =
       evaluate_circular_test(read_circular_test(write("mill3_own.csv", circle_of(model, R))));
-  EXPECT_NEAR(squareness_terms(model, "XY", R, own.squareness_rad)[0].value_rad / kArcsec, 8.0, 0.05);
+  EXPECT_NEAR(squareness_terms(model, "XY", R, own.squareness_rad, default_circle_setup(model))[0].value_rad / kArcsec, 8.0, 0.05);
 
   // Through the command line: the file written with it loads, carries it and shows the measured squareness.
   const std::string dir = (fs::temp_directory_path() / ("vc_circle_out_" + std::to_string(::getpid()))).string();
@@ -113,6 +121,54 @@ TEST(CircularTest, SquarenessComesBackInTheMachineFilesTerms) {
   const machine::Model written = machine::load_machine(dir + "/mill3.toml");
   EXPECT_NEAR(written.axes[x].location_rad[2] / kArcsec, 12.0, 0.05);
   fs::remove_all(dir);
+}
+
+// The ball's offset declared (ISO/TR 16907 L548, L919): mill3's pitch and roll tables move the
+// ball by their Abbe arm, so the squareness a circle shows grows with the ball's offset from the
+// gauge point. A true mill3 (EC0X 12 arcsec, the file 8) circled high above the table with a long
+// ball offset gives EC0X = 12 back where the run declares its offset and centre (metadata or
+// options); taken at the file's tool length in the middle of the travel, it would not.
+TEST(CircularTest, TheSquarenessIsTakenAtTheBallsOffsetAndCentre) {
+  const machine::Model model = machine::load_machine(test::machine_path("mill3"));
+  const int x = model.joint_of('X');
+  machine::Model truth = model;
+  truth.axes[x].location_rad[2] = 12 * kArcsec;
+  truth.axes[x].real_base =
+      machine::line_placement(truth.axes[x].pole_mm, truth.axes[x].location_mm, truth.axes[x].location_rad);
+  const double R = 100, L = 250;
+  const Eigen::Vector3d centre(-60, 40, -20);
+  const std::string run = write("mill3_ball.csv", circle_of(truth, R, &centre, L, true));
+  const CircularTest t = read_circular_test(run);
+  const CircularEvaluation e = evaluate_circular_test(t);
+  CircleSetup setup = default_circle_setup(model);
+  setup.centre[model.joint_of('X')] = centre.x();
+  setup.centre[model.joint_of('Y')] = centre.y();
+  setup.centre[model.joint_of('Z')] = centre.z();
+  setup.tool_length_mm = L;
+  EXPECT_NEAR(squareness_terms(model, "XY", R, e.squareness_rad, setup)[0].value_rad / kArcsec, 12.0, 0.05);
+  const double undeclared =
+      squareness_terms(model, "XY", R, e.squareness_rad, default_circle_setup(model))[0].value_rad / kArcsec;
+  EXPECT_GT(std::abs(undeclared - 12.0), 0.3) << "the ball's offset would not matter on mill3";
+  std::cout << "EC0X at the declared offset and centre: 12; at the file's tool length in the middle: " << undeclared
+            << " arcsec\n";
+
+  // Through the command line: the metadata, or the options over a run without it.
+  const auto declared = test::run_volcomp("identify circle " + run + " --machine " + test::machine_path("mill3"));
+  ASSERT_EQ(declared.exit_code, 0) << declared.out;
+  EXPECT_NE(declared.out.find("EC0X = 12.0"), std::string::npos) << declared.out;
+  EXPECT_NE(declared.out.find("(the run's '# tool_length_mm:')"), std::string::npos) << declared.out;
+  const std::string bare = write("mill3_ball_bare.csv", circle_of(truth, R, &centre, L, false));
+  const auto options = test::run_volcomp("identify circle " + bare + " --machine " + test::machine_path("mill3") +
+                                         " --tool-length 250 --centre 'x=-60, y=40, z=-20'");
+  ASSERT_EQ(options.exit_code, 0) << options.out;
+  EXPECT_NE(options.out.find("EC0X = 12.0"), std::string::npos) << options.out;
+  const auto guessed = test::run_volcomp("identify circle " + bare + " --machine " + test::machine_path("mill3"));
+  ASSERT_EQ(guessed.exit_code, 0) << guessed.out;
+  EXPECT_NE(guessed.out.find("note: declare the tool-side ball's offset"), std::string::npos) << guessed.out;
+  const auto bad = test::run_volcomp("identify circle " + bare + " --machine " + test::machine_path("mill3") +
+                                     " --centre 'x=-60, y=40'");
+  EXPECT_EQ(bad.exit_code, 2) << bad.out;
+  EXPECT_NE(bad.out.find("--centre"), std::string::npos) << bad.out;
 }
 
 TEST(CircularTest, RefusesWhatCannotGiveASquareness) {

@@ -67,10 +67,23 @@ CircularEvaluation evaluate_circular_test(const CircularTest& test);
 // tilts the plane's axes against each other (XY: EC0X, EC0Y; YZ: EA0Y, EA0Z; ZX: EB0X, EB0Z),
 // the value that makes the file, with every other error as it is, show the measured
 // squareness: the file's own squareness (its lines and its tables' slopes: a straightness
-// table with a slope is a squareness too) is found by simulating the circle on the model (in
-// the middle of the travel, at the machine's tool length), and the term takes the difference,
+// table with a slope is a squareness too) is found by simulating the circle on the model (about
+// the setup's centre, at its tool length), and the term takes the difference,
 // by what one radian of it alone makes there. One squareness in the file, however many
 // instruments measured it; the file's convention and chain decide the sign, not this code.
+// Where the circle ran, for simulating it on the model: the joints at its centre (rotary axes
+// where they stood) and the tool-side ball's offset from the spindle's gauge point along the
+// tool, declared as the active tool length while it ran. ISO/TR 16907 requires the offset
+// declared wherever L-ANG, R-ANG, L-VOL or R-VOL is on (L548, L919): an angular error moves the
+// ball by its Abbe arm, so a pitch that grows along an axis shows as a squareness that grows with
+// the offset, and the file's share of the measured squareness is only known at the ball's offset.
+struct CircleSetup {
+  machine::Joints centre;
+  double tool_length_mm = 0.0;
+};
+// The middle of the travel, rotary axes at 0, the machine file's tool length.
+CircleSetup default_circle_setup(const machine::Model& model);
+
 struct SquarenessTerm {
   std::string symbol;          // e.g. EC0Y
   double value_rad;            // its value for the measured squareness, the file's other errors as they are
@@ -78,6 +91,6 @@ struct SquarenessTerm {
   double file_squareness_rad;  // the squareness the file shows now (all its errors)
 };
 std::vector<SquarenessTerm> squareness_terms(const machine::Model& model, const std::string& plane, double radius_mm,
-                                             double squareness_rad);
+                                             double squareness_rad, const CircleSetup& setup);
 
 }  // namespace vc::identify
