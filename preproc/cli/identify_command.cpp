@@ -22,6 +22,7 @@
 #include "vc/identify/iso230_4.hpp"
 #include "vc/identify/iso230_2.hpp"
 #include "vc/identify/probe_log.hpp"
+#include "vc/identify/rtest.hpp"
 #include "vc/identify/sphere_centres.hpp"
 #include "vc/identify/squareness_choice.hpp"
 #include "vc/identify/laser_into_machine.hpp"
@@ -498,6 +499,9 @@ int run_identify_circle(const IdentifyCircleArgs& args, std::ostream& out) {
   return 0;
 }
 
+int report_location_fit(const machine::Model& model, const std::vector<identify::SpherePose>& poses,
+                        const IdentifySphereArgs& args, double length, const std::string& command, std::ostream& out);
+
 int run_identify_sphere(const IdentifySphereArgs& args, std::ostream& out) {
   const machine::Model model = machine::load_machine(args.machine);
   // A probe-plan log (its '# volcomp probe log' header) or a CSV of centres.
@@ -520,11 +524,29 @@ int run_identify_sphere(const IdentifySphereArgs& args, std::ostream& out) {
   } else {
     poses = identify::read_sphere_centres(args.centres, model);
   }
+  return report_location_fit(model, poses, args, length, "sphere", out);
+}
+
+// The R-test's readings as the sphere's centres (rtest.hpp), then the same fit.
+int run_identify_rtest(const IdentifySphereArgs& args, std::ostream& out) {
+  const machine::Model model = machine::load_machine(args.machine);
+  const double length = args.tool_length_mm.value_or(model.tool_length_mm);
+  const std::vector<identify::RTestReading> readings = identify::read_rtest_readings(args.centres, model);
+  double largest = 0.0;
+  for (const identify::RTestReading& r : readings) largest = std::max(largest, r.deviation_mm.norm());
+  out << "R-test readings: " << readings.size() << " poses, the sphere's centre up to " << fixed_text(largest * 1e3, 2)
+      << " um from the nest's; the nest " << number_text(length) << " mm from the gauge point\n";
+  return report_location_fit(model, identify::rtest_centres(model, readings, length), args, length, "rtest", out);
+}
+
+// The location errors fitted to the sphere's centres, printed, and written with --machine-out.
+int report_location_fit(const machine::Model& model, const std::vector<identify::SpherePose>& poses,
+                        const IdentifySphereArgs& args, double length, const std::string& command, std::ostream& out) {
   const identify::SphereFit fit = identify::identify_from_sphere(model, poses, args.deviations, length);
   const auto value = [](int component, double v) {
     return component < 3 ? fixed_text(v * 1e3, 2) + " um" : fixed_text(v * 648000.0 / M_PI, 2) + " arcsec";
   };
-  out << "volcomp identify sphere: " << args.centres << ", " << poses.size() << " poses, " << model.info.name
+  out << "volcomp identify " << command << ": " << args.centres << ", " << poses.size() << " poses, " << model.info.name
       << " at L = " << number_text(length) << " mm (the linear axes' errors enter the centres: identify after the "
       << "linear tables are in the machine file)\n"
       << "  " << fit.rank << " of " << fit.parameters << " location errors identified, condition "
@@ -548,7 +570,8 @@ int run_identify_sphere(const IdentifySphereArgs& args, std::ostream& out) {
   for (const identify::LocationEstimate& e : fit.estimates)
     values.push_back({e.joint, e.component, e.value, e.uncertainty});
   const std::string written = shop::write_machine_with_tables(model, args.machine_out, {},
-                                                              "volcomp identify sphere from " + args.centres, values);
+                                                              "volcomp identify " + command + " from " + args.centres,
+                                                              values);
   machine::load_machine(written);  // it loads
   out << "machine file written: " << written << "\n";
   return 0;
@@ -629,6 +652,23 @@ void add_sphere_command(CLI::App* identify, int& exit_code) {
   cmd->callback([args, &exit_code] { exit_code = run_identify_sphere(*args, std::cout); });
 }
 
+void add_rtest_command(CLI::App* identify, int& exit_code) {
+  auto args = std::make_shared<IdentifySphereArgs>();
+  CLI::App* cmd = identify->add_subcommand(
+      "rtest", "Rotary axes' location errors from an R-test (a sphere on the table, three sensors in the spindle)");
+  cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
+  cmd->add_option("READINGS", args->centres,
+                  "CSV: the commanded joints (x,y,z,b,c) and the sphere's centre against the nest's, "
+                  "dx[um],dy[um],dz[um] in the spindle frame, one pose per row")
+      ->required();
+  cmd->add_option("--deviations", args->deviations, "location errors to identify, e.g. EX0C,EA0B (default: all)")
+      ->delimiter(',');
+  cmd->add_option("--tool-length", args->tool_length_mm,
+                  "the nest's centre from the gauge point, mm (default: the machine file's tool length)");
+  cmd->add_option("--machine-out", args->machine_out, "folder: a copy of the machine file with the values");
+  cmd->callback([args, &exit_code] { exit_code = run_identify_rtest(*args, std::cout); });
+}
+
 }  // namespace
 
 void add_identify_commands(CLI::App& volcomp, int& exit_code) {
@@ -637,6 +677,7 @@ void add_identify_commands(CLI::App& volcomp, int& exit_code) {
   add_laser_command(identify, exit_code);
   add_circle_command(identify, exit_code);
   add_sphere_command(identify, exit_code);
+  add_rtest_command(identify, exit_code);
 }
 
 }  // namespace vc::cli
