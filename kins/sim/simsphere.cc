@@ -30,6 +30,7 @@
 #include <string>
 
 #include "module_settings.hpp"
+#include "sim_parameters.hpp"
 #include "vc/machine/forward.hpp"
 
 #include "rtapi.h"
@@ -72,20 +73,8 @@ char* probe_length = nullptr;
 char* noise_um = nullptr;
 int seed = 1;
 
-// A standard normal draw (xorshift64 and Box-Muller): reproducible from `seed`.
-double normal(std::uint64_t& state) {
-  const auto uniform = [&] {
-    state ^= state << 13;
-    state ^= state >> 7;
-    state ^= state << 17;
-    return (static_cast<double>(state >> 11) + 0.5) / 9007199254740992.0;  // (0, 1)
-  };
-  const double u = uniform(), v = uniform();
-  return std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * M_PI * v);
-}
-
 void draw_trigger() {
-  const double n = std::fmax(-4.0, std::fmin(4.0, normal(sphere->random)));  // clipped at 4 sigma
+  const double n = std::fmax(-4.0, std::fmin(4.0, vc::sim::normal(sphere->random)));  // clipped at 4 sigma
   sphere->trigger_mm = sphere->noise_mm * n;
 }
 
@@ -110,14 +99,6 @@ void update(void*, long) {
   }
 }
 
-double number(const char* text, const char* name, double fallback) {
-  if (!text || !*text) return fallback;
-  char* end = nullptr;
-  const double v = std::strtod(text, &end);
-  if (*end || !std::isfinite(v)) throw std::runtime_error(std::string(name) + "=" + text + " is not a number");
-  return v;
-}
-
 Sphere* make_sphere() {
   auto* s = new Sphere;
   try {
@@ -129,17 +110,17 @@ Sphere* make_sphere() {
     if (std::sscanf(text.c_str(), "%lf,%lf,%lf", &c[0], &c[1], &c[2]) != 3)
       throw std::runtime_error(
           "centre=X,Y,Z (mm): the joints at which the ball's centre is at the sphere's, rotary axes at 0");
-    const double diameter = number(sphere_diameter, "sphere_diameter", 25.0);
-    const double ball = number(ball_diameter, "ball_diameter", 2.0);
-    s->length_mm = number(probe_length, "probe_length", s->model.tool_length_mm);
-    s->noise_mm = number(noise_um, "noise_um", 0.0) * 1e-3;
+    const double diameter = vc::sim::number(sphere_diameter, "sphere_diameter", 25.0);
+    const double ball = vc::sim::number(ball_diameter, "ball_diameter", 2.0);
+    s->length_mm = vc::sim::number(probe_length, "probe_length", s->model.tool_length_mm);
+    s->noise_mm = vc::sim::number(noise_um, "noise_um", 0.0) * 1e-3;
     if (!(diameter > 0) || !(ball >= 0) || !(s->noise_mm >= 0))
       throw std::runtime_error("the diameters must be positive and noise_um not negative");
     s->reach_mm = (diameter + ball) / 2;
     vm::Joints q = vm::Joints::Zero(s->model.joint_count());
     q[x] = c[0], q[y] = c[1], q[z] = c[2];
     s->centre_mm = vm::tool_pose(s->model, vm::Machine::Real, q, s->length_mm).tip_mm;
-    s->random = 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(static_cast<std::uint32_t>(seed));
+    s->random = vc::sim::noise_state(seed);
   } catch (...) {
     delete s;
     throw;
