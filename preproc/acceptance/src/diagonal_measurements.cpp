@@ -51,6 +51,15 @@ identify::LaserRuns read_diagonal_runs(const std::string& path, const Diagonal& 
                             std::to_string(i + 1) + " (" + number_text(d.targets_mm[i]) + " mm) of " + d.name +
                             ": every run reads every target");
   }
+  // The plan's runs are bidirectional: a run read one way only lost its other half.
+  for (const auto& [key, targets] : seen) {
+    const Key other{key.first, key.second == identify::Direction::Up ? identify::Direction::Down : identify::Direction::Up};
+    if (!seen.count(other))
+      throw LoadError({path, last_line[key]}, run_name(key.first, key.second) +
+                                                  " (its last reading on this line) has no " +
+                                                  run_name(other.first, other.second) +
+                                                  ": every run of the plan reads both ways");
+  }
   if (up < 2 || down < 2)
     throw LoadError({path, last}, std::to_string(up) + " runs + and " + std::to_string(down) +
                                       " runs - (the last reading on this line): ISO 230-2 needs at least 2 in "

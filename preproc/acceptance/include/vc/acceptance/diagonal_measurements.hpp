@@ -1,7 +1,8 @@
 // One diagonal's laser runs (the laser software's export, laser_runs.hpp's long or wide
 // layout: target[mm],run,direction,deviation[um]) read and checked against the plan before
 // anything is evaluated: every reading at one of the plan's targets, every run reading every
-// target once, at least 2 runs in each direction (ISO 230-2 asks for 5). Each refusal is a
+// target once and both ways (the plan's runs are bidirectional), at least 2 runs in each
+// direction (ISO 230-2 asks for 5). Each refusal is a
 // LoadError at the file and line concerned.
 #pragma once
 
