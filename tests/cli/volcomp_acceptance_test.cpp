@@ -124,6 +124,35 @@ TEST(VolcompAcceptance, EveryShippedMachinesDiagonalsRunThroughRs274OnTheirLines
   EXPECT_GE(machines, 5);
 }
 
+TEST(VolcompAcceptance, PlanTakesTheGivenVolumesCornersAndRefusesOneOutsideTheTravel) {
+  const fs::path dir = fresh("volume");
+  const std::string machine = test::machine_path("mill3");  // travel X 0:500, Y 0:300, Z -300:0
+  auto r = test::run_volcomp("acceptance plan " + machine + " --volume 100:400,50:250,-250:-50 -o " +
+                             (dir / "plan").string());
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const acceptance::Plan plan = acceptance::read_plan((dir / "plan").string());
+  ASSERT_EQ(plan.diagonals.size(), 10u);
+  const acceptance::Diagonal& body = plan.diagonals[0];  // body-NNN-PPP
+  EXPECT_EQ(body.name, "body-NNN-PPP");
+  EXPECT_EQ(body.start_mm, Eigen::Vector3d(100, 50, -250));
+  EXPECT_EQ(body.end_mm, Eigen::Vector3d(400, 250, -50));
+  const acceptance::Diagonal& face = plan.diagonals[5];  // face-XY-NP-PN, Z at the centre
+  EXPECT_EQ(face.name, "face-XY-NP-PN");
+  EXPECT_EQ(face.start_mm, Eigen::Vector3d(100, 250, -150));
+  EXPECT_EQ(face.end_mm, Eigen::Vector3d(400, 50, -150));
+  EXPECT_NEAR(body.targets_mm.back(), std::sqrt(300.0 * 300 + 200 * 200 + 200 * 200), 5e-4);
+
+  // X beyond its travel; then a volume at the travel's end, where the overrun leaves it.
+  for (const char* volume : {"100:600,50:250,-250:-50", "0:400,50:250,-250:-50"}) {
+    r = test::run_volcomp(std::string("acceptance plan ") + machine + " --volume " + volume + " -o " +
+                          (dir / "refused").string());
+    EXPECT_EQ(r.exit_code, 2) << r.out;
+    EXPECT_NE(r.out.find("travel"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(dir / "refused")) << volume;
+  }
+  fs::remove_all(dir);
+}
+
 struct ClosedForm {
   const char* name;
   std::string x_extra, z_extra;
@@ -315,7 +344,7 @@ TEST(VolcompAcceptance, MeasurementsTheFitCannotSupportAreRefusedWithFileAndLine
       {"run 4 - missing", [](const std::string& l) { return std::regex_search(l, std::regex("^[0-9.]+,4,-,")); },
        std::regex(third + ":[0-9]+: error: run 4\\+ \\(its last reading on this line\\) has no run 4-")},
       {"one run", [](const std::string& l) { return std::regex_search(l, std::regex("^[0-9.-]+,[2-5],")); },
-       std::regex(third + ":[0-9]+: error: 1 runs \\+ and 1 runs -.*at least 2 in each direction")}};
+       std::regex(third + ":[0-9]+: error: 1 run \\+ and 1 run -.*at least 2 in each direction")}};
   for (const Case& c : cases) {
     fs::remove_all(dir / "bad");
     fs::copy(dir / "m", dir / "bad");

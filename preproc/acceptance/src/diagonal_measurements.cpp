@@ -61,8 +61,9 @@ identify::LaserRuns read_diagonal_runs(const std::string& path, const Diagonal& 
                                                   ": every run of the plan reads both ways");
   }
   if (up < 2 || down < 2)
-    throw LoadError({path, last}, std::to_string(up) + " runs + and " + std::to_string(down) +
-                                      " runs - (the last reading on this line): ISO 230-2 needs at least 2 in "
+    throw LoadError({path, last}, std::to_string(up) + (up == 1 ? " run" : " runs") + " + and " +
+                                      std::to_string(down) + (down == 1 ? " run" : " runs") +
+                                      " - (the last reading on this line): ISO 230-2 needs at least 2 in "
                                       "each direction (it asks for 5), or R and A are unsupported");
   return runs;
 }

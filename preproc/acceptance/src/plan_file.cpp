@@ -84,8 +84,10 @@ std::string plan_toml(const Plan& p) {
   return out.str();
 }
 
-Plan read_plan(const std::string& dir) {
-  const machine::TomlFile file((std::filesystem::path(dir) / "plan.toml").string());
+Plan read_plan(const std::string& dir) { return read_plan_file((std::filesystem::path(dir) / "plan.toml").string()); }
+
+Plan read_plan_file(const std::string& path) {
+  const machine::TomlFile file(path);
   Plan p;
   const toml::table& plan = *file.table(file.root(), "plan", true, "an acceptance plan");
   file.check_keys(plan, "[plan]",

@@ -43,7 +43,9 @@ std::string measurements_name(const Diagonal& d);
 
 std::string plan_toml(const Plan& plan);
 
-// DIR/plan.toml; every problem a LoadError at its file:line.
+// DIR/plan.toml (read_plan_file: that file by its own path); every problem a LoadError at its
+// file:line.
 Plan read_plan(const std::string& dir);
+Plan read_plan_file(const std::string& path);
 
 }  // namespace vc::acceptance
