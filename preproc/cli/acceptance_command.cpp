@@ -68,7 +68,7 @@ int run_plan(const PlanArgs& args, std::ostream& report) {
 
 struct SimulateArgs {
   std::string plan_dir, truth, compensation = "off", output;
-  double noise_um = 0;
+  double noise_um = 0, reversal_um = 0;
   std::uint64_t seed = 1;
 };
 
@@ -90,10 +90,11 @@ int run_simulate(const SimulateArgs& args, std::ostream& report) {
   sim.truth = &truth;
   sim.compensation = compensation ? &*compensation : nullptr;
   sim.noise_mm = args.noise_um * 1e-3;
+  sim.reversal_mm = args.reversal_um * 1e-3;
   sim.seed = args.seed;
   const std::vector<std::string> comments = {
       "instrument: simulated laser interferometer (volcomp acceptance simulate, seed " + std::to_string(args.seed) +
-          ", noise " + number_text(args.noise_um) + " um)",
+          ", noise " + number_text(args.noise_um) + " um, reversal " + number_text(args.reversal_um) + " um)",
       "truth: " + args.truth, "compensation: " + args.compensation,
       "tool_length_mm: " + number_text(plan.settings.tool_length_mm),
       "deviation: the displacement along the line minus the target (actual - nominal)"};
@@ -170,6 +171,8 @@ void add_acceptance_commands(CLI::App& volcomp, int& exit_code) {
   s->add_option("--true", sim->truth, "the true machine's file (.toml): its real errors")->required();
   s->add_option("--compensation", sim->compensation, "machine file volkins corrects with, or off")->capture_default_str();
   s->add_option("--noise-um", sim->noise_um, "standard deviation of a reading's noise, um")->capture_default_str();
+  s->add_option("--reversal-um", sim->reversal_um, "a reversal the runs show: + reads half of it, - minus half, um")
+      ->capture_default_str();
   s->add_option("--seed", sim->seed, "of the noise")->capture_default_str();
   s->add_option("-o,--output", sim->output, "folder for the measurements (one CSV per diagonal)")->required();
   s->callback([sim, &exit_code] { exit_code = run_simulate(*sim, std::cout); });

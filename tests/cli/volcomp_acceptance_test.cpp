@@ -170,7 +170,7 @@ TEST_P(VolcompAcceptanceClosedForm, SystematicDeviationAlongEachDiagonalIsTheClo
   auto r = test::run_volcomp("acceptance plan " + (dir / "true.toml").string() + " -o " + (dir / "plan").string());
   ASSERT_EQ(r.exit_code, 0) << r.out;
   r = test::run_volcomp("acceptance simulate " + (dir / "plan").string() + " --true " + (dir / "true.toml").string() +
-                        " --noise-um 0 -o " + (dir / "m").string());
+                        " --noise-um 0 --reversal-um 1.5 -o " + (dir / "m").string());
   ASSERT_EQ(r.exit_code, 0) << r.out;
   r = test::run_volcomp("acceptance evaluate " + (dir / "plan").string() + " --measurements " + (dir / "m").string() +
                         " -o " + (dir / "report").string());
@@ -186,12 +186,16 @@ TEST_P(VolcompAcceptanceClosedForm, SystematicDeviationAlongEachDiagonalIsTheClo
     const double per_mm = c.k * u.x() * u.x() + u.x() * u.z() * std::sin(c.b_rad) + u.z() * u.z() * (std::cos(c.b_rad) - 1);
     const double expected_um = std::abs(per_mm) * d.targets_mm.back() * 1e3;
     largest = std::max(largest, expected_um);
-    EXPECT_NEAR(std::stod(rows[k].at("E[um]")), expected_um, 1e-6) << d.name;
-    EXPECT_NEAR(std::stod(rows[k].at("M[um]")), expected_um, 1e-6) << d.name;  // no reversal, no noise: M = E
-    EXPECT_NEAR(std::stod(rows[k].at("R[um]")), 0.0, 1e-6) << d.name;
+    // A reversal of 1.5 um (+ reads +0.75, - reads -0.75): E spans both directions' means, M the
+    // bidirectional mean's range, B the reversal, R = 2 s + 2 s + |B_i| with s = 0.
+    EXPECT_NEAR(std::stod(rows[k].at("E[um]")), expected_um + 1.5, 1e-6) << d.name;
+    EXPECT_NEAR(std::stod(rows[k].at("M[um]")), expected_um, 1e-6) << d.name;
+    EXPECT_NEAR(std::stod(rows[k].at("B[um]")), 1.5, 1e-6) << d.name;
+    EXPECT_NEAR(std::stod(rows[k].at("R[um]")), 1.5, 1e-6) << d.name;
+    EXPECT_NEAR(std::stod(rows[k].at("A[um]")), expected_um + 1.5, 1e-6) << d.name;
     EXPECT_EQ(rows[k].at("verdict"), "");  // no tolerances, no verdict
   }
-  std::cout << c.name << ": E up to " << largest << " um, equal to the closed form\n";
+  std::cout << c.name << ": M up to " << largest << " um, equal to the closed form (E, A: it + the reversal)\n";
   EXPECT_GT(largest, 1.0);  // an error the comparison can see
   fs::remove_all(dir);
 }

@@ -57,7 +57,8 @@ std::vector<identify::Reading> simulate_diagonal(const Plan& plan, const Diagona
     r.run = run;
     r.direction = way;
     r.target = d.targets_mm[i];
-    r.deviation = truth_mm[i] + (sim.noise_mm > 0 ? sim.noise_mm * noise() : 0.0);
+    const double half = (way == identify::Direction::Up ? 0.5 : -0.5) * sim.reversal_mm;
+    r.deviation = truth_mm[i] + half + (sim.noise_mm > 0 ? sim.noise_mm * noise() : 0.0);
     out.push_back(r);
   };
   for (int run = 1; run <= plan.settings.runs; ++run) {

@@ -8,7 +8,9 @@
 // (distance 0: where it was zeroed, with the same joints as target 1); the deviation is that
 // reading minus the target's distance (error = actual - nominal), plus Gaussian noise of
 // `noise_mm` per reading (std::mt19937_64 and Box-Muller: the same numbers on every platform).
-// The model has no reversal (backlash), so both directions read alike but for the noise.
+// The model has no reversal (backlash): `reversal_mm` adds one as the drives' lost motion shows in
+// a laser's runs, + readings by reversal / 2 and - readings by - reversal / 2 (simulate-laser-runs'
+// rule), so that B reads it; 0: both directions read alike but for the noise.
 #pragma once
 
 #include <cstdint>
@@ -24,6 +26,7 @@ struct LaserSimulation {
   const machine::Model* truth = nullptr;
   const machine::Model* compensation = nullptr;  // null: off
   double noise_mm = 0;
+  double reversal_mm = 0;
   std::uint64_t seed = 1;
 };
 
