@@ -1,5 +1,6 @@
 #include "vc/acceptance/plan_file.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
@@ -113,9 +114,18 @@ Plan read_plan_file(const std::string& path) {
   s.feed_mm_per_min = file.scalar(*file.get(plan, "feed_mm_per_min", true, "[plan]"), "feed_mm_per_min");
   s.dwell_s = file.scalar(*file.get(plan, "dwell_s", true, "[plan]"), "dwell_s");
   s.overrun_mm = file.scalar(*file.get(plan, "overrun_mm", true, "[plan]"), "overrun_mm");
-  s.runs = static_cast<int>(file.scalar(*file.get(plan, "runs", true, "[plan]"), "runs"));
-  s.targets = static_cast<int>(file.scalar(*file.get(plan, "targets", true, "[plan]"), "targets"));
-  s.seed = static_cast<unsigned>(file.scalar(*file.get(plan, "seed", true, "[plan]"), "seed"));
+  // A whole number in [low, high], checked before the cast (a double out of int's range is undefined).
+  const auto whole = [&](std::string_view key, double low, double high) {
+    const toml::node* n = file.get(plan, key, true, "[plan]");
+    const double v = file.scalar(*n, key);
+    if (v != std::floor(v) || v < low || v > high)
+      throw LoadError(file.where(*n), "'" + std::string(key) + "' must be a whole number from " + number_text(low) +
+                                          " to " + number_text(high));
+    return v;
+  };
+  s.runs = static_cast<int>(whole("runs", 2, 1000));
+  s.targets = static_cast<int>(whole("targets", 5, 100000));
+  s.seed = static_cast<unsigned>(whole("seed", 0, 4294967295.0));
 
   if (const toml::node* n = file.root().get("diagonal")) {
     const toml::array* a = n->as_array();
@@ -134,6 +144,14 @@ Plan read_plan_file(const std::string& path) {
       if (d.targets_mm.size() < 5)
         throw LoadError(file.where(*t), d.name + ": fewer than 5 targets (ISO 230-2 asks for at least 5)");
       if (!(d.length_mm() > 0)) throw LoadError(file.where(*t), d.name + ": start and end are the same point");
+      // Distances from the start, increasing, on the line (the last may round past its end by 0.5 um).
+      const toml::node& targets = *t->get("targets_mm");
+      for (std::size_t i = 0; i < d.targets_mm.size(); ++i)
+        if (d.targets_mm[i] < 0 || d.targets_mm[i] > d.length_mm() + 1e-3 || (i && !(d.targets_mm[i] > d.targets_mm[i - 1])))
+          throw LoadError(file.where(targets), d.name + ": target " + std::to_string(i + 1) + " (" +
+                                                   number_text(d.targets_mm[i]) +
+                                                   " mm) is not an increasing distance from 0 to the length " +
+                                                   fixed_text(d.length_mm(), 3) + " mm");
       p.diagonals.push_back(d);
     }
   }
