@@ -160,6 +160,9 @@ struct ClosedForm {
   double b_rad;  // EB0Z
 };
 
+// Named in the test's name and in CTest's (GoogleTest would print the struct's bytes).
+void PrintTo(const ClosedForm& c, std::ostream* out) { *out << c.name; }
+
 class VolcompAcceptanceClosedForm : public ::testing::TestWithParam<ClosedForm> {};
 
 TEST_P(VolcompAcceptanceClosedForm, SystematicDeviationAlongEachDiagonalIsTheClosedForm) {
@@ -204,7 +207,8 @@ INSTANTIATE_TEST_SUITE_P(
     Issue47, VolcompAcceptanceClosedForm,
     ::testing::Values(ClosedForm{"squareness_EB0Z", "", "[tool_chain.location]\nEB0Z_arcsec = 20.0\n", 0.0,
                                  20.0 * M_PI / 648000.0},
-                      ClosedForm{"x_slope", "[[tool_chain.tables]]\nfile = \"exx.csv\"\n", "", 1e-4, 0.0}));
+                      ClosedForm{"x_slope", "[[tool_chain.tables]]\nfile = \"exx.csv\"\n", "", 1e-4, 0.0}),
+    [](const ::testing::TestParamInfo<ClosedForm>& param) { return std::string(param.param.name); });
 
 // E of each diagonal (um), from the figures CSV of one simulate + evaluate.
 std::vector<double> systematic(const fs::path& dir, const std::string& plan, const std::string& truth,
