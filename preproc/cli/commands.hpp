@@ -24,5 +24,6 @@ void add_fit_tables_command(CLI::App& volcomp, int& exit_code);
 void add_identify_commands(CLI::App& volcomp, int& exit_code);  // identify laser, circle, sphere
 void add_probe_plan_command(CLI::App& volcomp, int& exit_code);
 void add_init_command(CLI::App& volcomp, int& exit_code);
+void add_acceptance_commands(CLI::App& volcomp, int& exit_code);  // acceptance plan, simulate, evaluate
 
 }  // namespace vc::cli

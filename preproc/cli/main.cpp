@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   vc::cli::add_identify_commands(volcomp, exit_code);
   vc::cli::add_probe_plan_command(volcomp, exit_code);
   vc::cli::add_init_command(volcomp, exit_code);
+  vc::cli::add_acceptance_commands(volcomp, exit_code);
 
   // The chosen command runs in its callback, after CLI11 has parsed and checked the whole line.
   try {

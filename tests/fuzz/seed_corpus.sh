@@ -32,6 +32,7 @@ case $name in
   laser_runs) seed '*.csv' tests/golden/bad_laser_runs ;;
   circular_test) seed '*.csv' tests/golden/bad_circular_tests ;;
   probe_log) ;;
+  acceptance) seed '*.toml' tests/golden/bad_acceptance ; seed '*.csv' tests/golden/bad_acceptance ;;
   init)
     seed '*.ini' tests/golden/bad_inis kins/configs
     # Each golden INI with its HAL file inline (init_fuzzer.cpp: after a "#FUZZ-HAL" line,

@@ -25,6 +25,10 @@
 #include <vector>
 
 #include "test_support.hpp"
+#include "vc/acceptance/diagonal_evaluation.hpp"
+#include "vc/acceptance/diagonal_measurements.hpp"
+#include "vc/acceptance/plan_file.hpp"
+#include "vc/acceptance/tolerances.hpp"
 #include "vc/identify/iso230_4.hpp"
 #include "vc/identify/iso230_2.hpp"
 #include "vc/identify/laser_runs.hpp"
@@ -108,6 +112,26 @@ TEST(BadFiles, EveryBadLaserRunIsRefusedWithItsMessage) {
 TEST(BadFiles, EveryBadCircularTestIsRefusedWithItsMessage) {
   check_folder("tests/golden/bad_circular_tests", ".csv",
                [](const fs::path& p) { identify::evaluate_circular_test(identify::read_circular_test(p.string())); });
+}
+
+// `volcomp acceptance`'s files (tests/golden/bad_acceptance): plans, tolerances, and a diagonal's
+// laser runs read against good/plan.toml's diagonal and evaluated as `acceptance evaluate` does.
+TEST(BadFiles, EveryBadAcceptancePlanIsRefusedWithItsMessage) {
+  check_folder("tests/golden/bad_acceptance/plans", ".toml",
+               [](const fs::path& p) { acceptance::read_plan_file(p.string()); });
+}
+
+TEST(BadFiles, EveryBadAcceptanceToleranceFileIsRefusedWithItsMessage) {
+  check_folder("tests/golden/bad_acceptance/tolerances", ".toml",
+               [](const fs::path& p) { acceptance::read_tolerances(p.string()); });
+}
+
+TEST(BadFiles, EveryBadDiagonalRunIsRefusedWithItsMessage) {
+  const acceptance::Plan plan = acceptance::read_plan(test::source_path("tests/golden/bad_acceptance/good"));
+  check_folder("tests/golden/bad_acceptance/runs", ".csv", [&](const fs::path& p) {
+    const acceptance::Diagonal& d = plan.diagonals.front();
+    acceptance::evaluate_diagonal(d, acceptance::read_diagonal_runs(p.string(), d), 0.5e-3, nullptr);
+  });
 }
 
 // The catalogue itself: the machine the bad machines are made from, and the good tables they

@@ -1,0 +1,26 @@
+// The user's limits for the acceptance figures (TOML, um), one table per kind of test:
+//
+//   [diagonal]        # ISO 230-6 diagonals: ISO 230-2 figures along each line
+//   A_um = 25.0       # accuracy
+//   E_um = 20.0       # systematic deviation
+//   R_um = 8.0        # repeatability
+//   B_um = 5.0        # reversal value
+//   M_um = 15.0       # range of the mean bidirectional deviation
+//
+// Any subset of the figures; a figure without a limit is reported, not judged.
+#pragma once
+
+#include <map>
+#include <string>
+
+namespace vc::acceptance {
+
+struct Tolerances {
+  std::string path;
+  std::map<std::string, double> diagonal_mm;  // "A", "E", "R", "B", "M" -> limit (mm)
+};
+
+// Throws LoadError at file:line for an unknown table or key, a limit that is not a number > 0.
+Tolerances read_tolerances(const std::string& path);
+
+}  // namespace vc::acceptance

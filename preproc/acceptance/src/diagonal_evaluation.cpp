@@ -1,0 +1,120 @@
+#include "vc/acceptance/diagonal_evaluation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "vc/tables/number_text.hpp"
+
+namespace vc::acceptance {
+namespace {
+
+std::string um(double mm) { return fixed_text(mm * 1e3, 3); }
+// The CSV keeps 1e-6 um: a figure read back equals the evaluation's to that.
+std::string csv_um(double mm) { return fixed_text(mm * 1e3, 6); }
+
+}  // namespace
+
+double Figure::expanded_mm() const {
+  return 2 * std::sqrt(u_repeatability_mm * u_repeatability_mm + u_instrument_mm * u_instrument_mm);
+}
+
+bool DiagonalResult::passes() const {
+  return std::all_of(figures.begin(), figures.end(), [](const Figure& f) { return f.passes(); });
+}
+
+DiagonalResult evaluate_diagonal(const Diagonal& d, const identify::LaserRuns& runs, double laser_uncertainty_mm,
+                                 const Tolerances* tolerances) {
+  DiagonalResult r;
+  r.diagonal = d;
+  r.iso = identify::evaluate_iso230_2(runs);
+  const identify::Iso230_2& e = r.iso;
+  const int n = std::min(e.runs_up, e.runs_down);
+  double s_max = 0;
+  for (const identify::TargetStatistics& t : e.targets) s_max = std::max({s_max, t.s_up, t.s_down});
+  const double u_mean = s_max / std::sqrt(static_cast<double>(n));
+  const double two = std::sqrt(2.0);
+  const auto figure = [&](const char* symbol, const char* name, double value, bool from_scatter) {
+    Figure f;
+    f.symbol = symbol;
+    f.name = name;
+    f.value_mm = value;
+    f.u_repeatability_mm = from_scatter ? value / std::sqrt(2.0 * (n - 1)) : two * u_mean;
+    f.u_instrument_mm = from_scatter ? 0.0 : two * laser_uncertainty_mm;
+    if (tolerances)
+      if (const auto it = tolerances->diagonal_mm.find(symbol); it != tolerances->diagonal_mm.end())
+        f.limit_mm = it->second;
+    r.figures.push_back(f);
+  };
+  figure("A", "accuracy", e.accuracy, false);
+  figure("E", "systematic deviation", e.systematic, false);
+  figure("R", "repeatability", e.repeatability, true);
+  figure("B", "reversal value", e.reversal, false);
+  figure("M", "range of the mean bidirectional deviation", e.range, false);
+  r.judged = tolerances && !tolerances->diagonal_mm.empty();
+  return r;
+}
+
+std::string figures_csv(const std::vector<DiagonalResult>& results, double laser_uncertainty_mm) {
+  std::ostringstream out;
+  out << "# volcomp acceptance evaluate: ISO 230-6 diagonals, the ISO 230-2 figures along each line, um\n"
+      << "# u_rep: repeatability part, u_laser: instrument part (" << number_text(laser_uncertainty_mm * 1e3)
+      << " um per reading), U: expanded uncertainty (k = 2); thermal not evaluated\n"
+      << "test,kind,length[mm],runs_up,runs_down";
+  for (const char* s : {"A", "E", "R", "B", "M"})
+    out << "," << s << "[um],u_rep_" << s << "[um],u_laser_" << s << "[um],U_" << s << "[um],limit_" << s << "[um]";
+  out << ",verdict\n";
+  for (const DiagonalResult& r : results) {
+    out << r.diagonal.name << "," << r.diagonal.kind << "," << fixed_text(r.diagonal.length_mm(), 3) << ","
+        << r.iso.runs_up << "," << r.iso.runs_down;
+    for (const Figure& f : r.figures)
+      out << "," << csv_um(f.value_mm) << "," << csv_um(f.u_repeatability_mm) << "," << csv_um(f.u_instrument_mm) << ","
+          << csv_um(f.expanded_mm()) << "," << (f.limit_mm ? csv_um(*f.limit_mm) : "");
+    out << "," << (r.judged ? (r.passes() ? "PASS" : "FAIL") : "") << "\n";
+  }
+  return out.str();
+}
+
+std::string summary_markdown(const std::vector<DiagonalResult>& results, const std::string& plan_dir,
+                             const std::string& measurements, const std::string& tolerances,
+                             double laser_uncertainty_mm) {
+  std::ostringstream m;
+  const bool judged = !results.empty() && results.front().judged;
+  const bool all = std::all_of(results.begin(), results.end(), [](const DiagonalResult& r) { return r.passes(); });
+  m << "# Acceptance: ISO 230-6 diagonal displacement tests\n\n"
+    << "Plan `" << plan_dir << "`, measurements `" << measurements << "`, tolerances "
+    << (tolerances.empty() ? std::string("none (figures only, no verdict)") : "`" + tolerances + "`") << ".\n\n";
+  if (judged) m << "**" << (all ? "PASS" : "FAIL") << "**: " << results.size() << " diagonals.\n\n";
+  for (const DiagonalResult& r : results) {
+    m << "## " << r.diagonal.name << " (" << r.diagonal.kind << ", " << fixed_text(r.diagonal.length_mm(), 3)
+      << " mm, " << r.iso.targets.size() << " targets, " << r.iso.runs_up << " runs + and " << r.iso.runs_down
+      << " -)" << (r.judged ? (r.passes() ? ": PASS" : ": FAIL") : "") << "\n\n"
+      << "| figure | value [um] | u repeatability [um] | u laser [um] | U (k = 2) [um] | limit [um] | verdict |\n"
+      << "|---|---:|---:|---:|---:|---:|---|\n";
+    for (const Figure& f : r.figures) {
+      std::string verdict;
+      if (f.limit_mm) {
+        verdict = f.passes() ? "PASS" : "FAIL";
+        if (std::abs(*f.limit_mm - f.value_mm) < f.expanded_mm()) verdict += " (within U of the limit)";
+      }
+      m << "| " << f.symbol << " " << f.name << " | " << um(f.value_mm) << " | " << um(f.u_repeatability_mm) << " | "
+        << um(f.u_instrument_mm) << " | " << um(f.expanded_mm()) << " | " << (f.limit_mm ? um(*f.limit_mm) : "-")
+        << " | " << verdict << " |\n";
+    }
+    m << "\n";
+  }
+  m << "## Uncertainty\n\n"
+    << "Standard uncertainties (k = 1), U = 2 u_c (k = 2). Repeatability part from the runs: a target's mean "
+       "deviation has u_mean = s_max / sqrt(n) (s_max the largest unidirectional standard deviation of any target, n "
+       "runs per direction); A, E, B, M are differences of two means, sqrt(2) u_mean; R is 4 s from n runs, "
+       "u(R) = R / sqrt(2 (n - 1)). Instrument part: the laser's "
+    << number_text(laser_uncertainty_mm * 1e3)
+    << " um per reading (--laser-uncertainty-um), sqrt(2) times that for A, E, B, M, none for R (its scatter is "
+       "in the runs'). **Not evaluated**: the thermal term (ISO/TR 16907 8.3: the machine's thermal state, ISO "
+       "230-3; ISO/TR 16015's thermal influence on the length measurement), the beam's misalignment (cosine "
+       "error) and the dead path. A verdict is the figure against its limit; \"within U\" marks one that the "
+       "uncertainty could turn.\n";
+  return m.str();
+}
+
+}  // namespace vc::acceptance

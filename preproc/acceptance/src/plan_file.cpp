@@ -1,0 +1,162 @@
+#include "vc/acceptance/plan_file.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "vc/machine/toml_file.hpp"
+#include "vc/tables/number_text.hpp"
+#include "vc/tables/source_error.hpp"
+
+namespace vc::acceptance {
+namespace {
+
+std::string list(const Eigen::Vector3d& v) {
+  return "[" + number_text(v[0]) + ", " + number_text(v[1]) + ", " + number_text(v[2]) + "]";
+}
+
+// A TOML string, quoted and escaped as toml++ writes one (a path may hold \ or ").
+std::string quoted(const std::string& text) {
+  std::ostringstream out;
+  out << toml::value<std::string>(text);
+  return out.str();
+}
+
+std::vector<double> numbers(const machine::TomlFile& file, const toml::table& t, std::string_view key,
+                            const std::string& context, std::size_t size = 0) {
+  const toml::node* n = file.get(t, key, true, context);
+  const toml::array* a = n->as_array();
+  if (!a) throw LoadError(file.where(*n), "'" + std::string(key) + "' must be an array of numbers");
+  if (size && a->size() != size)
+    throw LoadError(file.where(*n), "'" + std::string(key) + "' needs " + std::to_string(size) + " numbers");
+  std::vector<double> out;
+  for (const toml::node& x : *a) out.push_back(file.scalar(x, key));
+  return out;
+}
+
+Eigen::Vector3d vector3(const machine::TomlFile& file, const toml::table& t, std::string_view key,
+                        const std::string& context) {
+  const std::vector<double> v = numbers(file, t, key, context, 3);
+  return {v[0], v[1], v[2]};
+}
+
+}  // namespace
+
+std::string program_path(const Diagonal& d) { return "diagonals/" + d.name + ".ngc"; }
+std::string sheet_path(const Diagonal& d) { return "diagonals/" + d.name + ".md"; }
+std::string measurements_name(const Diagonal& d) { return d.name + ".csv"; }
+
+std::string plan_toml(const Plan& p) {
+  const DiagonalSettings& s = p.settings;
+  std::ostringstream out;
+  out << "# volcomp acceptance plan: the tests of " << p.machine << " (lengths mm, angles deg, feed mm/min, dwell s)\n"
+      << "# X, Y, Z are the machine's joints (LinuxCNC's axes world); distances along a line from its start.\n"
+      << "[plan]\n"
+      << "machine = " << quoted(p.machine) << "\n"
+      << "coordinates = " << quoted(p.coordinates) << "\n"
+      << "tool_length_mm = " << number_text(s.tool_length_mm) << "  # the tool-side optic below the gauge point\n"
+      << "tool_offset_mm = " << number_text(p.tool_offset_mm) << "  # the programs' G43.1 Z\n"
+      << "rest = [";
+  for (int k = 0; k < p.rest.size(); ++k) out << (k ? ", " : "") << number_text(p.rest[k]);
+  out << "]  # every joint in the machine's order; X, Y, Z move along the lines\n"
+      << "volume_mm = [";
+  for (int i = 0; i < 3; ++i)
+    out << (i ? ", " : "") << "[" << number_text(s.volume.low_mm[i]) << ", " << number_text(s.volume.high_mm[i]) << "]";
+  out << "]\n"
+      << "feed_mm_per_min = " << number_text(s.feed_mm_per_min) << "\n"
+      << "dwell_s = " << number_text(s.dwell_s) << "\n"
+      << "overrun_mm = " << number_text(s.overrun_mm) << "\n"
+      << "runs = " << s.runs << "\n"
+      << "targets = " << s.targets << "\n"
+      << "seed = " << s.seed << "\n";
+  for (const Diagonal& d : p.diagonals) {
+    out << "\n[[diagonal]]  # ISO 230-6\n"
+        << "name = " << quoted(d.name) << "\n"
+        << "kind = " << quoted(d.kind) << "\n"
+        << "start_mm = " << list(d.start_mm) << "\n"
+        << "end_mm = " << list(d.end_mm) << "\n"
+        << "targets_mm = [";
+    for (std::size_t i = 0; i < d.targets_mm.size(); ++i) out << (i ? ", " : "") << number_text(d.targets_mm[i]);
+    out << "]\n"
+        << "program = \"" << program_path(d) << "\"\n"
+        << "sheet = \"" << sheet_path(d) << "\"\n"
+        << "measurements = \"" << measurements_name(d) << "\"\n";
+  }
+  return out.str();
+}
+
+Plan read_plan(const std::string& dir) { return read_plan_file((std::filesystem::path(dir) / "plan.toml").string()); }
+
+Plan read_plan_file(const std::string& path) {
+  const machine::TomlFile file(path);
+  Plan p;
+  const toml::table& plan = *file.table(file.root(), "plan", true, "an acceptance plan");
+  file.check_keys(plan, "[plan]",
+                  {"machine", "coordinates", "tool_length_mm", "tool_offset_mm", "rest", "volume_mm",
+                   "feed_mm_per_min", "dwell_s", "overrun_mm", "runs", "targets", "seed"});
+  p.machine = file.text(plan, "machine", true, "[plan]");
+  p.coordinates = file.text(plan, "coordinates", true, "[plan]");
+  DiagonalSettings& s = p.settings;
+  s.tool_length_mm = file.scalar(*file.get(plan, "tool_length_mm", true, "[plan]"), "tool_length_mm");
+  p.tool_offset_mm = file.scalar(*file.get(plan, "tool_offset_mm", true, "[plan]"), "tool_offset_mm");
+  const std::vector<double> rest = numbers(file, plan, "rest", "[plan]", p.coordinates.size());
+  p.rest.resize(static_cast<Eigen::Index>(rest.size()));
+  for (std::size_t k = 0; k < rest.size(); ++k) p.rest[static_cast<Eigen::Index>(k)] = rest[k];
+  const toml::node* volume = file.get(plan, "volume_mm", true, "[plan]");
+  const toml::array* ranges = volume->as_array();
+  if (!ranges || ranges->size() != 3) throw LoadError(file.where(*volume), "'volume_mm' is [[x0, x1], [y0, y1], [z0, z1]]");
+  for (std::size_t i = 0; i < 3; ++i) {
+    const toml::array* r = (*ranges)[i].as_array();
+    if (!r || r->size() != 2) throw LoadError(file.where(*volume), "'volume_mm' is [[x0, x1], [y0, y1], [z0, z1]]");
+    s.volume.low_mm[static_cast<int>(i)] = file.scalar((*r)[0], "volume_mm");
+    s.volume.high_mm[static_cast<int>(i)] = file.scalar((*r)[1], "volume_mm");
+  }
+  s.feed_mm_per_min = file.scalar(*file.get(plan, "feed_mm_per_min", true, "[plan]"), "feed_mm_per_min");
+  s.dwell_s = file.scalar(*file.get(plan, "dwell_s", true, "[plan]"), "dwell_s");
+  s.overrun_mm = file.scalar(*file.get(plan, "overrun_mm", true, "[plan]"), "overrun_mm");
+  // A whole number in [low, high], checked before the cast (a double out of int's range is undefined).
+  const auto whole = [&](std::string_view key, double low, double high) {
+    const toml::node* n = file.get(plan, key, true, "[plan]");
+    const double v = file.scalar(*n, key);
+    if (v != std::floor(v) || v < low || v > high)
+      throw LoadError(file.where(*n), "'" + std::string(key) + "' must be a whole number from " + number_text(low) +
+                                          " to " + number_text(high));
+    return v;
+  };
+  s.runs = static_cast<int>(whole("runs", 2, 1000));
+  s.targets = static_cast<int>(whole("targets", 5, 100000));
+  s.seed = static_cast<unsigned>(whole("seed", 0, 4294967295.0));
+
+  if (const toml::node* n = file.root().get("diagonal")) {
+    const toml::array* a = n->as_array();
+    if (!a) throw LoadError(file.where(*n), "'diagonal' must be an array of tables, [[diagonal]]");
+    for (const toml::node& item : *a) {
+      const toml::table* t = item.as_table();
+      if (!t) throw LoadError(file.where(item), "'diagonal' must be an array of tables, [[diagonal]]");
+      file.check_keys(*t, "[[diagonal]]",
+                      {"name", "kind", "start_mm", "end_mm", "targets_mm", "program", "sheet", "measurements"});
+      Diagonal d;
+      d.name = file.text(*t, "name", true, "[[diagonal]]");
+      d.kind = file.text(*t, "kind", true, "[[diagonal]]");
+      d.start_mm = vector3(file, *t, "start_mm", "[[diagonal]]");
+      d.end_mm = vector3(file, *t, "end_mm", "[[diagonal]]");
+      d.targets_mm = numbers(file, *t, "targets_mm", "[[diagonal]]");
+      if (d.targets_mm.size() < 5)
+        throw LoadError(file.where(*t), d.name + ": fewer than 5 targets (ISO 230-2 asks for at least 5)");
+      if (!(d.length_mm() > 0)) throw LoadError(file.where(*t), d.name + ": start and end are the same point");
+      // Distances from the start, increasing, on the line (the last may round past its end by 0.5 um).
+      const toml::node& targets = *t->get("targets_mm");
+      for (std::size_t i = 0; i < d.targets_mm.size(); ++i)
+        if (d.targets_mm[i] < 0 || d.targets_mm[i] > d.length_mm() + 1e-3 || (i && !(d.targets_mm[i] > d.targets_mm[i - 1])))
+          throw LoadError(file.where(targets), d.name + ": target " + std::to_string(i + 1) + " (" +
+                                                   number_text(d.targets_mm[i]) +
+                                                   " mm) is not an increasing distance from 0 to the length " +
+                                                   fixed_text(d.length_mm(), 3) + " mm");
+      p.diagonals.push_back(d);
+    }
+  }
+  if (p.diagonals.empty()) throw LoadError({file.path()}, "no [[diagonal]] in the plan");
+  return p;
+}
+
+}  // namespace vc::acceptance

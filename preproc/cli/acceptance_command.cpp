@@ -1,0 +1,191 @@
+// `volcomp acceptance plan|simulate|evaluate`: the acceptance tests of a compensated machine
+// (issue 47; preproc/acceptance/README.md). First: the ISO 230-6 diagonal displacement tests.
+// Every input is read and checked before anything is written; each file is written atomically.
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "commands.hpp"
+#include "vc/acceptance/diagonal_evaluation.hpp"
+#include "vc/acceptance/diagonal_laser.hpp"
+#include "vc/acceptance/diagonal_measurements.hpp"
+#include "vc/acceptance/diagonal_program.hpp"
+#include "vc/acceptance/plan_file.hpp"
+#include "vc/acceptance/tolerances.hpp"
+#include "vc/machine/load_machine.hpp"
+#include "vc/tables/atomic_file.hpp"
+#include "vc/tables/number_text.hpp"
+
+namespace vc::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using Files = std::vector<std::pair<fs::path, std::string>>;  // path, contents
+
+void write_all(const Files& files) {
+  for (const auto& [path, text] : files) {
+    if (!path.parent_path().empty()) fs::create_directories(path.parent_path());
+    tables::write_atomically(path.string(), [&](std::ostream& out) { out << text; });
+  }
+}
+
+struct PlanArgs {
+  std::string machine, output, volume;
+  std::optional<double> tool_length_mm;
+  acceptance::DiagonalSettings settings;
+};
+
+int run_plan(const PlanArgs& args, std::ostream& report) {
+  const machine::Model model = machine::load_machine(args.machine);
+  acceptance::Plan plan;
+  plan.machine = args.machine;
+  plan.coordinates = model.coordinates();
+  plan.settings = args.settings;
+  plan.settings.volume = args.volume.empty() ? acceptance::default_volume(model) : acceptance::parse_volume(model, args.volume);
+  plan.settings.tool_length_mm = args.tool_length_mm.value_or(model.tool_length_mm);
+  plan.tool_offset_mm = plan.settings.tool_length_mm - model.tool_length_reference_mm;
+  plan.rest = acceptance::rest_joints(model, plan.settings.volume);
+  plan.diagonals = acceptance::plan_diagonals(model, plan.settings);
+
+  const fs::path dir(args.output);
+  Files files{{dir / "plan.toml", acceptance::plan_toml(plan)}, {dir / "README.md", acceptance::plan_index(plan, model)}};
+  for (const acceptance::Diagonal& d : plan.diagonals) {
+    files.push_back({dir / acceptance::program_path(d), acceptance::diagonal_program(plan, d, model)});
+    files.push_back({dir / acceptance::sheet_path(d), acceptance::diagonal_sheet(plan, d, model)});
+  }
+  write_all(files);
+  report << "volcomp acceptance plan: " << plan.diagonals.size() << " ISO 230-6 diagonals of " << model.info.name
+         << " (4 body, 6 face), " << plan.settings.targets << " targets and " << plan.settings.runs
+         << " bidirectional runs each, L " << number_text(plan.settings.tool_length_mm) << " mm, in " << args.output
+         << " (plan.toml, README.md, diagonals/)\n";
+  return 0;
+}
+
+struct SimulateArgs {
+  std::string plan_dir, truth, compensation = "off", output;
+  double noise_um = 0, reversal_um = 0;
+  std::uint64_t seed = 1;
+};
+
+int run_simulate(const SimulateArgs& args, std::ostream& report) {
+  if (!(args.noise_um >= 0)) throw std::runtime_error("--noise-um must be >= 0");
+  const acceptance::Plan plan = acceptance::read_plan(args.plan_dir);
+  const machine::Model truth = machine::load_machine(args.truth);
+  if (truth.coordinates() != plan.coordinates)
+    throw std::runtime_error(args.truth + " has the joints " + truth.coordinates() + ", the plan's machine " +
+                             plan.coordinates);
+  std::optional<machine::Model> compensation;
+  if (args.compensation != "off") {
+    compensation = machine::load_machine(args.compensation);
+    if (compensation->coordinates() != plan.coordinates)
+      throw std::runtime_error(args.compensation + " has the joints " + compensation->coordinates() +
+                               ", the plan's machine " + plan.coordinates);
+  }
+  acceptance::LaserSimulation sim;
+  sim.truth = &truth;
+  sim.compensation = compensation ? &*compensation : nullptr;
+  sim.noise_mm = args.noise_um * 1e-3;
+  sim.reversal_mm = args.reversal_um * 1e-3;
+  sim.seed = args.seed;
+  const std::vector<std::string> comments = {
+      "instrument: simulated laser interferometer (volcomp acceptance simulate, seed " + std::to_string(args.seed) +
+          ", noise " + number_text(args.noise_um) + " um, reversal " + number_text(args.reversal_um) + " um)",
+      "truth: " + args.truth, "compensation: " + args.compensation,
+      "tool_length_mm: " + number_text(plan.settings.tool_length_mm),
+      "deviation: the displacement along the line minus the target (actual - nominal)"};
+  Files files;
+  double largest = 0;
+  for (std::size_t k = 0; k < plan.diagonals.size(); ++k) {
+    const acceptance::Diagonal& d = plan.diagonals[k];
+    const auto readings = acceptance::simulate_diagonal(plan, d, sim, static_cast<int>(k));
+    for (const auto& r : readings) largest = std::max(largest, std::abs(r.deviation));
+    files.push_back({fs::path(args.output) / acceptance::measurements_name(d), acceptance::laser_csv(d, readings, comments)});
+  }
+  write_all(files);
+  report << "volcomp acceptance simulate: " << files.size() << " diagonals into " << args.output
+         << ", compensation " << args.compensation << ", largest deviation " << fixed_text(largest * 1e3, 3)
+         << " um\n";
+  return 0;
+}
+
+struct EvaluateArgs {
+  std::string plan_dir, measurements, tolerances, output;
+  double laser_uncertainty_um = acceptance::kTypicalLaserUncertaintyUm;
+};
+
+int run_evaluate(const EvaluateArgs& args, std::ostream& out) {
+  if (!(args.laser_uncertainty_um >= 0)) throw std::runtime_error("--laser-uncertainty-um must be >= 0");
+  const acceptance::Plan plan = acceptance::read_plan(args.plan_dir);
+  std::optional<acceptance::Tolerances> tolerances;
+  if (!args.tolerances.empty()) tolerances = acceptance::read_tolerances(args.tolerances);
+  const double u_laser = args.laser_uncertainty_um * 1e-3;
+  std::vector<acceptance::DiagonalResult> results;
+  for (const acceptance::Diagonal& d : plan.diagonals) {
+    const fs::path file = fs::path(args.measurements) / acceptance::measurements_name(d);
+    if (!fs::exists(file))
+      throw std::runtime_error(file.string() + ": no measurements of " + d.name + " (the plan's " +
+                               std::to_string(plan.diagonals.size()) + " diagonals each need their file)");
+    results.push_back(acceptance::evaluate_diagonal(d, acceptance::read_diagonal_runs(file.string(), d), u_laser,
+                                                    tolerances ? &*tolerances : nullptr));
+  }
+  const std::string prefix = args.output.empty() ? (fs::path(args.plan_dir) / "evaluation").string() : args.output;
+  const std::string summary =
+      acceptance::summary_markdown(results, args.plan_dir, args.measurements, args.tolerances, u_laser);
+  write_all({{prefix + ".csv", acceptance::figures_csv(results, u_laser)}, {prefix + ".md", summary}});
+  out << summary << "\nWritten: " << prefix << ".csv, " << prefix << ".md\n";
+  const bool judged = tolerances && !tolerances->diagonal_mm.empty();
+  for (const auto& r : results)
+    if (judged && !r.passes()) return 1;
+  return 0;
+}
+
+}  // namespace
+
+void add_acceptance_commands(CLI::App& volcomp, int& exit_code) {
+  CLI::App* acceptance = volcomp.add_subcommand(
+      "acceptance", "Acceptance tests of the compensated machine: plan, simulate, evaluate (ISO 230-6 diagonals)");
+  acceptance->require_subcommand(1);
+
+  auto plan = std::make_shared<PlanArgs>();
+  CLI::App* p = acceptance->add_subcommand("plan", "Programs, setup sheets and plan.toml of the diagonal tests");
+  p->add_option("MACHINE", plan->machine, "machine file (.toml) with linear X, Y, Z axes")->required();
+  p->add_option("-o,--output", plan->output, "folder for the plan")->required();
+  p->add_option("--volume", plan->volume, "work volume x0:x1,y0:y1,z0:z1 in mm (default: the travel less 10 % each side)");
+  p->add_option("--tool-length", plan->tool_length_mm, "L of the tool-side optic below the gauge point, mm (default: the machine file's)");
+  p->add_option("--feed", plan->settings.feed_mm_per_min, "mm/min")->capture_default_str();
+  p->add_option("--dwell", plan->settings.dwell_s, "s at each target")->capture_default_str();
+  p->add_option("--overrun", plan->settings.overrun_mm, "mm before each reversal")->capture_default_str();
+  p->add_option("--runs", plan->settings.runs, "bidirectional runs")->capture_default_str();
+  p->add_option("--targets", plan->settings.targets, "targets per diagonal, ends included")->capture_default_str();
+  p->add_option("--seed", plan->settings.seed, "of the targets' pseudo-random offsets")->capture_default_str();
+  p->callback([plan, &exit_code] { exit_code = run_plan(*plan, std::cout); });
+
+  auto sim = std::make_shared<SimulateArgs>();
+  CLI::App* s = acceptance->add_subcommand("simulate", "A simulated laser along each planned diagonal on a true machine");
+  s->add_option("DIR", sim->plan_dir, "the plan's folder")->required();
+  s->add_option("--true", sim->truth, "the true machine's file (.toml): its real errors")->required();
+  s->add_option("--compensation", sim->compensation, "machine file volkins corrects with, or off")->capture_default_str();
+  s->add_option("--noise-um", sim->noise_um, "standard deviation of a reading's noise, um")->capture_default_str();
+  s->add_option("--reversal-um", sim->reversal_um, "a reversal the runs show: + reads half of it, - minus half, um")
+      ->capture_default_str();
+  s->add_option("--seed", sim->seed, "of the noise")->capture_default_str();
+  s->add_option("-o,--output", sim->output, "folder for the measurements (one CSV per diagonal)")->required();
+  s->callback([sim, &exit_code] { exit_code = run_simulate(*sim, std::cout); });
+
+  auto ev = std::make_shared<EvaluateArgs>();
+  CLI::App* e = acceptance->add_subcommand("evaluate", "ISO 230-2 figures along each diagonal, judged, with uncertainty");
+  e->add_option("DIR", ev->plan_dir, "the plan's folder")->required();
+  e->add_option("--measurements", ev->measurements, "folder of the laser runs, one CSV per diagonal")->required();
+  e->add_option("--tolerances", ev->tolerances, "limits (.toml, um): without them figures only, no verdict");
+  e->add_option("--laser-uncertainty-um", ev->laser_uncertainty_um, "the laser's standard uncertainty of a reading, um")
+      ->capture_default_str();
+  e->add_option("-o,--output", ev->output, "PREFIX: writes PREFIX.csv and PREFIX.md (default DIR/evaluation)");
+  e->callback([ev, &exit_code] { exit_code = run_evaluate(*ev, std::cout); });
+}
+
+}  // namespace vc::cli

@@ -1,0 +1,371 @@
+// `volcomp acceptance plan|simulate|evaluate` on the ISO 230-6 diagonals (issue 47,
+// preproc/acceptance/README.md), as a user runs them:
+// - the planned programs run clean through LinuxCNC's own interpreter (`rs274 -g`, its own HOME
+//   per run) on every shipped machine with X, Y, Z, and every commanded point lies on its diagonal,
+//   every target reached 2 x runs times, with a dwell at each;
+// - simulate + evaluate against closed forms computed here: a machine whose only error is Z's
+//   squareness EB0Z (Z's motion turned about y: (sin b, 0, cos b) per mm) or a positioning slope k
+//   on X (X moves 1 + k mm per mm): along a line of unit direction u (ux, uy, uz) a target at
+//   distance t reads t (ux uz sin b + uz^2 (cos b - 1)) or t k ux^2 off, so E = |that| at the
+//   last target;
+// - the MC-300's real file as the truth: compensation off, on with the true file, on with a
+//   perturbed file: the figures move the way the truth says;
+// - noise S: R and the uncertainty's repeatability part as the statistics of 5 runs say;
+// - bad measurements (a missing target, a run read one way only, too few runs): exit 2,
+//   file:line, nothing written.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <regex>
+#include <sstream>
+
+#include "rs274.hpp"
+#include "test_support.hpp"
+#include "vc/acceptance/plan_file.hpp"
+
+namespace vc {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The rows of a CSV with '#' comment lines and text cells: column name -> text, per row.
+std::vector<std::map<std::string, std::string>> csv_rows(const fs::path& path) {
+  std::ifstream in(path);
+  std::vector<std::string> header;
+  std::vector<std::map<std::string, std::string>> rows;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> cells;
+    std::stringstream s(line);
+    for (std::string cell; std::getline(s, cell, ',');) cells.push_back(cell);
+    if (line.back() == ',') cells.push_back("");
+    if (header.empty()) {
+      header = cells;
+      continue;
+    }
+    std::map<std::string, std::string> row;
+    for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i) row[header[i]] = cells[i];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+fs::path fresh(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("vc_acceptance_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// A machine of three tool-chain axes, X Y Z moving the tool +x +y +z, no errors but `x_extra`
+// (X's section) and `z_extra` (Z's).
+std::string three_axes(const std::string& x_extra, const std::string& z_extra) {
+  return "[machine]\nname = \"three\"\n[spindle]\ngauge_point_mm = [0, 0, 0]\ntool_length_mm = 100\n"
+         "[fixture]\norigin_mm = [0, 0, 0]\nrotation_deg = [0, 0, 0]\n"
+         "[[tool_chain]]\naxis = \"X\"\ntype = \"linear\"\ndirection = [1, 0, 0]\npole_mm = [0, 0, 0]\n"
+         "travel_mm = [0, 400]\n" +
+         x_extra +
+         "[[tool_chain]]\naxis = \"Y\"\ntype = \"linear\"\ndirection = [0, 1, 0]\npole_mm = [0, 0, 0]\n"
+         "travel_mm = [0, 300]\n"
+         "[[tool_chain]]\naxis = \"Z\"\ntype = \"linear\"\ndirection = [0, 0, 1]\npole_mm = [0, 0, 0]\n"
+         "travel_mm = [-250, 0]\n" +
+         z_extra;
+}
+
+void write(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+
+TEST(VolcompAcceptance, EveryShippedMachinesDiagonalsRunThroughRs274OnTheirLines) {
+  if (!test::rs274_available()) GTEST_SKIP() << "no rs274";
+  int machines = 0;
+  for (const auto& entry : fs::directory_iterator(test::source_path("machines/data"))) {
+    if (entry.path().extension() != ".toml") continue;
+    const std::string name = entry.path().stem().string();
+    const fs::path dir = fresh("plan_" + name);
+    const auto r = test::run_volcomp("acceptance plan " + entry.path().string() + " -o " + (dir / "plan").string());
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    ++machines;
+    const acceptance::Plan plan = acceptance::read_plan((dir / "plan").string());
+    ASSERT_EQ(plan.diagonals.size(), 10u);
+    for (const acceptance::Diagonal& d : plan.diagonals) {
+      // rs274 reads the program (its own run folder and HOME); its moves are world = joints.
+      const auto moves = test::rs274_moves("acceptance_" + name + "_" + d.name, dir / "plan" / acceptance::program_path(d));
+      const std::string canon = test::file_text(test::run_folder_path("acceptance_" + name + "_" + d.name) / "canon.txt");
+      std::size_t dwells = 0;
+      for (std::size_t at = canon.find("DWELL"); at != std::string::npos; at = canon.find("DWELL", at + 1)) ++dwells;
+      EXPECT_EQ(dwells, 2 * plan.settings.runs * d.targets_mm.size()) << d.name;
+      const Eigen::Vector3d u = d.direction();
+      std::map<std::size_t, int> visits;
+      double off_line = 0;
+      int feeds = 0;
+      for (const test::CanonMove& m : moves) {
+        if (m.kind != test::CanonMove::Feed) continue;
+        ++feeds;
+        const Eigen::Vector3d p(m.end[0], m.end[1], m.end[2]);
+        const double along = (p - d.start_mm).dot(u);
+        off_line = std::max(off_line, (p - d.start_mm - along * u).norm());
+        for (int k = 3; k < 6; ++k) EXPECT_EQ(m.end[static_cast<std::size_t>(k)], 0.0) << d.name;  // rotary at 0
+        for (std::size_t i = 0; i < d.targets_mm.size(); ++i)
+          if (std::abs(along - d.targets_mm[i]) < 2e-4) ++visits[i];
+      }
+      // rs274 prints 4 decimals: a point on the line reads within 0.5e-4 mm per coordinate.
+      EXPECT_LT(off_line, 1e-4) << name << " " << d.name;
+      EXPECT_EQ(feeds, static_cast<int>(2 * plan.settings.runs * (d.targets_mm.size() + 1))) << d.name;
+      ASSERT_EQ(visits.size(), d.targets_mm.size()) << d.name;
+      for (const auto& [i, n] : visits) EXPECT_EQ(n, 2 * plan.settings.runs) << d.name << " target " << i + 1;
+      fs::remove_all(test::run_folder_path("acceptance_" + name + "_" + d.name));
+    }
+    fs::remove_all(dir);
+  }
+  EXPECT_GE(machines, 5);
+}
+
+TEST(VolcompAcceptance, PlanTakesTheGivenVolumesCornersAndRefusesOneOutsideTheTravel) {
+  const fs::path dir = fresh("volume");
+  const std::string machine = test::machine_path("mill3");  // travel X 0:500, Y 0:300, Z -300:0
+  auto r = test::run_volcomp("acceptance plan " + machine + " --volume 100:400,50:250,-250:-50 -o " +
+                             (dir / "plan").string());
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const acceptance::Plan plan = acceptance::read_plan((dir / "plan").string());
+  ASSERT_EQ(plan.diagonals.size(), 10u);
+  const acceptance::Diagonal& body = plan.diagonals[0];  // body-NNN-PPP
+  EXPECT_EQ(body.name, "body-NNN-PPP");
+  EXPECT_EQ(body.start_mm, Eigen::Vector3d(100, 50, -250));
+  EXPECT_EQ(body.end_mm, Eigen::Vector3d(400, 250, -50));
+  const acceptance::Diagonal& face = plan.diagonals[5];  // face-XY-NP-PN, Z at the centre
+  EXPECT_EQ(face.name, "face-XY-NP-PN");
+  EXPECT_EQ(face.start_mm, Eigen::Vector3d(100, 250, -150));
+  EXPECT_EQ(face.end_mm, Eigen::Vector3d(400, 50, -150));
+  EXPECT_NEAR(body.targets_mm.back(), std::sqrt(300.0 * 300 + 200 * 200 + 200 * 200), 5e-4);
+
+  // X beyond its travel; then a volume at the travel's end, where the overrun leaves it.
+  for (const char* volume : {"100:600,50:250,-250:-50", "0:400,50:250,-250:-50"}) {
+    r = test::run_volcomp(std::string("acceptance plan ") + machine + " --volume " + volume + " -o " +
+                          (dir / "refused").string());
+    EXPECT_EQ(r.exit_code, 2) << r.out;
+    EXPECT_NE(r.out.find("travel"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(dir / "refused")) << volume;
+  }
+  fs::remove_all(dir);
+}
+
+struct ClosedForm {
+  const char* name;
+  std::string x_extra, z_extra;
+  double k;     // X's positioning slope (mm per mm)
+  double b_rad;  // EB0Z
+};
+
+// Named in the test's name and in CTest's (GoogleTest would print the struct's bytes).
+void PrintTo(const ClosedForm& c, std::ostream* out) { *out << c.name; }
+
+class VolcompAcceptanceClosedForm : public ::testing::TestWithParam<ClosedForm> {};
+
+TEST_P(VolcompAcceptanceClosedForm, SystematicDeviationAlongEachDiagonalIsTheClosedForm) {
+  const ClosedForm c = GetParam();
+  const fs::path dir = fresh(std::string("closed_") + c.name);
+  write(dir / "exx.csv", "x[mm],EXX[um]\n0,0\n400," + std::to_string(c.k * 400e3) + "\n");
+  write(dir / "true.toml", three_axes(c.x_extra, c.z_extra));
+  auto r = test::run_volcomp("acceptance plan " + (dir / "true.toml").string() + " -o " + (dir / "plan").string());
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  r = test::run_volcomp("acceptance simulate " + (dir / "plan").string() + " --true " + (dir / "true.toml").string() +
+                        " --noise-um 0 --reversal-um 1.5 -o " + (dir / "m").string());
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  r = test::run_volcomp("acceptance evaluate " + (dir / "plan").string() + " --measurements " + (dir / "m").string() +
+                        " -o " + (dir / "report").string());
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const acceptance::Plan plan = acceptance::read_plan((dir / "plan").string());
+  const auto rows = csv_rows(dir / "report.csv");
+  ASSERT_EQ(rows.size(), plan.diagonals.size());
+  double largest = 0;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const acceptance::Diagonal& d = plan.diagonals[k];
+    ASSERT_EQ(rows[k].at("test"), d.name);
+    const Eigen::Vector3d u = (d.end_mm - d.start_mm).normalized();
+    const double per_mm = c.k * u.x() * u.x() + u.x() * u.z() * std::sin(c.b_rad) + u.z() * u.z() * (std::cos(c.b_rad) - 1);
+    const double expected_um = std::abs(per_mm) * d.targets_mm.back() * 1e3;
+    largest = std::max(largest, expected_um);
+    // A reversal of 1.5 um (+ reads +0.75, - reads -0.75): E spans both directions' means, M the
+    // bidirectional mean's range, B the reversal, R = 2 s + 2 s + |B_i| with s = 0.
+    EXPECT_NEAR(std::stod(rows[k].at("E[um]")), expected_um + 1.5, 1e-6) << d.name;
+    EXPECT_NEAR(std::stod(rows[k].at("M[um]")), expected_um, 1e-6) << d.name;
+    EXPECT_NEAR(std::stod(rows[k].at("B[um]")), 1.5, 1e-6) << d.name;
+    EXPECT_NEAR(std::stod(rows[k].at("R[um]")), 1.5, 1e-6) << d.name;
+    EXPECT_NEAR(std::stod(rows[k].at("A[um]")), expected_um + 1.5, 1e-6) << d.name;
+    EXPECT_EQ(rows[k].at("verdict"), "");  // no tolerances, no verdict
+  }
+  std::cout << c.name << ": M up to " << largest << " um, equal to the closed form (E, A: it + the reversal)\n";
+  EXPECT_GT(largest, 1.0);  // an error the comparison can see
+  fs::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Issue47, VolcompAcceptanceClosedForm,
+    ::testing::Values(ClosedForm{"squareness_EB0Z", "", "[tool_chain.location]\nEB0Z_arcsec = 20.0\n", 0.0,
+                                 20.0 * M_PI / 648000.0},
+                      ClosedForm{"x_slope", "[[tool_chain.tables]]\nfile = \"exx.csv\"\n", "", 1e-4, 0.0}),
+    [](const ::testing::TestParamInfo<ClosedForm>& param) { return std::string(param.param.name); });
+
+// E of each diagonal (um), from the figures CSV of one simulate + evaluate.
+std::vector<double> systematic(const fs::path& dir, const std::string& plan, const std::string& truth,
+                               const std::string& compensation, const std::string& name) {
+  auto r = test::run_volcomp("acceptance simulate " + plan + " --true " + truth + " --compensation " + compensation +
+                             " -o " + (dir / name).string());
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  r = test::run_volcomp("acceptance evaluate " + plan + " --measurements " + (dir / name).string() + " -o " +
+                        (dir / (name + "_report")).string());
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  std::vector<double> e;
+  for (const auto& row : csv_rows(dir / (name + "_report.csv"))) e.push_back(std::stod(row.at("E[um]")));
+  return e;
+}
+
+TEST(VolcompAcceptance, Mc300FiguresMoveTheWayTheTruthSays) {
+  const fs::path dir = fresh("mc300");
+  const std::string truth = test::machine_path("mc300");
+  const std::string plan = (dir / "plan").string();
+  ASSERT_EQ(test::run_volcomp("acceptance plan " + truth + " -o " + plan).exit_code, 0);
+  auto r = test::run_volcomp("perturb " + truth + " -o " + (dir / "other").string() + " --seed 3");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const std::vector<double> off = systematic(dir, plan, truth, "off", "off");
+  const std::vector<double> on = systematic(dir, plan, truth, truth, "on");
+  const std::vector<double> other = systematic(dir, plan, truth, (dir / "other" / "mc300.toml").string(), "other");
+  ASSERT_EQ(off.size(), 10u);
+  ASSERT_EQ(on.size(), 10u);
+  ASSERT_EQ(other.size(), 10u);
+  for (std::size_t k = 0; k < off.size(); ++k) {
+    std::cout << "diagonal " << k + 1 << ": E off " << off[k] << " um, on with the true file " << on[k]
+              << " um, on with a perturbed file " << other[k] << " um\n";
+    EXPECT_GT(off[k], 5.0) << k;     // uncompensated: the MC-300's errors along the line
+    EXPECT_LT(on[k], 0.01) << k;     // the true file corrects them away
+    EXPECT_GT(other[k], 0.1) << k;   // a wrong file leaves part of them
+    EXPECT_LT(other[k], off[k]) << k;
+  }
+  EXPECT_GT(*std::max_element(off.begin(), off.end()), 20.0);  // tens of um
+  fs::remove_all(dir);
+}
+
+TEST(VolcompAcceptance, NoiseGivesTheRepeatabilityFiveRunsShouldAndItsUncertainty) {
+  const fs::path dir = fresh("noise");
+  const std::string machine = test::machine_path("mill3");
+  const std::string plan = (dir / "plan").string();
+  ASSERT_EQ(test::run_volcomp("acceptance plan " + machine + " -o " + plan).exit_code, 0);
+  const double s_um = 1.0;
+  auto r = test::run_volcomp("acceptance simulate " + plan + " --true " + machine + " --noise-um 1 --seed 7 -o " +
+                             (dir / "m").string());
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  r = test::run_volcomp("acceptance evaluate " + plan + " --measurements " + (dir / "m").string() + " -o " +
+                        (dir / "report").string());
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const auto rows = csv_rows(dir / "report.csv");
+  ASSERT_EQ(rows.size(), 10u);
+  double mean_r = 0;
+  for (const auto& row : rows) {
+    // ISO 230-2's R is the largest R_i over the 11 targets (4 s, or 2 s+ + 2 s- + |B_i|): for 5
+    // runs of noise S a Monte Carlo (4,000 lines of 11 targets) puts it at 6.6 S median, 4.8 to
+    // 9.8 S (0.1 to 99.9 %), and the mean over 10 lines at 6.0 to 7.6 S (400 groups). 4 S is a
+    // single target's 4 s (tests/cli/repeatability_monte_carlo.py).
+    const double R = std::stod(row.at("R[um]"));
+    EXPECT_GT(R, 4.5 * s_um) << row.at("test");
+    EXPECT_LT(R, 10.5 * s_um) << row.at("test");
+    mean_r += R / 10;
+    // The repeatability part of E's uncertainty: sqrt(2) s_max / sqrt(5), s_max 1.2 to 2.5 S.
+    const double u_rep = std::stod(row.at("u_rep_E[um]"));
+    EXPECT_GT(u_rep, std::sqrt(2.0) * 1.1 * s_um / std::sqrt(5.0)) << row.at("test");
+    EXPECT_LT(u_rep, std::sqrt(2.0) * 2.6 * s_um / std::sqrt(5.0)) << row.at("test");
+    EXPECT_NEAR(std::stod(row.at("u_laser_E[um]")), std::sqrt(2.0) * 0.5, 1e-3);  // the default 0.5 um
+  }
+  std::cout << "noise 1 um, 5 runs: R " << mean_r << " um on average over the 10 diagonals\n";
+  EXPECT_GT(mean_r, 5.9 * s_um);
+  EXPECT_LT(mean_r, 7.7 * s_um);
+  const std::string summary = test::file_text(dir / "report.md");
+  EXPECT_NE(summary.find("u repeatability [um]"), std::string::npos);
+  EXPECT_NE(summary.find("thermal term"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST(VolcompAcceptance, TolerancesJudgeEachDiagonal) {
+  const fs::path dir = fresh("tolerances");
+  const std::string machine = test::machine_path("mc300");
+  const std::string plan = (dir / "plan").string();
+  ASSERT_EQ(test::run_volcomp("acceptance plan " + machine + " -o " + plan).exit_code, 0);
+  ASSERT_EQ(test::run_volcomp("acceptance simulate " + plan + " --true " + machine + " -o " + (dir / "m").string())
+                .exit_code,
+            0);
+  write(dir / "loose.toml", "[diagonal]\nE_um = 1000\nA_um = 1000\n");
+  write(dir / "tight.toml", "[diagonal]\nE_um = 1\n");
+  write(dir / "bad.toml", "[diagonal]\nE_um = 1\nQ_um = 3\n");
+  auto r = test::run_volcomp("acceptance evaluate " + plan + " --measurements " + (dir / "m").string() +
+                             " --tolerances " + (dir / "loose.toml").string() + " -o " + (dir / "loose").string());
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  for (const auto& row : csv_rows(dir / "loose.csv")) EXPECT_EQ(row.at("verdict"), "PASS");
+  r = test::run_volcomp("acceptance evaluate " + plan + " --measurements " + (dir / "m").string() + " --tolerances " +
+                        (dir / "tight.toml").string() + " -o " + (dir / "tight").string());
+  EXPECT_EQ(r.exit_code, 1) << r.out;  // FAIL: uncompensated MC-300, E tens of um
+  EXPECT_NE(r.out.find("**FAIL**"), std::string::npos) << r.out;
+  r = test::run_volcomp("acceptance evaluate " + plan + " --measurements " + (dir / "m").string() + " --tolerances " +
+                        (dir / "bad.toml").string() + " -o " + (dir / "bad").string());
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("bad.toml:3:"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir / "bad.csv"));
+  fs::remove_all(dir);
+}
+
+// Rewrites `file` without the lines `drop` says to drop (the header and comments kept).
+void filter(const fs::path& file, const std::function<bool(const std::string&)>& drop) {
+  std::ifstream in(file);
+  std::string kept;
+  for (std::string line; std::getline(in, line);)
+    if (!drop(line)) kept += line + "\n";
+  in.close();
+  write(file, kept);
+}
+
+TEST(VolcompAcceptance, MeasurementsTheFitCannotSupportAreRefusedWithFileAndLineAndNothingWritten) {
+  const fs::path dir = fresh("bad_input");
+  const std::string machine = test::machine_path("mill3");
+  const std::string plan = (dir / "plan").string();
+  ASSERT_EQ(test::run_volcomp("acceptance plan " + machine + " -o " + plan).exit_code, 0);
+  ASSERT_EQ(test::run_volcomp("acceptance simulate " + plan + " --true " + machine + " --noise-um 0.3 -o " +
+                              (dir / "m").string())
+                .exit_code,
+            0);
+  const acceptance::Plan p = acceptance::read_plan(plan);
+  const std::string third = p.diagonals[2].name + ".csv";
+  struct Case {
+    const char* what;
+    std::function<bool(const std::string&)> drop;
+    std::regex message;
+  };
+  // The third target's reading of run 2 -, and every run but the first.
+  std::ostringstream target;
+  target.setf(std::ios::fixed);
+  target.precision(3);
+  target << p.diagonals[2].targets_mm[2];
+  const std::vector<Case> cases = {
+      {"missing target", [&](const std::string& l) { return l.rfind(target.str() + ",2,-,", 0) == 0; },
+       std::regex(third + ":[0-9]+: error: run 2- \\(its last reading on this line\\) has no reading at target 3")},
+      {"run 4 - missing", [](const std::string& l) { return std::regex_search(l, std::regex("^[0-9.]+,4,-,")); },
+       std::regex(third + ":[0-9]+: error: run 4\\+ \\(its last reading on this line\\) has no run 4-")},
+      {"one run", [](const std::string& l) { return std::regex_search(l, std::regex("^[0-9.-]+,[2-5],")); },
+       std::regex(third + ":[0-9]+: error: 1 run \\+ and 1 run -.*at least 2 in each direction")}};
+  for (const Case& c : cases) {
+    fs::remove_all(dir / "bad");
+    fs::copy(dir / "m", dir / "bad");
+    filter(dir / "bad" / third, c.drop);
+    const auto r = test::run_volcomp("acceptance evaluate " + plan + " --measurements " + (dir / "bad").string() +
+                                     " -o " + (dir / "report").string());
+    EXPECT_EQ(r.exit_code, 2) << c.what << ": " << r.out;
+    EXPECT_TRUE(std::regex_search(r.out, c.message)) << c.what << ": " << r.out;
+    EXPECT_FALSE(fs::exists(dir / "report.csv")) << c.what;
+    EXPECT_FALSE(fs::exists(dir / "report.md")) << c.what;
+  }
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace vc
