@@ -39,7 +39,7 @@ std::string reload_incompatibility(const Model& running, const Model& candidate)
     if (a.type != b.type)
       return axis + " is " + type_name(b.type) + ", in the running file " + type_name(a.type);
     if (a.chain != b.chain)
-      return axis + " is in the " + chain_name(b.chain) + " chain, in the running file in the " + chain_name(a.chain);
+      return axis + " is in the " + chain_name(b.chain) + " chain, in the running file in the " + chain_name(a.chain) + " chain";
     if (!near(a.direction, b.direction))
       return axis + "'s direction is " + vector_text(b.direction) + ", in the running file " +
              vector_text(a.direction) + unchanged;

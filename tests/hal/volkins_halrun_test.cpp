@@ -67,7 +67,12 @@ TEST_P(ShippedMachine, LoadsAndExposesItsPins) {
                           "volkins.type.r-spec.gain",
                           "volkins.type.for.enable",
                           "volkins.thermal.enable",
-                          "volkins.thermal.gain"})
+                          "volkins.thermal.gain",
+                          "volkins.reload",
+                          "volkins.reload-state",
+                          "volkins.reload-failed",
+                          "volkins.reloads",
+                          "volkins.checksum"})
     EXPECT_NE(r.out.find(pin), std::string::npos) << pin << " missing:\n" << r.out;
   for (int j = 0; j < 6; ++j) {
     const std::string pin = "volkins.joint." + std::to_string(j) + ".correction";
