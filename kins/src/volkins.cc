@@ -34,11 +34,15 @@
 #include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <memory>
+#include <string>
 #include <string_view>
 
 #include "gain_ramp.hpp"
 #include "module_settings.hpp"
+#include "reload_worker.hpp"
 #include "vc/machine/held_rotary.hpp"
+#include "vc/machine/machine_checksum.hpp"
 #include "vc/machine/term_types.hpp"
 
 #include "rtapi.h"  // rtapi.h and hal.h declare C linkage themselves
@@ -91,6 +95,12 @@ struct HalData {
   hal_bit_t* held[vc::kins::kMaxJoints];         // out: volkins.joint.N.held, its correction held or on its way back
   hal_float_t* direction_error;                  // out: volkins.direction-error-urad, tool direction error left
   hal_float_t* switch_gain[kSwitches];           // out: its ramp, 0..1
+  // A new machine file without a restart (reload_worker.hpp).
+  hal_bit_t* reload;         // in: a rising edge reloads the machine file (machine=) from disk
+  hal_s32_t* reload_state;   // out: 0 idle, 1 reading/validating, 2 ramping the old file out, 3 the new one in
+  hal_bit_t* reload_failed;  // out: the last request was refused (cleared by the next one)
+  hal_s32_t* reloads;        // out: files swapped in
+  hal_u32_t* checksum;       // out: CRC-32 of the active machine file and its tables (machine_checksum.hpp)
   // Parameters.
   hal_float_t ramp_time;                  // s: 0 -> 1 (and back) takes this long
   hal_float_t max_correction_mm;          // largest linear joint correction allowed
@@ -139,7 +149,11 @@ struct KinematicsType {
 };
 KinematicsType kinematics;
 
-const vc::kins::ModuleSettings* settings = nullptr;  // built in rtapi_app_main, never changed afterwards
+// Built in rtapi_app_main; replaced only by volkins.update (a reload, between two kinematics
+// calls of the same servo thread), the replaced one deleted by the reload worker.
+const vc::kins::ModuleSettings* settings = nullptr;
+vc::kins::ReloadWorker* reload_worker = nullptr;  // its thread: made in rtapi_app_main, joined in rtapi_app_exit
+vc::kins::ReloadSequence reload_sequence;         // the servo thread's half
 HalData* hal = nullptr;
 int comp_id = -1;
 
@@ -297,6 +311,31 @@ void update_clamps(double period_s) {
   }
 }
 
+// A reload's step (reload_worker.hpp): at rest, at the gain of 0 it swaps the settings; then
+// what the old file seeded or set is forgotten: the kept corrections (the solvers' starts), and
+// the pole fade pins where they still hold the old file's values (the user did not set them).
+// Held rotary joints need not be reset: a reload is refused while one is held.
+void update_reload(double period_s) {
+  const vm::Model& old_model = settings->model;
+  const double old_fade_start = old_model.fade.start_rad * kDegPerRad, old_fade_full = old_model.fade.full_rad * kDegPerRad;
+  bool held = false;
+  for (int j = 0; j < old_model.joint_count(); ++j) held |= hal->holding.release[j] < 1.0;
+  if (reload_sequence.step(*reload_worker, settings, *hal->reload, kinematics.moving, held, hal->ramp, period_s,
+                           hal->ramp_time)) {
+    applied_corrections.forget();
+    full_corrections.forget();
+    const vm::Model& model = settings->model;  // the new file's
+    if (hal->pole_fade_start_deg == old_fade_start && hal->pole_fade_full_deg == old_fade_full) {
+      hal->pole_fade_start_deg = model.fade.start_rad * kDegPerRad;
+      hal->pole_fade_full_deg = model.fade.full_rad * kDegPerRad;
+    }
+  }
+  *hal->reload_state = reload_sequence.state;
+  *hal->reload_failed = reload_sequence.failed;
+  *hal->reloads = reload_sequence.reloads;
+  *hal->checksum = reload_sequence.checksum;
+}
+
 // Servo thread, before motion-controller: moves the ramp one period towards volkins.enable and
 // the correction's tool length towards volkins.tool-offset (gain_ramp.hpp: bounded rate and
 // change of rate, so joint velocity stays continuous, also when either changes on the way),
@@ -320,7 +359,10 @@ void update(void*, long period_ns) {
   kinematics.moving = kinematics.pose_known && !same_pose(kinematics.last_inverse_pose, kinematics.pose_at_update);
   kinematics.pose_at_update = kinematics.last_inverse_pose;
   kinematics.pose_known = true;
-  *hal->gain = hal->ramp.gain;
+  update_reload(period_ns * 1e-9);
+  // The fraction applied: the enable's ramp times the reload's (1 but while a file is swapped):
+  // volkins.enable off wins.
+  *hal->gain = hal->ramp.gain * reload_sequence.ramp.gain;
   *hal->active = *hal->gain > 0.0;
 
   hal->offset.step(tool_offset_mm(), period_ns * 1e-9, hal->tool_offset_slew_time);
@@ -603,6 +645,11 @@ bool export_hal(const vm::Model& model) {
     r |= hal_pin_bit_newf(HAL_IN, &hal->switch_enable[k], comp_id, "volkins.%s.enable", name);
     r |= hal_pin_float_newf(HAL_OUT, &hal->switch_gain[k], comp_id, "volkins.%s.gain", name);
   }
+  r |= hal_pin_bit_newf(HAL_IN, &hal->reload, comp_id, "volkins.reload");
+  r |= hal_pin_s32_newf(HAL_OUT, &hal->reload_state, comp_id, "volkins.reload-state");
+  r |= hal_pin_bit_newf(HAL_OUT, &hal->reload_failed, comp_id, "volkins.reload-failed");
+  r |= hal_pin_s32_newf(HAL_OUT, &hal->reloads, comp_id, "volkins.reloads");
+  r |= hal_pin_u32_newf(HAL_OUT, &hal->checksum, comp_id, "volkins.checksum");
   r |= hal_export_funct("volkins.update", update, nullptr, 1 /* uses floating point */, 0, comp_id);
   if (r) return false;
 
@@ -651,6 +698,11 @@ bool export_hal(const vm::Model& model) {
   hal->pole_fade_full_deg = model.fade.full_rad * kDegPerRad;
   kinematics = KinematicsType{};
   show_kinematics_type();
+  *hal->reload = 0;
+  *hal->reload_state = reload_sequence.state;
+  *hal->reload_failed = 0;
+  *hal->reloads = 0;
+  *hal->checksum = reload_sequence.checksum;
   return true;
 }
 
@@ -671,9 +723,36 @@ extern "C" int rtapi_app_main(void) {
   }
   const vm::Model& model = settings->model;
   for (const vc::Warning& w : model.warnings) rtapi_print_msg(RTAPI_MSG_WARN, "volkins: %s\n", w.to_string().c_str());
+  reload_sequence = vc::kins::ReloadSequence{};
+  try {
+    reload_sequence.checksum = vm::machine_checksum(model);
+  } catch (const std::exception& e) {  // read a moment ago: only if it was removed since
+    rtapi_print_msg(RTAPI_MSG_ERR, "volkins: %s\n", e.what());
+    delete settings;
+    settings = nullptr;
+    return -EINVAL;
+  }
+  // The reload worker's thread: the same module parameters, its messages printed as loadrt's.
+  try {
+    reload_worker = new vc::kins::ReloadWorker(
+        settings,
+        [] {
+          return std::make_unique<vc::kins::ModuleSettings>(
+              vc::kins::settings_from_parameters(machine, coordinates, world, sparm, units));
+        },
+        [](const vm::Model& m) { return vm::machine_checksum(m); },
+        [](const std::string& message) { rtapi_print_msg(RTAPI_MSG_ERR, "volkins: %s\n", message.c_str()); });
+  } catch (const std::exception& e) {
+    rtapi_print_msg(RTAPI_MSG_ERR, "volkins: cannot start the reload thread: %s\n", e.what());
+    delete settings;
+    settings = nullptr;
+    return -ENOMEM;
+  }
 
   comp_id = hal_init("volkins");
   if (comp_id < 0) {
+    delete reload_worker;
+    reload_worker = nullptr;
     delete settings;
     settings = nullptr;
     return comp_id;
@@ -681,6 +760,8 @@ extern "C" int rtapi_app_main(void) {
   if (!export_hal(model)) {
     rtapi_print_msg(RTAPI_MSG_ERR, "volkins: cannot create its HAL pins\n");
     hal_exit(comp_id);
+    delete reload_worker;
+    reload_worker = nullptr;
     delete settings;
     settings = nullptr;
     return -ENOMEM;
@@ -695,6 +776,10 @@ extern "C" int rtapi_app_main(void) {
 
 extern "C" void rtapi_app_exit(void) {
   hal_exit(comp_id);
+  delete reload_worker;  // joins its thread, deletes what it holds
+  reload_worker = nullptr;
+  delete reload_sequence.incoming;  // taken, not swapped in
+  reload_sequence.incoming = nullptr;
   delete settings;
   settings = nullptr;
 }

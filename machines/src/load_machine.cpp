@@ -398,6 +398,7 @@ class MachineReader : TomlFile {
         throw LoadError(where(*t.get("file")), "table file '" + file + "' not found (looked for " + table_path + ")");
       BoundTable bound(tables::load_table(table_path, options));
       bind(bound, axis, where(*t.get("file")));
+      bound.file_line = where(*t.get("file")).line;
       if (scale)
         for (auto&& [key, value] : *scale) {
           bool found = false;

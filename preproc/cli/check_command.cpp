@@ -1,8 +1,12 @@
 // `volcomp check MACHINE`: loads and validates a machine, then summarises it: axes, location
 // errors, tables (coverage, slope margin), the largest volumetric error over the travel and
-// whether the correction converges everywhere. Exit 0 only if the machine is usable.
+// whether the correction converges everywhere. Exit 0 only if the machine is usable. With
+// --ini, the configuration's limits against it, and the checksum of the machine file the INI's
+// volkins line names (volkins.checksum shows the active file's: machine_checksum.hpp); MACHINE
+// is then that file unless given.
 #include <CLI/CLI.hpp>
 #include <cctype>
+#include <cstdio>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -13,7 +17,9 @@
 #include "vc/init/home_position.hpp"
 #include "vc/init/joint_room.hpp"
 #include "vc/machine/compensation_types.hpp"
+#include "vc/init/volkins_config.hpp"
 #include "vc/machine/load_machine.hpp"
+#include "vc/machine/machine_checksum.hpp"
 #include "vc/tables/slope.hpp"
 
 namespace vc::cli {
@@ -128,8 +134,22 @@ bool print_configuration(const Model& model, const std::string& ini_path, std::o
     return model.axes[model.joint_of(letter)].type == AxisType::Rotary ? " deg" : " mm";
   };
   out << "LinuxCNC configuration " << ini_path
-      << (volkins.units.inch() ? " (its inch lengths in mm here; the fixes in inch)" : "")
-      << ":\n  after homing (each joint at its HOME, no tool length offset, world="
+      << (volkins.units.inch() ? " (its inch lengths in mm here; the fixes in inch)" : "") << ":\n";
+  if (!volkins.machine.empty()) {
+    // As volkins reads it: the file and its tables (compare with `halcmd getp volkins.checksum`).
+    // Where the INI's machine= cannot be read from here (a copied INI), a note, not a failure:
+    // MACHINE is what is checked.
+    try {
+      const Model named = volkins.machine == model.path ? model : machine::load_machine(volkins.machine);
+      char hex[16];
+      std::snprintf(hex, sizeof hex, "0x%08X", machine::machine_checksum(named));
+      out << "  checksum " << hex << " (volkins.checksum) of its machine file " << named.path << " and its "
+          << machine::checksummed_files(named).size() - 1 << " table files\n";
+    } catch (const std::exception& e) {
+      out << "  checksum not computed: its machine file does not load here: " << e.what() << '\n';
+    }
+  }
+  out << "  after homing (each joint at its HOME, no tool length offset, world="
       << (home.convention == machine::WorldConvention::Tcp ? "tcp" : "axes") << "):\n";
   for (const init::HomedAxis& a : home.axes)
     out << "    " << a.letter << "  HOME " << number_text(a.home) << " -> world " << fixed_text(a.world, 4)
@@ -147,7 +167,11 @@ bool print_configuration(const Model& model, const std::string& ini_path, std::o
 }
 
 int run_check(const CheckArgs& args, std::ostream& out) {
-  const Model model = machine::load_machine(args.machine);
+  std::string path = args.machine;
+  if (path.empty() && !args.ini.empty())
+    path = init::read_volkins_parameters(init::LinuxcncIni::read(args.ini)).machine;
+  if (path.empty()) throw std::runtime_error("error: check needs MACHINE, or --ini with a volkins machine= line");
+  const Model model = machine::load_machine(path);
   out << "machine " << model.info.name;
   if (!model.info.serial.empty()) out << " (" << model.info.serial << ")";
   out << "\n  file " << model.path
@@ -202,11 +226,11 @@ void add_check_command(CLI::App& volcomp, int& exit_code) {
   auto args = std::make_shared<CheckArgs>();
   CLI::App* cmd = volcomp.add_subcommand(
       "check", "Validate a machine file and its tables; summarise axes, tables, error and invertibility");
-  cmd->add_option("MACHINE", args->machine, "machine description file (.toml)")->required();
+  cmd->add_option("MACHINE", args->machine, "machine description file (.toml); with --ini, the INI's machine= by default");
   cmd->add_option("--samples", args->samples, "random poses sampled over the travel")->capture_default_str();
   cmd->add_option("--ini", args->ini,
                   "a LinuxCNC configuration that loads this machine with volkins: is every axis inside its "
-                  "limits after homing?")
+                  "limits after homing? Prints the checksum of its machine file (volkins.checksum)")
       ->check(CLI::ExistingFile);
   cmd->callback([args, &exit_code] { exit_code = run_check(*args, std::cout); });
 }

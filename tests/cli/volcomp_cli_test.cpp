@@ -11,6 +11,7 @@
 
 #include "test_support.hpp"
 #include "vc/machine/load_machine.hpp"
+#include "vc/machine/machine_checksum.hpp"
 #include "vc/tables/load_table.hpp"
 
 namespace vc {
@@ -32,6 +33,19 @@ TEST(VolcompCli, CheckAcceptsEveryShippedMachine) {
     EXPECT_NE(r.out.find("usable"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("largest position error"), std::string::npos) << r.out;
   }
+}
+
+// check --ini alone: the machine file of the INI's volkins line, and its checksum as volkins
+// shows it on volkins.checksum (machine_checksum; its own test: python's zlib.crc32).
+TEST(VolcompCli, CheckIniPrintsTheChecksumOfTheInisMachineFile) {
+  const auto r = test::run_volcomp("check --ini " + test::source_path("kins/configs/mill3/mill3.ini") + " --samples 100");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  char hex[16];
+  std::snprintf(hex, sizeof hex, "0x%08X", machine::machine_checksum(machine::load_machine(test::machine_path("mill3"))));
+  EXPECT_NE(r.out.find(std::string("  checksum ") + hex + " (volkins.checksum) of its machine file " +
+                       test::machine_path("mill3") + " and its 4 table files\n"),
+            std::string::npos)
+      << r.out;
 }
 
 TEST(VolcompCli, ErrorMatchesTheReferenceAtSixtyControlPoints) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <regex>
 #include <sstream>
 
@@ -66,7 +67,12 @@ TEST_P(ShippedMachine, LoadsAndExposesItsPins) {
                           "volkins.type.r-spec.gain",
                           "volkins.type.for.enable",
                           "volkins.thermal.enable",
-                          "volkins.thermal.gain"})
+                          "volkins.thermal.gain",
+                          "volkins.reload",
+                          "volkins.reload-state",
+                          "volkins.reload-failed",
+                          "volkins.reloads",
+                          "volkins.checksum"})
     EXPECT_NE(r.out.find(pin), std::string::npos) << pin << " missing:\n" << r.out;
   for (int j = 0; j < 6; ++j) {
     const std::string pin = "volkins.joint." + std::to_string(j) + ".correction";
@@ -292,6 +298,133 @@ TEST(Volkins, BadMachineFilesFailLoadrtWithTheirMessage) {
   // The same HAL session then loads a good machine (nothing of the failures is in the way).
   const test::CommandResult good = test::halrun("bad_then_good", script + loadrt(shipped("mill3")) + "show comp\n");
   EXPECT_TRUE(volkins_listed(good.out)) << good.out;
+}
+
+// A new machine file without a restart (volkins.reload): the file loadrt named is changed on
+// disk (a copy with its tables in a run folder); a pulse of volkins.reload reads it, ramps the
+// correction out and the new file's in (reload-state 1 -> 2 -> 3 -> 0, recorded every servo
+// period by a sampler), counts it and shows the new file's checksum (python's zlib.crc32 of
+// the file's bytes then its tables' in the file's order); a file that changes the nominal
+// geometry and one that does not load are refused with the file and the problem, the active
+// file kept.
+TEST(Volkins, ReloadSwapsACompatibleFileAndRefusesOthers) {
+  const fs::path dir = test::run_folder("reload_files");
+  std::ifstream in(test::machine_path("mill3"));
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string local = std::regex_replace(text.str(), std::regex("\\.\\./\\.\\./tables/data/mill3/"), "");
+  for (const char* t : {"x.csv", "y.csv", "z.csv", "z_by_y.csv"})
+    fs::copy_file(test::source_path(std::string("tables/data/mill3/") + t), dir / t);
+  const auto write = [&](const std::string& name, const std::string& content) {
+    std::ofstream(dir / name) << content;
+    fs::permissions(dir / name, fs::perms::all);
+  };
+  const std::string compatible = std::regex_replace(local, std::regex("EC0X_arcsec = 8\\.0"), "EC0X_arcsec = 12.0");
+  const std::string moved_pole = std::regex_replace(local, std::regex("pole_mm = \\[0, 0, 500\\]"), "pole_mm = [0, 0, 501]");
+  const std::string broken = std::regex_replace(local, std::regex("travel_mm = \\[0, 500\\]"), "travel_mm = [0, 500]\nspeed = 3");
+  ASSERT_NE(compatible, local);
+  ASSERT_NE(moved_pole, local);
+  ASSERT_NE(broken, local);
+  write("active.toml", local);
+  write("compatible.toml", compatible);
+  write("moved_pole.toml", moved_pole);
+  write("broken.toml", broken);
+  for (const auto& e : fs::directory_iterator(dir)) fs::permissions(e.path(), fs::perms::all);
+  // The checksum computed apart from the module: the tables in the order the file names them.
+  const auto crc = [&](const std::string& machine) {
+    const test::CommandResult r = test::run_in(
+        dir, "python3 -c \"import zlib; print(zlib.crc32(b''.join(open(f, 'rb').read() for f in ['" + machine +
+                 "', 'y.csv', 'x.csv', 'z.csv', 'z_by_y.csv'])))\"");
+    EXPECT_EQ(r.exit_code, 0) << r.out;
+    return std::stoul(r.out);
+  };
+  const unsigned long old_crc = crc("active.toml"), new_crc = crc("compatible.toml");
+  ASSERT_NE(old_crc, new_crc);
+
+  const std::string d = dir.string() + "/";
+  const std::string script = "loadrt volkins machine=" + d + "active.toml\n" +
+                             "loadrt threads name1=servo period1=1000000\n"
+                             "loadrt sampler depth=8000 cfg=sf\n"
+                             "addf volkins.update servo\n"
+                             "addf sampler.0 servo\n"
+                             "net state volkins.reload-state => sampler.0.pin.0\n"
+                             "net gain volkins.gain => sampler.0.pin.1\n"
+                             "setp volkins.ramp-time 0.3\n"
+                             "show pin volkins.checksum\n"
+                             "start\n"
+                             "loadusr -w sleep 0.5\n"
+                             "loadusr -w cp " + d + "compatible.toml " + d + "active.toml\n"
+                             "setp volkins.reload 1\n"
+                             "loadusr -w halsampler -n 5000\n"
+                             "show pin volkins.reloads\n"
+                             "show pin volkins.reload-failed\n"
+                             "show pin volkins.checksum\n"
+                             "loadusr -w cp " + d + "moved_pole.toml " + d + "active.toml\n"
+                             "setp volkins.reload 0\n"
+                             "loadusr -w sleep 0.05\n"  // a servo period sees it low: the next is an edge
+                             "setp volkins.reload 1\n"
+                             "loadusr -w sleep 2\n"
+                             "show pin volkins.reload-failed\n"
+                             "show pin volkins.reloads\n"
+                             "show pin volkins.checksum\n"
+                             "loadusr -w cp " + d + "broken.toml " + d + "active.toml\n"
+                             "setp volkins.reload 0\n"
+                             "loadusr -w sleep 0.05\n"  // a servo period sees it low: the next is an edge
+                             "setp volkins.reload 1\n"
+                             "loadusr -w sleep 2\n"
+                             "show pin volkins.reload-failed\n"
+                             "show pin volkins.reloads\n"
+                             "show pin volkins.checksum\n";
+  const test::CommandResult r = test::halrun("reload", script);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  // The sampler's lines: state and gain of every servo period from the start.
+  std::vector<int> states;
+  std::vector<double> gains;
+  const std::regex sample(R"((?:^|\n)(-?\d+) (-?[0-9.e+-]+) ?(?=\n))");
+  for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), sample); it != std::sregex_iterator(); ++it) {
+    states.push_back(std::stoi((*it)[1]));
+    gains.push_back(std::stod((*it)[2]));
+  }
+  ASSERT_EQ(states.size(), 5000u) << r.out.substr(0, 2000);
+  std::vector<int> sequence;  // the states in the order they came, each once
+  for (int s : states)
+    if (sequence.empty() || sequence.back() != s) sequence.push_back(s);
+  EXPECT_EQ(sequence, (std::vector<int>{0, 1, 2, 3, 0})) << r.out.substr(0, 2000);
+  const auto first = [&](int state) { return std::find(states.begin(), states.end(), state) - states.begin(); };
+  const long ramp_out = first(3) - first(2), ramp_in = std::find(states.begin() + first(3), states.end(), 0) - states.begin() - first(3);
+  EXPECT_NEAR(ramp_out, 300, 5) << "ms ramping out";  // ramp-time 0.3 s at 1 ms a period
+  EXPECT_NEAR(ramp_in, 300, 5) << "ms ramping in";
+  double largest_step = 0.0, lowest = 1.0;
+  for (std::size_t k = 1; k < gains.size(); ++k) {
+    largest_step = std::max(largest_step, std::abs(gains[k] - gains[k - 1]));
+    lowest = std::min(lowest, gains[k]);
+  }
+  EXPECT_EQ(lowest, 0.0);                  // the swap at gain 0
+  EXPECT_LT(largest_step, 2.0 / 300 + 1e-9);  // the ramp's rate limit, 2 / ramp-time: no step
+  EXPECT_EQ(gains.back(), 1.0);
+  std::cout << "reload: " << first(2) - first(1) << " ms reading, " << ramp_out << " ms out, " << ramp_in
+            << " ms in; largest gain step " << largest_step << "\n";
+
+  // Pins after each request.
+  const std::regex s32(R"(s32\s+OUT\s+(-?\d+)\s+volkins\.reloads\s)"), u32(R"(u32\s+OUT\s+0x([0-9A-Fa-f]+)\s+volkins\.checksum\s)"),
+      failed(R"(bit\s+OUT\s+(TRUE|FALSE)\s+volkins\.reload-failed\s)");
+  const auto all = [&](const std::regex& re) {
+    std::vector<std::string> v;
+    for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), re); it != std::sregex_iterator(); ++it) v.push_back((*it)[1]);
+    return v;
+  };
+  const std::vector<std::string> checksums = all(u32);
+  ASSERT_EQ(checksums.size(), 4u) << r.out.substr(r.out.size() - std::min<std::size_t>(r.out.size(), 3000));
+  EXPECT_EQ(std::stoul(checksums[0], nullptr, 16), old_crc);
+  EXPECT_EQ(std::stoul(checksums[1], nullptr, 16), new_crc);
+  EXPECT_EQ(std::stoul(checksums[2], nullptr, 16), new_crc) << "the refused file left the active one";
+  EXPECT_EQ(std::stoul(checksums[3], nullptr, 16), new_crc) << "the refused file left the active one";
+  EXPECT_EQ(all(s32), (std::vector<std::string>{"1", "1", "1"}));
+  EXPECT_EQ(all(failed), (std::vector<std::string>{"FALSE", "TRUE", "TRUE"}));
+  EXPECT_NE(r.out.find("volkins: reload refused: " + d + "active.toml: axis Z's pole is (0, 0, 501) mm, in the running file (0, 0, 500) mm"),
+            std::string::npos) << r.out.substr(r.out.size() - std::min<std::size_t>(r.out.size(), 3000));
+  EXPECT_TRUE(std::regex_search(r.out, std::regex("volkins: reload refused: " + d + "active\\.toml:\\d+:\\d+: error: .*speed")))
+      << r.out.substr(r.out.size() - std::min<std::size_t>(r.out.size(), 3000));
 }
 
 TEST(Volkins, BadModuleParametersFailLoadrt) {

@@ -12,17 +12,25 @@
 #include "vc/machine/held_rotary.hpp"
 #include "vc/machine/kinematics.hpp"
 #include "vc/machine/load_machine.hpp"
+#ifdef VC_HAVE_KINS
+#include <chrono>
+#include <thread>
+
+#include "reload_worker.hpp"
+#endif
 
 extern "C" void* __libc_malloc(std::size_t size);
 
 namespace {
-std::atomic<bool> counting{false};
+// Counted in the thread that set it only (the servo thread's calls; volkins' reload worker,
+// another thread, allocates by design).
+thread_local bool counting = false;
 std::atomic<long> allocations{0};
 }  // namespace
 
 // Interposes glibc's malloc for this test program only.
 extern "C" void* malloc(std::size_t size) {
-  if (counting.load(std::memory_order_relaxed)) allocations.fetch_add(1, std::memory_order_relaxed);
+  if (counting) allocations.fetch_add(1, std::memory_order_relaxed);
   return __libc_malloc(size);
 }
 
@@ -118,6 +126,54 @@ TEST_P(NoAllocation, RealTimeFunctionsNeverCallMalloc) {
   }
   EXPECT_TRUE(std::isfinite(sink));
 }
+
+#ifdef VC_HAVE_KINS
+// volkins.update's reload step (ReloadSequence::step) with a reload pending, through every
+// state: requested, the worker reading (another thread, which allocates), ready, ramped out,
+// swapped, ramped in; then a request while moving, given back. The servo thread's calls allocate
+// nothing.
+TEST(NoAllocation, ReloadStepsWithAReloadPending) {
+  const std::string mill3 = test::machine_path("mill3");
+  const auto build = [mill3] {
+    return std::make_unique<kins::ModuleSettings>(kins::settings_from_parameters(mill3.c_str(), nullptr, nullptr));
+  };
+  const kins::ModuleSettings* settings = build().release();
+  std::vector<std::string> messages;  // the worker's thread only, read after it is joined
+  std::vector<int> states;
+  {
+    kins::ReloadWorker worker(
+        settings, build, [](const Model&) { return 0x1234u; },
+        [&messages](const std::string& m) { messages.push_back(m); }, 1);
+    kins::ReloadSequence sequence;
+    const kins::GainRamp enable{1.0, 0.0};
+    const auto run = [&](bool moving, int periods_at_most) {
+      for (int k = 0; k < periods_at_most; ++k) {
+        counting = true;
+        sequence.step(worker, settings, k > 0, moving, false, enable, 1e-3, 0.05);
+        counting = false;
+        if (states.empty() || states.back() != sequence.state) states.push_back(sequence.state);
+        if (k > 0 && sequence.state == kins::kReloadIdle) return;
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+      }
+    };
+    allocations = 0;
+    run(false, 100000);
+    EXPECT_EQ(sequence.reloads, 1);
+    EXPECT_EQ(sequence.checksum, 0x1234u);
+    while (worker.stage() != kins::ReloadStage::Idle) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    run(true, 100000);  // a request while moving: refused
+    EXPECT_TRUE(sequence.failed);
+    EXPECT_EQ(sequence.reloads, 1);
+    EXPECT_EQ(allocations.load(), 0) << "allocations in the servo thread's reload step";
+    // The worker deletes the replaced settings; the running ones are the caller's.
+    while (worker.stage() != kins::ReloadStage::Idle) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  delete settings;
+  EXPECT_EQ(states, (std::vector<int>{0, 1, 2, 3, 0, 1, 0}));
+  ASSERT_EQ(messages.size(), 1u);
+  EXPECT_EQ(messages[0], "reload refused while an axis moves: reload at rest, e.g. M100 after the moves");
+}
+#endif
 
 // The counter works: an allocation while counting is seen.
 TEST(NoAllocationGuard, SeesAnAllocation) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <sstream>
 
 #include "vc/init/number.hpp"
@@ -19,6 +20,8 @@ VolkinsParameters read_volkins_parameters(const LinuxcncIni& ini) {
   VolkinsParameters p;
   std::string units = "mm";
   while (words >> word) {
+    if (word.rfind("machine=", 0) == 0)  // rtapi_app starts in the configuration folder
+      p.machine = (std::filesystem::path(ini.folder()) / word.substr(8)).lexically_normal().string();
     if (word.rfind("coordinates=", 0) == 0) p.coordinates = word.substr(12);
     if (word == "world=tcp") p.world = machine::WorldConvention::Tcp;
     if (word.rfind("units=", 0) == 0) units = word.substr(6);

@@ -88,6 +88,7 @@ struct alignas(64) BoundTable {
   std::array<int, tables::ErrorTable::kMaxVariables> joint{};
   std::array<int, tables::ErrorTable::kMaxVariables> input{-1, -1, -1};
   tables::ErrorTable table;
+  int file_line = 0;  // the line of its `file =` in the machine file (machine_checksum's order)
 };
 
 // The spindle line: the gauge point in the last tool-chain frame and its own location errors

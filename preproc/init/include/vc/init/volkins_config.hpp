@@ -16,6 +16,7 @@ namespace vc::init {
 // empty: the machine's own order), world= (type 0's convention) and units= (LinuxCNC's length
 // unit: the joints, the world and the tool length offset motion passes; the machine file is in mm).
 struct VolkinsParameters {
+  std::string machine;  // machine=: the machine file, made absolute against the configuration folder ("" if none)
   std::string coordinates;
   machine::WorldConvention world = machine::WorldConvention::Axes;
   LinearUnits units;  // from units=mm|inch (default mm), cited as the KINEMATICS line
