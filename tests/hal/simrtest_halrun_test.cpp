@@ -11,6 +11,7 @@
 
 #include "linuxcnc_run.hpp"
 #include "test_support.hpp"
+#include "tip_on_point.hpp"
 #include "vc/machine/forward.hpp"
 #include "vc/machine/load_machine.hpp"
 
@@ -31,22 +32,6 @@ std::string set_joints(const machine::Joints& q) {
   return s + "loadusr -w sleep 0.05\ngetp simrtest.dx-um\ngetp simrtest.dy-um\ngetp simrtest.dz-um\ngetp simrtest.in-range\n";
 }
 
-// The linear joints putting the model's tip at `point`, B and C as in `q` (a Newton of its own).
-machine::Joints tip_at(const machine::Model& m, machine::Joints q, const Eigen::Vector3d& point) {
-  for (int step = 0; step < 20; ++step) {
-    const Eigen::Vector3d r = machine::tool_pose(m, machine::Machine::Real, q, m.tool_length_mm).tip_mm - point;
-    Eigen::Matrix3d j;
-    for (int i = 0; i < 3; ++i) {
-      machine::Joints h = q;
-      h[i] += 1e-3;
-      j.col(i) = (machine::tool_pose(m, machine::Machine::Real, h, m.tool_length_mm).tip_mm - point - r) / 1e-3;
-    }
-    const Eigen::Vector3d dq = j.lu().solve(-r);
-    for (int i = 0; i < 3; ++i) q[i] += dq[i];
-  }
-  return q;
-}
-
 TEST(Simrtest, ReadsTheSphereInTheSpindleFrameAsTheTrueMachinePutsIt) {
   const machine::Model model = machine::load_machine(test::machine_path("mc300"));
   machine::Joints at_sphere = machine::Joints::Zero(5), turned(5);
@@ -54,7 +39,7 @@ TEST(Simrtest, ReadsTheSphereInTheSpindleFrameAsTheTrueMachinePutsIt) {
   const double L = model.tool_length_mm;
   const Eigen::Vector3d sphere = machine::tool_pose(model, machine::Machine::Real, at_sphere, L).tip_mm;
   turned << 0, 0, 0, -30, 45;  // B and C turned, the nest 3-4 mm off the sphere
-  const machine::Joints tilted = tip_at(model, turned, sphere + Eigen::Vector3d(3, -2, 1.5));
+  const machine::Joints tilted = test::tip_on_point(model, machine::Machine::Real, turned, sphere + Eigen::Vector3d(3, -2, 1.5), L);
   machine::Joints far = at_sphere;
   far[0] += 2.0;  // beyond the 1 mm range
   const std::string script = "loadrt threads name1=servo-thread period1=1000000\n"

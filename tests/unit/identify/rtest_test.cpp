@@ -15,6 +15,7 @@
 #include <random>
 
 #include "test_support.hpp"
+#include "tip_on_point.hpp"
 #include "vc/identify/rtest.hpp"
 #include "vc/machine/forward.hpp"
 #include "vc/machine/load_machine.hpp"
@@ -36,25 +37,6 @@ machine::Model load(const std::string& name) {
                                                  : test::machine_path(name));
 }
 
-// The linear joints that put `machine`'s tip (real or ideal) on `centre`, the rotary ones at `q`'s.
-machine::Joints on_centre(const machine::Model& m, machine::Machine which, machine::Joints q,
-                          const Eigen::Vector3d& centre, double length) {
-  const int lin[3] = {m.joint_of('X'), m.joint_of('Y'), m.joint_of('Z')};
-  for (int step = 0; step < 20; ++step) {
-    const Eigen::Vector3d r = machine::tool_pose(m, which, q, length).tip_mm - centre;
-    if (r.norm() < 1e-12) break;
-    Eigen::Matrix3d j;
-    for (int i = 0; i < 3; ++i) {
-      machine::Joints h = q;
-      h[lin[i]] += 1e-3;
-      j.col(i) = (machine::tool_pose(m, which, h, length).tip_mm - centre - r) / 1e-3;
-    }
-    const Eigen::Vector3d dq = j.lu().solve(-r);
-    for (int i = 0; i < 3; ++i) q[lin[i]] += dq[i];
-  }
-  return q;
-}
-
 // The R-test's poses: every combination of the two rotary axes' positions, the nest commanded
 // onto the sphere by the nominal kinematics; the readings on `truth`.
 std::vector<RTestReading> run_rtest(const machine::Model& nominal, const machine::Model& truth,
@@ -73,7 +55,7 @@ std::vector<RTestReading> run_rtest(const machine::Model& nominal, const machine
       q[rotary[0]] = tilt;
       q[rotary[1]] = turn;
       RTestReading r;
-      r.joints = on_centre(nominal, machine::Machine::Ideal, q, centre, nominal.tool_length_mm);
+      r.joints = test::tip_on_point(nominal, machine::Machine::Ideal, q, centre, nominal.tool_length_mm);
       r.deviation_mm = rtest_reading(truth, r.joints, nominal.tool_length_mm, centre, noise_mm, &rng);
       r.line = static_cast<int>(readings.size()) + 2;
       readings.push_back(r);
@@ -117,7 +99,7 @@ TEST_P(RTest, ReadingsConvertedOnTheTruthPutItsTipOnTheSphere) {
     along_tool = std::max(along_tool, std::abs(readings[k].deviation_mm.z() - (centre - real.tip_mm).dot(real.direction)));
     tip = std::max(tip, (machine::tool_pose(truth, machine::Machine::Real, poses[k].joints, truth.tool_length_mm).tip_mm -
                          centre).norm());
-    const machine::Joints own = on_centre(truth, machine::Machine::Real, readings[k].joints, centre, truth.tool_length_mm);
+    const machine::Joints own = test::tip_on_point(truth, machine::Machine::Real, readings[k].joints, centre, truth.tool_length_mm);
     joints = std::max(joints, (own - poses[k].joints).cwiseAbs().maxCoeff());
   }
   EXPECT_GT(largest_reading, 0.005) << "the lines off show in the readings";

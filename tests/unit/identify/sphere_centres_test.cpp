@@ -18,6 +18,7 @@
 #include <random>
 
 #include "test_support.hpp"
+#include "tip_on_point.hpp"
 #include "vc/identify/sphere_centres.hpp"
 #include "vc/machine/forward.hpp"
 #include "vc/machine/load_machine.hpp"
@@ -39,21 +40,11 @@ machine::Joints probed(const machine::Model& truth, char tilt, double b, double 
   machine::Joints q = machine::Joints::Zero(truth.joint_count());
   q[truth.joint_of(tilt)] = b;
   q[truth.joint_of('C')] = c;
-  const int lin[3] = {truth.joint_of('X'), truth.joint_of('Y'), truth.joint_of('Z')};
-  for (int i = 0; i < 3; ++i) q[lin[i]] = (truth.axes[lin[i]].travel_min + truth.axes[lin[i]].travel_max) / 2;
-  for (int step = 0; step < 20; ++step) {
-    const Eigen::Vector3d r = machine::tool_pose(truth, machine::Machine::Real, q, length).tip_mm - centre;
-    if (r.norm() < 1e-12) break;
-    Eigen::Matrix3d j;
-    for (int i = 0; i < 3; ++i) {
-      machine::Joints h = q;
-      h[lin[i]] += 1e-3;
-      j.col(i) = (machine::tool_pose(truth, machine::Machine::Real, h, length).tip_mm - centre - r) / 1e-3;
-    }
-    const Eigen::Vector3d dq = j.lu().solve(-r);
-    for (int i = 0; i < 3; ++i) q[lin[i]] += dq[i];
+  for (char axis : {'X', 'Y', 'Z'}) {
+    const machine::Axis& a = truth.axes[static_cast<std::size_t>(truth.joint_of(axis))];
+    q[truth.joint_of(axis)] = (a.travel_min + a.travel_max) / 2;
   }
-  return q;
+  return test::tip_on_point(truth, machine::Machine::Real, q, centre, length);
 }
 
 std::vector<SpherePose> plan(const machine::Model& truth, const std::vector<double>& bs, const std::vector<double>& cs,
