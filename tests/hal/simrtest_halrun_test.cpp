@@ -18,14 +18,6 @@
 namespace vc {
 namespace {
 
-std::vector<std::string> got(const std::string& out) {
-  std::vector<std::string> values;
-  const std::regex line(R"((?:^|\n)(TRUE|FALSE|-?[0-9][0-9.e+-]*)(?=\n))");
-  for (auto it = std::sregex_iterator(out.begin(), out.end(), line); it != std::sregex_iterator(); ++it)
-    values.push_back((*it)[1]);
-  return values;
-}
-
 std::string set_joints(const machine::Joints& q) {
   std::string s;
   for (int j = 0; j < q.size(); ++j) s += "setp simrtest.joint." + std::to_string(j) + " " + std::to_string(q[j]) + "\n";
@@ -48,7 +40,7 @@ TEST(Simrtest, ReadsTheSphereInTheSpindleFrameAsTheTrueMachinePutsIt) {
                              set_joints(at_sphere) + set_joints(tilted);
   const test::CommandResult r = test::halrun("simrtest_reads", script);
   ASSERT_EQ(r.exit_code, 0) << r.out;
-  const std::vector<std::string> v = got(r.out);
+  const std::vector<std::string> v = test::getp_values(r.out);
   ASSERT_EQ(v.size(), 8u) << r.out;
   for (int d = 0; d < 3; ++d) EXPECT_NEAR(std::stod(v[d]), 0.0, 1e-3) << r.out;
   EXPECT_EQ(v[3], "TRUE");
@@ -65,7 +57,7 @@ TEST(Simrtest, ReadsTheSphereInTheSpindleFrameAsTheTrueMachinePutsIt) {
                           "addf simrtest.update servo-thread\nstart\n" +
                               set_joints(far));
   ASSERT_EQ(clipped.exit_code, 0) << clipped.out;
-  const std::vector<std::string> c = got(clipped.out);
+  const std::vector<std::string> c = test::getp_values(clipped.out);
   ASSERT_EQ(c.size(), 4u) << clipped.out;
   // The MC-300's X joint moves the table: +2 mm puts the sphere 2 mm to +x of the nest.
   const double beyond = (sphere - machine::tool_pose(model, machine::Machine::Real, far, L).tip_mm).x();

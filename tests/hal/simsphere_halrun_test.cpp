@@ -12,15 +12,6 @@
 namespace vc {
 namespace {
 
-// The values `getp PIN` printed, in order.
-std::vector<std::string> got(const std::string& out) {
-  std::vector<std::string> values;
-  const std::regex line(R"((?:^|\n)(TRUE|FALSE|-?[0-9][0-9.e+-]*)(?=\n))");
-  for (auto it = std::sregex_iterator(out.begin(), out.end(), line); it != std::sregex_iterator(); ++it)
-    values.push_back((*it)[1]);
-  return values;
-}
-
 // The ball 13.5 mm (sphere 25 + ball 2, halved) above the sphere's centre in joint Z touches
 // it; the MC-300's Z errors over 13.5 mm are far under the 10 um steps used here.
 TEST(Simsphere, TripsWhereTheBallTouchesTheSphere) {
@@ -36,7 +27,7 @@ TEST(Simsphere, TripsWhereTheBallTouchesTheSphere) {
   script += "getp simsphere.touches\n";
   const test::CommandResult r = test::halrun("simsphere_trips", script);
   ASSERT_EQ(r.exit_code, 0) << r.out;
-  const std::vector<std::string> v = got(r.out);
+  const std::vector<std::string> v = test::getp_values(r.out);
   ASSERT_EQ(v.size(), 11u) << r.out;
   const char* probe[] = {"FALSE", "TRUE", "TRUE", "FALSE", "TRUE"};
   const double gap[] = {10, -10, 3, 20, -5};

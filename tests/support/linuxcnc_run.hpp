@@ -15,6 +15,7 @@
 #include <regex>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "test_support.hpp"
 
@@ -90,6 +91,15 @@ inline double ini_value(const std::string& ini, const std::string& section, cons
     if (current == section && std::regex_match(line, m, std::regex(key + R"(\s*=\s*(\S+)\s*)"))) return std::stod(m[1]);
   }
   throw std::runtime_error("no [" + section + "] " + key + " in " + ini);
+}
+
+// The values a halrun script's `getp PIN` lines printed, in order (TRUE, FALSE or a number).
+inline std::vector<std::string> getp_values(const std::string& out) {
+  std::vector<std::string> values;
+  const std::regex line(R"((?:^|\n)(TRUE|FALSE|-?[0-9][0-9.e+-]*)(?=\n))");
+  for (auto it = std::sregex_iterator(out.begin(), out.end(), line); it != std::sregex_iterator(); ++it)
+    values.push_back((*it)[1]);
+  return values;
 }
 
 }  // namespace vc::test
