@@ -2,6 +2,7 @@
 // (issue 47; preproc/acceptance/README.md). First: the ISO 230-6 diagonal displacement tests.
 // Every input is read and checked before anything is written; each file is written atomically.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -59,8 +60,10 @@ int run_plan(const PlanArgs& args, std::ostream& report) {
     files.push_back({dir / acceptance::sheet_path(d), acceptance::diagonal_sheet(plan, d, model)});
   }
   write_all(files);
+  const auto bodies = std::count_if(plan.diagonals.begin(), plan.diagonals.end(),
+                                    [](const acceptance::Diagonal& d) { return d.kind == "body"; });
   report << "volcomp acceptance plan: " << plan.diagonals.size() << " ISO 230-6 diagonals of " << model.info.name
-         << " (4 body, 6 face), " << plan.settings.targets << " targets and " << plan.settings.runs
+         << " (" << bodies << " body, " << plan.diagonals.size() - static_cast<std::size_t>(bodies) << " face), " << plan.settings.targets << " targets and " << plan.settings.runs
          << " bidirectional runs each, L " << number_text(plan.settings.tool_length_mm) << " mm, in " << args.output
          << " (plan.toml, README.md, diagonals/)\n";
   return 0;
@@ -163,6 +166,8 @@ void add_acceptance_commands(CLI::App& volcomp, int& exit_code) {
   p->add_option("--runs", plan->settings.runs, "bidirectional runs")->capture_default_str();
   p->add_option("--targets", plan->settings.targets, "targets per diagonal, ends included")->capture_default_str();
   p->add_option("--seed", plan->settings.seed, "of the targets' pseudo-random offsets")->capture_default_str();
+  p->add_option("--diagonals", plan->settings.which, "all, body (the four body diagonals) or face (the six face ones)")
+      ->capture_default_str();
   p->callback([plan, &exit_code] { exit_code = run_plan(*plan, std::cout); });
 
   auto sim = std::make_shared<SimulateArgs>();

@@ -1,5 +1,6 @@
 #include "vc/acceptance/diagonals.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -52,6 +53,8 @@ std::vector<Diagonal> plan_diagonals(const machine::Model& model, const Diagonal
   if (!(s.feed_mm_per_min > 0)) throw std::runtime_error("--feed must be > 0 mm/min");
   if (!(s.dwell_s > 0)) throw std::runtime_error("--dwell must be > 0 s (the laser reads at rest)");
   if (!(s.overrun_mm >= 0)) throw std::runtime_error("--overrun must be >= 0 mm");
+  if (s.which != "all" && s.which != "body" && s.which != "face")
+    throw std::runtime_error("--diagonals " + s.which + ": all, body or face");
   const WorkVolume& v = s.volume;
   const Eigen::Vector3d c = v.centre();
   std::vector<Diagonal> out;
@@ -99,6 +102,10 @@ std::vector<Diagonal> plan_diagonals(const machine::Model& model, const Diagonal
                                    " mm: a smaller --volume or --overrun");
       }
   }
+  // The subset keeps each diagonal's targets (their generator's seed is its place among all 10).
+  if (s.which != "all")
+    out.erase(std::remove_if(out.begin(), out.end(), [&](const Diagonal& d) { return (d.kind == "body") != (s.which == "body"); }),
+              out.end());
   return out;
 }
 

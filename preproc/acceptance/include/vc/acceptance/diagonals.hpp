@@ -35,6 +35,7 @@ struct DiagonalSettings {
   int runs = 5;           // bidirectional
   int targets = 11;       // per diagonal, ends included
   unsigned seed = 1;      // of the targets' offsets
+  std::string which = "all";  // "all", "body" (the four body diagonals) or "face" (the six face ones)
 };
 
 struct Diagonal {
@@ -48,8 +49,9 @@ struct Diagonal {
   Eigen::Vector3d at(double distance_mm) const { return start_mm + distance_mm * direction(); }
 };
 
-// The 10 diagonals; throws std::runtime_error for settings that cannot make them (fewer than 5
-// targets or 2 runs, overruns leaving the travel, a feed or dwell not > 0).
+// The 10 diagonals, or the body or face ones (settings.which: each with the targets it has among
+// all 10); throws std::runtime_error for settings that cannot make them (fewer than 5 targets or
+// 2 runs, overruns leaving the travel, a feed or dwell not > 0, an unknown `which`).
 std::vector<Diagonal> plan_diagonals(const machine::Model& model, const DiagonalSettings& settings);
 
 // The joints at a point of a diagonal: `rest` (every joint; the rotary ones at 0) with X, Y, Z
