@@ -26,6 +26,7 @@
 
 #include "rs274.hpp"
 #include "test_support.hpp"
+#include "vc/acceptance/evaluation_file.hpp"
 #include "vc/acceptance/plan_file.hpp"
 
 namespace vc {
@@ -33,26 +34,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The rows of a CSV with '#' comment lines and text cells: column name -> text, per row.
-std::vector<std::map<std::string, std::string>> csv_rows(const fs::path& path) {
-  std::ifstream in(path);
-  std::vector<std::string> header;
-  std::vector<std::map<std::string, std::string>> rows;
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '#') continue;
-    std::vector<std::string> cells;
-    std::stringstream s(line);
-    for (std::string cell; std::getline(s, cell, ',');) cells.push_back(cell);
-    if (line.back() == ',') cells.push_back("");
-    if (header.empty()) {
-      header = cells;
-      continue;
-    }
-    std::map<std::string, std::string> row;
-    for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i) row[header[i]] = cells[i];
-    rows.push_back(row);
-  }
-  return rows;
+// The figures of one test in an `acceptance evaluate` results file (read by its reader): symbol -> row.
+std::map<std::string, acceptance::EvaluationRow> figures_of(const acceptance::Evaluation& e, const std::string& test) {
+  std::map<std::string, acceptance::EvaluationRow> figures;
+  for (const acceptance::EvaluationRow& r : e.rows)
+    if (r.test == test) figures[r.figure] = r;
+  return figures;
 }
 
 fs::path fresh(const std::string& name) {
@@ -179,24 +166,38 @@ TEST_P(VolcompAcceptanceClosedForm, SystematicDeviationAlongEachDiagonalIsTheClo
                         " -o " + (dir / "report").string());
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const acceptance::Plan plan = acceptance::read_plan((dir / "plan").string());
-  const auto rows = csv_rows(dir / "report.csv");
-  ASSERT_EQ(rows.size(), plan.diagonals.size());
+  // The long layout: a row per diagonal and figure, in um, the figure's verdict empty without limits.
+  const std::string text = test::file_text(dir / "report.csv");
+  EXPECT_NE(text.find("\ntest,kind,figure,name,value,u_repeatability,u_instrument,U,limit,unit,verdict\n"),
+            std::string::npos)
+      << text.substr(0, 400);
+  const acceptance::Evaluation e = acceptance::read_evaluation((dir / "report.csv").string());
+  ASSERT_EQ(e.rows.size(), 5 * plan.diagonals.size());
+  ASSERT_EQ(acceptance::tests_of(e).size(), plan.diagonals.size());
+  EXPECT_EQ(acceptance::overall_verdict(e), "not judged");
   double largest = 0;
-  for (std::size_t k = 0; k < rows.size(); ++k) {
+  for (std::size_t k = 0; k < plan.diagonals.size(); ++k) {
     const acceptance::Diagonal& d = plan.diagonals[k];
-    ASSERT_EQ(rows[k].at("test"), d.name);
+    ASSERT_EQ(acceptance::tests_of(e)[k], d.name);
+    const auto f = figures_of(e, d.name);
+    ASSERT_EQ(f.size(), 5u) << d.name;
     const Eigen::Vector3d u = (d.end_mm - d.start_mm).normalized();
     const double per_mm = c.k * u.x() * u.x() + u.x() * u.z() * std::sin(c.b_rad) + u.z() * u.z() * (std::cos(c.b_rad) - 1);
     const double expected_um = std::abs(per_mm) * d.targets_mm.back() * 1e3;
     largest = std::max(largest, expected_um);
     // A reversal of 1.5 um (+ reads +0.75, - reads -0.75): E spans both directions' means, M the
     // bidirectional mean's range, B the reversal, R = 2 s + 2 s + |B_i| with s = 0.
-    EXPECT_NEAR(std::stod(rows[k].at("E[um]")), expected_um + 1.5, 1e-6) << d.name;
-    EXPECT_NEAR(std::stod(rows[k].at("M[um]")), expected_um, 1e-6) << d.name;
-    EXPECT_NEAR(std::stod(rows[k].at("B[um]")), 1.5, 1e-6) << d.name;
-    EXPECT_NEAR(std::stod(rows[k].at("R[um]")), 1.5, 1e-6) << d.name;
-    EXPECT_NEAR(std::stod(rows[k].at("A[um]")), expected_um + 1.5, 1e-6) << d.name;
-    EXPECT_EQ(rows[k].at("verdict"), "");  // no tolerances, no verdict
+    EXPECT_NEAR(f.at("E").value, expected_um + 1.5, 1e-6) << d.name;
+    EXPECT_NEAR(f.at("M").value, expected_um, 1e-6) << d.name;
+    EXPECT_NEAR(f.at("B").value, 1.5, 1e-6) << d.name;
+    EXPECT_NEAR(f.at("R").value, 1.5, 1e-6) << d.name;
+    EXPECT_NEAR(f.at("A").value, expected_um + 1.5, 1e-6) << d.name;
+    for (const auto& [symbol, row] : f) {
+      EXPECT_EQ(row.unit, "um") << d.name << " " << symbol;
+      EXPECT_EQ(row.kind, d.kind == "body" ? "body diagonal" : "face diagonal") << d.name;
+      EXPECT_EQ(row.verdict, "") << d.name << " " << symbol;  // no tolerances, no verdict
+      EXPECT_FALSE(row.limit) << d.name << " " << symbol;
+    }
   }
   std::cout << c.name << ": M up to " << largest << " um, equal to the closed form (E, A: it + the reversal)\n";
   EXPECT_GT(largest, 1.0);  // an error the comparison can see
@@ -210,7 +211,7 @@ INSTANTIATE_TEST_SUITE_P(
                       ClosedForm{"x_slope", "[[tool_chain.tables]]\nfile = \"exx.csv\"\n", "", 1e-4, 0.0}),
     [](const ::testing::TestParamInfo<ClosedForm>& param) { return std::string(param.param.name); });
 
-// E of each diagonal (um), from the figures CSV of one simulate + evaluate.
+// E of each diagonal (um), from the results CSV of one simulate + evaluate.
 std::vector<double> systematic(const fs::path& dir, const std::string& plan, const std::string& truth,
                                const std::string& compensation, const std::string& name) {
   auto r = test::run_volcomp("acceptance simulate " + plan + " --true " + truth + " --compensation " + compensation +
@@ -219,8 +220,9 @@ std::vector<double> systematic(const fs::path& dir, const std::string& plan, con
   r = test::run_volcomp("acceptance evaluate " + plan + " --measurements " + (dir / name).string() + " -o " +
                         (dir / (name + "_report")).string());
   EXPECT_EQ(r.exit_code, 0) << r.out;
+  const acceptance::Evaluation results = acceptance::read_evaluation((dir / (name + "_report.csv")).string());
   std::vector<double> e;
-  for (const auto& row : csv_rows(dir / (name + "_report.csv"))) e.push_back(std::stod(row.at("E[um]")));
+  for (const std::string& test : acceptance::tests_of(results)) e.push_back(figures_of(results, test).at("E").value);
   return e;
 }
 
@@ -261,23 +263,26 @@ TEST(VolcompAcceptance, NoiseGivesTheRepeatabilityFiveRunsShouldAndItsUncertaint
   r = test::run_volcomp("acceptance evaluate " + plan + " --measurements " + (dir / "m").string() + " -o " +
                         (dir / "report").string());
   ASSERT_EQ(r.exit_code, 0) << r.out;
-  const auto rows = csv_rows(dir / "report.csv");
-  ASSERT_EQ(rows.size(), 10u);
+  const acceptance::Evaluation e = acceptance::read_evaluation((dir / "report.csv").string());
+  ASSERT_EQ(acceptance::tests_of(e).size(), 10u);
   double mean_r = 0;
-  for (const auto& row : rows) {
+  for (const std::string& test : acceptance::tests_of(e)) {
+    const auto f = figures_of(e, test);
     // ISO 230-2's R is the largest R_i over the 11 targets (4 s, or 2 s+ + 2 s- + |B_i|): for 5
     // runs of noise S a Monte Carlo (4,000 lines of 11 targets) puts it at 6.6 S median, 4.8 to
     // 9.8 S (0.1 to 99.9 %), and the mean over 10 lines at 6.0 to 7.6 S (400 groups). 4 S is a
     // single target's 4 s (tests/cli/repeatability_monte_carlo.py).
-    const double R = std::stod(row.at("R[um]"));
-    EXPECT_GT(R, 4.5 * s_um) << row.at("test");
-    EXPECT_LT(R, 10.5 * s_um) << row.at("test");
+    const double R = f.at("R").value;
+    EXPECT_GT(R, 4.5 * s_um) << test;
+    EXPECT_LT(R, 10.5 * s_um) << test;
     mean_r += R / 10;
     // The repeatability part of E's uncertainty: sqrt(2) s_max / sqrt(5), s_max 1.2 to 2.5 S.
-    const double u_rep = std::stod(row.at("u_rep_E[um]"));
-    EXPECT_GT(u_rep, std::sqrt(2.0) * 1.1 * s_um / std::sqrt(5.0)) << row.at("test");
-    EXPECT_LT(u_rep, std::sqrt(2.0) * 2.6 * s_um / std::sqrt(5.0)) << row.at("test");
-    EXPECT_NEAR(std::stod(row.at("u_laser_E[um]")), std::sqrt(2.0) * 0.5, 1e-3);  // the default 0.5 um
+    const double u_rep = f.at("E").u_repeatability;
+    EXPECT_GT(u_rep, std::sqrt(2.0) * 1.1 * s_um / std::sqrt(5.0)) << test;
+    EXPECT_LT(u_rep, std::sqrt(2.0) * 2.6 * s_um / std::sqrt(5.0)) << test;
+    EXPECT_NEAR(f.at("E").u_instrument, std::sqrt(2.0) * 0.5, 1e-3);  // the default 0.5 um
+    EXPECT_NEAR(f.at("E").expanded, 2 * std::hypot(u_rep, f.at("E").u_instrument), 2e-6);
+    EXPECT_EQ(f.at("R").u_instrument, 0.0);  // the laser's scatter is in the runs'
   }
   std::cout << "noise 1 um, 5 runs: R " << mean_r << " um on average over the 10 diagonals\n";
   EXPECT_GT(mean_r, 5.9 * s_um);
@@ -302,11 +307,27 @@ TEST(VolcompAcceptance, TolerancesJudgeEachDiagonal) {
   auto r = test::run_volcomp("acceptance evaluate " + plan + " --measurements " + (dir / "m").string() +
                              " --tolerances " + (dir / "loose.toml").string() + " -o " + (dir / "loose").string());
   EXPECT_EQ(r.exit_code, 0) << r.out;
-  for (const auto& row : csv_rows(dir / "loose.csv")) EXPECT_EQ(row.at("verdict"), "PASS");
+  // Each figure with a limit judged (E and A: 2 x 10 rows), the others not.
+  const acceptance::Evaluation loose = acceptance::read_evaluation((dir / "loose.csv").string());
+  int judged = 0;
+  for (const acceptance::EvaluationRow& row : loose.rows) {
+    const bool limited = row.figure == "E" || row.figure == "A";
+    EXPECT_EQ(row.verdict, limited ? "PASS" : "") << row.test << " " << row.figure;
+    EXPECT_EQ(row.limit.has_value(), limited) << row.test << " " << row.figure;
+    if (row.limit) {
+      EXPECT_EQ(*row.limit, 1000.0);
+    }
+    judged += limited;
+  }
+  EXPECT_EQ(judged, 20);
+  EXPECT_EQ(acceptance::overall_verdict(loose), "PASS");
   r = test::run_volcomp("acceptance evaluate " + plan + " --measurements " + (dir / "m").string() + " --tolerances " +
                         (dir / "tight.toml").string() + " -o " + (dir / "tight").string());
   EXPECT_EQ(r.exit_code, 1) << r.out;  // FAIL: uncompensated MC-300, E tens of um
   EXPECT_NE(r.out.find("**FAIL**"), std::string::npos) << r.out;
+  const acceptance::Evaluation tight = acceptance::read_evaluation((dir / "tight.csv").string());
+  EXPECT_EQ(acceptance::overall_verdict(tight), "FAIL");
+  for (const std::string& test : acceptance::tests_of(tight)) EXPECT_EQ(figures_of(tight, test).at("E").verdict, "FAIL");
   r = test::run_volcomp("acceptance evaluate " + plan + " --measurements " + (dir / "m").string() + " --tolerances " +
                         (dir / "bad.toml").string() + " -o " + (dir / "bad").string());
   EXPECT_EQ(r.exit_code, 2) << r.out;

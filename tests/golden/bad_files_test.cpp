@@ -1,8 +1,9 @@
 // Golden bad inputs: every file in tests/golden/bad_tables (*.csv), tests/golden/bad_machines
 // (*.toml), tests/golden/bad_reports (*.csv: CMM reports, read as selftune reads them without
-// options), tests/golden/bad_laser_runs and bad_circular_tests (*.csv) must be refused with a vc::LoadError whose text is exactly the content of the file's
-// .expect twin (trimmed), with the source tree's absolute path removed so that paths read
-// relative to the repository root:
+// options), tests/golden/bad_laser_runs and bad_circular_tests (*.csv), tests/golden/bad_acceptance
+// (plans, tolerances, diagonal runs, results files) must be refused with a vc::LoadError whose
+// text is exactly the content of the file's .expect twin (trimmed), with the source tree's
+// absolute path removed so that paths read relative to the repository root:
 //     tests/golden/bad_tables/nan_cell.csv:3:4: error: 'nan' is not a finite number
 // Adding a case is adding two files. Bad tables whose name starts with "cubic_" are loaded with
 // cubic interpolation (the rules that only apply to splines); the others with the defaults.
@@ -27,6 +28,7 @@
 #include "test_support.hpp"
 #include "vc/acceptance/diagonal_evaluation.hpp"
 #include "vc/acceptance/diagonal_measurements.hpp"
+#include "vc/acceptance/evaluation_file.hpp"
 #include "vc/acceptance/plan_file.hpp"
 #include "vc/acceptance/tolerances.hpp"
 #include "vc/identify/iso230_4.hpp"
@@ -132,6 +134,21 @@ TEST(BadFiles, EveryBadDiagonalRunIsRefusedWithItsMessage) {
     const acceptance::Diagonal& d = plan.diagonals.front();
     acceptance::evaluate_diagonal(d, acceptance::read_diagonal_runs(p.string(), d), 0.5e-3, nullptr);
   });
+}
+
+// `acceptance evaluate`'s results files (evaluation_file.hpp), as `volcomp report --acceptance`
+// reads them; the good file they are made from is read whole.
+TEST(BadFiles, EveryBadAcceptanceResultsFileIsRefusedWithItsMessage) {
+  check_folder("tests/golden/bad_acceptance/evaluations", ".csv",
+               [](const fs::path& p) { acceptance::read_evaluation(p.string()); });
+  const acceptance::Evaluation good =
+      acceptance::read_evaluation(test::source_path("tests/golden/bad_acceptance/good/evaluation.csv"));
+  ASSERT_EQ(good.rows.size(), 4u);
+  EXPECT_EQ(good.rows[2].figure, "R");
+  EXPECT_FALSE(good.rows[2].limit);
+  EXPECT_EQ(good.rows[3].verdict, "FAIL");
+  EXPECT_EQ(acceptance::overall_verdict(good), "FAIL");
+  EXPECT_EQ(good.comments.size(), 2u);
 }
 
 // The catalogue itself: the machine the bad machines are made from, and the good tables they

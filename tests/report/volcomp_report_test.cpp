@@ -17,27 +17,20 @@
 #include <regex>
 #include <sstream>
 
+#include "report_test_support.hpp"
 #include "test_support.hpp"
 
 namespace vc {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path scratch(const std::string& name) {
-  const fs::path f = fs::temp_directory_path() / ("vc_report_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(f);
-  fs::create_directories(f);
-  return f;
-}
-
-void write(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
-
-std::size_t count(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++n;
-  return n;
-}
+using test::chromium;
+using test::count;
+using test::expect_refused;
+using test::page_messages;
+using test::probed_copy;
+using test::scratch;
+using test::write;
 
 // Laser runs of X's positioning (ISO 230-2 cycle: 4 runs each way, targets -600..0 mm), a smooth
 // error with a reversal and a little scatter, in identify laser's long layout; named after the
@@ -173,72 +166,13 @@ TEST_F(VolcompReport, ChecksumsAreTheFilesOwn) {
 
 // ---- in the browser ------------------------------------------------------------------------
 
-bool have_chromium() { return test::run_command("command -v chromium >/dev/null 2>&1").exit_code == 0; }
-
-#define SKIP_WITHOUT_CHROMIUM()                                                                             \
-  if (!have_chromium())                                                                                     \
-  GTEST_SKIP() << "chromium is not installed (apt-get install --no-install-recommends chromium; .ci/setup " \
-                  "installs it): the report is not checked in a browser"
-
-// Headless chromium on `page` with `options`; its messages (stderr) go to `log`. As root it
-// needs --no-sandbox; its own profile folder keeps runs apart.
-test::CommandResult chromium(const std::string& options, const fs::path& page, const fs::path& log) {
-  const fs::path profile = scratch("chromium_profile");
-  const test::CommandResult r = test::run_command(
-      "timeout 180 chromium --headless --no-sandbox --disable-gpu --no-first-run --user-data-dir='" + profile.string() +
-      "' --enable-logging=stderr --v=0 " + options + " 'file://" + page.string() + "' 2>'" + log.string() + "'");
-  fs::remove_all(profile);
-  return r;
-}
-
-// What the page itself logged (console messages, uncaught errors) or failed to load: chromium
-// prints these as "CONSOLE" lines and net::ERR_ codes. Its own complaints about the machine
-// (no D-Bus, no GPU) are not the page's.
-std::vector<std::string> page_messages(const fs::path& log) {
-  std::vector<std::string> found;
-  std::istringstream lines(test::file_text(log));
-  for (std::string line; std::getline(lines, line);)
-    if (line.find("CONSOLE") != std::string::npos || line.find("net::ERR_") != std::string::npos ||
-        line.find("Uncaught") != std::string::npos)
-      found.push_back(line);
-  return found;
-}
-
-// A copy of the page with a probe at its end: after the load event it writes into the DOM how
-// many pictures there are, how many decoded (naturalWidth > 0), and every resource the page
-// fetched that is not a data: URI (performance entries), which --dump-dom then shows.
-fs::path probed_copy(const fs::path& page, const fs::path& folder) {
-  const std::string probe = R"(<script>
-window.addEventListener('load', function () {
-  var images = Array.prototype.slice.call(document.images);
-  var decoded = images.filter(function (i) { return i.complete && i.naturalWidth > 0; }).length;
-  var fetched = performance.getEntriesByType('resource').map(function (e) { return e.name; })
-      .filter(function (n) { return n.indexOf('data:') !== 0; });
-  var p = document.createElement('pre');
-  p.id = 'vc-probe';
-  p.textContent = 'images=' + images.length + ' decoded=' + decoded + ' fetched=' + fetched.length + ' [' + fetched.join(' ') + ']';
-  document.body.appendChild(p);
-});
-</script>
-)";
-  std::string html = test::file_text(page);
-  const std::size_t end = html.rfind("</body>");
-  html.insert(end == std::string::npos ? html.size() : end, probe);
-  const fs::path copy = folder / "probed.html";
-  write(copy, html);
-  return copy;
-}
-
 TEST_F(VolcompReport, BrowserDecodesEveryPictureWithoutRequestsOrConsoleMessages) {
   SKIP_WITHOUT_CHROMIUM();
   ASSERT_EQ(output_->exit_code, 0) << output_->out;
   const fs::path folder = scratch("dom");
   const test::CommandResult dom = chromium("--dump-dom", probed_copy(*page_, folder), folder / "chromium.log");
   ASSERT_EQ(dom.exit_code, 0) << test::file_text(folder / "chromium.log");
-  const std::size_t at = dom.out.find("<pre id=\"vc-probe\">");
-  ASSERT_NE(at, std::string::npos) << "the probe did not run: " << dom.out.substr(0, 300);
-  const std::string probe = dom.out.substr(at + 19, dom.out.find("</pre>", at) - at - 19);
-  EXPECT_EQ(probe, "images=12 decoded=12 fetched=0 []");
+  EXPECT_EQ(test::probe_report(dom.out), "images=12 decoded=12 fetched=0 []");
   EXPECT_EQ(count(dom.out, "<figure"), static_cast<std::size_t>(kFigures));
   EXPECT_EQ(page_messages(folder / "chromium.log"), std::vector<std::string>{});
   fs::remove_all(folder);
@@ -429,20 +363,6 @@ TEST(VolcompPlotVolume, BadToolLengthsAreRefusedWithoutFiles) {
 }
 
 // ---- bad input -----------------------------------------------------------------------------
-
-// Runs a report that must fail: non-zero exit, `message` in what it printed, and the page at
-// -o as it was before (absent, or an older page left untouched).
-void expect_refused(const std::string& arguments, const std::string& message, const fs::path& page) {
-  const std::string before = fs::exists(page) ? test::file_text(page) : std::string("(none)");
-  const test::CommandResult r = test::run_volcomp("report " + arguments + " -o " + page.string());
-  EXPECT_NE(r.exit_code, 0) << arguments;
-  EXPECT_NE(r.out.find(message), std::string::npos) << "expected \"" << message << "\" in: " << r.out;
-  EXPECT_EQ(fs::exists(page) ? test::file_text(page) : std::string("(none)"), before)
-      << "the page was written or changed";
-  // No temporary left beside it either.
-  for (const auto& entry : fs::directory_iterator(page.parent_path()))
-    EXPECT_NE(entry.path().filename().string().rfind("." + page.filename().string(), 0), 0u) << entry.path();
-}
 
 TEST(VolcompReportBadInput, ClearErrorAndNoPage) {
   const fs::path folder = scratch("bad");

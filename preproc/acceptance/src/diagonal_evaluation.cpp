@@ -10,8 +10,6 @@ namespace vc::acceptance {
 namespace {
 
 std::string um(double mm) { return fixed_text(mm * 1e3, 3); }
-// The CSV keeps 1e-6 um: a figure read back equals the evaluation's to that.
-std::string csv_um(double mm) { return fixed_text(mm * 1e3, 6); }
 
 }  // namespace
 
@@ -55,24 +53,34 @@ DiagonalResult evaluate_diagonal(const Diagonal& d, const identify::LaserRuns& r
   return r;
 }
 
+std::vector<EvaluationRow> evaluation_rows(const std::vector<DiagonalResult>& results) {
+  std::vector<EvaluationRow> rows;
+  for (const DiagonalResult& r : results)
+    for (const Figure& f : r.figures) {
+      EvaluationRow row;
+      row.test = r.diagonal.name;
+      row.kind = r.diagonal.kind == "body" ? "body diagonal" : "face diagonal";  // the face is in the name
+      row.figure = f.symbol;
+      row.name = f.name;
+      row.value = f.value_mm * 1e3;
+      row.u_repeatability = f.u_repeatability_mm * 1e3;
+      row.u_instrument = f.u_instrument_mm * 1e3;
+      row.expanded = f.expanded_mm() * 1e3;
+      if (f.limit_mm) {
+        row.limit = *f.limit_mm * 1e3;
+        row.verdict = f.passes() ? "PASS" : "FAIL";
+      }
+      row.unit = "um";
+      rows.push_back(row);
+    }
+  return rows;
+}
+
 std::string figures_csv(const std::vector<DiagonalResult>& results, double laser_uncertainty_mm) {
-  std::ostringstream out;
-  out << "# volcomp acceptance evaluate: ISO 230-6 diagonals, the ISO 230-2 figures along each line, um\n"
-      << "# u_rep: repeatability part, u_laser: instrument part (" << number_text(laser_uncertainty_mm * 1e3)
-      << " um per reading), U: expanded uncertainty (k = 2); thermal not evaluated\n"
-      << "test,kind,length[mm],runs_up,runs_down";
-  for (const char* s : {"A", "E", "R", "B", "M"})
-    out << "," << s << "[um],u_rep_" << s << "[um],u_laser_" << s << "[um],U_" << s << "[um],limit_" << s << "[um]";
-  out << ",verdict\n";
-  for (const DiagonalResult& r : results) {
-    out << r.diagonal.name << "," << r.diagonal.kind << "," << fixed_text(r.diagonal.length_mm(), 3) << ","
-        << r.iso.runs_up << "," << r.iso.runs_down;
-    for (const Figure& f : r.figures)
-      out << "," << csv_um(f.value_mm) << "," << csv_um(f.u_repeatability_mm) << "," << csv_um(f.u_instrument_mm) << ","
-          << csv_um(f.expanded_mm()) << "," << (f.limit_mm ? csv_um(*f.limit_mm) : "");
-    out << "," << (r.judged ? (r.passes() ? "PASS" : "FAIL") : "") << "\n";
-  }
-  return out.str();
+  return evaluation_csv("ISO 230-6 diagonals, the ISO 230-2 figures along each line",
+                        {"u_repeatability: from the runs; u_instrument: the laser, " +
+                         number_text(laser_uncertainty_mm * 1e3) + " um per reading"},
+                        evaluation_rows(results));
 }
 
 std::string summary_markdown(const std::vector<DiagonalResult>& results, const std::string& plan_dir,

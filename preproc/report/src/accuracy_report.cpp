@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cctype>
 #include <ctime>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -13,6 +12,7 @@
 #include "vc/plot/machine_plot.hpp"
 #include "vc/plot/volume_map.hpp"
 #include "vc/plot/volume_map_plot.hpp"
+#include "vc/report/acceptance_section.hpp"
 #include "vc/report/drawings.hpp"
 #include "vc/report/html.hpp"
 #include "vc/report/measurements.hpp"
@@ -21,12 +21,8 @@
 namespace vc::report {
 namespace {
 
-namespace fs = std::filesystem;
-
 // The first page's summary: the figures a reader looks for first, gathered from the sections.
 using Summary = std::vector<std::vector<std::string>>;
-
-std::string absolute(const std::string& path) { return fs::absolute(path).lexically_normal().string(); }
 
 std::string utc_now() {
   const std::time_t now = std::time(nullptr);
@@ -64,7 +60,7 @@ std::string machine_section(const machine::Model& model) {
       {"name", model.info.name},
       {"serial", model.info.serial},
       {"description", model.info.description},
-      {"machine file", absolute(model.path)},
+      {"machine file", shown_path(model.path)},
       {"measured", model.info.measured_on},
       {"instrument", model.info.instrument},
       {"temperature during measurement", fixed(model.info.temperature_C, 1) + " degC"},
@@ -75,7 +71,7 @@ std::string machine_section(const machine::Model& model) {
       "<code>sha256sum FILE</code> prints the same checksum.</p>\n";
   std::string files = "<table>\n<thead><tr><th>file</th><th>what</th><th>SHA-256</th></tr></thead>\n<tbody>\n";
   const auto file_row = [&](const std::string& path, const std::string& what) {
-    files += "<tr><td>" + escaped(absolute(path)) + "</td><td>" + escaped(what) + "</td><td class=\"hash\">" +
+    files += "<tr><td>" + escaped(shown_path(path)) + "</td><td>" + escaped(what) + "</td><td class=\"hash\">" +
              sha256_file_hex(path) + "</td></tr>\n";
   };
   file_row(model.path, "machine file");
@@ -304,7 +300,7 @@ std::string measurements_section(const Measurements& found, const std::vector<st
   for (std::size_t k = 0; k < found.found.size(); ++k) {
     const Measurement& m = found.found[k];
     html += "<div class=\"measurement\">\n<h3>" + escaped(m.title) + "</h3>\n<p class=\"note\">" +
-            escaped(absolute(m.path)) + " <span class=\"hash\">sha256 " + sha256_file_hex(m.path) + "</span></p>\n";
+            escaped(shown_path(m.path)) + " <span class=\"hash\">sha256 " + sha256_file_hex(m.path) + "</span></p>\n";
     std::vector<std::vector<std::string>> rows;
     for (const auto& [name, value] : m.figures) rows.push_back({name, value});
     html += html_table({m.kind == "laser" ? "ISO 230-2" : "ISO 230-4", ""}, rows, false);
@@ -338,11 +334,13 @@ Report accuracy_report(const machine::Model& model, const ReportOptions& options
     progress << "  measurements: " << measured.found.size() << " read from " << options.measurements << ", "
              << measured.skipped.size() << " files skipped\n";
   }
+  const std::vector<LabelledEvaluation> accepted = read_acceptance(options.acceptance);
+  if (!accepted.empty()) progress << "  acceptance: " << acceptance_summary(accepted) << "\n";
   Page page;
   page.section("machine", "The machine", machine_section(model));
   page.section("tables", "Error tables", tables_section(model, drawings, report.figures, progress));
   page.section("location", "Location errors", location_section(model));
-  Summary summary = {{"machine", model.info.name + " (" + absolute(model.path) + ")"}};
+  Summary summary = {{"machine", model.info.name + " (" + shown_path(model.path) + ")"}};
   page.section("compensation", "Compensation types (ISO/TR 16907 Annex A)", compensation_section(model, summary));
   page.section("balance", "Accuracy balance", balance_section(model, drawings, report.figures, progress, summary));
   page.section("volume", "Volume map: the tool-tip error over the working volume",
@@ -356,8 +354,14 @@ Report accuracy_report(const machine::Model& model, const ReportOptions& options
     summary.push_back(
         {"measurements (" + std::to_string(measured.found.size()) + ")", titles.empty() ? "none found" : titles});
   }
+  if (!accepted.empty()) {
+    page.section("acceptance", "Acceptance (ISO/TR 16907 11.3)",
+                 acceptance_section(accepted, drawings, report.figures));
+    report.acceptance = static_cast<int>(accepted.size());
+    summary.push_back({"acceptance verdict (ISO/TR 16907 11.3)", acceptance_summary(accepted)});
+  }
   const std::string header = "<p>Made " + utc_now() + " by <code>" + escaped(options.command) + "</code> from " +
-                             escaped(absolute(model.path)) + " (sha256 <span class=\"hash\">" +
+                             escaped(shown_path(model.path)) + " (sha256 <span class=\"hash\">" +
                              sha256_file_hex(model.path) + "</span>).</p>\n<h2>Summary</h2>\n" +
                              html_table({}, summary, false) + "<h2>Contents</h2>\n";
   report.html = page.html("Accuracy report: " + model.info.name, header);

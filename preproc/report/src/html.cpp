@@ -1,5 +1,7 @@
 #include "vc/report/html.hpp"
 
+#include <filesystem>
+
 #include "vc/report/base64.hpp"
 #include "vc/tables/number_text.hpp"
 
@@ -55,6 +57,8 @@ std::string html_png_figure(const std::string& png_bytes, const std::string& alt
          "\">\n<img src=\"data:image/png;base64," + base64(png_bytes) + "\" alt=\"" + escaped(alt) +
          "\">\n<figcaption>" + escaped(caption) + "</figcaption>\n</figure>\n";
 }
+
+std::string shown_path(const std::string& path) { return std::filesystem::absolute(path).lexically_normal().string(); }
 
 std::string fixed(double v, int decimals) {
   return fixed_text(v == 0.0 ? 0.0 : v, decimals);  // no "-0.0" for a zero (a small negative value keeps its sign)

@@ -22,6 +22,11 @@ figure img { display: block; max-width: 100%; height: auto; border: 1px solid #d
 figcaption { font-size: 9pt; color: #444; margin-top: 0.3em; }
 p.statement { font-weight: bold; background: #eef7ee; border-left: 4px solid #2e7d32; padding: 0.4em 0.6em; }
 p.note, ul.notes { font-size: 9pt; color: #444; }
+td.pass { color: #1b5e20; font-weight: bold; }
+td.fail { color: #b71c1c; font-weight: bold; }
+td.missing { color: #666; font-style: italic; }
+table.acceptance td:first-child { white-space: nowrap; }
+table.numeric.acceptance td:nth-child(2), table.numeric.acceptance td:nth-child(3) { text-align: left; }
 nav ol { margin: 0.3em 0; }
 @page { size: A4; margin: 12mm 12mm 14mm 12mm; }
 @media print {

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "vc/acceptance/diagonals.hpp"
+#include "vc/acceptance/evaluation_file.hpp"
 #include "vc/acceptance/tolerances.hpp"
 #include "vc/identify/iso230_2.hpp"
 
@@ -50,7 +51,11 @@ struct DiagonalResult {
 DiagonalResult evaluate_diagonal(const Diagonal& d, const identify::LaserRuns& runs, double laser_uncertainty_mm,
                                  const Tolerances* tolerances);
 
-// One row per diagonal (units in the header), for a spreadsheet.
+// One row per diagonal and figure (A, E, R, B, M), in um, kind "body diagonal" or "face diagonal";
+// a figure with a limit has its verdict.
+std::vector<EvaluationRow> evaluation_rows(const std::vector<DiagonalResult>& results);
+
+// Those rows as evaluation_file.hpp's CSV, the laser's uncertainty per reading in its comments.
 std::string figures_csv(const std::vector<DiagonalResult>& results, double laser_uncertainty_mm);
 
 // The summary: per diagonal the figures with their uncertainty and verdict, the overall verdict,

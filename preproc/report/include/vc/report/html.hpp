@@ -23,6 +23,9 @@ enum class FigureSize { Half, Full };
 std::string html_png_figure(const std::string& png_bytes, const std::string& alt, const std::string& caption,
                             FigureSize size = FigureSize::Half);
 
+// A file's path as the page names it: absolute, normalised.
+std::string shown_path(const std::string& path);
+
 // Fixed decimals, whatever the locale.
 std::string fixed(double v, int decimals);
 
