@@ -1,5 +1,6 @@
 // `volcomp acceptance plan|simulate|evaluate`: the acceptance tests of a compensated machine
-// (issue 47; preproc/acceptance/README.md). First: the ISO 230-6 diagonal displacement tests.
+// (issue 47; preproc/acceptance/README.md): the ISO 230-6 diagonal displacement tests and the
+// ISO 230-4 circular tests.
 // Every input is read and checked before anything is written; each file is written atomically.
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -12,6 +13,9 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "vc/acceptance/circle_ballbar.hpp"
+#include "vc/acceptance/circle_evaluation.hpp"
+#include "vc/acceptance/circle_program.hpp"
 #include "vc/acceptance/diagonal_evaluation.hpp"
 #include "vc/acceptance/diagonal_laser.hpp"
 #include "vc/acceptance/diagonal_measurements.hpp"
@@ -39,6 +43,8 @@ struct PlanArgs {
   std::string machine, output, volume;
   std::optional<double> tool_length_mm;
   acceptance::DiagonalSettings settings;
+  std::string circles = "XY,YZ,ZX";
+  double circle_radius_mm = 0;
 };
 
 int run_plan(const PlanArgs& args, std::ostream& report) {
@@ -52,6 +58,8 @@ int run_plan(const PlanArgs& args, std::ostream& report) {
   plan.tool_offset_mm = plan.settings.tool_length_mm - model.tool_length_reference_mm;
   plan.rest = acceptance::rest_joints(model, plan.settings.volume);
   plan.diagonals = acceptance::plan_diagonals(model, plan.settings);
+  plan.circles = acceptance::plan_circles(plan.settings.volume, args.circles, args.circle_radius_mm);
+  if (plan.diagonals.empty() && plan.circles.empty()) throw std::runtime_error("--diagonals none --circles none: no test");
 
   const fs::path dir(args.output);
   Files files{{dir / "plan.toml", acceptance::plan_toml(plan)}, {dir / "README.md", acceptance::plan_index(plan, model)}};
@@ -59,13 +67,18 @@ int run_plan(const PlanArgs& args, std::ostream& report) {
     files.push_back({dir / acceptance::program_path(d), acceptance::diagonal_program(plan, d, model)});
     files.push_back({dir / acceptance::sheet_path(d), acceptance::diagonal_sheet(plan, d, model)});
   }
+  for (const acceptance::Circle& c : plan.circles) {
+    files.push_back({dir / acceptance::program_path(c), acceptance::circle_program(plan, c, model)});
+    files.push_back({dir / acceptance::sheet_path(c), acceptance::circle_sheet(plan, c, model)});
+  }
   write_all(files);
   const auto bodies = std::count_if(plan.diagonals.begin(), plan.diagonals.end(),
                                     [](const acceptance::Diagonal& d) { return d.kind == "body"; });
   report << "volcomp acceptance plan: " << plan.diagonals.size() << " ISO 230-6 diagonals of " << model.info.name
-         << " (" << bodies << " body, " << plan.diagonals.size() - static_cast<std::size_t>(bodies) << " face), " << plan.settings.targets << " targets and " << plan.settings.runs
-         << " bidirectional runs each, L " << number_text(plan.settings.tool_length_mm) << " mm, in " << args.output
-         << " (plan.toml, README.md, diagonals/)\n";
+         << " (" << bodies << " body, " << plan.diagonals.size() - static_cast<std::size_t>(bodies) << " face), "
+         << plan.settings.targets << " targets and " << plan.settings.runs << " bidirectional runs each, and "
+         << plan.circles.size() << " ISO 230-4 circles, L " << number_text(plan.settings.tool_length_mm) << " mm, in "
+         << args.output << " (plan.toml, README.md, diagonals/, circles/)\n";
   return 0;
 }
 
@@ -109,8 +122,22 @@ int run_simulate(const SimulateArgs& args, std::ostream& report) {
     for (const auto& r : readings) largest = std::max(largest, std::abs(r.deviation));
     files.push_back({fs::path(args.output) / acceptance::measurements_name(d), acceptance::laser_csv(d, readings, comments)});
   }
+  const std::vector<std::string> ballbar_comments = {
+      "instrument: simulated ballbar (volcomp acceptance simulate, seed " + std::to_string(args.seed) + ", noise " +
+          number_text(args.noise_um) + " um, reversal spikes " + number_text(args.reversal_um) + " um)",
+      "truth: " + args.truth, "compensation: " + args.compensation,
+      "deviation: the ballbar's length minus its nominal length (+: longer)"};
+  for (std::size_t k = 0; k < plan.circles.size(); ++k) {
+    const acceptance::Circle& c = plan.circles[k];
+    const identify::CircularTest test = acceptance::simulate_circle(plan, c, sim, static_cast<int>(k));
+    for (const auto& run : test.runs)
+      for (const auto& [angle, deviation] : run.points) largest = std::max(largest, std::abs(deviation));
+    files.push_back({fs::path(args.output) / acceptance::measurements_name(c),
+                     acceptance::ballbar_csv(plan, c, truth, test, ballbar_comments)});
+  }
   write_all(files);
-  report << "volcomp acceptance simulate: " << files.size() << " diagonals into " << args.output
+  report << "volcomp acceptance simulate: " << plan.diagonals.size() << " diagonals and " << plan.circles.size()
+         << " circles into " << args.output
          << ", compensation " << args.compensation << ", largest deviation " << fixed_text(largest * 1e3, 3)
          << " um\n";
   return 0;
@@ -119,31 +146,56 @@ int run_simulate(const SimulateArgs& args, std::ostream& report) {
 struct EvaluateArgs {
   std::string plan_dir, measurements, tolerances, output;
   double laser_uncertainty_um = acceptance::kTypicalLaserUncertaintyUm;
+  double ballbar_uncertainty_um = acceptance::kTypicalBallbarUncertaintyUm;
 };
+
+// A test's measurements file, which must exist.
+fs::path measurements_file(const EvaluateArgs& args, const std::string& name, const std::string& test,
+                           std::size_t tests) {
+  const fs::path file = fs::path(args.measurements) / name;
+  if (!fs::exists(file))
+    throw std::runtime_error(file.string() + ": no measurements of " + test + " (the plan's " + std::to_string(tests) +
+                             " tests each need their file)");
+  return file;
+}
 
 int run_evaluate(const EvaluateArgs& args, std::ostream& out) {
   if (!(args.laser_uncertainty_um >= 0)) throw std::runtime_error("--laser-uncertainty-um must be >= 0");
+  if (!(args.ballbar_uncertainty_um >= 0)) throw std::runtime_error("--ballbar-uncertainty-um must be >= 0");
   const acceptance::Plan plan = acceptance::read_plan(args.plan_dir);
   std::optional<acceptance::Tolerances> tolerances;
   if (!args.tolerances.empty()) tolerances = acceptance::read_tolerances(args.tolerances);
-  const double u_laser = args.laser_uncertainty_um * 1e-3;
-  std::vector<acceptance::DiagonalResult> results;
+  const acceptance::Tolerances* limits = tolerances ? &*tolerances : nullptr;
+  const double u_laser = args.laser_uncertainty_um * 1e-3, u_ballbar = args.ballbar_uncertainty_um * 1e-3;
+  const std::size_t tests = plan.diagonals.size() + plan.circles.size();
+  std::vector<acceptance::DiagonalResult> diagonals;
   for (const acceptance::Diagonal& d : plan.diagonals) {
-    const fs::path file = fs::path(args.measurements) / acceptance::measurements_name(d);
-    if (!fs::exists(file))
-      throw std::runtime_error(file.string() + ": no measurements of " + d.name + " (the plan's " +
-                               std::to_string(plan.diagonals.size()) + " diagonals each need their file)");
-    results.push_back(acceptance::evaluate_diagonal(d, acceptance::read_diagonal_runs(file.string(), d), u_laser,
-                                                    tolerances ? &*tolerances : nullptr));
+    const fs::path file = measurements_file(args, acceptance::measurements_name(d), d.name, tests);
+    diagonals.push_back(acceptance::evaluate_diagonal(d, acceptance::read_diagonal_runs(file.string(), d), u_laser, limits));
+  }
+  std::vector<acceptance::CircleResult> circles;
+  for (const acceptance::Circle& c : plan.circles) {
+    const fs::path file = measurements_file(args, acceptance::measurements_name(c), c.name, tests);
+    circles.push_back(acceptance::evaluate_circle(c, acceptance::read_circle_run(file.string(), c), u_ballbar, limits));
   }
   const std::string prefix = args.output.empty() ? (fs::path(args.plan_dir) / "evaluation").string() : args.output;
-  const std::string summary =
-      acceptance::summary_markdown(results, args.plan_dir, args.measurements, args.tolerances, u_laser);
-  write_all({{prefix + ".csv", acceptance::figures_csv(results, u_laser)}, {prefix + ".md", summary}});
+  std::string summary;
+  if (!diagonals.empty())
+    summary = acceptance::summary_markdown(diagonals, args.plan_dir, args.measurements, args.tolerances, u_laser);
+  if (!circles.empty()) summary += (summary.empty() ? "" : "\n") + acceptance::circles_markdown(circles, u_ballbar);
+  std::vector<acceptance::EvaluationRow> rows = acceptance::evaluation_rows(diagonals);
+  for (acceptance::EvaluationRow& r : acceptance::evaluation_rows(circles)) rows.push_back(r);
+  const std::string csv = acceptance::evaluation_csv(
+      "ISO 230-6 diagonals (the ISO 230-2 figures along each line) and ISO 230-4 circles",
+      {"u_repeatability: from the runs; u_instrument: the laser, " + number_text(args.laser_uncertainty_um) +
+       " um per reading, the ballbar, " + number_text(args.ballbar_uncertainty_um) + " um per reading"},
+      rows);
+  write_all({{prefix + ".csv", csv}, {prefix + ".md", summary}});
   out << summary << "\nWritten: " << prefix << ".csv, " << prefix << ".md\n";
-  const bool judged = tolerances && !tolerances->diagonal_mm.empty();
-  for (const auto& r : results)
-    if (judged && !r.passes()) return 1;
+  for (const auto& r : diagonals)
+    if (r.judged && !r.passes()) return 1;
+  for (const auto& r : circles)
+    if (r.judged && !r.passes()) return 1;
   return 0;
 }
 
@@ -151,11 +203,11 @@ int run_evaluate(const EvaluateArgs& args, std::ostream& out) {
 
 void add_acceptance_commands(CLI::App& volcomp, int& exit_code) {
   CLI::App* acceptance = volcomp.add_subcommand(
-      "acceptance", "Acceptance tests of the compensated machine: plan, simulate, evaluate (ISO 230-6 diagonals)");
+      "acceptance", "Acceptance tests of the compensated machine: plan, simulate, evaluate (ISO 230-6 diagonals, ISO 230-4 circles)");
   acceptance->require_subcommand(1);
 
   auto plan = std::make_shared<PlanArgs>();
-  CLI::App* p = acceptance->add_subcommand("plan", "Programs, setup sheets and plan.toml of the diagonal tests");
+  CLI::App* p = acceptance->add_subcommand("plan", "Programs, setup sheets and plan.toml of the diagonal and circular tests");
   p->add_option("MACHINE", plan->machine, "machine file (.toml) with linear X, Y, Z axes")->required();
   p->add_option("-o,--output", plan->output, "folder for the plan")->required();
   p->add_option("--volume", plan->volume, "work volume x0:x1,y0:y1,z0:z1 in mm (default: the travel less 10 % each side)");
@@ -166,12 +218,17 @@ void add_acceptance_commands(CLI::App& volcomp, int& exit_code) {
   p->add_option("--runs", plan->settings.runs, "bidirectional runs")->capture_default_str();
   p->add_option("--targets", plan->settings.targets, "targets per diagonal, ends included")->capture_default_str();
   p->add_option("--seed", plan->settings.seed, "of the targets' pseudo-random offsets")->capture_default_str();
-  p->add_option("--diagonals", plan->settings.which, "all, body (the four body diagonals) or face (the six face ones)")
+  p->add_option("--diagonals", plan->settings.which,
+                "all, body (the four body diagonals), face (the six face ones) or none")
       ->capture_default_str();
+  p->add_option("--circles", plan->circles, "the ISO 230-4 circles' planes (XY, YZ, ZX; commas) or none")
+      ->capture_default_str();
+  p->add_option("--circle-radius", plan->circle_radius_mm,
+                "the ballbar's length, mm (default: the longest of 50, 100, 150, 300 that fits in the volume)");
   p->callback([plan, &exit_code] { exit_code = run_plan(*plan, std::cout); });
 
   auto sim = std::make_shared<SimulateArgs>();
-  CLI::App* s = acceptance->add_subcommand("simulate", "A simulated laser along each planned diagonal on a true machine");
+  CLI::App* s = acceptance->add_subcommand("simulate", "A simulated laser along each planned diagonal and ballbar on each circle, on a true machine");
   s->add_option("DIR", sim->plan_dir, "the plan's folder")->required();
   s->add_option("--true", sim->truth, "the true machine's file (.toml): its real errors")->required();
   s->add_option("--compensation", sim->compensation, "machine file volkins corrects with, or off")->capture_default_str();
@@ -183,11 +240,14 @@ void add_acceptance_commands(CLI::App& volcomp, int& exit_code) {
   s->callback([sim, &exit_code] { exit_code = run_simulate(*sim, std::cout); });
 
   auto ev = std::make_shared<EvaluateArgs>();
-  CLI::App* e = acceptance->add_subcommand("evaluate", "ISO 230-2 figures along each diagonal, judged, with uncertainty");
+  CLI::App* e = acceptance->add_subcommand("evaluate", "ISO 230-2 figures along each diagonal, ISO 230-4 of each circle, judged, with uncertainty");
   e->add_option("DIR", ev->plan_dir, "the plan's folder")->required();
   e->add_option("--measurements", ev->measurements, "folder of the laser runs, one CSV per diagonal")->required();
   e->add_option("--tolerances", ev->tolerances, "limits (.toml, um): without them figures only, no verdict");
   e->add_option("--laser-uncertainty-um", ev->laser_uncertainty_um, "the laser's standard uncertainty of a reading, um")
+      ->capture_default_str();
+  e->add_option("--ballbar-uncertainty-um", ev->ballbar_uncertainty_um,
+                "the ballbar's standard uncertainty of a reading, um")
       ->capture_default_str();
   e->add_option("-o,--output", ev->output, "PREFIX: writes PREFIX.csv and PREFIX.md (default DIR/evaluation)");
   e->callback([ev, &exit_code] { exit_code = run_evaluate(*ev, std::cout); });

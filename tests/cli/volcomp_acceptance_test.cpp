@@ -23,6 +23,7 @@
 #include <map>
 #include <regex>
 #include <sstream>
+#include <tuple>
 
 #include "rs274.hpp"
 #include "test_support.hpp"
@@ -157,7 +158,7 @@ TEST_P(VolcompAcceptanceClosedForm, SystematicDeviationAlongEachDiagonalIsTheClo
   const fs::path dir = fresh(std::string("closed_") + c.name);
   write(dir / "exx.csv", "x[mm],EXX[um]\n0,0\n400," + std::to_string(c.k * 400e3) + "\n");
   write(dir / "true.toml", three_axes(c.x_extra, c.z_extra));
-  auto r = test::run_volcomp("acceptance plan " + (dir / "true.toml").string() + " -o " + (dir / "plan").string());
+  auto r = test::run_volcomp("acceptance plan " + (dir / "true.toml").string() + " --circles none -o " + (dir / "plan").string());
   ASSERT_EQ(r.exit_code, 0) << r.out;
   r = test::run_volcomp("acceptance simulate " + (dir / "plan").string() + " --true " + (dir / "true.toml").string() +
                         " --noise-um 0 --reversal-um 1.5 -o " + (dir / "m").string());
@@ -230,7 +231,7 @@ TEST(VolcompAcceptance, Mc300FiguresMoveTheWayTheTruthSays) {
   const fs::path dir = fresh("mc300");
   const std::string truth = test::machine_path("mc300");
   const std::string plan = (dir / "plan").string();
-  ASSERT_EQ(test::run_volcomp("acceptance plan " + truth + " -o " + plan).exit_code, 0);
+  ASSERT_EQ(test::run_volcomp("acceptance plan " + truth + " --circles none -o " + plan).exit_code, 0);
   auto r = test::run_volcomp("perturb " + truth + " -o " + (dir / "other").string() + " --seed 3");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const std::vector<double> off = systematic(dir, plan, truth, "off", "off");
@@ -255,7 +256,7 @@ TEST(VolcompAcceptance, NoiseGivesTheRepeatabilityFiveRunsShouldAndItsUncertaint
   const fs::path dir = fresh("noise");
   const std::string machine = test::machine_path("mill3");
   const std::string plan = (dir / "plan").string();
-  ASSERT_EQ(test::run_volcomp("acceptance plan " + machine + " -o " + plan).exit_code, 0);
+  ASSERT_EQ(test::run_volcomp("acceptance plan " + machine + " --circles none -o " + plan).exit_code, 0);
   const double s_um = 1.0;
   auto r = test::run_volcomp("acceptance simulate " + plan + " --true " + machine + " --noise-um 1 --seed 7 -o " +
                              (dir / "m").string());
@@ -297,7 +298,7 @@ TEST(VolcompAcceptance, TolerancesJudgeEachDiagonal) {
   const fs::path dir = fresh("tolerances");
   const std::string machine = test::machine_path("mc300");
   const std::string plan = (dir / "plan").string();
-  ASSERT_EQ(test::run_volcomp("acceptance plan " + machine + " -o " + plan).exit_code, 0);
+  ASSERT_EQ(test::run_volcomp("acceptance plan " + machine + " --circles none -o " + plan).exit_code, 0);
   ASSERT_EQ(test::run_volcomp("acceptance simulate " + plan + " --true " + machine + " -o " + (dir / "m").string())
                 .exit_code,
             0);
@@ -350,7 +351,7 @@ TEST(VolcompAcceptance, MeasurementsTheFitCannotSupportAreRefusedWithFileAndLine
   const fs::path dir = fresh("bad_input");
   const std::string machine = test::machine_path("mill3");
   const std::string plan = (dir / "plan").string();
-  ASSERT_EQ(test::run_volcomp("acceptance plan " + machine + " -o " + plan).exit_code, 0);
+  ASSERT_EQ(test::run_volcomp("acceptance plan " + machine + " --circles none -o " + plan).exit_code, 0);
   ASSERT_EQ(test::run_volcomp("acceptance simulate " + plan + " --true " + machine + " --noise-um 0.3 -o " +
                               (dir / "m").string())
                 .exit_code,
@@ -384,6 +385,147 @@ TEST(VolcompAcceptance, MeasurementsTheFitCannotSupportAreRefusedWithFileAndLine
     EXPECT_TRUE(std::regex_search(r.out, c.message)) << c.what << ": " << r.out;
     EXPECT_FALSE(fs::exists(dir / "report.csv")) << c.what;
     EXPECT_FALSE(fs::exists(dir / "report.md")) << c.what;
+  }
+  fs::remove_all(dir);
+}
+
+// The ISO 230-4 circles: each program through rs274, an arc at a time: the plane, the six arcs
+// (10 deg feed-in, the turn in two halves, 10 deg feed-out, each way) of the right rotation
+// about the plan's centre, every end on the circle at its angle, the normal axis at the centre.
+TEST(VolcompAcceptance, EveryShippedMachinesCirclesRunThroughRs274OnTheirCircles) {
+  if (!test::rs274_available()) GTEST_SKIP() << "no rs274";
+  int circles = 0;
+  for (const auto& entry : fs::directory_iterator(test::source_path("machines/data"))) {
+    if (entry.path().extension() != ".toml") continue;
+    const std::string name = entry.path().stem().string();
+    const fs::path dir = fresh("circles_" + name);
+    const auto r = test::run_volcomp("acceptance plan " + entry.path().string() + " --diagonals none -o " +
+                                     (dir / "plan").string());
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    const acceptance::Plan plan = acceptance::read_plan((dir / "plan").string());
+    ASSERT_EQ(plan.circles.size(), 3u) << name;
+    for (const acceptance::Circle& c : plan.circles) {
+      ++circles;
+      const std::string run = "acceptance_" + name + "_" + c.name;
+      const auto moves = test::rs274_moves(run, dir / "plan" / acceptance::program_path(c));
+      std::vector<test::CanonMove> arcs;
+      for (const test::CanonMove& m : moves)
+        if (m.kind == test::CanonMove::Arc) arcs.push_back(m);
+      ASSERT_EQ(arcs.size(), 6u) << name << " " << c.name;
+      const int first = c.first(), second = c.second(), normal = 3 - first - second;
+      const double ends_deg[] = {-10, 180, 10, -180, -10, 0};
+      const int rotations[] = {-1, 1, 1, -1, -1, 1};  // ccw (G3) the increasing angle: feed-in cw first
+      for (std::size_t k = 0; k < arcs.size(); ++k) {
+        const test::CanonMove& a = arcs[k];
+        EXPECT_EQ(a.first, first) << c.name;
+        EXPECT_EQ(a.second, second) << c.name;
+        EXPECT_EQ(a.rotation, rotations[k]) << c.name << " arc " << k + 1;
+        EXPECT_NEAR(a.center_first, c.centre_mm[first], 1e-4) << c.name;
+        EXPECT_NEAR(a.center_second, c.centre_mm[second], 1e-4) << c.name;
+        const Eigen::Vector3d end(a.end[0], a.end[1], a.end[2]);
+        EXPECT_LT((end - c.at(ends_deg[k] * M_PI / 180)).norm(), 2e-4) << c.name << " arc " << k + 1;
+        EXPECT_NEAR(end[normal], c.centre_mm[normal], 1e-4) << c.name;
+        for (int j = 3; j < 6; ++j) EXPECT_EQ(a.end[static_cast<std::size_t>(j)], 0.0) << c.name;  // rotary at 0
+      }
+      fs::remove_all(test::run_folder_path(run));
+    }
+    fs::remove_all(dir);
+  }
+  EXPECT_GE(circles, 15);
+}
+
+// A machine whose only error is Z's squareness EB0Z = b: in ZX the circle's radius deviation is,
+// to first order, dR = (R b / 2) sin 2 phi, so G(b) = R b, F = R b / 2, H = 0; in XY and YZ it
+// shows nothing (second order, R b^2: under 1 nm).
+TEST(VolcompAcceptance, CirclesOfASquarenessAloneAreTheClosedForm) {
+  const fs::path dir = fresh("circle_closed");
+  const double b = 20.0 * M_PI / 648000.0;
+  write(dir / "true.toml", three_axes("", "[tool_chain.location]\nEB0Z_arcsec = 20.0\n"));
+  auto r = test::run_volcomp("acceptance plan " + (dir / "true.toml").string() + " --diagonals none -o " +
+                             (dir / "plan").string());
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  r = test::run_volcomp("acceptance simulate " + (dir / "plan").string() + " --true " + (dir / "true.toml").string() +
+                        " -o " + (dir / "m").string());
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  r = test::run_volcomp("acceptance evaluate " + (dir / "plan").string() + " --measurements " + (dir / "m").string() +
+                        " -o " + (dir / "report").string());
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const acceptance::Plan plan = acceptance::read_plan((dir / "plan").string());
+  const acceptance::Evaluation e = acceptance::read_evaluation((dir / "report.csv").string());
+  ASSERT_EQ(e.rows.size(), 9u);
+  for (const acceptance::Circle& c : plan.circles) {
+    const auto f = figures_of(e, c.name);
+    ASSERT_EQ(f.size(), 3u) << c.name;
+    const double g = c.plane == "ZX" ? c.radius_mm * b * 1e3 : 0.0;
+    EXPECT_NEAR(f.at("G(b)").value, g, 2e-3) << c.name;
+    EXPECT_NEAR(f.at("F").value, g / 2, 2e-3) << c.name;
+    EXPECT_NEAR(f.at("H").value, 0.0, 1e-6) << c.name;
+    EXPECT_EQ(f.at("G(b)").kind, "circle");
+    EXPECT_NEAR(f.at("G(b)").u_instrument, std::sqrt(2.0) * 0.7, 1e-6) << "the ballbar's 0.7 um, two readings";
+    EXPECT_NEAR(f.at("F").u_instrument, 0.7, 1e-6) << "one reading";
+    if (c.plane == "ZX") std::cout << c.name << ": G(b) " << f.at("G(b)").value << " um, closed form " << g << "\n";
+  }
+  fs::remove_all(dir);
+}
+
+TEST(VolcompAcceptance, Mc300CirclesMoveTheWayTheTruthSaysAndAreJudged) {
+  const fs::path dir = fresh("mc300_circles");
+  const std::string truth = test::machine_path("mc300");
+  const std::string plan = (dir / "plan").string();
+  ASSERT_EQ(test::run_volcomp("acceptance plan " + truth + " --diagonals none -o " + plan).exit_code, 0);
+  ASSERT_EQ(test::run_volcomp("perturb " + truth + " -o " + (dir / "other").string() + " --seed 3").exit_code, 0);
+  write(dir / "limits.toml", "[circle]\nGb_um = 2.0\nH_um = 2.0\n");
+  std::map<std::string, acceptance::Evaluation> results;
+  for (const auto& [name, compensation] : std::vector<std::pair<std::string, std::string>>{
+           {"off", "off"}, {"on", truth}, {"other", (dir / "other" / "mc300.toml").string()}}) {
+    auto r = test::run_volcomp("acceptance simulate " + plan + " --true " + truth + " --compensation " + compensation +
+                               " --noise-um 0.1 --seed 5 -o " + (dir / name).string());
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    r = test::run_volcomp("acceptance evaluate " + plan + " --measurements " + (dir / name).string() +
+                          " --tolerances " + (dir / "limits.toml").string() + " -o " + (dir / (name + "_report")).string());
+    EXPECT_EQ(r.exit_code, name == "on" ? 0 : 1) << name << ": " << r.out;  // the true file passes, the others fail
+    results[name] = acceptance::read_evaluation((dir / (name + "_report.csv")).string());
+  }
+  for (const std::string& test : acceptance::tests_of(results["off"])) {
+    const auto g = [&](const std::string& name) { return figures_of(results[name], test).at("G(b)").value; };
+    std::cout << test << ": G(b) off " << g("off") << " um, on with the true file " << g("on")
+              << " um, on with a perturbed file " << g("other") << " um\n";
+    EXPECT_GT(g("off"), 5.0) << test;
+    EXPECT_LT(g("on"), 1.0) << test << ": the ballbar's noise, 0.1 um a reading";
+    EXPECT_GT(g("other"), g("on")) << test;
+    EXPECT_LT(g("other"), g("off")) << test;
+    EXPECT_EQ(figures_of(results["on"], test).at("G(b)").verdict, "PASS") << test;
+    EXPECT_EQ(figures_of(results["off"], test).at("G(b)").verdict, "FAIL") << test;
+    EXPECT_EQ(figures_of(results["off"], test).at("F").verdict, "") << test << ": no limit, no verdict";
+  }
+  EXPECT_EQ(acceptance::overall_verdict(results["on"]), "PASS");
+  EXPECT_EQ(acceptance::overall_verdict(results["off"]), "FAIL");
+  fs::remove_all(dir);
+}
+
+// A ballbar file that is not the planned circle's: another radius or plane, one direction only.
+TEST(VolcompAcceptance, CircleRunsThatAreNotThePlansAreRefusedAndNothingWritten) {
+  const fs::path dir = fresh("bad_circles");
+  const std::string machine = test::machine_path("mill3");
+  const std::string plan = (dir / "plan").string();
+  ASSERT_EQ(test::run_volcomp("acceptance plan " + machine + " --diagonals none --circles XY -o " + plan).exit_code, 0);
+  ASSERT_EQ(test::run_volcomp("acceptance simulate " + plan + " --true " + machine + " -o " + (dir / "m").string()).exit_code,
+            0);
+  const fs::path run = dir / "m" / "circle-XY.csv";
+  const std::string good = test::file_text(run);
+  for (const auto& [what, text, message] : std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"radius", std::regex_replace(good, std::regex("# radius_mm: 100"), "# radius_mm: 150"),
+            "circle-XY.csv: error: circle-XY's ballbar is 100 mm: the file needs '# radius_mm: 100'"},
+           {"plane", std::regex_replace(good, std::regex("# plane: XY"), "# plane: YZ"),
+            "circle-XY.csv: error: circle-XY runs in XY: the file needs '# plane: XY'"},
+           {"one way", std::regex_replace(good, std::regex("[0-9.]+,cw,[-0-9.]+\n"), ""),
+            "circle-XY.csv: error: circle-XY: ISO 230-4 asks for both directions, ccw and cw; the file has one"}}) {
+    write(run, text);
+    const auto r = test::run_volcomp("acceptance evaluate " + plan + " --measurements " + (dir / "m").string() + " -o " +
+                                     (dir / "report").string());
+    EXPECT_EQ(r.exit_code, 2) << what << ": " << r.out;
+    EXPECT_NE(r.out.find(message), std::string::npos) << what << ": " << r.out;
+    EXPECT_FALSE(fs::exists(dir / "report.csv")) << what;
   }
   fs::remove_all(dir);
 }

@@ -17,13 +17,14 @@ namespace {
 namespace fs = std::filesystem;
 
 // 5 axis plots, the balance, the volume map's 4 sheets; then A and E (the figures with limits)
-// for the body and the face diagonals.
-constexpr int kAcceptanceFigures = 4;
+// for the body and the face diagonals, and G(b) (its limit) for the circles.
+constexpr int kAcceptanceFigures = 5;
 constexpr int kFigures = 10 + kAcceptanceFigures;
 
 const std::vector<std::string> kTests = {"body-NNN-PPP",  "body-NNP-PPN",  "body-NPN-PNP",  "body-NPP-PNN",
                                          "face-XY-NN-PP", "face-XY-NP-PN", "face-YZ-NN-PP", "face-YZ-NP-PN",
                                          "face-ZX-NN-PP", "face-ZX-NP-PN"};
+const std::vector<std::string> kCircles = {"circle-XY", "circle-YZ", "circle-ZX"};
 
 // Runs `command` through volcomp, expecting `exit_code`.
 void volcomp(const std::string& command, int exit_code = 0) {
@@ -39,8 +40,9 @@ TEST(VolcompReportAcceptance, OffAndOnSideBySideInTheBrowser) {
   const std::string simulate = "acceptance simulate " + plan + " --true " + mc300 + " --noise-um 0.3 --seed 5 ";
   volcomp(simulate + "-o " + (dir / "m_off").string());
   volcomp(simulate + "--compensation " + (dir / "other" / "mc300.toml").string() + " -o " + (dir / "m_on").string());
-  // E off 7 to 34 um, on 2.5 to 10 um (tests/cli/volcomp_acceptance_test.cpp): off fails, on passes.
-  test::write(dir / "limits.toml", "[diagonal]\nE_um = 15\nA_um = 20\n");
+  // E off 7 to 34 um, on 2.5 to 10 um; G(b) off 6.6 to 10.7 um, on 3.1 to 3.5 um, 2 um more of
+  // the ballbar's noise (tests/cli/volcomp_acceptance_test.cpp): off fails, on passes.
+  test::write(dir / "limits.toml", "[diagonal]\nE_um = 15\nA_um = 20\n[circle]\nGb_um = 8\n");
   const std::string evaluate = "acceptance evaluate " + plan + " --tolerances " + (dir / "limits.toml").string();
   volcomp(evaluate + " --measurements " + (dir / "m_off").string() + " -o " + (dir / "off").string(), 1);
   volcomp(evaluate + " --measurements " + (dir / "m_on").string() + " -o " + (dir / "on").string(), 0);
@@ -55,8 +57,8 @@ TEST(VolcompReportAcceptance, OffAndOnSideBySideInTheBrowser) {
       << r.out;
   const std::string html = test::file_text(page);
   EXPECT_NE(html.find("<section id=\"acceptance\">\n<h2>Acceptance (ISO/TR 16907 11.3)</h2>"), std::string::npos);
-  EXPECT_NE(html.find("<td>acceptance verdict (ISO/TR 16907 11.3)</td><td>compensation off: FAIL (10 tests); "
-                      "compensation on: PASS (10 tests)</td>"),
+  EXPECT_NE(html.find("<td>acceptance verdict (ISO/TR 16907 11.3)</td><td>compensation off: FAIL (13 tests); "
+                      "compensation on: PASS (13 tests)</td>"),
             std::string::npos);
   for (const char* file : {"off.csv", "on.csv"}) {
     const test::CommandResult sum = test::run_command("sha256sum '" + (dir / file).string() + "'");
@@ -89,13 +91,15 @@ TEST(VolcompReportAcceptance, OffAndOnSideBySideInTheBrowser) {
   ASSERT_NE(section, std::string::npos);
   const std::string rendered = dom.out.substr(section, dom.out.find("</section>", section) - section);
   for (const std::string& test : kTests) EXPECT_EQ(test::count(rendered, "<td>" + test + "</td>"), 5u) << test;
+  for (const std::string& test : kCircles) EXPECT_EQ(test::count(rendered, "<td>" + test + "</td>"), 3u) << test;
+  EXPECT_EQ(test::count(rendered, "alt=\"acceptance circle G(b)\""), 1u);
   for (const char* kind : {"body diagonal", "face diagonal"})
     for (const char* symbol : {"A", "E"})
       EXPECT_EQ(test::count(rendered, "alt=\"acceptance " + std::string(kind) + " " + symbol + "\""), 1u)
           << kind << " " << symbol;
   EXPECT_EQ(test::count(rendered, "<img src=\"data:image/png;base64,"), static_cast<std::size_t>(kAcceptanceFigures));
-  EXPECT_NE(rendered.find("<td class=\"fail\">FAIL</td><td>10</td>"), std::string::npos);
-  EXPECT_NE(rendered.find("<td class=\"pass\">PASS</td><td>10</td>"), std::string::npos);
+  EXPECT_NE(rendered.find("<td class=\"fail\">FAIL</td><td>13</td>"), std::string::npos);
+  EXPECT_NE(rendered.find("<td class=\"pass\">PASS</td><td>13</td>"), std::string::npos);
   fs::remove_all(dir);
 }
 

@@ -21,6 +21,7 @@
 
 #include "linuxcnc_run.hpp"
 #include "session_checks.hpp"
+#include "vc/acceptance/evaluation_file.hpp"
 #include "vc/acceptance/plan_file.hpp"
 #include "vc/machine/forward.hpp"
 #include "vc/machine/load_machine.hpp"
@@ -59,24 +60,10 @@ std::pair<double, double> e_and_m(const std::vector<Reading>& readings, bool las
   return {hi - lo, mhi - mlo};
 }
 
-// A figure of evaluate's CSV (um): the row of `test`, the column `symbol[um]`.
+// A figure of evaluate's CSV (um): the row of `test` and `symbol`.
 double figure_um(const fs::path& csv, const std::string& test, const std::string& symbol) {
-  std::ifstream in(csv);
-  std::vector<std::string> header;
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '#') continue;
-    std::vector<std::string> cells;
-    std::stringstream s(line);
-    for (std::string cell; std::getline(s, cell, ',');) cells.push_back(cell);
-    if (header.empty()) {
-      header = cells;
-      continue;
-    }
-    if (cells[0] != test) continue;
-    const auto column = std::find(header.begin(), header.end(), symbol + "[um]");
-    if (column == header.end()) break;
-    return std::stod(cells[static_cast<std::size_t>(column - header.begin())]);
-  }
+  for (const acceptance::EvaluationRow& r : acceptance::read_evaluation(csv.string()).rows)
+    if (r.test == test && r.figure == symbol && r.unit == "um") return r.value;
   throw std::runtime_error("no " + symbol + " of " + test + " in " + csv.string());
 }
 
@@ -247,7 +234,7 @@ TEST_F(DiagonalSession, FiguresAreTheTrueMachinesAndTheIdentifiedFileTakesThemTo
   // the axes' top speed: a minute of session.
   const test::CommandResult p =
       test::run_volcomp("acceptance plan " + nominal + " -o " + (dir_ / "plan").string() +
-                        " --diagonals body --volume 190:310,110:190,-190:-110 --targets 5 --runs 2 --dwell 0.2"
+                        " --diagonals body --circles none --volume 190:310,110:190,-190:-110 --targets 5 --runs 2 --dwell 0.2"
                         " --feed 6000");
   ASSERT_EQ(p.exit_code, 0) << p.out;
   plan_ = acceptance::read_plan((dir_ / "plan").string());

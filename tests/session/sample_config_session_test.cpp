@@ -7,8 +7,8 @@
 // geometry from pyvcp sliders). `volcomp init` writes the machine file and the patch, the patch is
 // applied with `patch`, and the configuration's own demo program (demos/xyzbc_switchkins.ngc:
 // helices at B 20 C 45 in TCP, moves in identity, 16 switches; the xyzac one at A 20 C 45;
-// 5axisgui.ngc: 128 holes drilled with W around a sphere, B -90..-34, C all round, tool 100 with
-// G43; for the tdr sample, whose demo reads stock pins, the test's tdr_switchkins.ngc) runs
+// 5axisgui.ngc, in the test's copy 5axisgui_short.ngc with 32 of its 128 holes drilled with W
+// around a sphere, its 8 B steps, C at 90 deg steps, tool 100 with G43; for the tdr sample, whose demo reads stock pins, the test's tdr_switchkins.ngc) runs
 // headless (tests/session/headless_sample.py) with the stock module and with volkins. The joints
 // of both are checked against an independent transcription of the stock inverse (trtfuncs.c,
 // 5axiskins.c, xyzab_tdr_kins.comp) evaluated on the recorded world commands, in each sample's
@@ -161,15 +161,16 @@ const Sample kWrappedRotary{kAxisSamples / "wrapped_rotary",
                             0,
                             test::source_path("tests/session/programs/xyza_wrapped.ngc"),
                             ""};
+// Its demo program with a quarter of its drillings (the same B steps, C at 90 deg steps).
 const Sample kBridgemill{kSamples / "bridgemill",
                          "5axis.ini",
-                         "5axisgui.ngc",
+                         "5axisgui_short.ngc",
                          "5axis.toml",
                          bridgemill_inverse,
                          " --tcp-type 0 --sets :gui-pivot-len=250",
                          0,
                          10000,
-                         {},
+                         test::source_path("tests/session/programs/5axisgui_short.ngc"),
                          ""};
 // xyzab_tdr_kins: type 0 the identity, type 1 TCP. Headless, its pyvcp sliders are gone: the
 // stock run gets their start values on their signals (the patched one has no stock pin on them).

@@ -7,15 +7,6 @@
 #include "vc/tables/number_text.hpp"
 
 namespace vc::acceptance {
-namespace {
-
-std::string um(double mm) { return fixed_text(mm * 1e3, 3); }
-
-}  // namespace
-
-double Figure::expanded_mm() const {
-  return 2 * std::sqrt(u_repeatability_mm * u_repeatability_mm + u_instrument_mm * u_instrument_mm);
-}
 
 bool DiagonalResult::passes() const {
   return std::all_of(figures.begin(), figures.end(), [](const Figure& f) { return f.passes(); });
@@ -56,31 +47,9 @@ DiagonalResult evaluate_diagonal(const Diagonal& d, const identify::LaserRuns& r
 std::vector<EvaluationRow> evaluation_rows(const std::vector<DiagonalResult>& results) {
   std::vector<EvaluationRow> rows;
   for (const DiagonalResult& r : results)
-    for (const Figure& f : r.figures) {
-      EvaluationRow row;
-      row.test = r.diagonal.name;
-      row.kind = r.diagonal.kind == "body" ? "body diagonal" : "face diagonal";  // the face is in the name
-      row.figure = f.symbol;
-      row.name = f.name;
-      row.value = f.value_mm * 1e3;
-      row.u_repeatability = f.u_repeatability_mm * 1e3;
-      row.u_instrument = f.u_instrument_mm * 1e3;
-      row.expanded = f.expanded_mm() * 1e3;
-      if (f.limit_mm) {
-        row.limit = *f.limit_mm * 1e3;
-        row.verdict = f.passes() ? "PASS" : "FAIL";
-      }
-      row.unit = "um";
-      rows.push_back(row);
-    }
+    for (const Figure& f : r.figures)  // the face is in the name
+      rows.push_back(figure_row(r.diagonal.name, r.diagonal.kind == "body" ? "body diagonal" : "face diagonal", f));
   return rows;
-}
-
-std::string figures_csv(const std::vector<DiagonalResult>& results, double laser_uncertainty_mm) {
-  return evaluation_csv("ISO 230-6 diagonals, the ISO 230-2 figures along each line",
-                        {"u_repeatability: from the runs; u_instrument: the laser, " +
-                         number_text(laser_uncertainty_mm * 1e3) + " um per reading"},
-                        evaluation_rows(results));
 }
 
 std::string summary_markdown(const std::vector<DiagonalResult>& results, const std::string& plan_dir,
@@ -97,19 +66,7 @@ std::string summary_markdown(const std::vector<DiagonalResult>& results, const s
     m << "## " << r.diagonal.name << " (" << r.diagonal.kind << ", " << fixed_text(r.diagonal.length_mm(), 3)
       << " mm, " << r.iso.targets.size() << " targets, " << r.iso.runs_up << " runs + and " << r.iso.runs_down
       << " -)" << (r.judged ? (r.passes() ? ": PASS" : ": FAIL") : "") << "\n\n"
-      << "| figure | value [um] | u repeatability [um] | u laser [um] | U (k = 2) [um] | limit [um] | verdict |\n"
-      << "|---|---:|---:|---:|---:|---:|---|\n";
-    for (const Figure& f : r.figures) {
-      std::string verdict;
-      if (f.limit_mm) {
-        verdict = f.passes() ? "PASS" : "FAIL";
-        if (std::abs(*f.limit_mm - f.value_mm) < f.expanded_mm()) verdict += " (within U of the limit)";
-      }
-      m << "| " << f.symbol << " " << f.name << " | " << um(f.value_mm) << " | " << um(f.u_repeatability_mm) << " | "
-        << um(f.u_instrument_mm) << " | " << um(f.expanded_mm()) << " | " << (f.limit_mm ? um(*f.limit_mm) : "-")
-        << " | " << verdict << " |\n";
-    }
-    m << "\n";
+      << figures_markdown(r.figures, "laser") << "\n";
   }
   m << "## Uncertainty\n\n"
     << "Standard uncertainties (k = 1), U = 2 u_c (k = 2). Repeatability part from the runs: a target's mean "

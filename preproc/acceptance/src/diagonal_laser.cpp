@@ -1,46 +1,21 @@
 #include "vc/acceptance/diagonal_laser.hpp"
 
 #include <cmath>
-#include <random>
 #include <sstream>
 #include <stdexcept>
 
-#include "vc/machine/correct.hpp"
+#include "simulated_instrument.hpp"
 #include "vc/machine/forward.hpp"
 #include "vc/tables/number_text.hpp"
 
 namespace vc::acceptance {
-namespace {
-
-// Box-Muller on mt19937_64's raw output (the <random> distributions differ between libraries).
-class Gauss {
- public:
-  explicit Gauss(std::uint64_t seed) : generator_(seed) {}
-  double operator()() {
-    const double u1 = (static_cast<double>(generator_() >> 11) + 1.0) / 9007199254740993.0;  // (0, 1]
-    const double u2 = static_cast<double>(generator_() >> 11) / 9007199254740992.0;          // [0, 1)
-    return std::sqrt(-2 * std::log(u1)) * std::cos(2 * M_PI * u2);
-  }
-
- private:
-  std::mt19937_64 generator_;
-};
-
-}  // namespace
 
 std::vector<identify::Reading> simulate_diagonal(const Plan& plan, const Diagonal& d, const LaserSimulation& sim,
                                                  int diagonal_index) {
   const machine::Model& truth = *sim.truth;
   const double L = plan.settings.tool_length_mm;
   const auto nominal = [&](double distance) { return joints_at(truth, plan.rest, d.at(distance)); };
-  const auto commanded = [&](const machine::Joints& q) -> machine::Joints {
-    if (!sim.compensation) return q;
-    const machine::Correction c = machine::correct(*sim.compensation, q, L);
-    if (c.status != machine::Status::Ok)
-      throw std::runtime_error(d.name + ": the correction did not converge at " + number_text(q[0]) + ", " +
-                               number_text(q[1]) + ", " + number_text(q[2]) + " mm");
-    return c.joints;
-  };
+  const auto commanded = [&](const machine::Joints& q) { return commanded_joints(sim, q, L, d.name); };
   const auto tip = [&](machine::Machine which, const machine::Joints& q) {
     return machine::tool_pose(truth, which, q, L).tip_mm;
   };

@@ -138,12 +138,20 @@ std::string plan_index(const Plan& plan, const machine::Model& model) {
     << "Work volume (joints): X " << number_text(s.volume.low_mm[0]) << ":" << number_text(s.volume.high_mm[0])
     << ", Y " << number_text(s.volume.low_mm[1]) << ":" << number_text(s.volume.high_mm[1]) << ", Z "
     << number_text(s.volume.low_mm[2]) << ":" << number_text(s.volume.high_mm[2]) << " mm. Rotary axes: "
-    << rotary_text(plan, model) << ".\n\n"
-    << "## ISO 230-6 diagonal displacement tests (`diagonals/`)\n\n"
-    << "| test | kind | length [mm] | program | sheet | measurements file |\n|---|---|---:|---|---|---|\n";
+    << rotary_text(plan, model) << ".\n\n";
+  if (!plan.diagonals.empty())
+    m << "## ISO 230-6 diagonal displacement tests (`diagonals/`)\n\n"
+      << "| test | kind | length [mm] | program | sheet | measurements file |\n|---|---|---:|---|---|---|\n";
   for (const Diagonal& d : plan.diagonals)
     m << "| " << d.name << " | " << d.kind << " | " << fixed_text(d.length_mm(), 3) << " | `" << program_path(d)
       << "` | `" << sheet_path(d) << "` | `" << measurements_name(d) << "` |\n";
+  if (!plan.circles.empty()) {
+    m << "\n## ISO 230-4 circular tests (`circles/`)\n\n"
+      << "| test | plane | radius [mm] | program | sheet | measurements file |\n|---|---|---:|---|---|---|\n";
+    for (const Circle& c : plan.circles)
+      m << "| " << c.name << " | " << c.plane << " | " << number_text(c.radius_mm) << " | `" << program_path(c) << "` | `"
+        << sheet_path(c) << "` | `" << measurements_name(c) << "` |\n";
+  }
   m << "\nThen: `volcomp acceptance evaluate DIR --measurements FOLDER [--tolerances T.toml]`.\n";
   return m.str();
 }

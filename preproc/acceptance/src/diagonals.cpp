@@ -53,8 +53,9 @@ std::vector<Diagonal> plan_diagonals(const machine::Model& model, const Diagonal
   if (!(s.feed_mm_per_min > 0)) throw std::runtime_error("--feed must be > 0 mm/min");
   if (!(s.dwell_s > 0)) throw std::runtime_error("--dwell must be > 0 s (the laser reads at rest)");
   if (!(s.overrun_mm >= 0)) throw std::runtime_error("--overrun must be >= 0 mm");
-  if (s.which != "all" && s.which != "body" && s.which != "face")
-    throw std::runtime_error("--diagonals " + s.which + ": all, body or face");
+  if (s.which != "all" && s.which != "body" && s.which != "face" && s.which != "none")
+    throw std::runtime_error("--diagonals " + s.which + ": all, body, face or none");
+  if (s.which == "none") return {};
   const WorkVolume& v = s.volume;
   const Eigen::Vector3d c = v.centre();
   std::vector<Diagonal> out;

@@ -45,6 +45,9 @@ Eigen::Vector3d vector3(const machine::TomlFile& file, const toml::table& t, std
 std::string program_path(const Diagonal& d) { return "diagonals/" + d.name + ".ngc"; }
 std::string sheet_path(const Diagonal& d) { return "diagonals/" + d.name + ".md"; }
 std::string measurements_name(const Diagonal& d) { return d.name + ".csv"; }
+std::string program_path(const Circle& c) { return "circles/" + c.name + ".ngc"; }
+std::string sheet_path(const Circle& c) { return "circles/" + c.name + ".md"; }
+std::string measurements_name(const Circle& c) { return c.name + ".csv"; }
 
 std::string plan_toml(const Plan& p) {
   const DiagonalSettings& s = p.settings;
@@ -82,6 +85,15 @@ std::string plan_toml(const Plan& p) {
         << "sheet = \"" << sheet_path(d) << "\"\n"
         << "measurements = \"" << measurements_name(d) << "\"\n";
   }
+  for (const Circle& c : p.circles)
+    out << "\n[[circle]]  # ISO 230-4\n"
+        << "name = " << quoted(c.name) << "\n"
+        << "plane = " << quoted(c.plane) << "\n"
+        << "centre_mm = " << list(c.centre_mm) << "\n"
+        << "radius_mm = " << number_text(c.radius_mm) << "\n"
+        << "program = \"" << program_path(c) << "\"\n"
+        << "sheet = \"" << sheet_path(c) << "\"\n"
+        << "measurements = \"" << measurements_name(c) << "\"\n";
   return out.str();
 }
 
@@ -155,7 +167,26 @@ Plan read_plan_file(const std::string& path) {
       p.diagonals.push_back(d);
     }
   }
-  if (p.diagonals.empty()) throw LoadError({file.path()}, "no [[diagonal]] in the plan");
+  if (const toml::node* n = file.root().get("circle")) {
+    const toml::array* a = n->as_array();
+    if (!a) throw LoadError(file.where(*n), "'circle' must be an array of tables, [[circle]]");
+    for (const toml::node& item : *a) {
+      const toml::table* t = item.as_table();
+      if (!t) throw LoadError(file.where(item), "'circle' must be an array of tables, [[circle]]");
+      file.check_keys(*t, "[[circle]]", {"name", "plane", "centre_mm", "radius_mm", "program", "sheet", "measurements"});
+      Circle c;
+      c.name = file.text(*t, "name", true, "[[circle]]");
+      c.plane = file.text(*t, "plane", true, "[[circle]]");
+      if (c.plane != "XY" && c.plane != "YZ" && c.plane != "ZX")
+        throw LoadError(file.where(*t->get("plane")), c.name + ": the plane is XY, YZ or ZX, not '" + c.plane + "'");
+      c.centre_mm = vector3(file, *t, "centre_mm", "[[circle]]");
+      const toml::node* r = file.get(*t, "radius_mm", true, "[[circle]]");
+      c.radius_mm = file.scalar(*r, "radius_mm");
+      if (!(c.radius_mm > 0)) throw LoadError(file.where(*r), c.name + ": the radius must be > 0 mm");
+      p.circles.push_back(c);
+    }
+  }
+  if (p.diagonals.empty() && p.circles.empty()) throw LoadError({file.path()}, "no [[diagonal]] or [[circle]] in the plan");
   return p;
 }
 

@@ -1,5 +1,9 @@
 #include "vc/acceptance/tolerances.hpp"
 
+#include <string_view>
+#include <utility>
+#include <vector>
+
 #include "vc/machine/toml_file.hpp"
 #include "vc/tables/source_error.hpp"
 
@@ -7,20 +11,27 @@ namespace vc::acceptance {
 
 Tolerances read_tolerances(const std::string& path) {
   const machine::TomlFile file(path);
-  file.check_keys(file.root(), "the tolerances (one table per kind of test)", {"diagonal"});
+  file.check_keys(file.root(), "the tolerances (one table per kind of test)", {"diagonal", "circle"});
   Tolerances t;
   t.path = path;
-  if (const toml::table* d = file.table(file.root(), "diagonal", false, "")) {
-    file.check_keys(*d, "[diagonal]", {"A_um", "E_um", "R_um", "B_um", "M_um"});
-    for (const char* symbol : {"A", "E", "R", "B", "M"}) {
-      const std::string key = std::string(symbol) + "_um";
-      if (const toml::node* n = file.get(*d, key, false, "[diagonal]")) {
+  // Each table's keys SYMBOL_um (the key's symbol, the figure's symbol) into `limits`.
+  const auto read = [&](const char* table, std::vector<std::pair<std::string, std::string>> keys,
+                        std::map<std::string, double>& limits) {
+    const toml::table* d = file.table(file.root(), table, false, "");
+    if (!d) return;
+    std::vector<std::string_view> names;
+    for (const auto& [key, symbol] : keys) names.push_back(key);
+    const std::string context = "[" + std::string(table) + "]";
+    file.check_keys(*d, context, names);
+    for (const auto& [key, symbol] : keys)
+      if (const toml::node* n = file.get(*d, key, false, context)) {
         const double um = file.scalar(*n, key);
         if (!(um > 0)) throw LoadError(file.where(*n), "'" + key + "' must be a limit > 0 um");
-        t.diagonal_mm[symbol] = um * 1e-3;
+        limits[symbol] = um * 1e-3;
       }
-    }
-  }
+  };
+  read("diagonal", {{"A_um", "A"}, {"E_um", "E"}, {"R_um", "R"}, {"B_um", "B"}, {"M_um", "M"}}, t.diagonal_mm);
+  read("circle", {{"Gb_um", "G(b)"}, {"H_um", "H"}, {"F_um", "F"}}, t.circle_mm);
   return t;
 }
 

@@ -21,6 +21,7 @@
 
 #include "vc/acceptance/diagonals.hpp"
 #include "vc/acceptance/evaluation_file.hpp"
+#include "vc/acceptance/figure.hpp"
 #include "vc/acceptance/tolerances.hpp"
 #include "vc/identify/iso230_2.hpp"
 
@@ -29,16 +30,6 @@ namespace vc::acceptance {
 // The typical laser's standard uncertainty of one reading (--laser-uncertainty-um's default):
 // a laser interferometer with its air and material compensation over about 1 m.
 inline constexpr double kTypicalLaserUncertaintyUm = 0.5;
-
-struct Figure {
-  std::string symbol;  // A, E, R, B, M
-  std::string name;    // accuracy, ...
-  double value_mm = 0;
-  double u_repeatability_mm = 0, u_instrument_mm = 0;
-  std::optional<double> limit_mm;
-  double expanded_mm() const;  // U = 2 sqrt(u_rep^2 + u_instr^2)
-  bool passes() const { return !limit_mm || value_mm <= *limit_mm; }
-};
 
 struct DiagonalResult {
   Diagonal diagonal;
@@ -54,9 +45,6 @@ DiagonalResult evaluate_diagonal(const Diagonal& d, const identify::LaserRuns& r
 // One row per diagonal and figure (A, E, R, B, M), in um, kind "body diagonal" or "face diagonal";
 // a figure with a limit has its verdict.
 std::vector<EvaluationRow> evaluation_rows(const std::vector<DiagonalResult>& results);
-
-// Those rows as evaluation_file.hpp's CSV, the laser's uncertainty per reading in its comments.
-std::string figures_csv(const std::vector<DiagonalResult>& results, double laser_uncertainty_mm);
 
 // The summary: per diagonal the figures with their uncertainty and verdict, the overall verdict,
 // what the uncertainty holds and leaves out.

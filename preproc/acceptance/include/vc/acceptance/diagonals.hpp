@@ -35,7 +35,7 @@ struct DiagonalSettings {
   int runs = 5;           // bidirectional
   int targets = 11;       // per diagonal, ends included
   unsigned seed = 1;      // of the targets' offsets
-  std::string which = "all";  // "all", "body" (the four body diagonals) or "face" (the six face ones)
+  std::string which = "all";  // "all", "body" (the four body diagonals), "face" (the six face ones) or "none"
 };
 
 struct Diagonal {

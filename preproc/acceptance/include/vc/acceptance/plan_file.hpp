@@ -1,7 +1,7 @@
 // The machine-readable plan of an acceptance test set (DIR/plan.toml), which `volcomp acceptance
 // simulate` and `evaluate` read back. The folder holds one sub-folder per kind of test beside it
-// (diagonals/ now; circles/, rtest/, test-piece/ later), each test a G-code program and a setup
-// sheet; plan.toml has a [[diagonal]] table per diagonal (a later kind adds its own array).
+// (diagonals/ and circles/ now; rtest/, test-piece/ later), each test a G-code program and a setup
+// sheet; plan.toml has a [[diagonal]] table per diagonal and a [[circle]] per circle.
 //
 //   [plan]
 //   machine = "machines/data/mc300.toml"   # as given to plan
@@ -18,11 +18,17 @@
 //   targets_mm = [0, ...]                           # distance from the start
 //   program = "diagonals/body-NNN-PPP.ngc", sheet = "diagonals/body-NNN-PPP.md"
 //   measurements = "body-NNN-PPP.csv"               # its file in the measurements folder
+//
+//   [[circle]]                                      # ISO 230-4, a ballbar
+//   name = "circle-XY", plane = "XY"
+//   centre_mm = [x, y, z], radius_mm = 150          # X, Y, Z joints; the ballbar's length
+//   program = "circles/circle-XY.ngc", sheet = "circles/circle-XY.md", measurements = "circle-XY.csv"
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "vc/acceptance/circles.hpp"
 #include "vc/acceptance/diagonals.hpp"
 
 namespace vc::acceptance {
@@ -34,12 +40,16 @@ struct Plan {
   double tool_offset_mm = 0;
   machine::Joints rest;
   std::vector<Diagonal> diagonals;
+  std::vector<Circle> circles;
 };
 
 // Where a diagonal's files are, relative to the plan's folder / the measurements folder.
 std::string program_path(const Diagonal& d);
 std::string sheet_path(const Diagonal& d);
 std::string measurements_name(const Diagonal& d);
+std::string program_path(const Circle& c);
+std::string sheet_path(const Circle& c);
+std::string measurements_name(const Circle& c);
 
 std::string plan_toml(const Plan& plan);
 

@@ -7,6 +7,11 @@
 //   B_um = 5.0        # reversal value
 //   M_um = 15.0       # range of the mean bidirectional deviation
 //
+//   [circle]          # ISO 230-4 circular tests
+//   Gb_um = 15.0      # bidirectional circular deviation G(b)
+//   H_um = 5.0        # circular hysteresis
+//   F_um = 20.0       # radial deviation (about the nominal centre, the ballbar's calibrated length)
+//
 // Any subset of the figures; a figure without a limit is reported, not judged.
 #pragma once
 
@@ -18,6 +23,8 @@ namespace vc::acceptance {
 struct Tolerances {
   std::string path;
   std::map<std::string, double> diagonal_mm;  // "A", "E", "R", "B", "M" -> limit (mm)
+  std::map<std::string, double> circle_mm;    // "G(b)", "H", "F" -> limit (mm)
+  bool empty() const { return diagonal_mm.empty() && circle_mm.empty(); }
 };
 
 // Throws LoadError at file:line for an unknown table or key, a limit that is not a number > 0.
