@@ -43,7 +43,7 @@ struct PlanArgs {
   std::string machine, output, volume;
   std::optional<double> tool_length_mm;
   acceptance::DiagonalSettings settings;
-  std::string circles = "XY,YZ,ZX";
+  std::string axis_runs = "X,Y,Z", circles = "XY,YZ,ZX";
   double circle_radius_mm = 0;
 };
 
@@ -58,14 +58,16 @@ int run_plan(const PlanArgs& args, std::ostream& report) {
   plan.tool_offset_mm = plan.settings.tool_length_mm - model.tool_length_reference_mm;
   plan.rest = acceptance::rest_joints(model, plan.settings.volume);
   plan.diagonals = acceptance::plan_diagonals(model, plan.settings);
+  plan.axis_runs = acceptance::plan_axis_runs(model, plan.settings, args.axis_runs);
   plan.circles = acceptance::plan_circles(plan.settings.volume, args.circles, args.circle_radius_mm);
-  if (plan.diagonals.empty() && plan.circles.empty()) throw std::runtime_error("--diagonals none --circles none: no test");
+  if (plan.diagonals.empty() && plan.axis_runs.empty() && plan.circles.empty())
+    throw std::runtime_error("--diagonals none --axis-runs none --circles none: no test");
 
   const fs::path dir(args.output);
   Files files{{dir / "plan.toml", acceptance::plan_toml(plan)}, {dir / "README.md", acceptance::plan_index(plan, model)}};
-  for (const acceptance::Diagonal& d : plan.diagonals) {
-    files.push_back({dir / acceptance::program_path(d), acceptance::diagonal_program(plan, d, model)});
-    files.push_back({dir / acceptance::sheet_path(d), acceptance::diagonal_sheet(plan, d, model)});
+  for (const acceptance::Diagonal* d : acceptance::laser_lines(plan)) {
+    files.push_back({dir / acceptance::program_path(*d), acceptance::diagonal_program(plan, *d, model)});
+    files.push_back({dir / acceptance::sheet_path(*d), acceptance::diagonal_sheet(plan, *d, model)});
   }
   for (const acceptance::Circle& c : plan.circles) {
     files.push_back({dir / acceptance::program_path(c), acceptance::circle_program(plan, c, model)});
@@ -76,9 +78,10 @@ int run_plan(const PlanArgs& args, std::ostream& report) {
                                     [](const acceptance::Diagonal& d) { return d.kind == "body"; });
   report << "volcomp acceptance plan: " << plan.diagonals.size() << " ISO 230-6 diagonals of " << model.info.name
          << " (" << bodies << " body, " << plan.diagonals.size() - static_cast<std::size_t>(bodies) << " face), "
-         << plan.settings.targets << " targets and " << plan.settings.runs << " bidirectional runs each, and "
-         << plan.circles.size() << " ISO 230-4 circles, L " << number_text(plan.settings.tool_length_mm) << " mm, in "
-         << args.output << " (plan.toml, README.md, diagonals/, circles/)\n";
+         << plan.axis_runs.size() << " ISO 230-2 axis runs, " << plan.settings.targets << " targets and "
+         << plan.settings.runs << " bidirectional runs each, and " << plan.circles.size() << " ISO 230-4 circles, L "
+         << number_text(plan.settings.tool_length_mm) << " mm, in " << args.output
+         << " (plan.toml, README.md, diagonals/, axes/, circles/)\n";
   return 0;
 }
 
@@ -116,8 +119,9 @@ int run_simulate(const SimulateArgs& args, std::ostream& report) {
       "deviation: the displacement along the line minus the target (actual - nominal)"};
   Files files;
   double largest = 0;
-  for (std::size_t k = 0; k < plan.diagonals.size(); ++k) {
-    const acceptance::Diagonal& d = plan.diagonals[k];
+  const std::vector<const acceptance::Diagonal*> lines = acceptance::laser_lines(plan);
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    const acceptance::Diagonal& d = *lines[k];
     const auto readings = acceptance::simulate_diagonal(plan, d, sim, static_cast<int>(k));
     for (const auto& r : readings) largest = std::max(largest, std::abs(r.deviation));
     files.push_back({fs::path(args.output) / acceptance::measurements_name(d), acceptance::laser_csv(d, readings, comments)});
@@ -136,8 +140,8 @@ int run_simulate(const SimulateArgs& args, std::ostream& report) {
                      acceptance::ballbar_csv(plan, c, truth, test, ballbar_comments)});
   }
   write_all(files);
-  report << "volcomp acceptance simulate: " << plan.diagonals.size() << " diagonals and " << plan.circles.size()
-         << " circles into " << args.output
+  report << "volcomp acceptance simulate: " << plan.diagonals.size() << " diagonals, " << plan.axis_runs.size()
+         << " axis runs and " << plan.circles.size() << " circles into " << args.output
          << ", compensation " << args.compensation << ", largest deviation " << fixed_text(largest * 1e3, 3)
          << " um\n";
   return 0;
@@ -167,11 +171,12 @@ int run_evaluate(const EvaluateArgs& args, std::ostream& out) {
   if (!args.tolerances.empty()) tolerances = acceptance::read_tolerances(args.tolerances);
   const acceptance::Tolerances* limits = tolerances ? &*tolerances : nullptr;
   const double u_laser = args.laser_uncertainty_um * 1e-3, u_ballbar = args.ballbar_uncertainty_um * 1e-3;
-  const std::size_t tests = plan.diagonals.size() + plan.circles.size();
-  std::vector<acceptance::DiagonalResult> diagonals;
-  for (const acceptance::Diagonal& d : plan.diagonals) {
-    const fs::path file = measurements_file(args, acceptance::measurements_name(d), d.name, tests);
-    diagonals.push_back(acceptance::evaluate_diagonal(d, acceptance::read_diagonal_runs(file.string(), d), u_laser, limits));
+  const std::vector<const acceptance::Diagonal*> laser_lines = acceptance::laser_lines(plan);
+  const std::size_t tests = laser_lines.size() + plan.circles.size();
+  std::vector<acceptance::DiagonalResult> lines;
+  for (const acceptance::Diagonal* d : laser_lines) {
+    const fs::path file = measurements_file(args, acceptance::measurements_name(*d), d->name, tests);
+    lines.push_back(acceptance::evaluate_diagonal(*d, acceptance::read_diagonal_runs(file.string(), *d), u_laser, limits));
   }
   std::vector<acceptance::CircleResult> circles;
   for (const acceptance::Circle& c : plan.circles) {
@@ -180,19 +185,19 @@ int run_evaluate(const EvaluateArgs& args, std::ostream& out) {
   }
   const std::string prefix = args.output.empty() ? (fs::path(args.plan_dir) / "evaluation").string() : args.output;
   std::string summary;
-  if (!diagonals.empty())
-    summary = acceptance::summary_markdown(diagonals, args.plan_dir, args.measurements, args.tolerances, u_laser);
+  if (!lines.empty())
+    summary = acceptance::summary_markdown(lines, args.plan_dir, args.measurements, args.tolerances, u_laser);
   if (!circles.empty()) summary += (summary.empty() ? "" : "\n") + acceptance::circles_markdown(circles, u_ballbar);
-  std::vector<acceptance::EvaluationRow> rows = acceptance::evaluation_rows(diagonals);
+  std::vector<acceptance::EvaluationRow> rows = acceptance::evaluation_rows(lines);
   for (acceptance::EvaluationRow& r : acceptance::evaluation_rows(circles)) rows.push_back(r);
   const std::string csv = acceptance::evaluation_csv(
-      "ISO 230-6 diagonals (the ISO 230-2 figures along each line) and ISO 230-4 circles",
+      "ISO 230-6 diagonals and ISO 230-2 axis runs (the ISO 230-2 figures along each line), ISO 230-4 circles",
       {"u_repeatability: from the runs; u_instrument: the laser, " + number_text(args.laser_uncertainty_um) +
        " um per reading, the ballbar, " + number_text(args.ballbar_uncertainty_um) + " um per reading"},
       rows);
   write_all({{prefix + ".csv", csv}, {prefix + ".md", summary}});
   out << summary << "\nWritten: " << prefix << ".csv, " << prefix << ".md\n";
-  for (const auto& r : diagonals)
+  for (const auto& r : lines)
     if (r.judged && !r.passes()) return 1;
   for (const auto& r : circles)
     if (r.judged && !r.passes()) return 1;
@@ -220,6 +225,8 @@ void add_acceptance_commands(CLI::App& volcomp, int& exit_code) {
   p->add_option("--seed", plan->settings.seed, "of the targets' pseudo-random offsets")->capture_default_str();
   p->add_option("--diagonals", plan->settings.which,
                 "all, body (the four body diagonals), face (the six face ones) or none")
+      ->capture_default_str();
+  p->add_option("--axis-runs", plan->axis_runs, "the ISO 230-2 runs along the linear axes (X, Y, Z; commas) or none")
       ->capture_default_str();
   p->add_option("--circles", plan->circles, "the ISO 230-4 circles' planes (XY, YZ, ZX; commas) or none")
       ->capture_default_str();

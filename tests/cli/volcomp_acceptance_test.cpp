@@ -67,7 +67,7 @@ std::string three_axes(const std::string& x_extra, const std::string& z_extra) {
 
 void write(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
 
-TEST(VolcompAcceptance, EveryShippedMachinesDiagonalsRunThroughRs274OnTheirLines) {
+TEST(VolcompAcceptance, EveryShippedMachinesLaserLinesRunThroughRs274OnTheirLines) {
   if (!test::rs274_available()) GTEST_SKIP() << "no rs274";
   int machines = 0;
   for (const auto& entry : fs::directory_iterator(test::source_path("machines/data"))) {
@@ -79,7 +79,9 @@ TEST(VolcompAcceptance, EveryShippedMachinesDiagonalsRunThroughRs274OnTheirLines
     ++machines;
     const acceptance::Plan plan = acceptance::read_plan((dir / "plan").string());
     ASSERT_EQ(plan.diagonals.size(), 10u);
-    for (const acceptance::Diagonal& d : plan.diagonals) {
+    ASSERT_EQ(plan.axis_runs.size(), 3u);
+    for (const acceptance::Diagonal* line : acceptance::laser_lines(plan)) {
+      const acceptance::Diagonal& d = *line;
       // rs274 reads the program (its own run folder and HOME); its moves are world = joints.
       const auto moves = test::rs274_moves("acceptance_" + name + "_" + d.name, dir / "plan" / acceptance::program_path(d));
       const std::string canon = test::file_text(test::run_folder_path("acceptance_" + name + "_" + d.name) / "canon.txt");
@@ -173,12 +175,14 @@ TEST_P(VolcompAcceptanceClosedForm, SystematicDeviationAlongEachDiagonalIsTheClo
             std::string::npos)
       << text.substr(0, 400);
   const acceptance::Evaluation e = acceptance::read_evaluation((dir / "report.csv").string());
-  ASSERT_EQ(e.rows.size(), 5 * plan.diagonals.size());
-  ASSERT_EQ(acceptance::tests_of(e).size(), plan.diagonals.size());
+  const std::vector<const acceptance::Diagonal*> lines = acceptance::laser_lines(plan);
+  ASSERT_EQ(lines.size(), 13u);  // the axis runs are lines too: the same closed form
+  ASSERT_EQ(e.rows.size(), 5 * lines.size());
+  ASSERT_EQ(acceptance::tests_of(e).size(), lines.size());
   EXPECT_EQ(acceptance::overall_verdict(e), "not judged");
   double largest = 0;
-  for (std::size_t k = 0; k < plan.diagonals.size(); ++k) {
-    const acceptance::Diagonal& d = plan.diagonals[k];
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    const acceptance::Diagonal& d = *lines[k];
     ASSERT_EQ(acceptance::tests_of(e)[k], d.name);
     const auto f = figures_of(e, d.name);
     ASSERT_EQ(f.size(), 5u) << d.name;
@@ -195,7 +199,7 @@ TEST_P(VolcompAcceptanceClosedForm, SystematicDeviationAlongEachDiagonalIsTheClo
     EXPECT_NEAR(f.at("A").value, expected_um + 1.5, 1e-6) << d.name;
     for (const auto& [symbol, row] : f) {
       EXPECT_EQ(row.unit, "um") << d.name << " " << symbol;
-      EXPECT_EQ(row.kind, d.kind == "body" ? "body diagonal" : "face diagonal") << d.name;
+      EXPECT_EQ(row.kind, d.axis_run() ? "axis run" : d.kind == "body" ? "body diagonal" : "face diagonal") << d.name;
       EXPECT_EQ(row.verdict, "") << d.name << " " << symbol;  // no tolerances, no verdict
       EXPECT_FALSE(row.limit) << d.name << " " << symbol;
     }
@@ -237,11 +241,11 @@ TEST(VolcompAcceptance, Mc300FiguresMoveTheWayTheTruthSays) {
   const std::vector<double> off = systematic(dir, plan, truth, "off", "off");
   const std::vector<double> on = systematic(dir, plan, truth, truth, "on");
   const std::vector<double> other = systematic(dir, plan, truth, (dir / "other" / "mc300.toml").string(), "other");
-  ASSERT_EQ(off.size(), 10u);
-  ASSERT_EQ(on.size(), 10u);
-  ASSERT_EQ(other.size(), 10u);
+  ASSERT_EQ(off.size(), 13u);  // 10 diagonals, 3 axis runs
+  ASSERT_EQ(on.size(), 13u);
+  ASSERT_EQ(other.size(), 13u);
   for (std::size_t k = 0; k < off.size(); ++k) {
-    std::cout << "diagonal " << k + 1 << ": E off " << off[k] << " um, on with the true file " << on[k]
+    std::cout << (k < 10 ? "diagonal " : "axis run ") << k + 1 << ": E off " << off[k] << " um, on with the true file " << on[k]
               << " um, on with a perturbed file " << other[k] << " um\n";
     EXPECT_GT(off[k], 5.0) << k;     // uncompensated: the MC-300's errors along the line
     EXPECT_LT(on[k], 0.01) << k;     // the true file corrects them away
@@ -256,7 +260,7 @@ TEST(VolcompAcceptance, NoiseGivesTheRepeatabilityFiveRunsShouldAndItsUncertaint
   const fs::path dir = fresh("noise");
   const std::string machine = test::machine_path("mill3");
   const std::string plan = (dir / "plan").string();
-  ASSERT_EQ(test::run_volcomp("acceptance plan " + machine + " --circles none -o " + plan).exit_code, 0);
+  ASSERT_EQ(test::run_volcomp("acceptance plan " + machine + " --axis-runs none --circles none -o " + plan).exit_code, 0);
   const double s_um = 1.0;
   auto r = test::run_volcomp("acceptance simulate " + plan + " --true " + machine + " --noise-um 1 --seed 7 -o " +
                              (dir / "m").string());
@@ -298,7 +302,7 @@ TEST(VolcompAcceptance, TolerancesJudgeEachDiagonal) {
   const fs::path dir = fresh("tolerances");
   const std::string machine = test::machine_path("mc300");
   const std::string plan = (dir / "plan").string();
-  ASSERT_EQ(test::run_volcomp("acceptance plan " + machine + " --circles none -o " + plan).exit_code, 0);
+  ASSERT_EQ(test::run_volcomp("acceptance plan " + machine + " --axis-runs none --circles none -o " + plan).exit_code, 0);
   ASSERT_EQ(test::run_volcomp("acceptance simulate " + plan + " --true " + machine + " -o " + (dir / "m").string())
                 .exit_code,
             0);
@@ -351,7 +355,7 @@ TEST(VolcompAcceptance, MeasurementsTheFitCannotSupportAreRefusedWithFileAndLine
   const fs::path dir = fresh("bad_input");
   const std::string machine = test::machine_path("mill3");
   const std::string plan = (dir / "plan").string();
-  ASSERT_EQ(test::run_volcomp("acceptance plan " + machine + " --circles none -o " + plan).exit_code, 0);
+  ASSERT_EQ(test::run_volcomp("acceptance plan " + machine + " --axis-runs none --circles none -o " + plan).exit_code, 0);
   ASSERT_EQ(test::run_volcomp("acceptance simulate " + plan + " --true " + machine + " --noise-um 0.3 -o " +
                               (dir / "m").string())
                 .exit_code,
@@ -399,7 +403,7 @@ TEST(VolcompAcceptance, EveryShippedMachinesCirclesRunThroughRs274OnTheirCircles
     if (entry.path().extension() != ".toml") continue;
     const std::string name = entry.path().stem().string();
     const fs::path dir = fresh("circles_" + name);
-    const auto r = test::run_volcomp("acceptance plan " + entry.path().string() + " --diagonals none -o " +
+    const auto r = test::run_volcomp("acceptance plan " + entry.path().string() + " --diagonals none --axis-runs none -o " +
                                      (dir / "plan").string());
     ASSERT_EQ(r.exit_code, 0) << r.out;
     const acceptance::Plan plan = acceptance::read_plan((dir / "plan").string());
@@ -441,7 +445,7 @@ TEST(VolcompAcceptance, CirclesOfASquarenessAloneAreTheClosedForm) {
   const fs::path dir = fresh("circle_closed");
   const double b = 20.0 * M_PI / 648000.0;
   write(dir / "true.toml", three_axes("", "[tool_chain.location]\nEB0Z_arcsec = 20.0\n"));
-  auto r = test::run_volcomp("acceptance plan " + (dir / "true.toml").string() + " --diagonals none -o " +
+  auto r = test::run_volcomp("acceptance plan " + (dir / "true.toml").string() + " --diagonals none --axis-runs none -o " +
                              (dir / "plan").string());
   ASSERT_EQ(r.exit_code, 0) << r.out;
   r = test::run_volcomp("acceptance simulate " + (dir / "plan").string() + " --true " + (dir / "true.toml").string() +
@@ -472,7 +476,7 @@ TEST(VolcompAcceptance, Mc300CirclesMoveTheWayTheTruthSaysAndAreJudged) {
   const fs::path dir = fresh("mc300_circles");
   const std::string truth = test::machine_path("mc300");
   const std::string plan = (dir / "plan").string();
-  ASSERT_EQ(test::run_volcomp("acceptance plan " + truth + " --diagonals none -o " + plan).exit_code, 0);
+  ASSERT_EQ(test::run_volcomp("acceptance plan " + truth + " --diagonals none --axis-runs none -o " + plan).exit_code, 0);
   ASSERT_EQ(test::run_volcomp("perturb " + truth + " -o " + (dir / "other").string() + " --seed 3").exit_code, 0);
   write(dir / "limits.toml", "[circle]\nGb_um = 2.0\nH_um = 2.0\n");
   std::map<std::string, acceptance::Evaluation> results;
@@ -508,7 +512,7 @@ TEST(VolcompAcceptance, CircleRunsThatAreNotThePlansAreRefusedAndNothingWritten)
   const fs::path dir = fresh("bad_circles");
   const std::string machine = test::machine_path("mill3");
   const std::string plan = (dir / "plan").string();
-  ASSERT_EQ(test::run_volcomp("acceptance plan " + machine + " --diagonals none --circles XY -o " + plan).exit_code, 0);
+  ASSERT_EQ(test::run_volcomp("acceptance plan " + machine + " --diagonals none --axis-runs none --circles XY -o " + plan).exit_code, 0);
   ASSERT_EQ(test::run_volcomp("acceptance simulate " + plan + " --true " + machine + " -o " + (dir / "m").string()).exit_code,
             0);
   const fs::path run = dir / "m" / "circle-XY.csv";

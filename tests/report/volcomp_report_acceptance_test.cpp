@@ -17,14 +17,15 @@ namespace {
 namespace fs = std::filesystem;
 
 // 5 axis plots, the balance, the volume map's 4 sheets; then A and E (the figures with limits)
-// for the body and the face diagonals, and G(b) (its limit) for the circles.
-constexpr int kAcceptanceFigures = 5;
+// for the body and the face diagonals, E for the axis runs, and G(b) (its limit) for the circles.
+constexpr int kAcceptanceFigures = 6;
 constexpr int kFigures = 10 + kAcceptanceFigures;
 
 const std::vector<std::string> kTests = {"body-NNN-PPP",  "body-NNP-PPN",  "body-NPN-PNP",  "body-NPP-PNN",
                                          "face-XY-NN-PP", "face-XY-NP-PN", "face-YZ-NN-PP", "face-YZ-NP-PN",
                                          "face-ZX-NN-PP", "face-ZX-NP-PN"};
 const std::vector<std::string> kCircles = {"circle-XY", "circle-YZ", "circle-ZX"};
+const std::vector<std::string> kAxisRuns = {"axis-X", "axis-Y", "axis-Z"};
 
 // Runs `command` through volcomp, expecting `exit_code`.
 void volcomp(const std::string& command, int exit_code = 0) {
@@ -57,8 +58,8 @@ TEST(VolcompReportAcceptance, OffAndOnSideBySideInTheBrowser) {
       << r.out;
   const std::string html = test::file_text(page);
   EXPECT_NE(html.find("<section id=\"acceptance\">\n<h2>Acceptance (ISO/TR 16907 11.3)</h2>"), std::string::npos);
-  EXPECT_NE(html.find("<td>acceptance verdict (ISO/TR 16907 11.3)</td><td>compensation off: FAIL (13 tests); "
-                      "compensation on: PASS (13 tests)</td>"),
+  EXPECT_NE(html.find("<td>acceptance verdict (ISO/TR 16907 11.3)</td><td>compensation off: FAIL (16 tests); "
+                      "compensation on: PASS (16 tests)</td>"),
             std::string::npos);
   for (const char* file : {"off.csv", "on.csv"}) {
     const test::CommandResult sum = test::run_command("sha256sum '" + (dir / file).string() + "'");
@@ -91,6 +92,8 @@ TEST(VolcompReportAcceptance, OffAndOnSideBySideInTheBrowser) {
   ASSERT_NE(section, std::string::npos);
   const std::string rendered = dom.out.substr(section, dom.out.find("</section>", section) - section);
   for (const std::string& test : kTests) EXPECT_EQ(test::count(rendered, "<td>" + test + "</td>"), 5u) << test;
+  for (const std::string& test : kAxisRuns) EXPECT_EQ(test::count(rendered, "<td>" + test + "</td>"), 5u) << test;
+  EXPECT_EQ(test::count(rendered, "alt=\"acceptance axis run E\""), 1u);
   for (const std::string& test : kCircles) EXPECT_EQ(test::count(rendered, "<td>" + test + "</td>"), 3u) << test;
   EXPECT_EQ(test::count(rendered, "alt=\"acceptance circle G(b)\""), 1u);
   for (const char* kind : {"body diagonal", "face diagonal"})
@@ -98,8 +101,8 @@ TEST(VolcompReportAcceptance, OffAndOnSideBySideInTheBrowser) {
       EXPECT_EQ(test::count(rendered, "alt=\"acceptance " + std::string(kind) + " " + symbol + "\""), 1u)
           << kind << " " << symbol;
   EXPECT_EQ(test::count(rendered, "<img src=\"data:image/png;base64,"), static_cast<std::size_t>(kAcceptanceFigures));
-  EXPECT_NE(rendered.find("<td class=\"fail\">FAIL</td><td>13</td>"), std::string::npos);
-  EXPECT_NE(rendered.find("<td class=\"pass\">PASS</td><td>13</td>"), std::string::npos);
+  EXPECT_NE(rendered.find("<td class=\"fail\">FAIL</td><td>16</td>"), std::string::npos);
+  EXPECT_NE(rendered.find("<td class=\"pass\">PASS</td><td>16</td>"), std::string::npos);
   fs::remove_all(dir);
 }
 

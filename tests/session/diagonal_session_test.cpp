@@ -234,7 +234,7 @@ TEST_F(DiagonalSession, FiguresAreTheTrueMachinesAndTheIdentifiedFileTakesThemTo
   // the axes' top speed: a minute of session.
   const test::CommandResult p =
       test::run_volcomp("acceptance plan " + nominal + " -o " + (dir_ / "plan").string() +
-                        " --diagonals body --circles none --volume 190:310,110:190,-190:-110 --targets 5 --runs 2 --dwell 0.2"
+                        " --diagonals body --axis-runs none --circles none --volume 190:310,110:190,-190:-110 --targets 5 --runs 2 --dwell 0.2"
                         " --feed 6000");
   ASSERT_EQ(p.exit_code, 0) << p.out;
   plan_ = acceptance::read_plan((dir_ / "plan").string());

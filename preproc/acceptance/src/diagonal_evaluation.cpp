@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <sstream>
 
 #include "vc/tables/number_text.hpp"
@@ -18,6 +19,9 @@ DiagonalResult evaluate_diagonal(const Diagonal& d, const identify::LaserRuns& r
   r.diagonal = d;
   r.iso = identify::evaluate_iso230_2(runs);
   const identify::Iso230_2& e = r.iso;
+  // An axis run's limits are [axis]'s, a diagonal's [diagonal]'s.
+  const std::map<std::string, double>* limits =
+      tolerances ? (d.axis_run() ? &tolerances->axis_mm : &tolerances->diagonal_mm) : nullptr;
   const int n = std::min(e.runs_up, e.runs_down);
   double s_max = 0;
   for (const identify::TargetStatistics& t : e.targets) s_max = std::max({s_max, t.s_up, t.s_down});
@@ -30,9 +34,8 @@ DiagonalResult evaluate_diagonal(const Diagonal& d, const identify::LaserRuns& r
     f.value_mm = value;
     f.u_repeatability_mm = from_scatter ? value / std::sqrt(2.0 * (n - 1)) : two * u_mean;
     f.u_instrument_mm = from_scatter ? 0.0 : two * laser_uncertainty_mm;
-    if (tolerances)
-      if (const auto it = tolerances->diagonal_mm.find(symbol); it != tolerances->diagonal_mm.end())
-        f.limit_mm = it->second;
+    if (limits)
+      if (const auto it = limits->find(symbol); it != limits->end()) f.limit_mm = it->second;
     r.figures.push_back(f);
   };
   figure("A", "accuracy", e.accuracy, false);
@@ -40,7 +43,7 @@ DiagonalResult evaluate_diagonal(const Diagonal& d, const identify::LaserRuns& r
   figure("R", "repeatability", e.repeatability, true);
   figure("B", "reversal value", e.reversal, false);
   figure("M", "range of the mean bidirectional deviation", e.range, false);
-  r.judged = tolerances && !tolerances->diagonal_mm.empty();
+  r.judged = limits && !limits->empty();
   return r;
 }
 
@@ -48,7 +51,11 @@ std::vector<EvaluationRow> evaluation_rows(const std::vector<DiagonalResult>& re
   std::vector<EvaluationRow> rows;
   for (const DiagonalResult& r : results)
     for (const Figure& f : r.figures)  // the face is in the name
-      rows.push_back(figure_row(r.diagonal.name, r.diagonal.kind == "body" ? "body diagonal" : "face diagonal", f));
+      rows.push_back(figure_row(r.diagonal.name,
+                                r.diagonal.axis_run()        ? "axis run"
+                                : r.diagonal.kind == "body" ? "body diagonal"
+                                                            : "face diagonal",
+                                f));
   return rows;
 }
 
@@ -56,12 +63,18 @@ std::string summary_markdown(const std::vector<DiagonalResult>& results, const s
                              const std::string& measurements, const std::string& tolerances,
                              double laser_uncertainty_mm) {
   std::ostringstream m;
-  const bool judged = !results.empty() && results.front().judged;
+  const bool judged = std::any_of(results.begin(), results.end(), [](const DiagonalResult& r) { return r.judged; });
   const bool all = std::all_of(results.begin(), results.end(), [](const DiagonalResult& r) { return r.passes(); });
-  m << "# Acceptance: ISO 230-6 diagonal displacement tests\n\n"
+  const auto runs = std::count_if(results.begin(), results.end(), [](const DiagonalResult& r) { return r.diagonal.axis_run(); });
+  const std::size_t diagonals = results.size() - static_cast<std::size_t>(runs);
+  m << "# Acceptance: "
+    << (runs == 0          ? "ISO 230-6 diagonal displacement tests"
+        : diagonals == 0 ? "ISO 230-2 linear positioning tests"
+                         : "ISO 230-6 diagonal displacement tests and ISO 230-2 linear positioning tests")
+    << "\n\n"
     << "Plan `" << plan_dir << "`, measurements `" << measurements << "`, tolerances "
     << (tolerances.empty() ? std::string("none (figures only, no verdict)") : "`" + tolerances + "`") << ".\n\n";
-  if (judged) m << "**" << (all ? "PASS" : "FAIL") << "**: " << results.size() << " diagonals.\n\n";
+  if (judged) m << "**" << (all ? "PASS" : "FAIL") << "**: " << diagonals << " diagonals, " << runs << " axis runs.\n\n";
   for (const DiagonalResult& r : results) {
     m << "## " << r.diagonal.name << " (" << r.diagonal.kind << ", " << fixed_text(r.diagonal.length_mm(), 3)
       << " mm, " << r.iso.targets.size() << " targets, " << r.iso.runs_up << " runs + and " << r.iso.runs_down

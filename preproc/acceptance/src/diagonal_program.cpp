@@ -30,7 +30,7 @@ std::string rotary_text(const Plan& plan, const machine::Model& model) {
     if (a.type == machine::AxisType::Rotary)
       text += std::string(text.empty() ? "" : ", ") + a.letter + " = " + number_text(plan.rest[k]) + " deg";
   }
-  return text.empty() ? "none (no rotary axes)" : text + " (held there for every diagonal)";
+  return text.empty() ? "none (no rotary axes)" : text + " (held there for every line)";
 }
 
 // The direction of the tool's motion against the part, in the part frame, on the ideal machine.
@@ -55,7 +55,8 @@ std::string diagonal_program(const Plan& plan, const Diagonal& d, const machine:
   const auto point = [&](double distance) { return xyz(d.at(distance) - offset); };
   const double last = d.targets_mm.back();
   std::ostringstream g;
-  g << "(volcomp acceptance plan: ISO 230-6 " << (d.kind == "body" ? "body" : d.kind) << " diagonal " << d.name
+  g << "(volcomp acceptance plan: "
+    << (d.axis_run() ? "ISO 230-2 positioning run " : "ISO 230-6 " + d.kind + " diagonal ") << d.name
     << " of " << model.info.name << ")\n"
     << "(laser along the line from X Y Z " << triple(d.start_mm) << " to " << triple(d.end_mm)
     << " mm [joints], the setup sheet " << d.name << ".md)\n"
@@ -87,7 +88,8 @@ std::string diagonal_sheet(const Plan& plan, const Diagonal& d, const machine::M
   std::ostringstream m;
   const Eigen::Vector3d u = d.direction();
   const Eigen::Vector3d w = part_frame_direction(plan, d, model);
-  m << "# ISO 230-6 diagonal displacement test " << d.name << " (" << d.kind << "), " << model.info.name << "\n\n"
+  m << (d.axis_run() ? "# ISO 230-2 linear positioning test " : "# ISO 230-6 diagonal displacement test ") << d.name
+    << " (" << d.kind << "), " << model.info.name << "\n\n"
     << "Machine file `" << plan.machine << "`. Program `" << d.name << ".ngc` (in this folder), run in LinuxCNC "
     << "with the compensation as it will be used (ISO/TR 16907 11.3: all compensations active by default).\n\n"
     << "| | |\n|---|---|\n"
@@ -142,9 +144,17 @@ std::string plan_index(const Plan& plan, const machine::Model& model) {
   if (!plan.diagonals.empty())
     m << "## ISO 230-6 diagonal displacement tests (`diagonals/`)\n\n"
       << "| test | kind | length [mm] | program | sheet | measurements file |\n|---|---|---:|---|---|---|\n";
-  for (const Diagonal& d : plan.diagonals)
-    m << "| " << d.name << " | " << d.kind << " | " << fixed_text(d.length_mm(), 3) << " | `" << program_path(d)
-      << "` | `" << sheet_path(d) << "` | `" << measurements_name(d) << "` |\n";
+  const auto lines_table = [&](const std::vector<Diagonal>& lines) {
+    for (const Diagonal& d : lines)
+      m << "| " << d.name << " | " << d.kind << " | " << fixed_text(d.length_mm(), 3) << " | `" << program_path(d)
+        << "` | `" << sheet_path(d) << "` | `" << measurements_name(d) << "` |\n";
+  };
+  lines_table(plan.diagonals);
+  if (!plan.axis_runs.empty()) {
+    m << "\n## ISO 230-2 linear positioning tests (`axes/`)\n\n"
+      << "| test | kind | length [mm] | program | sheet | measurements file |\n|---|---|---:|---|---|---|\n";
+    lines_table(plan.axis_runs);
+  }
   if (!plan.circles.empty()) {
     m << "\n## ISO 230-4 circular tests (`circles/`)\n\n"
       << "| test | plane | radius [mm] | program | sheet | measurements file |\n|---|---|---:|---|---|---|\n";

@@ -40,14 +40,60 @@ Eigen::Vector3d vector3(const machine::TomlFile& file, const toml::table& t, std
   return {v[0], v[1], v[2]};
 }
 
+// The laser lines of the array `name` ([[diagonal]] or [[axis_run]]), each checked.
+std::vector<Diagonal> lines(const machine::TomlFile& file, const std::string& name) {
+  std::vector<Diagonal> out;
+  const std::string table = "[[" + name + "]]";
+  if (const toml::node* n = file.root().get(name)) {
+    const toml::array* a = n->as_array();
+    if (!a) throw LoadError(file.where(*n), "'" + name + "' must be an array of tables, " + table);
+    for (const toml::node& item : *a) {
+      const toml::table* t = item.as_table();
+      if (!t) throw LoadError(file.where(item), "'" + name + "' must be an array of tables, " + table);
+      file.check_keys(*t, table,
+                      {"name", "kind", "start_mm", "end_mm", "targets_mm", "program", "sheet", "measurements"});
+      Diagonal d;
+      d.name = file.text(*t, "name", true, table);
+      d.kind = file.text(*t, "kind", true, table);
+      if (d.axis_run() != (name == "axis_run"))
+        throw LoadError(file.where(*t->get("kind")), d.name + ": kind '" + d.kind + "' in " + table +
+                                                         (name == "axis_run" ? ": 'axis X', 'axis Y' or 'axis Z'"
+                                                                             : ": an axis run belongs in [[axis_run]]"));
+      d.start_mm = vector3(file, *t, "start_mm", table);
+      d.end_mm = vector3(file, *t, "end_mm", table);
+      d.targets_mm = numbers(file, *t, "targets_mm", table);
+      if (d.targets_mm.size() < 5)
+        throw LoadError(file.where(*t), d.name + ": fewer than 5 targets (ISO 230-2 asks for at least 5)");
+      if (!(d.length_mm() > 0)) throw LoadError(file.where(*t), d.name + ": start and end are the same point");
+      // Distances from the start, increasing, on the line (the last may round past its end by 0.5 um).
+      const toml::node& targets = *t->get("targets_mm");
+      for (std::size_t i = 0; i < d.targets_mm.size(); ++i)
+        if (d.targets_mm[i] < 0 || d.targets_mm[i] > d.length_mm() + 1e-3 || (i && !(d.targets_mm[i] > d.targets_mm[i - 1])))
+          throw LoadError(file.where(targets), d.name + ": target " + std::to_string(i + 1) + " (" +
+                                                   number_text(d.targets_mm[i]) +
+                                                   " mm) is not an increasing distance from 0 to the length " +
+                                                   fixed_text(d.length_mm(), 3) + " mm");
+      out.push_back(d);
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
-std::string program_path(const Diagonal& d) { return "diagonals/" + d.name + ".ngc"; }
-std::string sheet_path(const Diagonal& d) { return "diagonals/" + d.name + ".md"; }
+std::string program_path(const Diagonal& d) { return (d.axis_run() ? "axes/" : "diagonals/") + d.name + ".ngc"; }
+std::string sheet_path(const Diagonal& d) { return (d.axis_run() ? "axes/" : "diagonals/") + d.name + ".md"; }
 std::string measurements_name(const Diagonal& d) { return d.name + ".csv"; }
 std::string program_path(const Circle& c) { return "circles/" + c.name + ".ngc"; }
 std::string sheet_path(const Circle& c) { return "circles/" + c.name + ".md"; }
 std::string measurements_name(const Circle& c) { return c.name + ".csv"; }
+
+std::vector<const Diagonal*> laser_lines(const Plan& plan) {
+  std::vector<const Diagonal*> lines;
+  for (const Diagonal& d : plan.diagonals) lines.push_back(&d);
+  for (const Diagonal& d : plan.axis_runs) lines.push_back(&d);
+  return lines;
+}
 
 std::string plan_toml(const Plan& p) {
   const DiagonalSettings& s = p.settings;
@@ -72,8 +118,9 @@ std::string plan_toml(const Plan& p) {
       << "runs = " << s.runs << "\n"
       << "targets = " << s.targets << "\n"
       << "seed = " << s.seed << "\n";
-  for (const Diagonal& d : p.diagonals) {
-    out << "\n[[diagonal]]  # ISO 230-6\n"
+  for (const Diagonal* line : laser_lines(p)) {
+    const Diagonal& d = *line;
+    out << (d.axis_run() ? "\n[[axis_run]]  # ISO 230-2\n" : "\n[[diagonal]]  # ISO 230-6\n")
         << "name = " << quoted(d.name) << "\n"
         << "kind = " << quoted(d.kind) << "\n"
         << "start_mm = " << list(d.start_mm) << "\n"
@@ -139,34 +186,8 @@ Plan read_plan_file(const std::string& path) {
   s.targets = static_cast<int>(whole("targets", 5, 100000));
   s.seed = static_cast<unsigned>(whole("seed", 0, 4294967295.0));
 
-  if (const toml::node* n = file.root().get("diagonal")) {
-    const toml::array* a = n->as_array();
-    if (!a) throw LoadError(file.where(*n), "'diagonal' must be an array of tables, [[diagonal]]");
-    for (const toml::node& item : *a) {
-      const toml::table* t = item.as_table();
-      if (!t) throw LoadError(file.where(item), "'diagonal' must be an array of tables, [[diagonal]]");
-      file.check_keys(*t, "[[diagonal]]",
-                      {"name", "kind", "start_mm", "end_mm", "targets_mm", "program", "sheet", "measurements"});
-      Diagonal d;
-      d.name = file.text(*t, "name", true, "[[diagonal]]");
-      d.kind = file.text(*t, "kind", true, "[[diagonal]]");
-      d.start_mm = vector3(file, *t, "start_mm", "[[diagonal]]");
-      d.end_mm = vector3(file, *t, "end_mm", "[[diagonal]]");
-      d.targets_mm = numbers(file, *t, "targets_mm", "[[diagonal]]");
-      if (d.targets_mm.size() < 5)
-        throw LoadError(file.where(*t), d.name + ": fewer than 5 targets (ISO 230-2 asks for at least 5)");
-      if (!(d.length_mm() > 0)) throw LoadError(file.where(*t), d.name + ": start and end are the same point");
-      // Distances from the start, increasing, on the line (the last may round past its end by 0.5 um).
-      const toml::node& targets = *t->get("targets_mm");
-      for (std::size_t i = 0; i < d.targets_mm.size(); ++i)
-        if (d.targets_mm[i] < 0 || d.targets_mm[i] > d.length_mm() + 1e-3 || (i && !(d.targets_mm[i] > d.targets_mm[i - 1])))
-          throw LoadError(file.where(targets), d.name + ": target " + std::to_string(i + 1) + " (" +
-                                                   number_text(d.targets_mm[i]) +
-                                                   " mm) is not an increasing distance from 0 to the length " +
-                                                   fixed_text(d.length_mm(), 3) + " mm");
-      p.diagonals.push_back(d);
-    }
-  }
+  p.diagonals = lines(file, "diagonal");
+  p.axis_runs = lines(file, "axis_run");
   if (const toml::node* n = file.root().get("circle")) {
     const toml::array* a = n->as_array();
     if (!a) throw LoadError(file.where(*n), "'circle' must be an array of tables, [[circle]]");
@@ -186,7 +207,8 @@ Plan read_plan_file(const std::string& path) {
       p.circles.push_back(c);
     }
   }
-  if (p.diagonals.empty() && p.circles.empty()) throw LoadError({file.path()}, "no [[diagonal]] or [[circle]] in the plan");
+  if (p.diagonals.empty() && p.axis_runs.empty() && p.circles.empty())
+    throw LoadError({file.path()}, "no [[diagonal]], [[axis_run]] or [[circle]] in the plan");
   return p;
 }
 

@@ -11,7 +11,7 @@ namespace vc::acceptance {
 
 Tolerances read_tolerances(const std::string& path) {
   const machine::TomlFile file(path);
-  file.check_keys(file.root(), "the tolerances (one table per kind of test)", {"diagonal", "circle"});
+  file.check_keys(file.root(), "the tolerances (one table per kind of test)", {"diagonal", "axis", "circle"});
   Tolerances t;
   t.path = path;
   // Each table's keys SYMBOL_um (the key's symbol, the figure's symbol) into `limits`.
@@ -30,7 +30,10 @@ Tolerances read_tolerances(const std::string& path) {
         limits[symbol] = um * 1e-3;
       }
   };
-  read("diagonal", {{"A_um", "A"}, {"E_um", "E"}, {"R_um", "R"}, {"B_um", "B"}, {"M_um", "M"}}, t.diagonal_mm);
+  const std::vector<std::pair<std::string, std::string>> iso230_2 = {
+      {"A_um", "A"}, {"E_um", "E"}, {"R_um", "R"}, {"B_um", "B"}, {"M_um", "M"}};
+  read("diagonal", iso230_2, t.diagonal_mm);
+  read("axis", iso230_2, t.axis_mm);
   read("circle", {{"Gb_um", "G(b)"}, {"H_um", "H"}, {"F_um", "F"}}, t.circle_mm);
   return t;
 }

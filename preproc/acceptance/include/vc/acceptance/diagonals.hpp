@@ -47,12 +47,21 @@ struct Diagonal {
   double length_mm() const { return (end_mm - start_mm).norm(); }
   Eigen::Vector3d direction() const { return (end_mm - start_mm).normalized(); }  // in X, Y, Z joints
   Eigen::Vector3d at(double distance_mm) const { return start_mm + distance_mm * direction(); }
+  bool axis_run() const { return kind.rfind("axis ", 0) == 0; }  // an ISO 230-2 run along an axis
 };
 
 // The 10 diagonals, or the body or face ones (settings.which: each with the targets it has among
 // all 10); throws std::runtime_error for settings that cannot make them (fewer than 5 targets or
 // 2 runs, overruns leaving the travel, a feed or dwell not > 0, an unknown `which`).
 std::vector<Diagonal> plan_diagonals(const machine::Model& model, const DiagonalSettings& settings);
+
+// ISO 230-2's linear positioning runs, laser lines of the same kind as the diagonals: one per axis
+// of `axes` ("X,Y,Z", any subset, or "none"), along it from the volume's low end to its high end
+// through the volume's centre; named "axis-X", kind "axis X", targets as the diagonals' (their
+// generators after the diagonals'). Throws std::runtime_error as plan_diagonals, or for an
+// unknown axis.
+std::vector<Diagonal> plan_axis_runs(const machine::Model& model, const DiagonalSettings& settings,
+                                     const std::string& axes);
 
 // The joints at a point of a diagonal: `rest` (every joint; the rotary ones at 0) with X, Y, Z
 // set to `xyz_mm`.

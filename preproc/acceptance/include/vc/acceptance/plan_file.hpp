@@ -1,7 +1,8 @@
 // The machine-readable plan of an acceptance test set (DIR/plan.toml), which `volcomp acceptance
 // simulate` and `evaluate` read back. The folder holds one sub-folder per kind of test beside it
-// (diagonals/ and circles/ now; rtest/, test-piece/ later), each test a G-code program and a setup
-// sheet; plan.toml has a [[diagonal]] table per diagonal and a [[circle]] per circle.
+// (diagonals/, axes/ and circles/ now; rtest/, test-piece/ later), each test a G-code program and a setup
+// sheet; plan.toml has a [[diagonal]] table per diagonal, an [[axis_run]] per axis run and a
+// [[circle]] per circle.
 //
 //   [plan]
 //   machine = "machines/data/mc300.toml"   # as given to plan
@@ -18,6 +19,9 @@
 //   targets_mm = [0, ...]                           # distance from the start
 //   program = "diagonals/body-NNN-PPP.ngc", sheet = "diagonals/body-NNN-PPP.md"
 //   measurements = "body-NNN-PPP.csv"               # its file in the measurements folder
+//
+//   [[axis_run]]                                    # ISO 230-2 along an axis: the keys of [[diagonal]]
+//   name = "axis-X", kind = "axis X", ...           # program = "axes/axis-X.ngc", ...
 //
 //   [[circle]]                                      # ISO 230-4, a ballbar
 //   name = "circle-XY", plane = "XY"
@@ -40,8 +44,12 @@ struct Plan {
   double tool_offset_mm = 0;
   machine::Joints rest;
   std::vector<Diagonal> diagonals;
+  std::vector<Diagonal> axis_runs;  // the laser lines along X, Y, Z (ISO 230-2)
   std::vector<Circle> circles;
 };
+
+// Every laser line of the plan: the diagonals, then the axis runs.
+std::vector<const Diagonal*> laser_lines(const Plan& plan);
 
 // Where a diagonal's files are, relative to the plan's folder / the measurements folder.
 std::string program_path(const Diagonal& d);

@@ -7,6 +7,9 @@
 //   B_um = 5.0        # reversal value
 //   M_um = 15.0       # range of the mean bidirectional deviation
 //
+//   [axis]            # ISO 230-2 on each linear axis: the same keys as [diagonal]
+//   E_um = 10.0
+//
 //   [circle]          # ISO 230-4 circular tests
 //   Gb_um = 15.0      # bidirectional circular deviation G(b)
 //   H_um = 5.0        # circular hysteresis
@@ -23,8 +26,8 @@ namespace vc::acceptance {
 struct Tolerances {
   std::string path;
   std::map<std::string, double> diagonal_mm;  // "A", "E", "R", "B", "M" -> limit (mm)
+  std::map<std::string, double> axis_mm;      // the same figures, of the axis runs
   std::map<std::string, double> circle_mm;    // "G(b)", "H", "F" -> limit (mm)
-  bool empty() const { return diagonal_mm.empty() && circle_mm.empty(); }
 };
 
 // Throws LoadError at file:line for an unknown table or key, a limit that is not a number > 0.
