@@ -21,6 +21,8 @@
 #include "vc/acceptance/diagonal_measurements.hpp"
 #include "vc/acceptance/diagonal_program.hpp"
 #include "vc/acceptance/plan_file.hpp"
+#include "vc/acceptance/rtest_evaluation.hpp"
+#include "vc/acceptance/rtest_program.hpp"
 #include "vc/acceptance/tolerances.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/tables/atomic_file.hpp"
@@ -45,6 +47,7 @@ struct PlanArgs {
   acceptance::DiagonalSettings settings;
   std::string axis_runs = "X,Y,Z", circles = "XY,YZ,ZX";
   double circle_radius_mm = 0;
+  int rtest_steps = 7;
 };
 
 int run_plan(const PlanArgs& args, std::ostream& report) {
@@ -60,7 +63,8 @@ int run_plan(const PlanArgs& args, std::ostream& report) {
   plan.diagonals = acceptance::plan_diagonals(model, plan.settings);
   plan.axis_runs = acceptance::plan_axis_runs(model, plan.settings, args.axis_runs);
   plan.circles = acceptance::plan_circles(plan.settings.volume, args.circles, args.circle_radius_mm);
-  if (plan.diagonals.empty() && plan.axis_runs.empty() && plan.circles.empty())
+  plan.rtest = acceptance::plan_rtest(model, plan.settings.volume, plan.settings.tool_length_mm, args.rtest_steps);
+  if (plan.diagonals.empty() && plan.axis_runs.empty() && plan.circles.empty() && plan.rtest.empty())
     throw std::runtime_error("--diagonals none --axis-runs none --circles none: no test");
 
   const fs::path dir(args.output);
@@ -73,15 +77,19 @@ int run_plan(const PlanArgs& args, std::ostream& report) {
     files.push_back({dir / acceptance::program_path(c), acceptance::circle_program(plan, c, model)});
     files.push_back({dir / acceptance::sheet_path(c), acceptance::circle_sheet(plan, c, model)});
   }
+  if (!plan.rtest.empty()) {
+    files.push_back({dir / acceptance::kRTestProgram, acceptance::rtest_program(plan, model)});
+    files.push_back({dir / acceptance::kRTestSheet, acceptance::rtest_sheet(plan, model)});
+  }
   write_all(files);
   const auto bodies = std::count_if(plan.diagonals.begin(), plan.diagonals.end(),
                                     [](const acceptance::Diagonal& d) { return d.kind == "body"; });
   report << "volcomp acceptance plan: " << plan.diagonals.size() << " ISO 230-6 diagonals of " << model.info.name
          << " (" << bodies << " body, " << plan.diagonals.size() - static_cast<std::size_t>(bodies) << " face), "
          << plan.axis_runs.size() << " ISO 230-2 axis runs, " << plan.settings.targets << " targets and "
-         << plan.settings.runs << " bidirectional runs each, and " << plan.circles.size() << " ISO 230-4 circles, L "
-         << number_text(plan.settings.tool_length_mm) << " mm, in " << args.output
-         << " (plan.toml, README.md, diagonals/, axes/, circles/)\n";
+         << plan.settings.runs << " bidirectional runs each, " << plan.circles.size() << " ISO 230-4 circles and "
+         << plan.rtest.sequences.size() << " R-test sequences, L " << number_text(plan.settings.tool_length_mm)
+         << " mm, in " << args.output << " (plan.toml, README.md, diagonals/, axes/, circles/, rtest/)\n";
   return 0;
 }
 
@@ -139,9 +147,17 @@ int run_simulate(const SimulateArgs& args, std::ostream& report) {
     files.push_back({fs::path(args.output) / acceptance::measurements_name(c),
                      acceptance::ballbar_csv(plan, c, truth, test, ballbar_comments)});
   }
+  if (!plan.rtest.empty())
+    files.push_back({fs::path(args.output) / acceptance::kRTestMeasurements,
+                     acceptance::simulate_rtest_csv(
+                         plan, sim,
+                         {"instrument: simulated R-test nest (volcomp acceptance simulate, seed " + std::to_string(args.seed) +
+                              ", noise " + number_text(args.noise_um) + " um)",
+                          "truth: " + args.truth, "compensation: " + args.compensation})});
   write_all(files);
   report << "volcomp acceptance simulate: " << plan.diagonals.size() << " diagonals, " << plan.axis_runs.size()
-         << " axis runs and " << plan.circles.size() << " circles into " << args.output
+         << " axis runs, " << plan.circles.size() << " circles and " << (plan.rtest.empty() ? "no" : "the")
+         << " R-test into " << args.output
          << ", compensation " << args.compensation << ", largest deviation " << fixed_text(largest * 1e3, 3)
          << " um\n";
   return 0;
@@ -151,6 +167,8 @@ struct EvaluateArgs {
   std::string plan_dir, measurements, tolerances, output;
   double laser_uncertainty_um = acceptance::kTypicalLaserUncertaintyUm;
   double ballbar_uncertainty_um = acceptance::kTypicalBallbarUncertaintyUm;
+  double sensor_uncertainty_um = acceptance::kTypicalSensorUncertaintyUm;
+  std::string machine;  // the R-test's nominal kinematics (default: the plan's machine file)
 };
 
 // A test's measurements file, which must exist.
@@ -187,19 +205,37 @@ int run_evaluate(const EvaluateArgs& args, std::ostream& out) {
   std::string summary;
   if (!lines.empty())
     summary = acceptance::summary_markdown(lines, args.plan_dir, args.measurements, args.tolerances, u_laser);
+  std::vector<acceptance::RTestResult> rtest;
+  if (!plan.rtest.empty()) {
+    if (!(args.sensor_uncertainty_um >= 0)) throw std::runtime_error("--sensor-uncertainty-um must be >= 0");
+    const machine::Model model = machine::load_machine(args.machine.empty() ? plan.machine : args.machine);
+    if (model.coordinates() != plan.coordinates)
+      throw std::runtime_error(model.path + " has the joints " + model.coordinates() + ", the plan's machine " +
+                               plan.coordinates);
+    const fs::path file = measurements_file(args, acceptance::kRTestMeasurements, "the R-test", tests);
+    rtest = acceptance::evaluate_rtest(plan, model, acceptance::read_planned_rtest(file.string(), plan, model),
+                                       args.sensor_uncertainty_um * 1e-3, limits);
+  }
   if (!circles.empty()) summary += (summary.empty() ? "" : "\n") + acceptance::circles_markdown(circles, u_ballbar);
+  if (!rtest.empty())
+    summary += (summary.empty() ? "" : "\n") + acceptance::rtest_markdown(rtest, args.sensor_uncertainty_um * 1e-3);
   std::vector<acceptance::EvaluationRow> rows = acceptance::evaluation_rows(lines);
   for (acceptance::EvaluationRow& r : acceptance::evaluation_rows(circles)) rows.push_back(r);
+  for (acceptance::EvaluationRow& r : acceptance::evaluation_rows(rtest)) rows.push_back(r);
   const std::string csv = acceptance::evaluation_csv(
-      "ISO 230-6 diagonals and ISO 230-2 axis runs (the ISO 230-2 figures along each line), ISO 230-4 circles",
+      "ISO 230-6 diagonals and ISO 230-2 axis runs (the ISO 230-2 figures along each line), ISO 230-4 circles, "
+      "the ISO 10791-6 R-test",
       {"u_repeatability: from the runs; u_instrument: the laser, " + number_text(args.laser_uncertainty_um) +
-       " um per reading, the ballbar, " + number_text(args.ballbar_uncertainty_um) + " um per reading"},
+       " um per reading, the ballbar, " + number_text(args.ballbar_uncertainty_um) + " um, the R-test's sensors, " +
+       number_text(args.sensor_uncertainty_um) + " um"},
       rows);
   write_all({{prefix + ".csv", csv}, {prefix + ".md", summary}});
   out << summary << "\nWritten: " << prefix << ".csv, " << prefix << ".md\n";
   for (const auto& r : lines)
     if (r.judged && !r.passes()) return 1;
   for (const auto& r : circles)
+    if (r.judged && !r.passes()) return 1;
+  for (const auto& r : rtest)
     if (r.judged && !r.passes()) return 1;
   return 0;
 }
@@ -230,6 +266,9 @@ void add_acceptance_commands(CLI::App& volcomp, int& exit_code) {
       ->capture_default_str();
   p->add_option("--circles", plan->circles, "the ISO 230-4 circles' planes (XY, YZ, ZX; commas) or none")
       ->capture_default_str();
+  p->add_option("--rtest-steps", plan->rtest_steps,
+                "poses per R-test sequence on a machine with two rotary axes (0: no R-test)")
+      ->capture_default_str();
   p->add_option("--circle-radius", plan->circle_radius_mm,
                 "the ballbar's length, mm (default: the longest of 50, 100, 150, 300 that fits in the volume)");
   p->callback([plan, &exit_code] { exit_code = run_plan(*plan, std::cout); });
@@ -253,6 +292,10 @@ void add_acceptance_commands(CLI::App& volcomp, int& exit_code) {
   e->add_option("--tolerances", ev->tolerances, "limits (.toml, um): without them figures only, no verdict");
   e->add_option("--laser-uncertainty-um", ev->laser_uncertainty_um, "the laser's standard uncertainty of a reading, um")
       ->capture_default_str();
+  e->add_option("--sensor-uncertainty-um", ev->sensor_uncertainty_um,
+                "the R-test sensors' standard uncertainty of a reading, um")
+      ->capture_default_str();
+  e->add_option("--machine", ev->machine, "the machine file whose nominal kinematics the R-test takes (default: the plan's)");
   e->add_option("--ballbar-uncertainty-um", ev->ballbar_uncertainty_um,
                 "the ballbar's standard uncertainty of a reading, um")
       ->capture_default_str();

@@ -29,6 +29,8 @@
 #include "test_support.hpp"
 #include "vc/acceptance/evaluation_file.hpp"
 #include "vc/acceptance/plan_file.hpp"
+#include "vc/machine/forward.hpp"
+#include "vc/machine/load_machine.hpp"
 
 namespace vc {
 namespace {
@@ -217,15 +219,35 @@ INSTANTIATE_TEST_SUITE_P(
     [](const ::testing::TestParamInfo<ClosedForm>& param) { return std::string(param.param.name); });
 
 // E of each diagonal (um), from the results CSV of one simulate + evaluate.
+// `acceptance simulate` of `plan` on `truth` with `compensation` (and `options`) into dir/name,
+// then `evaluate` (with `limits`, a tolerances file, if given) into dir/name_report, expecting
+// `exit_code`; the results file read back.
+acceptance::Evaluation simulated_results(const fs::path& dir, const std::string& plan, const std::string& truth,
+                                         const std::string& compensation, const std::string& name,
+                                         const std::string& options = "", const std::string& limits = "",
+                                         int exit_code = 0) {
+  auto r = test::run_volcomp("acceptance simulate " + plan + " --true " + truth + " --compensation " + compensation +
+                             options + " -o " + (dir / name).string());
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  r = test::run_volcomp("acceptance evaluate " + plan + " --measurements " + (dir / name).string() +
+                        (limits.empty() ? "" : " --tolerances " + limits) + " -o " + (dir / (name + "_report")).string());
+  EXPECT_EQ(r.exit_code, exit_code) << name << ": " << r.out;
+  return acceptance::read_evaluation((dir / (name + "_report.csv")).string());
+}
+
+// `acceptance evaluate` of measurements that are not the plan's: exit 2, `message`, no report.
+void expect_evaluation_refused(const std::string& plan, const fs::path& measurements, const fs::path& report,
+                               const std::string& what, const std::string& message) {
+  const auto r = test::run_volcomp("acceptance evaluate " + plan + " --measurements " + measurements.string() + " -o " +
+                                   report.string());
+  EXPECT_EQ(r.exit_code, 2) << what << ": " << r.out;
+  EXPECT_NE(r.out.find(message), std::string::npos) << what << ": " << r.out;
+  EXPECT_FALSE(fs::exists(report.string() + ".csv")) << what;
+}
+
 std::vector<double> systematic(const fs::path& dir, const std::string& plan, const std::string& truth,
                                const std::string& compensation, const std::string& name) {
-  auto r = test::run_volcomp("acceptance simulate " + plan + " --true " + truth + " --compensation " + compensation +
-                             " -o " + (dir / name).string());
-  EXPECT_EQ(r.exit_code, 0) << r.out;
-  r = test::run_volcomp("acceptance evaluate " + plan + " --measurements " + (dir / name).string() + " -o " +
-                        (dir / (name + "_report")).string());
-  EXPECT_EQ(r.exit_code, 0) << r.out;
-  const acceptance::Evaluation results = acceptance::read_evaluation((dir / (name + "_report.csv")).string());
+  const acceptance::Evaluation results = simulated_results(dir, plan, truth, compensation, name);
   std::vector<double> e;
   for (const std::string& test : acceptance::tests_of(results)) e.push_back(figures_of(results, test).at("E").value);
   return e;
@@ -235,7 +257,7 @@ TEST(VolcompAcceptance, Mc300FiguresMoveTheWayTheTruthSays) {
   const fs::path dir = fresh("mc300");
   const std::string truth = test::machine_path("mc300");
   const std::string plan = (dir / "plan").string();
-  ASSERT_EQ(test::run_volcomp("acceptance plan " + truth + " --circles none -o " + plan).exit_code, 0);
+  ASSERT_EQ(test::run_volcomp("acceptance plan " + truth + " --circles none --rtest-steps 0 -o " + plan).exit_code, 0);
   auto r = test::run_volcomp("perturb " + truth + " -o " + (dir / "other").string() + " --seed 3");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const std::vector<double> off = systematic(dir, plan, truth, "off", "off");
@@ -302,7 +324,7 @@ TEST(VolcompAcceptance, TolerancesJudgeEachDiagonal) {
   const fs::path dir = fresh("tolerances");
   const std::string machine = test::machine_path("mc300");
   const std::string plan = (dir / "plan").string();
-  ASSERT_EQ(test::run_volcomp("acceptance plan " + machine + " --axis-runs none --circles none -o " + plan).exit_code, 0);
+  ASSERT_EQ(test::run_volcomp("acceptance plan " + machine + " --axis-runs none --circles none --rtest-steps 0 -o " + plan).exit_code, 0);
   ASSERT_EQ(test::run_volcomp("acceptance simulate " + plan + " --true " + machine + " -o " + (dir / "m").string())
                 .exit_code,
             0);
@@ -476,20 +498,14 @@ TEST(VolcompAcceptance, Mc300CirclesMoveTheWayTheTruthSaysAndAreJudged) {
   const fs::path dir = fresh("mc300_circles");
   const std::string truth = test::machine_path("mc300");
   const std::string plan = (dir / "plan").string();
-  ASSERT_EQ(test::run_volcomp("acceptance plan " + truth + " --diagonals none --axis-runs none -o " + plan).exit_code, 0);
+  ASSERT_EQ(test::run_volcomp("acceptance plan " + truth + " --diagonals none --axis-runs none --rtest-steps 0 -o " + plan).exit_code, 0);
   ASSERT_EQ(test::run_volcomp("perturb " + truth + " -o " + (dir / "other").string() + " --seed 3").exit_code, 0);
   write(dir / "limits.toml", "[circle]\nGb_um = 2.0\nH_um = 2.0\n");
-  std::map<std::string, acceptance::Evaluation> results;
+  std::map<std::string, acceptance::Evaluation> results;  // the true file passes (exit 0), the others fail
   for (const auto& [name, compensation] : std::vector<std::pair<std::string, std::string>>{
-           {"off", "off"}, {"on", truth}, {"other", (dir / "other" / "mc300.toml").string()}}) {
-    auto r = test::run_volcomp("acceptance simulate " + plan + " --true " + truth + " --compensation " + compensation +
-                               " --noise-um 0.1 --seed 5 -o " + (dir / name).string());
-    ASSERT_EQ(r.exit_code, 0) << r.out;
-    r = test::run_volcomp("acceptance evaluate " + plan + " --measurements " + (dir / name).string() +
-                          " --tolerances " + (dir / "limits.toml").string() + " -o " + (dir / (name + "_report")).string());
-    EXPECT_EQ(r.exit_code, name == "on" ? 0 : 1) << name << ": " << r.out;  // the true file passes, the others fail
-    results[name] = acceptance::read_evaluation((dir / (name + "_report.csv")).string());
-  }
+           {"off", "off"}, {"on", truth}, {"other", (dir / "other" / "mc300.toml").string()}})
+    results[name] = simulated_results(dir, plan, truth, compensation, name, " --noise-um 0.1 --seed 5",
+                                      (dir / "limits.toml").string(), name == "on" ? 0 : 1);
   for (const std::string& test : acceptance::tests_of(results["off"])) {
     const auto g = [&](const std::string& name) { return figures_of(results[name], test).at("G(b)").value; };
     std::cout << test << ": G(b) off " << g("off") << " um, on with the true file " << g("on")
@@ -525,11 +541,135 @@ TEST(VolcompAcceptance, CircleRunsThatAreNotThePlansAreRefusedAndNothingWritten)
            {"one way", std::regex_replace(good, std::regex("[0-9.]+,cw,[-0-9.]+\n"), ""),
             "circle-XY.csv: error: circle-XY: ISO 230-4 asks for both directions, ccw and cw; the file has one"}}) {
     write(run, text);
-    const auto r = test::run_volcomp("acceptance evaluate " + plan + " --measurements " + (dir / "m").string() + " -o " +
-                                     (dir / "report").string());
-    EXPECT_EQ(r.exit_code, 2) << what << ": " << r.out;
-    EXPECT_NE(r.out.find(message), std::string::npos) << what << ": " << r.out;
-    EXPECT_FALSE(fs::exists(dir / "report.csv")) << what;
+    expect_evaluation_refused(plan, dir / "m", dir / "report", what, message);
+  }
+  fs::remove_all(dir);
+}
+
+// The R-test of the shipped machines with two rotary axes: its program through rs274, each pose
+// commanded where the plan says, the ideal machine putting the nest's centre on the sphere there
+// (the sheet's claim), each approached along the tool from its retract.
+TEST(VolcompAcceptance, RTestProgramsPutTheNestOnTheSphereAtEveryPose) {
+  if (!test::rs274_available()) GTEST_SKIP() << "no rs274";
+  int machines = 0;
+  for (const std::string name : {"mc300", "ac_trunnion", "mill3"}) {
+    const fs::path dir = fresh("rtest_" + name);
+    const auto r = test::run_volcomp("acceptance plan " + test::machine_path(name) +
+                                     " --diagonals none --axis-runs none --circles none -o " + (dir / "plan").string());
+    if (name == "mill3") {  // no rotary axes: no R-test, and then no test at all
+      EXPECT_EQ(r.exit_code, 2) << r.out;
+      EXPECT_NE(r.out.find("no test"), std::string::npos) << r.out;
+      continue;
+    }
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    ++machines;
+    const machine::Model model = machine::load_machine(test::machine_path(name));
+    const acceptance::Plan plan = acceptance::read_plan((dir / "plan").string());
+    ASSERT_EQ(plan.rtest.sequences.size(), 3u) << name;
+    std::vector<machine::Joints> poses;
+    for (const acceptance::RTestSequence& q : plan.rtest.sequences) {
+      EXPECT_GE(q.poses.size(), 3u) << q.name;
+      for (const machine::Joints& pose : q.poses) {
+        poses.push_back(pose);
+        const Eigen::Vector3d nest = machine::tool_pose(model, machine::Machine::Ideal, pose, plan.settings.tool_length_mm).tip_mm;
+        EXPECT_LT((nest - plan.rtest.sphere_mm).norm(), 1e-9) << name << " " << q.name;
+      }
+    }
+    const auto moves = test::rs274_moves("acceptance_rtest_" + name, dir / "plan" / acceptance::kRTestProgram);
+    std::vector<test::CanonMove> feeds;
+    for (const test::CanonMove& m : moves)
+      if (m.kind == test::CanonMove::Feed) feeds.push_back(m);
+    ASSERT_EQ(feeds.size(), 2 * poses.size()) << name << ": onto the sphere and back, each pose";
+    for (std::size_t k = 0; k < poses.size(); ++k) {
+      const test::CanonMove& on = feeds[2 * k];
+      for (int j = 0; j < model.joint_count(); ++j) {
+        const char letter = model.axes[static_cast<std::size_t>(j)].letter;
+        const std::size_t world = std::string("XYZABC").find(letter);
+        EXPECT_NEAR(on.end[world], poses[k][j], 1e-4) << name << " pose " << k + 1 << " " << letter;
+      }
+    }
+    fs::remove_all(test::run_folder_path("acceptance_rtest_" + name));
+    fs::remove_all(dir);
+  }
+  EXPECT_EQ(machines, 2);
+}
+
+// The R-test on a true MC-300 (its B and C lines off their file): the simulated readings are the
+// layout `identify rtest` reads, and it finds the hidden lines in them (its own fit, another code
+// path); compensated with the true file the sphere stays put (nm), with the nominal file the
+// lines' error remains, off the file's errors add; limits judge each sequence.
+TEST(VolcompAcceptance, RTestReadingsIdentifyTheTrueLinesAndTheFiguresMoveTheWayTheTruthSays) {
+  const fs::path dir = fresh("rtest_mc300");
+  const std::string nominal = test::machine_path("mc300"), plan = (dir / "plan").string();
+  auto r = test::run_volcomp("perturb " + nominal + " -o " + (dir / "true").string() +
+                             " --location EX0C=15um --location EY0C=-10um --location EX0B=-12um");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const std::string truth = (dir / "true" / "mc300.toml").string();
+  ASSERT_EQ(test::run_volcomp("acceptance plan " + nominal + " --diagonals none --axis-runs none --circles none -o " + plan)
+                .exit_code,
+            0);
+  write(dir / "limits.toml", "[rtest]\nD_um = 5\n");
+  std::map<std::string, acceptance::Evaluation> results;
+  for (const auto& [name, compensation] : std::vector<std::pair<std::string, std::string>>{
+           {"off", "off"}, {"nominal", nominal}, {"true", truth}})
+    results[name] =
+        simulated_results(dir, plan, truth, compensation, name, "", (dir / "limits.toml").string(), name == "true" ? 0 : 1);
+  ASSERT_EQ(acceptance::tests_of(results["off"]), (std::vector<std::string>{"rtest-B", "rtest-C", "rtest-BC"}));
+  for (const std::string& test : acceptance::tests_of(results["off"])) {
+    const auto d = [&](const std::string& name) { return figures_of(results[name], test).at("D").value; };
+    std::cout << test << ": D off " << d("off") << " um, on with the nominal file " << d("nominal")
+              << " um, on with the true file " << d("true") << " um\n";
+    EXPECT_LT(d("true"), 0.01) << test;
+    EXPECT_GT(d("nominal"), 3.0) << test << ": the hidden lines";
+    EXPECT_EQ(figures_of(results["true"], test).at("D").verdict, "PASS") << test;
+    EXPECT_EQ(figures_of(results["nominal"], test).at("D").verdict, "FAIL") << test;
+    EXPECT_EQ(figures_of(results["off"], test).at("X").kind, "R-test");
+  }
+  // identify rtest on the nominal file, from the uncompensated readings: the hidden lines.
+  r = test::run_volcomp("identify rtest " + nominal + " " + (dir / "off" / "rtest.csv").string() +
+                        " --deviations EX0C,EY0C,EX0B");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const machine::Model t = machine::load_machine(truth);
+  const int b = t.joint_of('B'), c = t.joint_of('C');
+  for (const auto& [symbol, value] : std::vector<std::pair<std::string, double>>{
+           {"EX0C", t.axes[static_cast<std::size_t>(c)].location_mm[0]},
+           {"EY0C", t.axes[static_cast<std::size_t>(c)].location_mm[1]},
+           {"EX0B", t.axes[static_cast<std::size_t>(b)].location_mm[0]}}) {
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(r.out, m, std::regex(symbol + R"( = (-?[0-9.]+) um)"))) << symbol << "\n" << r.out;
+    EXPECT_NEAR(std::stod(m[1]), value * 1e3, 0.01) << symbol << "\n" << r.out;  // noise-free readings
+  }
+  fs::remove_all(dir);
+}
+
+// R-test readings that are not the plan's poses: a row missing, a row at other joints.
+TEST(VolcompAcceptance, RTestReadingsThatAreNotThePlansAreRefusedAndNothingWritten) {
+  const fs::path dir = fresh("rtest_bad");
+  const std::string machine = test::machine_path("mc300"), plan = (dir / "plan").string();
+  ASSERT_EQ(test::run_volcomp("acceptance plan " + machine + " --diagonals none --axis-runs none --circles none -o " + plan)
+                .exit_code,
+            0);
+  ASSERT_EQ(test::run_volcomp("acceptance simulate " + plan + " --true " + machine + " -o " + (dir / "m").string()).exit_code,
+            0);
+  const fs::path file = dir / "m" / "rtest.csv";
+  const std::string good = test::file_text(file);
+  std::vector<std::string> rows;
+  std::istringstream in(good);
+  for (std::string line; std::getline(in, line);) rows.push_back(line);
+  const auto joined = [](const std::vector<std::string>& lines) {
+    std::string text;
+    for (const std::string& l : lines) text += l + "\n";
+    return text;
+  };
+  std::vector<std::string> short_rows = rows, moved = rows;
+  short_rows.pop_back();
+  moved.back().replace(0, moved.back().find(','), "-1.0");  // its x somewhere else
+  for (const auto& [what, text, message] : std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"a row missing", joined(short_rows), "rtest.csv: error: "},
+           {"other joints", joined(moved),
+            "rtest.csv:" + std::to_string(rows.size()) + ": error: not the plan's pose"}}) {
+    write(file, text);
+    expect_evaluation_refused(plan, dir / "m", dir / "report", what, message);
   }
   fs::remove_all(dir);
 }

@@ -17,8 +17,9 @@ namespace {
 namespace fs = std::filesystem;
 
 // 5 axis plots, the balance, the volume map's 4 sheets; then A and E (the figures with limits)
-// for the body and the face diagonals, E for the axis runs, and G(b) (its limit) for the circles.
-constexpr int kAcceptanceFigures = 6;
+// for the body and the face diagonals, E for the axis runs, G(b) (its limit) for the circles and
+// X (the kind's first, no limit) for the R-test.
+constexpr int kAcceptanceFigures = 7;
 constexpr int kFigures = 10 + kAcceptanceFigures;
 
 const std::vector<std::string> kTests = {"body-NNN-PPP",  "body-NNP-PPN",  "body-NPN-PNP",  "body-NPP-PNN",
@@ -26,6 +27,7 @@ const std::vector<std::string> kTests = {"body-NNN-PPP",  "body-NNP-PPN",  "body
                                          "face-ZX-NN-PP", "face-ZX-NP-PN"};
 const std::vector<std::string> kCircles = {"circle-XY", "circle-YZ", "circle-ZX"};
 const std::vector<std::string> kAxisRuns = {"axis-X", "axis-Y", "axis-Z"};
+const std::vector<std::string> kRTest = {"rtest-B", "rtest-C", "rtest-BC"};
 
 // Runs `command` through volcomp, expecting `exit_code`.
 void volcomp(const std::string& command, int exit_code = 0) {
@@ -58,8 +60,8 @@ TEST(VolcompReportAcceptance, OffAndOnSideBySideInTheBrowser) {
       << r.out;
   const std::string html = test::file_text(page);
   EXPECT_NE(html.find("<section id=\"acceptance\">\n<h2>Acceptance (ISO/TR 16907 11.3)</h2>"), std::string::npos);
-  EXPECT_NE(html.find("<td>acceptance verdict (ISO/TR 16907 11.3)</td><td>compensation off: FAIL (16 tests); "
-                      "compensation on: PASS (16 tests)</td>"),
+  EXPECT_NE(html.find("<td>acceptance verdict (ISO/TR 16907 11.3)</td><td>compensation off: FAIL (19 tests); "
+                      "compensation on: PASS (19 tests)</td>"),
             std::string::npos);
   for (const char* file : {"off.csv", "on.csv"}) {
     const test::CommandResult sum = test::run_command("sha256sum '" + (dir / file).string() + "'");
@@ -94,6 +96,8 @@ TEST(VolcompReportAcceptance, OffAndOnSideBySideInTheBrowser) {
   for (const std::string& test : kTests) EXPECT_EQ(test::count(rendered, "<td>" + test + "</td>"), 5u) << test;
   for (const std::string& test : kAxisRuns) EXPECT_EQ(test::count(rendered, "<td>" + test + "</td>"), 5u) << test;
   EXPECT_EQ(test::count(rendered, "alt=\"acceptance axis run E\""), 1u);
+  for (const std::string& test : kRTest) EXPECT_EQ(test::count(rendered, "<td>" + test + "</td>"), 4u) << test;
+  EXPECT_EQ(test::count(rendered, "alt=\"acceptance R-test X\""), 1u);
   for (const std::string& test : kCircles) EXPECT_EQ(test::count(rendered, "<td>" + test + "</td>"), 3u) << test;
   EXPECT_EQ(test::count(rendered, "alt=\"acceptance circle G(b)\""), 1u);
   for (const char* kind : {"body diagonal", "face diagonal"})
@@ -101,8 +105,8 @@ TEST(VolcompReportAcceptance, OffAndOnSideBySideInTheBrowser) {
       EXPECT_EQ(test::count(rendered, "alt=\"acceptance " + std::string(kind) + " " + symbol + "\""), 1u)
           << kind << " " << symbol;
   EXPECT_EQ(test::count(rendered, "<img src=\"data:image/png;base64,"), static_cast<std::size_t>(kAcceptanceFigures));
-  EXPECT_NE(rendered.find("<td class=\"fail\">FAIL</td><td>16</td>"), std::string::npos);
-  EXPECT_NE(rendered.find("<td class=\"pass\">PASS</td><td>16</td>"), std::string::npos);
+  EXPECT_NE(rendered.find("<td class=\"fail\">FAIL</td><td>19</td>"), std::string::npos);
+  EXPECT_NE(rendered.find("<td class=\"pass\">PASS</td><td>19</td>"), std::string::npos);
   fs::remove_all(dir);
 }
 

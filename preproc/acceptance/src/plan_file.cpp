@@ -132,6 +132,25 @@ std::string plan_toml(const Plan& p) {
         << "sheet = \"" << sheet_path(d) << "\"\n"
         << "measurements = \"" << measurements_name(d) << "\"\n";
   }
+  if (!p.rtest.empty()) {
+    const auto joints = [](const std::vector<machine::Joints>& poses) {
+      std::string text = "[";
+      for (std::size_t k = 0; k < poses.size(); ++k) {
+        text += k ? ", [" : "[";
+        for (int j = 0; j < poses[k].size(); ++j) text += (j ? ", " : "") + number_text(poses[k][j]);
+        text += "]";
+      }
+      return text + "]";
+    };
+    out << "\n[rtest]  # ISO 10791-6\n"
+        << "sphere_joints_mm = " << list(p.rtest.sphere_joints_mm) << "\n"
+        << "sphere_mm = " << list(p.rtest.sphere_mm) << "\n"
+        << "program = \"" << kRTestProgram << "\"\nsheet = \"" << kRTestSheet << "\"\nmeasurements = \""
+        << kRTestMeasurements << "\"\n";
+    for (const RTestSequence& q : p.rtest.sequences)
+      out << "\n[[rtest.sequence]]\nname = " << quoted(q.name) << "\nleft_out = " << q.left_out
+          << "\nposes = " << joints(q.poses) << "\nretracts = " << joints(q.retracts) << "\n";
+  }
   for (const Circle& c : p.circles)
     out << "\n[[circle]]  # ISO 230-4\n"
         << "name = " << quoted(c.name) << "\n"
@@ -207,8 +226,51 @@ Plan read_plan_file(const std::string& path) {
       p.circles.push_back(c);
     }
   }
-  if (p.diagonals.empty() && p.axis_runs.empty() && p.circles.empty())
-    throw LoadError({file.path()}, "no [[diagonal]], [[axis_run]] or [[circle]] in the plan");
+  if (const toml::table* r = file.table(file.root(), "rtest", false, "")) {
+    file.check_keys(*r, "[rtest]", {"sphere_joints_mm", "sphere_mm", "program", "sheet", "measurements", "sequence"});
+    p.rtest.sphere_joints_mm = vector3(file, *r, "sphere_joints_mm", "[rtest]");
+    p.rtest.sphere_mm = vector3(file, *r, "sphere_mm", "[rtest]");
+    const toml::node* n = file.get(*r, "sequence", true, "[rtest]");
+    const toml::array* a = n->as_array();
+    if (!a || a->empty()) throw LoadError(file.where(*n), "'sequence' must be an array of tables, [[rtest.sequence]]");
+    // An array of poses, each every joint of the plan's machine.
+    const auto poses = [&](const toml::table& t, std::string_view key) {
+      const toml::node* list = file.get(t, key, true, "[[rtest.sequence]]");
+      const toml::array* rows = list->as_array();
+      if (!rows || rows->empty()) throw LoadError(file.where(*list), "'" + std::string(key) + "' must be [[joints...], ...]");
+      std::vector<machine::Joints> out;
+      for (const toml::node& row : *rows) {
+        const toml::array* values = row.as_array();
+        if (!values || values->size() != p.coordinates.size())
+          throw LoadError(file.where(row), "'" + std::string(key) + "': each pose has " +
+                                               std::to_string(p.coordinates.size()) + " joints (" + p.coordinates + ")");
+        machine::Joints q(static_cast<Eigen::Index>(values->size()));
+        for (std::size_t j = 0; j < values->size(); ++j) q[static_cast<Eigen::Index>(j)] = file.scalar((*values)[j], key);
+        out.push_back(q);
+      }
+      return out;
+    };
+    for (const toml::node& item : *a) {
+      const toml::table* t = item.as_table();
+      if (!t) throw LoadError(file.where(item), "'sequence' must be an array of tables, [[rtest.sequence]]");
+      file.check_keys(*t, "[[rtest.sequence]]", {"name", "left_out", "poses", "retracts"});
+      RTestSequence q;
+      q.name = file.text(*t, "name", true, "[[rtest.sequence]]");
+      const toml::node* left = file.get(*t, "left_out", true, "[[rtest.sequence]]");
+      const double left_out = file.scalar(*left, "left_out");
+      if (left_out != std::floor(left_out) || left_out < 0 || left_out > 1000)  // checked before the cast
+        throw LoadError(file.where(*left), "'left_out' must be a whole number from 0 to 1000");
+      q.left_out = static_cast<int>(left_out);
+      q.poses = poses(*t, "poses");
+      q.retracts = poses(*t, "retracts");
+      if (q.poses.size() != q.retracts.size())
+        throw LoadError(file.where(*t), q.name + ": " + std::to_string(q.poses.size()) + " poses but " +
+                                            std::to_string(q.retracts.size()) + " retracts");
+      p.rtest.sequences.push_back(q);
+    }
+  }
+  if (p.diagonals.empty() && p.axis_runs.empty() && p.circles.empty() && p.rtest.empty())
+    throw LoadError({file.path()}, "no test in the plan: no [[diagonal]], [[axis_run]], [[circle]] or [rtest]");
   return p;
 }
 

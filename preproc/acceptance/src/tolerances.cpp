@@ -11,7 +11,7 @@ namespace vc::acceptance {
 
 Tolerances read_tolerances(const std::string& path) {
   const machine::TomlFile file(path);
-  file.check_keys(file.root(), "the tolerances (one table per kind of test)", {"diagonal", "axis", "circle"});
+  file.check_keys(file.root(), "the tolerances (one table per kind of test)", {"diagonal", "axis", "circle", "rtest"});
   Tolerances t;
   t.path = path;
   // Each table's keys SYMBOL_um (the key's symbol, the figure's symbol) into `limits`.
@@ -35,6 +35,7 @@ Tolerances read_tolerances(const std::string& path) {
   read("diagonal", iso230_2, t.diagonal_mm);
   read("axis", iso230_2, t.axis_mm);
   read("circle", {{"Gb_um", "G(b)"}, {"H_um", "H"}, {"F_um", "F"}}, t.circle_mm);
+  read("rtest", {{"X_um", "X"}, {"Y_um", "Y"}, {"Z_um", "Z"}, {"D_um", "D"}}, t.rtest_mm);
   return t;
 }
 

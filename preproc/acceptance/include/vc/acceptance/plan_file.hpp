@@ -27,6 +27,13 @@
 //   name = "circle-XY", plane = "XY"
 //   centre_mm = [x, y, z], radius_mm = 150          # X, Y, Z joints; the ballbar's length
 //   program = "circles/circle-XY.ngc", sheet = "circles/circle-XY.md", measurements = "circle-XY.csv"
+//
+//   [rtest]                                         # ISO 10791-6, machines with two rotary axes
+//   sphere_joints_mm = [x, y, z], sphere_mm = [x, y, z]   # the nest on the sphere at rest; part frame
+//   program = "rtest/rtest.ngc", sheet = "rtest/rtest.md", measurements = "rtest.csv"
+//   [[rtest.sequence]]
+//   name = "rtest-B", left_out = 0
+//   poses = [[x, y, z, b, c], ...], retracts = [[...], ...]   # every joint, mm and deg
 #pragma once
 
 #include <string>
@@ -34,6 +41,7 @@
 
 #include "vc/acceptance/circles.hpp"
 #include "vc/acceptance/diagonals.hpp"
+#include "vc/acceptance/rtest_plan.hpp"
 
 namespace vc::acceptance {
 
@@ -46,6 +54,7 @@ struct Plan {
   std::vector<Diagonal> diagonals;
   std::vector<Diagonal> axis_runs;  // the laser lines along X, Y, Z (ISO 230-2)
   std::vector<Circle> circles;
+  RTestPlan rtest;  // empty: none
 };
 
 // Every laser line of the plan: the diagonals, then the axis runs.
@@ -58,6 +67,9 @@ std::string measurements_name(const Diagonal& d);
 std::string program_path(const Circle& c);
 std::string sheet_path(const Circle& c);
 std::string measurements_name(const Circle& c);
+inline const char* kRTestProgram = "rtest/rtest.ngc";
+inline const char* kRTestSheet = "rtest/rtest.md";
+inline const char* kRTestMeasurements = "rtest.csv";
 
 std::string plan_toml(const Plan& plan);
 

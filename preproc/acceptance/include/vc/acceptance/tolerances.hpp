@@ -15,6 +15,10 @@
 //   H_um = 5.0        # circular hysteresis
 //   F_um = 20.0       # radial deviation (about the nominal centre, the ballbar's calibrated length)
 //
+//   [rtest]           # ISO 10791-6 R-test, per sequence
+//   X_um = 10.0       # range of the sphere centre's deviation along x (Y_um, Z_um likewise)
+//   D_um = 8.0        # its largest distance from the sequence's mean
+//
 // Any subset of the figures; a figure without a limit is reported, not judged.
 #pragma once
 
@@ -28,6 +32,7 @@ struct Tolerances {
   std::map<std::string, double> diagonal_mm;  // "A", "E", "R", "B", "M" -> limit (mm)
   std::map<std::string, double> axis_mm;      // the same figures, of the axis runs
   std::map<std::string, double> circle_mm;    // "G(b)", "H", "F" -> limit (mm)
+  std::map<std::string, double> rtest_mm;     // "X", "Y", "Z", "D" -> limit (mm)
 };
 
 // Throws LoadError at file:line for an unknown table or key, a limit that is not a number > 0.
