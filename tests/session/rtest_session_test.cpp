@@ -29,6 +29,9 @@
 #include "vc/machine/kinematics.hpp"
 #include "vc/machine/load_machine.hpp"
 #include "vc/shop/machine_file_writer.hpp"
+#include "vc/acceptance/evaluation_file.hpp"
+#include "vc/acceptance/plan_file.hpp"
+#include "vc/identify/rtest.hpp"
 
 namespace vc {
 namespace {
@@ -80,12 +83,15 @@ std::vector<Pose> still_poses(const fs::path& trace) {
 
 class RTestSession : public ::testing::Test {
  protected:
-  // The program, the sensors' HAL file and the trace, in `dir`; the session run with `file`
-  // compensating (or off); the still poses.
-  std::vector<Pose> run(const fs::path& dir, const std::string& name, const std::string& compensation_file) {
+  // The program (dir/rtest.ngc or `program`), the sensors' HAL file (the sphere where the nest is
+  // at the joints `centre`) and the trace, in `dir`; the session run with `file` compensating (or
+  // off); the still poses.
+  std::vector<Pose> run(const fs::path& dir, const std::string& name, const std::string& compensation_file,
+                        fs::path program = {}, const std::string& centre = "-400,-160,-200") {
+    if (program.empty()) program = dir / "rtest.ngc";
     const fs::path hal = dir / (name + "_trace.hal");
     std::ofstream(hal) << "# The MC-300 trace with the R-test's sensors (simrtest on the true machine)\n"
-                       << "loadrt simrtest machine=" << truth_file_ << " centre=-400,-160,-200 noise_um=0.5 seed=5\n"
+                       << "loadrt simrtest machine=" << truth_file_ << " centre=" << centre << " noise_um=0.5 seed=5\n"
                        << "addf simrtest.update servo-thread 1\n"
                        << "net j0 => simrtest.joint.0\nnet j1 => simrtest.joint.1\nnet j2 => simrtest.joint.2\n"
                        << "net j3 => simrtest.joint.3\nnet j4 => simrtest.joint.4\n"
@@ -101,7 +107,7 @@ class RTestSession : public ::testing::Test {
                        << "net rtest-dz simrtest.dz-um => sampler.0.pin.14\n"
                        << "net rtest-in-range simrtest.in-range => sampler.0.pin.15\n"
                        << "addf sampler.0 servo-thread\n";
-    std::string options = " --program " + (dir / "rtest.ngc").string() + " --replace-halfile trace.hal=" +
+    std::string options = " --program " + program.string() + " --replace-halfile trace.hal=" +
                           hal.string() +
                           " --set 'DRIVER.TRACE_COLUMNS=x y z b c j0 j1 j2 j3 j4 gain tool_offset dx dy dz in_range'";
     if (compensation_file.empty()) {
@@ -219,6 +225,70 @@ TEST_F(RTestSession, IdentifiesTheTrueLinesAndTheirCompensationTakesTheReadingsT
   EXPECT_GT(largest(nominal_on), 10.0) << "the nominal file does not know the lines";
   EXPECT_LT(largest(identified_on), 0.3 * largest(nominal_on));
   EXPECT_LT(largest(identified_on), 0.5) << "the sensors' noise, 0.5 um a sample, averaged over 400";
+}
+
+// `volcomp acceptance plan`'s R-test (rtest/rtest.ngc, unchanged) in a session on the true MC-300,
+// compensation off: it runs clean, dwells at each planned pose at the plan's joints, and the
+// sensors read there what `acceptance simulate` says they read (its own code path: identify's
+// rtest_reading on the true file), within their averaged noise; `acceptance evaluate` of the
+// session's readings gives simulate's figures.
+TEST_F(RTestSession, ThePlansRTestRunsAndItsSensorsReadWhatSimulateSays) {
+  const fs::path dir = test::run_folder("rtest_plan_session");
+  const fs::path src = test::stage_sources(dir);
+  const std::string nominal_file = (src / "machines/data/mc300.toml").string();
+  const machine::Model model = machine::load_machine(nominal_file);
+  const int b = model.joint_of('B'), c = model.joint_of('C');
+  truth_file_ = shop::write_machine_with_tables(
+      model, (dir / "true").string(), {}, "session test: B and C lines off",
+      {{c, 0, location(model, c, 0) + 0.015}, {b, 0, location(model, b, 0) - 0.012}});
+  const std::string plan = (dir / "plan").string();
+  test::CommandResult r = test::run_volcomp("acceptance plan " + nominal_file + " -o " + plan +
+                                            " --diagonals none --axis-runs none --circles none --rtest-steps 6"
+                                            " --dwell 0.8 --feed 3000");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const acceptance::Plan p = acceptance::read_plan(plan);
+  std::vector<machine::Joints> planned;
+  for (const acceptance::RTestSequence& q : p.rtest.sequences) planned.insert(planned.end(), q.poses.begin(), q.poses.end());
+  ASSERT_GE(planned.size(), 6u);
+  std::ostringstream centre;
+  centre << std::setprecision(12) << p.rtest.sphere_joints_mm.x() << ',' << p.rtest.sphere_joints_mm.y() << ','
+         << p.rtest.sphere_joints_mm.z();
+  const std::vector<Pose> session = run(dir, "plan_off", "", dir / "plan" / acceptance::kRTestProgram, centre.str());
+  ASSERT_EQ(session.size(), planned.size());
+  r = test::run_volcomp("acceptance simulate " + plan + " --true " + truth_file_ + " -o " + (dir / "simulated").string());
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const std::vector<identify::RTestReading> simulated =
+      identify::read_rtest_readings((dir / "simulated" / acceptance::kRTestMeasurements).string(), model);
+  ASSERT_EQ(simulated.size(), planned.size());
+  fs::create_directories(dir / "session_readings");
+  std::ofstream csv(dir / "session_readings" / acceptance::kRTestMeasurements);
+  csv << "x,y,z,b,c,dx[um],dy[um],dz[um]\n" << std::setprecision(12);
+  double largest = 0;
+  for (std::size_t k = 0; k < planned.size(); ++k) {
+    EXPECT_LT((session[k].joints - planned[k]).cwiseAbs().maxCoeff(), 1e-6) << "pose " << k + 1;
+    largest = std::max(largest, (session[k].reading_um - simulated[k].deviation_mm * 1e3).norm());
+    for (int j = 0; j < 5; ++j) csv << session[k].joints[j] << ',';
+    csv << session[k].reading_um.x() << ',' << session[k].reading_um.y() << ',' << session[k].reading_um.z() << '\n';
+  }
+  csv.close();
+  std::cout << "the plan's R-test in LinuxCNC: " << planned.size() << " poses, the sensors against simulate's readings "
+            << largest << " um at most\n";
+  EXPECT_LT(largest, 0.2) << "the sensors' noise, 0.5 um a sample averaged over 400";
+  // The figures of both, through evaluate.
+  std::map<std::string, acceptance::Evaluation> results;
+  for (const char* name : {"simulated", "session_readings"}) {
+    r = test::run_volcomp("acceptance evaluate " + plan + " --measurements " + (dir / name).string() + " --machine " +
+                          nominal_file + " -o " + (dir / (std::string(name) + "_report")).string());
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    results[name] = acceptance::read_evaluation((dir / (std::string(name) + "_report.csv")).string());
+  }
+  ASSERT_EQ(results["simulated"].rows.size(), results["session_readings"].rows.size());
+  for (std::size_t k = 0; k < results["simulated"].rows.size(); ++k) {
+    const acceptance::EvaluationRow &a = results["simulated"].rows[k], &s = results["session_readings"].rows[k];
+    EXPECT_EQ(a.test + a.figure, s.test + s.figure);
+    EXPECT_NEAR(a.value, s.value, 0.3) << a.test << " " << a.figure;
+    if (a.figure == "D") std::cout << a.test << ": D " << s.value << " um in LinuxCNC, " << a.value << " um simulated\n";
+  }
 }
 
 }  // namespace
